@@ -1,0 +1,3 @@
+//! footprint-host: the `footprint` CLI's library.
+
+pub mod map;

@@ -1,0 +1,1 @@
+//! footprint-tests: integration tests live in `tests/`.
