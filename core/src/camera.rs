@@ -1,0 +1,352 @@
+//! The camera and its per-frame tables.
+//!
+//! The camera has a position, an eye height, a heading, a pitch and a vertical field of view,
+//! square pixels and no roll (Sect. 3). As in the paper, every image column is a vertical
+//! plane through the eye, and the rays of one column differ only in their slope; this is what
+//! lets each ray resume where the one below it hit (Fig. 3).
+//!
+//! **Projection.** Let `pix = 2·tan(fov/2)/H` be the pixel size on an image plane at unit
+//! distance. Column `c` is the vertical plane at azimuth `atan(x_c)` from the heading, with
+//! `x_c = (c + ½ − W/2)·pix`. Within it, the ray through the *lower edge* of row `i`
+//! (`i = 0` at the bottom, `i = H` the top edge of the top row) passes through the point
+//! `P_i` of an image line pitched by `pitch`, so its slope is Eq. 2 exactly:
+//! `s(R_i) = (P_i.h − COP.h)/(P_i.x − COP.x) = (y_i·cos p − sin p)/(cos p + y_i·sin p)`,
+//! `y_i = (i − H/2)·pix`, for every pixel and any pitch. The image is therefore the paper's
+//! column-plane projection: at pitch 0 it is the pinhole image, and at other pitches vertical
+//! edges stay vertical (no keystone), because each column is its own pitched pinhole.
+//!
+//! **Tables.** [`Frame::new`] does all the trigonometry once (in `f64`, see [`crate::trig`])
+//! and stores per row the slope `s(R_i)` ([`Coord`]) and per column a [`Column`] of fixed-point
+//! constants. After that the walk uses integers only.
+//!
+//! Heading is in degrees clockwise from north, where north is −y (up the map image) and east
+//! is +x. Pitch is positive looking down.
+
+use crate::color::Rgb;
+use crate::error::{check, Error};
+use crate::num::{
+    fixed_from_f64, Coord, Height, Line, Slope, MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE,
+};
+use crate::terrain::Terrain;
+use crate::trig::{sin_cos_deg, sqrt};
+
+/// The largest image side in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+
+/// What a camera looks from and at. All lengths are in metres, all angles in degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraParams {
+    /// Eye position east, metres (`x` voxel = `x_m / spacing`).
+    pub x_m: f64,
+    /// Eye position south, metres (`y` voxel = `y_m / spacing`).
+    pub y_m: f64,
+    /// Eye height above the datum (height unit 0), metres.
+    pub eye_m: f64,
+    /// Heading, degrees clockwise from north (−y).
+    pub heading_deg: f64,
+    /// Pitch, degrees, positive looking down; must lie in (−90, 90).
+    pub pitch_deg: f64,
+    /// Vertical field of view, degrees; must lie in (0, 180).
+    pub fov_deg: f64,
+    /// Image width in pixels, 1..=[`MAX_IMAGE_SIDE`].
+    pub width: u32,
+    /// Image height in pixels, 1..=[`MAX_IMAGE_SIDE`].
+    pub height: u32,
+    /// The maximum distance, metres, horizontally: a ray that hits nothing closer sees the sky.
+    pub far_m: f64,
+}
+
+/// A validated [`CameraParams`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    params: CameraParams,
+}
+
+impl Camera {
+    /// Validates the parameters: every number finite, `0 < fov < 180`, `−90 < pitch < 90`,
+    /// sides in `1..=MAX_IMAGE_SIDE`, `far > 0`.
+    pub fn new(params: CameraParams) -> Result<Self, Error> {
+        check("x", params.x_m, -1e12, 1e12, false)?;
+        check("y", params.y_m, -1e12, 1e12, false)?;
+        check("height", params.eye_m, -1e12, 1e12, false)?;
+        check("heading", params.heading_deg, -1e9, 1e9, false)?;
+        check("pitch", params.pitch_deg, -90.0, 90.0, true)?;
+        check("fov", params.fov_deg, 0.0, 180.0, true)?;
+        check("far", params.far_m, 0.0, 1e15, true)?;
+        let side_ok = |s: u32| (1..=MAX_IMAGE_SIDE).contains(&s);
+        if !side_ok(params.width) || !side_ok(params.height) {
+            return Err(Error::ImageSize {
+                width: params.width,
+                height: params.height,
+            });
+        }
+        Ok(Self { params })
+    }
+
+    /// The validated parameters.
+    pub fn params(&self) -> &CameraParams {
+        &self.params
+    }
+
+    /// Image width in pixels.
+    pub fn width(&self) -> usize {
+        self.params.width as usize
+    }
+
+    /// Image height in pixels.
+    pub fn height(&self) -> usize {
+        self.params.height as usize
+    }
+
+    /// The pixel size on the unit image plane, `2·tan(fov/2)/H`: the angle of one pixel, in
+    /// radians, at the image centre.
+    pub fn pixel_angle(&self) -> f64 {
+        let (s, c) = sin_cos_deg(self.params.fov_deg / 2.0);
+        2.0 * s / c / self.params.height as f64
+    }
+
+    /// Slope (rise per horizontal distance) of the ray through the lower edge of row `i`,
+    /// counted from the bottom, `0..=H` (Eq. 2), in `f64`.
+    pub fn row_slope(&self, i: usize) -> f64 {
+        let (sp, cp) = sin_cos_deg(self.params.pitch_deg);
+        let y = (i as f64 - self.params.height as f64 / 2.0) * self.pixel_angle();
+        let den = cp + y * sp;
+        if den <= 1e-12 {
+            // The ray points past the vertical: it goes straight down.
+            -MAX_TAN
+        } else {
+            ((y * cp - sp) / den).clamp(-MAX_TAN, MAX_TAN)
+        }
+    }
+}
+
+/// The largest `|tan|` of a row's elevation kept in the row table.
+const MAX_TAN: f64 = 1.0e6;
+
+/// Frame options that are not part of the camera.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// The colour of rays that hit nothing within the far distance.
+    pub sky: Rgb,
+    /// Multiresolution traversal (Sect. 3); `false` walks level 0 voxel by voxel.
+    pub lod: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            sky: Rgb::new(150, 190, 235),
+            lod: true,
+        }
+    }
+}
+
+/// Which horizontal axis a column's rays step along (the paper's "x-major" ray).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Axis {
+    /// Steps along x; the cross axis is y.
+    #[default]
+    X,
+    /// Steps along y; the cross axis is x.
+    Y,
+}
+
+/// The per-column constants of the walk: fixed-point, built once per frame.
+///
+/// Positions along the ray are `n`, half-voxels along the major axis in the ray's direction
+/// (`n = ±2·u`), so that pyramid-level-L voxel centres are the odd multiples of 2^L.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Column {
+    pub(crate) axis: Axis,
+    /// +1 when the ray moves towards increasing major coordinate.
+    pub(crate) sign: i8,
+    /// Row slope × `kc` = the ray's slope in height units per half-voxel.
+    pub(crate) kc: Coord,
+    /// The eye's `n`.
+    pub(crate) n_eye: Height,
+    /// The minor coordinate is `v(n) = v_base + n·dv` voxels.
+    pub(crate) v_base: Coord,
+    /// Minor voxels per half-voxel along the ray, `|dv| ≤ ½`.
+    pub(crate) dv: Coord,
+    /// The first voxel centre at least one half-voxel ahead of the eye.
+    pub(crate) n_start: i64,
+    /// The last `n` within the far distance.
+    pub(crate) n_far: i64,
+    /// The distance (half-voxels) where the footprint is √2 voxels wide: level L+1 begins at
+    /// `lod_base·2^L` ahead of the eye.
+    pub(crate) lod_base: i64,
+    /// Voxels of horizontal distance per half-voxel step, `sec(φ)/2`, for reports.
+    pub(crate) run: f64,
+}
+
+impl Column {
+    /// The horizontal distance, in voxels, from the eye to the voxel centred at `n`.
+    pub fn distance(&self, n: i64) -> f64 {
+        (n as f64 - self.n_eye.to_num::<f64>()) * self.run
+    }
+
+    /// The axis the column steps along.
+    pub fn axis(&self) -> Axis {
+        self.axis
+    }
+
+    /// The first voxel centre of the walk.
+    pub fn n_start(&self) -> i64 {
+        self.n_start
+    }
+}
+
+/// One frame's tables: the rows' slopes and the columns' constants, over borrowed buffers.
+#[derive(Debug)]
+pub struct Frame<'t> {
+    rows: &'t [Coord],
+    columns: &'t [Column],
+    eye: Height,
+    sky: Rgb,
+    lod: bool,
+}
+
+impl<'t> Frame<'t> {
+    /// Builds the tables into `rows` (`H + 1` entries) and `columns` (`W` entries).
+    ///
+    /// Errors: buffers of the wrong length, or a camera outside the core's fixed-point range
+    /// for this terrain (see [`crate::num`]): `|x|, |y| ≤ 2^21` voxels, `|eye| ≤ 2^22` height
+    /// units, `far ≤ 2^21` voxels.
+    pub fn new(
+        camera: &Camera,
+        terrain: &Terrain<'_>,
+        options: Options,
+        rows: &'t mut [Coord],
+        columns: &'t mut [Column],
+    ) -> Result<Self, Error> {
+        let p = camera.params();
+        if rows.len() != camera.height() + 1 {
+            return Err(Error::SliceLength {
+                what: "rows",
+                expected: camera.height() + 1,
+                actual: rows.len(),
+            });
+        }
+        if columns.len() != camera.width() {
+            return Err(Error::SliceLength {
+                what: "columns",
+                expected: camera.width(),
+                actual: columns.len(),
+            });
+        }
+        let scale = terrain.scale();
+        let ex = check("x", p.x_m / scale.spacing_m, -MAX_COORD, MAX_COORD, false)?;
+        let ey = check("y", p.y_m / scale.spacing_m, -MAX_COORD, MAX_COORD, false)?;
+        let eye = check(
+            "height",
+            p.eye_m / scale.height_scale_m,
+            -MAX_EYE_HEIGHT,
+            MAX_EYE_HEIGHT,
+            false,
+        )?;
+        let far = check("far", p.far_m / scale.spacing_m, 0.0, MAX_FAR, true)?;
+
+        // Rows: Eq. 2's slopes, strictly increasing so that each ray lies above the last.
+        for (i, row) in rows.iter_mut().enumerate() {
+            *row = fixed_from_f64::<Coord>(camera.row_slope(i));
+        }
+        for i in 1..rows.len() {
+            if rows[i] <= rows[i - 1] {
+                rows[i] = rows[i - 1].saturating_add(Coord::DELTA);
+            }
+        }
+
+        // Columns.
+        let pix = camera.pixel_angle();
+        let (sh, ch) = sin_cos_deg(p.heading_deg);
+        let (fx, fy) = (sh, -ch);
+        let (rx, ry) = (ch, sh);
+        let w = p.width as f64;
+        let height_per_voxel = scale.spacing_m / scale.height_scale_m;
+        for (c, col) in columns.iter_mut().enumerate() {
+            let xc = (c as f64 + 0.5 - w / 2.0) * pix;
+            let (dx, dy) = (fx + xc * rx, fy + xc * ry);
+            let (axis, major, minor, u_eye, v_eye) = if dx.abs() >= dy.abs() {
+                (Axis::X, dx, dy, ex, ey)
+            } else {
+                (Axis::Y, dy, dx, ey, ex)
+            };
+            let sign: i8 = if major < 0.0 { -1 } else { 1 };
+            let ratio = minor / major.abs();
+            let sec = sqrt(1.0 + ratio * ratio);
+            let run = sec / 2.0;
+            let n_eye: Height = fixed_from_f64(f64::from(sign) * 2.0 * u_eye);
+            let dv: Coord = fixed_from_f64(ratio / 2.0);
+            let v_base = fixed_from_f64::<Coord>(v_eye)
+                .saturating_sub(Coord::saturating_from_num(n_eye).saturating_mul(dv));
+            let first = (n_eye / 2).ceil().saturating_to_num::<i64>();
+            let n_start = 2 * first + 1;
+            let n_far = (n_eye.to_num::<f64>() + far / run) as i64;
+            // The footprint across the column at horizontal distance t is t·δ voxels, with δ
+            // the column's angular width; the level is the one nearest in log2 (Sect. 3).
+            let delta = pix / (1.0 + xc * xc);
+            let lod_base = (2.0 * core::f64::consts::SQRT_2 / (delta * sec)).clamp(2.0, 1e12);
+            *col = Column {
+                axis,
+                sign,
+                kc: fixed_from_f64(run * height_per_voxel),
+                n_eye,
+                v_base,
+                dv,
+                n_start,
+                n_far,
+                lod_base: lod_base as i64,
+                run,
+            };
+        }
+        Ok(Self {
+            rows,
+            columns,
+            eye: fixed_from_f64(eye),
+            sky: options.sky,
+            lod: options.lod,
+        })
+    }
+
+    /// Image width.
+    pub fn width(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// Image height.
+    pub fn height(&self) -> usize {
+        self.rows.len() - 1
+    }
+
+    /// Column `c`'s constants.
+    pub fn column(&self, c: usize) -> &Column {
+        &self.columns[c]
+    }
+
+    /// The eye height in height units.
+    pub fn eye(&self) -> Height {
+        self.eye
+    }
+
+    /// The sky colour.
+    pub fn sky(&self) -> Rgb {
+        self.sky
+    }
+
+    /// Whether the walk is multiresolution.
+    pub fn lod(&self) -> bool {
+        self.lod
+    }
+
+    /// Ray `R_i` of `column` (the lower edge of row `i`, `0..=H`): Eqs. 2 and 3 as a
+    /// [`Line`] `H(n) = base + n·slope` with `base = eye − n_eye·slope`.
+    #[inline]
+    pub fn ray(&self, column: &Column, i: usize) -> Line {
+        let slope: Slope = Slope::saturating_from_num(self.rows[i].saturating_mul(column.kc))
+            .clamp(-Slope::from_num(MAX_SLOPE), Slope::from_num(MAX_SLOPE));
+        Line {
+            base: self.eye.saturating_sub(column.n_eye.saturating_mul(slope)),
+            slope,
+        }
+    }
+}

@@ -1,0 +1,170 @@
+//! The column walk (Fig. 4): one traversal, shared by every sampling mode.
+//!
+//! A column is generated bottom to top. Ray `R_i` starts where `R_{i−1}` hit (vertical
+//! coherence, Fig. 3): its height is Eq. 3 evaluated at the current voxel, with no step back.
+//! While the ray passes above the current voxel the walk advances along the multiresolution
+//! sequence ([`March`]) and raises the ray by its slope times the step; when the voxel's top is
+//! above the ray it hands the hit to the [`Sampler`]. A column ends when its pixels are done,
+//! when the next voxel lies beyond the far distance, or when the ray is above the highest
+//! point of the map and not descending; the rest of it is sky.
+
+use core::ops::Range;
+
+use crate::camera::Frame;
+use crate::color::Rgb;
+use crate::cost::Cost;
+use crate::error::Error;
+use crate::march::March;
+use crate::num::Eye;
+use crate::sampler::{Hit, Pixel, Ray, Sampler};
+use crate::terrain::Terrain;
+
+/// Walks column `col` for the pixel rows `rows` (counted from the bottom) and writes pixel
+/// `i` to `out[i − rows.start]`.
+///
+/// The walk starts from the eye at `rows.start`, so a walk of one row is the paper's
+/// "restart every ray" reference. Rows beyond the image or beyond `out` are not drawn.
+pub fn walk<S: Sampler, C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    rows: Range<usize>,
+    sampler: &mut S,
+    cost: &mut C,
+    out: &mut [Rgb],
+) {
+    let first = rows.start;
+    let end = rows.end.min(frame.height()).min(first + out.len());
+    if first >= end || col >= frame.width() {
+        return;
+    }
+    let out = &mut out[..end - first];
+    let column = frame.column(col);
+    let eye = Eye {
+        h: frame.eye(),
+        n: column.n_eye,
+    };
+    let max_h = terrain.max_height();
+    cost.begin_column(col);
+
+    let mut march = March::new(frame, terrain, column);
+    let mut i = first;
+    cost.new_ray();
+    let mut lower = frame.ray(column, i);
+    cost.new_ray();
+    let mut upper = frame.ray(column, i + 1);
+    let mut ray = Ray {
+        h: lower.at(march.n()),
+        slope: lower.slope,
+    };
+    let mut pixel = Pixel {
+        lower,
+        upper,
+        eye,
+        n: march.n(),
+    };
+    sampler.begin_pixel(&pixel, cost);
+    let mut in_footprint = false;
+
+    if march.n() <= column.n_far {
+        loop {
+            let top = march.height();
+            if top > ray.h {
+                match sampler.hit(&march, top, &mut ray, cost) {
+                    Hit::Sampled => {
+                        cost.hit();
+                        in_footprint = true;
+                        continue;
+                    }
+                    Hit::Done(color) => {
+                        cost.hit();
+                        cost.terrain_pixel();
+                        in_footprint = true;
+                        out[i - first] = color;
+                        i += 1;
+                        if i == end {
+                            cost.end_column();
+                            return;
+                        }
+                        // The next ray resumes at this voxel (Fig. 3); only its upper
+                        // neighbour is new (Eqs. 2–3).
+                        lower = upper;
+                        cost.new_ray();
+                        upper = frame.ray(column, i + 1);
+                        ray = Ray {
+                            h: lower.at(march.n()),
+                            slope: lower.slope,
+                        };
+                        pixel = Pixel {
+                            lower,
+                            upper,
+                            eye,
+                            n: march.n(),
+                        };
+                        sampler.begin_pixel(&pixel, cost);
+                        continue;
+                    }
+                    Hit::Rejected => {}
+                }
+            }
+            if ray.slope >= 0 && ray.h > max_h {
+                break;
+            }
+            let dn = march.advance();
+            cost.step(in_footprint);
+            if march.n() > column.n_far {
+                break;
+            }
+            ray.h = ray.h.saturating_add(ray.slope.saturating_mul_int(dn));
+        }
+    }
+
+    // The walk ended inside pixel i: what is left of it, and every pixel above, is sky.
+    let sky = frame.sky();
+    out[i - first] = match sampler.sky(&ray, sky, cost) {
+        Some(color) => {
+            cost.terrain_pixel();
+            color
+        }
+        None => sky,
+    };
+    for px in &mut out[i - first + 1..] {
+        *px = sky;
+    }
+    cost.end_column();
+}
+
+/// Renders the whole frame with a fresh copy of `sampler` per column into `image`, row-major
+/// from the top (`image[y·W + x]`), using `column` (at least `H` long) as scratch.
+pub fn render<S: Sampler + Clone, C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    sampler: &S,
+    cost: &mut C,
+    column: &mut [Rgb],
+    image: &mut [Rgb],
+) -> Result<(), Error> {
+    let (w, h) = (frame.width(), frame.height());
+    if image.len() != w * h {
+        return Err(Error::SliceLength {
+            what: "image",
+            expected: w * h,
+            actual: image.len(),
+        });
+    }
+    if column.len() < h {
+        return Err(Error::SliceLength {
+            what: "column",
+            expected: h,
+            actual: column.len(),
+        });
+    }
+    for x in 0..w {
+        let mut s = sampler.clone();
+        walk(frame, terrain, x, 0..h, &mut s, cost, column);
+        for (i, px) in column[..h].iter().enumerate() {
+            image[(h - 1 - i) * w + x] = *px;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,207 @@
+//! Cost counters (Sect. 6), as a generic parameter of the walk.
+//!
+//! The paper charges the cost of one column as `aL + bP + cM + dNP` for supersampling and
+//! `aL + bP + cM' + d'(M' + P)` for area sampling. The walk calls a [`Cost`] at exactly the
+//! places where those terms are spent. [`NoCost`] is zero-sized and every method is empty, so
+//! with it the counting compiles away and a benchmark measures the renderer alone; [`Counts`]
+//! records every term, per frame and per column.
+
+/// The per-event hooks of the walk. Every method defaults to doing nothing.
+pub trait Cost {
+    /// A column begins.
+    #[inline(always)]
+    fn begin_column(&mut self, _column: usize) {}
+    /// The column is finished.
+    #[inline(always)]
+    fn end_column(&mut self) {}
+    /// Term `a`: one traversal step. `in_footprint` is false before the column's first hit
+    /// (the paper's `L` ignores those steps).
+    #[inline(always)]
+    fn step(&mut self, _in_footprint: bool) {}
+    /// Term `b`: one new ray, Eqs. 2–3.
+    #[inline(always)]
+    fn new_ray(&mut self) {}
+    /// Term `c`: one voxel sample (with its interpolation) of the voxel at step `index`.
+    #[inline(always)]
+    fn sample(&mut self, _index: u32) {}
+    /// One ray–voxel hit.
+    #[inline(always)]
+    fn hit(&mut self) {}
+    /// Term `d`: supersampling's per-hit accumulate and increment (Fig. 8).
+    #[inline(always)]
+    fn ss_hit(&mut self) {}
+    /// Term `d′`: area sampling's per-hit weight and accumulate (Fig. 12).
+    #[inline(always)]
+    fn as_hit(&mut self) {}
+    /// Area sampling's division for the slope of the ray through a voxel's top (part of `d′`).
+    #[inline(always)]
+    fn top_division(&mut self) {}
+    /// Shifts spent finishing a pixel (supersampling's `Σ >> log2 N`, one per channel).
+    #[inline(always)]
+    fn shifts(&mut self, _count: u32) {}
+    /// Divisions spent finishing a pixel (area sampling's `Σc/Σw`, one per channel).
+    #[inline(always)]
+    fn divisions(&mut self, _count: u32) {}
+    /// A pixel through which terrain is visible (`P`).
+    #[inline(always)]
+    fn terrain_pixel(&mut self) {}
+}
+
+/// No counting: zero-sized, and the walk compiles as if the calls were not there.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoCost;
+
+impl Cost for NoCost {}
+
+/// The counts of one column or one frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tally {
+    /// `L`: traversal steps after the column's first hit.
+    pub l: u64,
+    /// `P`: pixels through which terrain is visible.
+    pub p: u64,
+    /// `M` (or `M′` for area sampling): distinct voxels sampled.
+    pub m: u64,
+    /// `V`: voxels visible in the footprint (filled by [`crate::visibility`]).
+    pub v: u64,
+    /// Ray–voxel hits.
+    pub hits: u64,
+    /// Term `a`: all traversal steps, including those before the first hit.
+    pub a: u64,
+    /// Term `b`: new rays (Eqs. 2–3).
+    pub b: u64,
+    /// Term `c`: voxel samples, with interpolation.
+    pub c: u64,
+    /// Term `d`: supersampling's per-hit operations.
+    pub d: u64,
+    /// Term `d′`: area sampling's per-hit operations.
+    pub d_prime: u64,
+    /// Area sampling's per-hit divisions for the new top ray (inside `d′`).
+    pub top_divisions: u64,
+    /// Shifts finishing pixels.
+    pub shifts: u64,
+    /// Divisions finishing pixels.
+    pub divisions: u64,
+}
+
+impl Tally {
+    /// Adds another tally into this one, field by field (saturating).
+    pub fn add(&mut self, o: &Tally) {
+        let f = |a: &mut u64, b: u64| *a = a.saturating_add(b);
+        f(&mut self.l, o.l);
+        f(&mut self.p, o.p);
+        f(&mut self.m, o.m);
+        f(&mut self.v, o.v);
+        f(&mut self.hits, o.hits);
+        f(&mut self.a, o.a);
+        f(&mut self.b, o.b);
+        f(&mut self.c, o.c);
+        f(&mut self.d, o.d);
+        f(&mut self.d_prime, o.d_prime);
+        f(&mut self.top_divisions, o.top_divisions);
+        f(&mut self.shifts, o.shifts);
+        f(&mut self.divisions, o.divisions);
+    }
+
+    /// The coverage `M/V` (Tables 2–4); 1 when nothing is visible.
+    pub fn coverage(&self) -> f64 {
+        if self.v == 0 {
+            1.0
+        } else {
+            self.m as f64 / self.v as f64
+        }
+    }
+}
+
+/// Counts every term: the frame's totals, and optionally one [`Tally`] per column in a
+/// caller-provided slice (empty to skip).
+#[derive(Debug)]
+pub struct Counts<'a> {
+    /// The frame's totals.
+    pub total: Tally,
+    columns: &'a mut [Tally],
+    current: Tally,
+    column: usize,
+    last_sampled: Option<u32>,
+}
+
+impl<'a> Counts<'a> {
+    /// Counters that also record per-column tallies into `columns` (indexed by column; columns
+    /// beyond its length are counted in the total only).
+    pub fn new(columns: &'a mut [Tally]) -> Self {
+        Self {
+            total: Tally::default(),
+            columns,
+            current: Tally::default(),
+            column: 0,
+            last_sampled: None,
+        }
+    }
+
+    /// The per-column tallies.
+    pub fn columns(&self) -> &[Tally] {
+        self.columns
+    }
+
+    /// Records the visible-voxel count `V` of a column (from [`crate::visibility`]).
+    pub fn set_visible(&mut self, column: usize, v: u64) {
+        self.total.v = self.total.v.saturating_add(v);
+        if let Some(t) = self.columns.get_mut(column) {
+            t.v = v;
+        }
+    }
+}
+
+impl Cost for Counts<'_> {
+    fn begin_column(&mut self, column: usize) {
+        self.column = column;
+        self.current = Tally::default();
+        self.last_sampled = None;
+    }
+    fn end_column(&mut self) {
+        let visible = self.columns.get(self.column).map_or(0, |t| t.v);
+        let mut t = self.current;
+        self.total.add(&t);
+        if let Some(slot) = self.columns.get_mut(self.column) {
+            t.v = visible;
+            *slot = t;
+        }
+    }
+    fn step(&mut self, in_footprint: bool) {
+        self.current.a += 1;
+        if in_footprint {
+            self.current.l += 1;
+        }
+    }
+    fn new_ray(&mut self) {
+        self.current.b += 1;
+    }
+    fn sample(&mut self, index: u32) {
+        self.current.c += 1;
+        if self.last_sampled != Some(index) {
+            self.current.m += 1;
+            self.last_sampled = Some(index);
+        }
+    }
+    fn hit(&mut self) {
+        self.current.hits += 1;
+    }
+    fn ss_hit(&mut self) {
+        self.current.d += 1;
+    }
+    fn as_hit(&mut self) {
+        self.current.d_prime += 1;
+    }
+    fn top_division(&mut self) {
+        self.current.top_divisions += 1;
+    }
+    fn shifts(&mut self, count: u32) {
+        self.current.shifts += u64::from(count);
+    }
+    fn divisions(&mut self, count: u32) {
+        self.current.divisions += u64::from(count);
+    }
+    fn terrain_pixel(&mut self) {
+        self.current.p += 1;
+    }
+}

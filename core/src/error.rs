@@ -1,0 +1,106 @@
+//! The one error type of the core: every constructor validates and returns `Result<_, Error>`.
+
+use core::fmt;
+
+/// Why a constructor refused its input. Each variant names the parameter that is wrong.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Error {
+    /// A map side is zero or exceeds [`crate::terrain::MAX_SIDE`].
+    MapSize {
+        /// The width that was given.
+        width: u32,
+        /// The height that was given.
+        height: u32,
+    },
+    /// A slice does not hold `width × height` elements.
+    SliceLength {
+        /// Which slice: `"heights"`, `"colors"`, `"rows"`, `"columns"` or `"image"`.
+        what: &'static str,
+        /// The length the parameters require.
+        expected: usize,
+        /// The length that was given.
+        actual: usize,
+    },
+    /// A pyramid level does not have the size the level below it implies.
+    LevelSize {
+        /// The level's index in the pyramid.
+        level: usize,
+    },
+    /// The pyramid already holds [`crate::terrain::MAX_LEVELS`] levels, or the level below is 1×1.
+    TooManyLevels,
+    /// A numeric parameter is not finite or lies outside its documented range.
+    OutOfRange {
+        /// The parameter's name, as the CLI spells it (`"fov"`, `"pitch"`, `"spacing"`, …).
+        what: &'static str,
+        /// The value that was given.
+        value: f64,
+        /// The smallest value allowed (exclusive bounds are documented on the parameter).
+        min: f64,
+        /// The largest value allowed.
+        max: f64,
+    },
+    /// An image size is zero or exceeds [`crate::camera::MAX_IMAGE_SIDE`].
+    ImageSize {
+        /// The width that was given.
+        width: u32,
+        /// The height that was given.
+        height: u32,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::MapSize { width, height } => write!(
+                f,
+                "map size {width}x{height}: each side must be 1..={}",
+                crate::terrain::MAX_SIDE
+            ),
+            Error::SliceLength {
+                what,
+                expected,
+                actual,
+            } => write!(f, "{what}: expected {expected} elements, got {actual}"),
+            Error::LevelSize { level } => {
+                write!(f, "pyramid level {level} does not halve the level below it")
+            }
+            Error::TooManyLevels => write!(f, "the pyramid has no room for another level"),
+            Error::OutOfRange {
+                what,
+                value,
+                min,
+                max,
+            } => write!(f, "{what} = {value} is outside {min}..{max} or not finite"),
+            Error::ImageSize { width, height } => write!(
+                f,
+                "image size {width}x{height}: each side must be 1..={}",
+                crate::camera::MAX_IMAGE_SIDE
+            ),
+        }
+    }
+}
+
+/// Checks that `value` is finite and inside `min..=max` (or `min < value < max` when `open`).
+pub(crate) fn check(
+    what: &'static str,
+    value: f64,
+    min: f64,
+    max: f64,
+    open: bool,
+) -> Result<f64, Error> {
+    let inside = if open {
+        value > min && value < max
+    } else {
+        value >= min && value <= max
+    };
+    if value.is_finite() && inside {
+        Ok(value)
+    } else {
+        Err(Error::OutOfRange {
+            what,
+            value,
+            min,
+            max,
+        })
+    }
+}

@@ -1,0 +1,247 @@
+//! The sequence of multiresolution voxels under one column: where the walk steps.
+//!
+//! The walk and the visibility pass both step through this one sequence, so the coverage
+//! `M/V` compares like with like (Sect. 6).
+//!
+//! **Steps.** Positions `n` are half-voxels along the column's major axis. A level-L voxel
+//! spans `2^(L+1)` half-voxels and is visited at its centre. The walk starts at level 0 and
+//! climbs one level whenever the pixel footprint across the column has grown past `√2·2^L`
+//! voxels (so each step samples the level whose voxel width is nearest to the footprint) and
+//! the next level-L voxel begins a level-(L+1) voxel. The step along the ray therefore grows
+//! with the footprint, and the number of steps per column grows with the log of the distance,
+//! not with the map (Sect. 3). Without LOD every step is one level-0 voxel.
+//!
+//! **Reading a height.** At a step the ray's cross-axis position `v` is fractional. The height
+//! is that of the voxel *containing* the point, `⌊v / 2^L⌋` on the cross axis: the stick the
+//! ray is over. Colours are read by [`March::sample_point`] (the same voxel) or by
+//! [`March::sample_linear`] (Eq. 4).
+//!
+//! **Mirroring.** Cell indices are tracked modulo the mirrored period `2·len` by ±1 updates,
+//! so the inner loop has no division.
+
+use crate::camera::{Axis, Column, Frame};
+use crate::color::Rgb;
+use crate::num::{height, Height};
+use crate::terrain::{fold, Level, Terrain};
+
+/// A colour with 8 fractional bits per channel (`255 << 8` is full), the result of Eq. 4.
+pub type Color16 = [u16; 3];
+
+/// A cursor on the voxel sequence of one column.
+#[derive(Clone, Debug)]
+pub struct March<'a, 't> {
+    terrain: &'t Terrain<'a>,
+    level: &'t Level<'a>,
+    axis: Axis,
+    sign: i8,
+    lod: bool,
+    /// Index of the current level; `top` is the coarsest one present.
+    l: u32,
+    top: u32,
+    /// Cell index along `n` at level `l`; the centre is `n = (2j + 1)·2^l`.
+    j: i64,
+    n: i64,
+    /// The next level begins once `n − n_eye ≥ threshold` (`lod_base·2^l`).
+    n_eye: i64,
+    threshold: i64,
+    /// Minor coordinate, raw I32F32 voxels, and its increment per half-voxel.
+    v: i64,
+    dv: i64,
+    /// Infinite cross-axis cell index at level `l`.
+    cv: i64,
+    /// Positions in the mirrored periods of the major and cross axes.
+    pu: u32,
+    pv: u32,
+    /// Level-`l` side lengths along the major and cross axes, and strides in the arrays.
+    len_u: u32,
+    len_v: u32,
+    stride_u: usize,
+    stride_v: usize,
+    /// Steps taken so far; identifies the voxel for the distinct-sample count `M`.
+    k: u32,
+}
+
+impl<'a, 't> March<'a, 't> {
+    /// The cursor on the first voxel of `column` (the first centre ahead of the eye).
+    pub fn new(frame: &Frame<'_>, terrain: &'t Terrain<'a>, column: &Column) -> Self {
+        let level = terrain.level(0);
+        let mut m = Self {
+            terrain,
+            level,
+            axis: column.axis,
+            sign: column.sign,
+            lod: frame.lod(),
+            l: 0,
+            top: (terrain.levels().len() - 1) as u32,
+            j: (column.n_start - 1) / 2,
+            n: column.n_start,
+            n_eye: column.n_eye.to_num::<i64>(),
+            threshold: column.lod_base,
+            v: column
+                .v_base
+                .to_bits()
+                .saturating_add(column.dv.to_bits().saturating_mul(column.n_start)),
+            dv: column.dv.to_bits(),
+            cv: 0,
+            pu: 0,
+            pv: 0,
+            len_u: 0,
+            len_v: 0,
+            stride_u: 0,
+            stride_v: 0,
+            k: 0,
+        };
+        m.enter_level();
+        m
+    }
+
+    /// Recomputes the level-dependent state after a change of level (a few times a column).
+    fn enter_level(&mut self) {
+        self.level = self.terrain.level(self.l as usize);
+        let (w, h) = (self.level.width(), self.level.height());
+        let (len_u, len_v, stride_u, stride_v) = match self.axis {
+            Axis::X => (w, h, 1, w as usize),
+            Axis::Y => (h, w, w as usize, 1),
+        };
+        self.len_u = len_u;
+        self.len_v = len_v;
+        self.stride_u = stride_u;
+        self.stride_v = stride_v;
+        self.pu = self.u_cell().rem_euclid(2 * i64::from(len_u)) as u32;
+        self.cv = self.v >> (32 + self.l);
+        self.pv = self.cv.rem_euclid(2 * i64::from(len_v)) as u32;
+    }
+
+    /// The current cell index along the major axis, in map coordinates.
+    #[inline(always)]
+    fn u_cell(&self) -> i64 {
+        if self.sign > 0 {
+            self.j
+        } else {
+            -self.j - 1
+        }
+    }
+
+    /// Steps to the next voxel and returns the distance moved, in half-voxels.
+    #[inline(always)]
+    pub fn advance(&mut self) -> i64 {
+        let old_n = self.n;
+        let next_j = self.j + 1;
+        self.k = self.k.wrapping_add(1);
+        if self.lod && self.l < self.top && next_j & 1 == 0 && self.n - self.n_eye >= self.threshold
+        {
+            self.l += 1;
+            self.threshold = self.threshold.saturating_mul(2);
+            self.j = next_j >> 1;
+            self.n = (2 * self.j + 1) << self.l;
+            let dn = self.n - old_n;
+            self.v = self.v.saturating_add(self.dv.saturating_mul(dn));
+            self.enter_level();
+            return dn;
+        }
+        self.j = next_j;
+        let dn = 2i64 << self.l;
+        self.n += dn;
+        let period_u = 2 * self.len_u;
+        self.pu = if self.sign > 0 {
+            if self.pu + 1 == period_u {
+                0
+            } else {
+                self.pu + 1
+            }
+        } else if self.pu == 0 {
+            period_u - 1
+        } else {
+            self.pu - 1
+        };
+        self.v = self.v.saturating_add(self.dv << (self.l + 1));
+        let cv = self.v >> (32 + self.l);
+        let period_v = 2 * self.len_v;
+        match cv - self.cv {
+            0 => {}
+            1 => self.pv = if self.pv + 1 == period_v { 0 } else { self.pv + 1 },
+            -1 => self.pv = if self.pv == 0 { period_v - 1 } else { self.pv - 1 },
+            _ => self.pv = cv.rem_euclid(i64::from(period_v)) as u32,
+        }
+        self.cv = cv;
+        dn
+    }
+
+    /// The current voxel's centre, half-voxels along the ray.
+    #[inline(always)]
+    pub fn n(&self) -> i64 {
+        self.n
+    }
+
+    /// The current pyramid level.
+    #[inline(always)]
+    pub fn level(&self) -> u32 {
+        self.l
+    }
+
+    /// The number of steps taken: the index of the current voxel in the sequence.
+    #[inline(always)]
+    pub fn step_index(&self) -> u32 {
+        self.k
+    }
+
+    #[inline(always)]
+    fn index(&self, pu: u32, pv: u32) -> usize {
+        fold(pu, self.len_u) as usize * self.stride_u + fold(pv, self.len_v) as usize * self.stride_v
+    }
+
+    /// The height of the current voxel (the stick containing the ray's point).
+    #[inline(always)]
+    pub fn height(&self) -> Height {
+        height(self.level.heights()[self.index(self.pu, self.pv)])
+    }
+
+    /// The current voxel's `(x, y)` at its level, after mirroring.
+    pub fn cell(&self) -> (u32, u32) {
+        let (u, v) = (fold(self.pu, self.len_u), fold(self.pv, self.len_v));
+        match self.axis {
+            Axis::X => (u, v),
+            Axis::Y => (v, u),
+        }
+    }
+
+    /// The ray's cross-axis position at the current voxel, in level-0 voxels.
+    pub fn cross(&self) -> f64 {
+        self.v as f64 / 4_294_967_296.0
+    }
+
+    /// Point sampling: the colour of the current voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
+    #[inline(always)]
+    pub fn sample_point(&self) -> Color16 {
+        let c = self.level.colors()[self.index(self.pu, self.pv)];
+        [u16::from(c.r) << 8, u16::from(c.g) << 8, u16::from(c.b) << 8]
+    }
+
+    /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose
+    /// centres straddle the ray's cross-axis position, weighted by distance (8-bit weights).
+    #[inline(always)]
+    pub fn sample_linear(&self) -> Color16 {
+        // Position in level cells, 32 fractional bits; centres sit at +½.
+        let frac = ((self.v >> self.l) as u32) as u64; // the fraction of v / 2^l
+        let period_v = 2 * self.len_v;
+        let (p0, p1, f) = if frac >= 1 << 31 {
+            let p1 = if self.pv + 1 == period_v { 0 } else { self.pv + 1 };
+            (self.pv, p1, ((frac - (1 << 31)) >> 24) as u32)
+        } else {
+            let p0 = if self.pv == 0 { period_v - 1 } else { self.pv - 1 };
+            (p0, self.pv, ((frac + (1 << 31)) >> 24) as u32)
+        };
+        let colors = self.level.colors();
+        let c0 = colors[self.index(self.pu, p0)];
+        let c1 = colors[self.index(self.pu, p1)];
+        let mix = |a: u8, b: u8| (u32::from(a) * (256 - f) + u32::from(b) * f) as u16;
+        [mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b)]
+    }
+}
+
+/// Rounds an 8.8 colour to 8 bits.
+#[inline]
+pub fn to_rgb(c: Color16) -> Rgb {
+    let r = |x: u16| ((u32::from(x) + 128) >> 8).min(255) as u8;
+    Rgb::new(r(c[0]), r(c[1]), r(c[2]))
+}

@@ -1,0 +1,313 @@
+//! The per-hit code of each sampling mode (Figs. 4, 8 and 12).
+//!
+//! The traversal ([`crate::column::walk`]) is written once. When the current ray `R` passes
+//! below the current voxel's top — a hit, `H(V_k) > H(R)` — it calls [`Sampler::hit`], which
+//! samples, may raise `R` and says whether the pixel is finished. Each mode is a small type,
+//! and the walk is monomorphized for it.
+//!
+//! Rays are the lower edges of the pixels: pixel `i` spans `R_i` to `R_{i+1}`. Point sampling
+//! and linear interpolation sample at `R_i`; `SS_N` at `R_i + jΔ`, `j < N`; area sampling
+//! integrates the whole span.
+
+use crate::color::Rgb;
+use crate::cost::Cost;
+use crate::march::{to_rgb, Color16, March};
+use crate::num::{Eye, Height, Line, Slope, Weight};
+
+/// The ray being walked: its height at the current voxel and its slope per half-voxel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Ray {
+    /// `H(R)` at the current voxel centre.
+    pub h: Height,
+    /// Height gained per half-voxel.
+    pub slope: Slope,
+}
+
+/// The rays that bound a pixel, and the eye they come from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pixel {
+    /// `R_i`, the pixel's lower edge.
+    pub lower: Line,
+    /// `R_{i+1}`, its upper edge.
+    pub upper: Line,
+    /// The eye.
+    pub eye: Eye,
+    /// Where the pixel's walk begins, half-voxels.
+    pub n: i64,
+}
+
+/// What a sampler did with a hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Hit {
+    /// The voxel was sampled; the pixel goes on with the (possibly raised) ray.
+    Sampled,
+    /// The voxel was sampled and the pixel is finished, with this colour.
+    Done(Rgb),
+    /// Not a hit after all (an exact test overruled the rounded one); the walk steps on.
+    Rejected,
+}
+
+/// The per-hit code of a sampling mode.
+pub trait Sampler {
+    /// A new pixel begins: its rays were just computed (Eqs. 2–3).
+    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
+    /// The ray passes below the top `top` of the current voxel of `march`.
+    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, top: Height, ray: &mut Ray, cost: &mut C)
+        -> Hit;
+    /// The walk ended (far distance, or nothing left to hit) inside this pixel. Returns the
+    /// pixel's colour if terrain was seen in it, `None` if it is all sky.
+    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
+}
+
+/// PS: one voxel per pixel, `C(x, ⌊y⌋)` (Fig. 4, Sect. 4.1).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Point;
+
+impl Sampler for Point {
+    #[inline(always)]
+    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
+    #[inline(always)]
+    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
+        cost.sample(march.step_index());
+        Hit::Done(to_rgb(march.sample_point()))
+    }
+    #[inline(always)]
+    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+        None
+    }
+}
+
+/// LI: one hit per pixel, coloured by Eq. 4 across the ray.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Linear;
+
+impl Sampler for Linear {
+    #[inline(always)]
+    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
+    #[inline(always)]
+    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
+        cost.sample(march.step_index());
+        Hit::Done(to_rgb(march.sample_linear()))
+    }
+    #[inline(always)]
+    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+        None
+    }
+}
+
+/// SS_N: `N` parallel rays per pixel (Fig. 8), `N` a power of two in `2..=256`.
+///
+/// Under the paper's parallel-ray assumption the rays between `R_i` and `R_{i+1}` share the
+/// slope of `R_i`, so after each hit the ray is raised by the constant
+/// `Δ_i = (H(R_{i+1}) − H(R_i)) >> log2 N`, both heights taken at the voxel where the pixel
+/// begins; the pixel is `Σ >> log2 N`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Super<const N: u32> {
+    sum: [u32; 3],
+    j: u32,
+    delta: Height,
+}
+
+impl<const N: u32> Super<N> {
+    const LOG2: u32 = {
+        assert!(N.is_power_of_two() && N >= 2 && N <= 256, "SS_N needs N = 2, 4, …, 256");
+        N.trailing_zeros()
+    };
+
+    /// A fresh supersampler.
+    pub fn new() -> Self {
+        let _ = Self::LOG2;
+        Self::default()
+    }
+
+    #[inline(always)]
+    fn finish<C: Cost>(&mut self, cost: &mut C) -> Rgb {
+        cost.shifts(3);
+        let s = self.sum;
+        to_rgb([
+            (s[0] >> Self::LOG2) as u16,
+            (s[1] >> Self::LOG2) as u16,
+            (s[2] >> Self::LOG2) as u16,
+        ])
+    }
+}
+
+impl<const N: u32> Sampler for Super<N> {
+    #[inline(always)]
+    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
+        self.sum = [0; 3];
+        self.j = 0;
+        let gap = pixel.upper.at(pixel.n).saturating_sub(pixel.lower.at(pixel.n));
+        self.delta = (gap >> Self::LOG2).max(Height::ZERO);
+    }
+    #[inline(always)]
+    fn hit<C: Cost>(
+        &mut self,
+        march: &March<'_, '_>,
+        _: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
+        cost.sample(march.step_index());
+        cost.ss_hit();
+        let c = march.sample_linear();
+        for (s, c) in self.sum.iter_mut().zip(c) {
+            *s += u32::from(c);
+        }
+        self.j += 1;
+        if self.j == N {
+            Hit::Done(self.finish(cost))
+        } else {
+            ray.h = ray.h.saturating_add(self.delta);
+            Hit::Sampled
+        }
+    }
+    fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+        if self.j == 0 {
+            return None;
+        }
+        let rest = N - self.j;
+        for (s, c) in self.sum.iter_mut().zip([sky.r, sky.g, sky.b]) {
+            *s += (u32::from(c) << 8) * rest;
+        }
+        Some(self.finish(cost))
+    }
+}
+
+/// AS: exact area sampling (Fig. 12). Every voxel visible from the pixel is sampled, weighted
+/// by its visible height `W_k = min(H(V_k), H(R_{i+1})) − H(R)`, and the next ray resumes
+/// from the voxel's top; the pixel is `Σc/Σw`.
+///
+/// Weights are measured as the visible *angle*, i.e. as slopes from the eye: the ray that
+/// "resumes from the voxel's top" is the ray from the eye through that top, so a voxel is
+/// sampled exactly when it is visible, and `M′ = V` (Sect. 7). Its slope costs one division
+/// per hit that does not finish the pixel ([`Cost::top_division`]); it is rounded down, and a
+/// hit that the rounding alone lets through is re-checked exactly and rejected.
+#[derive(Clone, Copy, Debug)]
+pub struct Area {
+    pixel: Option<Pixel>,
+    sum: [i64; 3],
+    wsum: i64,
+    top: Option<(i64, Height)>,
+    seen: bool,
+}
+
+impl Default for Area {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Area {
+    /// A fresh area sampler.
+    pub const fn new() -> Self {
+        Self {
+            pixel: None,
+            sum: [0; 3],
+            wsum: 0,
+            top: None,
+            seen: false,
+        }
+    }
+
+    #[inline(always)]
+    fn accumulate<C: Cost>(&mut self, w: Weight, c: Color16, cost: &mut C) {
+        cost.as_hit();
+        let w = w.to_bits().max(0);
+        for (s, c) in self.sum.iter_mut().zip(c) {
+            *s = s.saturating_add(w.saturating_mul(i64::from(c)));
+        }
+        self.wsum = self.wsum.saturating_add(w);
+    }
+
+    #[inline(always)]
+    fn finish<C: Cost>(&mut self, fallback: Color16, cost: &mut C) -> Rgb {
+        if self.wsum <= 0 {
+            return to_rgb(fallback);
+        }
+        cost.divisions(3);
+        // (Σc / Σw) in 8.8, rounded to 8 bits in the same division.
+        let den = self.wsum.saturating_mul(256);
+        let half = self.wsum.saturating_mul(128);
+        let ch = |s: i64| (s.saturating_add(half) / den).clamp(0, 255) as u8;
+        Rgb::new(ch(self.sum[0]), ch(self.sum[1]), ch(self.sum[2]))
+    }
+}
+
+impl Sampler for Area {
+    #[inline(always)]
+    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
+        *self = Self::new();
+        self.pixel = Some(*pixel);
+    }
+
+    #[inline(always)]
+    fn hit<C: Cost>(
+        &mut self,
+        march: &March<'_, '_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
+        let Some(pixel) = self.pixel else {
+            return Hit::Rejected;
+        };
+        let n = march.n();
+        if let Some((n_top, h_top)) = self.top {
+            // The rounded-down ray lies at most (n − n_top) units in the last place below the
+            // exact one: inside that band, ask the exact question.
+            let margin = top.saturating_sub(ray.h).to_bits();
+            if margin <= n - n_top && !pixel.eye.above_ray_through(n_top, h_top, n, top) {
+                return Hit::Rejected;
+            }
+        }
+        cost.sample(march.step_index());
+        let color = march.sample_linear();
+        self.seen = true;
+        if top >= pixel.upper.at(n) {
+            // The voxel reaches R_{i+1}: the pixel is done (H' = H(R_{i+1})).
+            self.accumulate(pixel.upper.slope.saturating_sub(ray.slope), color, cost);
+            return Hit::Done(self.finish(color, cost));
+        }
+        cost.top_division();
+        let through_top = pixel.eye.slope_through(n, top).min(pixel.upper.slope);
+        self.accumulate(through_top.saturating_sub(ray.slope), color, cost);
+        ray.h = top;
+        ray.slope = through_top.max(ray.slope);
+        self.top = Some((n, top));
+        Hit::Sampled
+    }
+
+    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+        let pixel = self.pixel?;
+        if !self.seen {
+            return None;
+        }
+        let sky16 = [
+            u16::from(sky.r) << 8,
+            u16::from(sky.g) << 8,
+            u16::from(sky.b) << 8,
+        ];
+        self.accumulate(pixel.upper.slope.saturating_sub(ray.slope), sky16, cost);
+        Some(self.finish(sky16, cost))
+    }
+}
+
+/// Not a display mode: records where the pixel's ray first hits, for the host's
+/// fit-first-hit rule and for tests.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FirstHit {
+    /// The `n` of the first hit, if any.
+    pub n: Option<i64>,
+}
+
+impl Sampler for FirstHit {
+    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
+    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
+        self.n.get_or_insert(march.n());
+        Hit::Done(Rgb::default())
+    }
+    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+        None
+    }
+}
