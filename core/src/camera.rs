@@ -194,6 +194,16 @@ impl Column {
     pub fn n_start(&self) -> i64 {
         self.n_start
     }
+
+    /// The eye's position along the column, half-voxels.
+    pub fn n_eye(&self) -> Height {
+        self.n_eye
+    }
+
+    /// The last voxel centre within the far distance.
+    pub fn n_far(&self) -> i64 {
+        self.n_far
+    }
 }
 
 /// One frame's tables: the rows' slopes and the columns' constants, over borrowed buffers.

@@ -1,1 +1,263 @@
-//! Map loading.
+//! Terrain maps: loading height/colour PNG pairs and generating the built-in procedural terrain.
+//!
+//! Everything here produces a [`Map`]: an owned, row-major height field plus a colour per voxel,
+//! ready to lend to `footprint_core::terrain::Level`.
+
+use std::fmt;
+use std::io;
+use std::path::Path;
+
+use footprint_core::Rgb;
+
+pub mod png;
+pub mod procedural;
+pub mod tint;
+
+pub use self::png::load_png_pair;
+pub use self::procedural::{procedural, DEFAULT_SIZE, MIN_SIZE};
+pub use self::tint::tint;
+
+/// The largest accepted width or height of a map, in voxels.
+pub const MAX_SIDE: u32 = 65_536;
+
+/// An owned terrain map, ready to lend to `footprint_core::terrain::Level`.
+#[derive(Clone, PartialEq)]
+pub struct Map {
+    /// Width in voxels (west to east).
+    pub width: u32,
+    /// Height in voxels (north to south).
+    pub height: u32,
+    /// Row-major, `heights[y * width + x]`, in height units.
+    pub heights: Vec<u16>,
+    /// Row-major, same layout and length as `heights`.
+    pub colors: Vec<Rgb>,
+    /// Metres per voxel (horizontal).
+    pub spacing_m: f64,
+    /// Metres per height unit.
+    pub height_scale_m: f64,
+    /// Human-readable origin: a file path or "built-in (seed N)".
+    pub source: String,
+}
+
+impl Map {
+    /// Checks that a `w`×`h` map is acceptable: neither side may be zero or exceed [`MAX_SIDE`].
+    ///
+    /// `what` names the map in the error, e.g. `height map "dem.png"` (see [`describe`]).
+    pub fn validate_size(w: u32, h: u32, what: &str) -> Result<(), MapError> {
+        if w == 0 || h == 0 {
+            return Err(MapError::ZeroSize {
+                what: what.to_owned(),
+            });
+        }
+        let side = w.max(h);
+        if side > MAX_SIDE {
+            return Err(MapError::TooLarge {
+                what: what.to_owned(),
+                side,
+            });
+        }
+        Ok(())
+    }
+
+    /// Number of voxels (`width * height`).
+    pub fn len(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    /// True if the map has no voxels (never the case for maps built by this module).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Lowest and highest height in the map, in height units (`(0, 0)` for an empty map).
+    pub fn height_range(&self) -> (u16, u16) {
+        let min = self.heights.iter().copied().min().unwrap_or(0);
+        let max = self.heights.iter().copied().max().unwrap_or(0);
+        (min, max)
+    }
+}
+
+impl fmt::Debug for Map {
+    /// A one-line summary; the voxel data is far too large to print.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Map")
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("heights", &format_args!("[{} values]", self.heights.len()))
+            .field("colors", &format_args!("[{} values]", self.colors.len()))
+            .field("spacing_m", &self.spacing_m)
+            .field("height_scale_m", &self.height_scale_m)
+            .field("source", &self.source)
+            .finish()
+    }
+}
+
+/// Names a map file for error messages: `describe("height map", "h.png")` is `height map "h.png"`.
+pub fn describe(kind: &str, path: &Path) -> String {
+    format!("{kind} \"{}\"", path.display())
+}
+
+/// Why a map could not be loaded. Every message is a single line that names the offending file
+/// (or command-line option), so it can be shown to the user as is.
+///
+/// The `what` fields hold the map's description, e.g. `height map "dem.png"` (see [`describe`]).
+/// [`std::error::Error::source`] is always `None`: the cause is already part of the message.
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum MapError {
+    /// The file could not be opened or read.
+    Io {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+        /// The underlying I/O error.
+        error: io::Error,
+    },
+    /// A directory was given where a file was expected.
+    IsDirectory {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+    },
+    /// The file is not a PNG file at all.
+    NotPng {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+        /// What was found instead.
+        detail: String,
+    },
+    /// The file starts like a PNG but is corrupt, truncated or uses an unsupported feature.
+    Corrupt {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+        /// The decoder's complaint.
+        detail: String,
+    },
+    /// A height map that is not greyscale.
+    NotGreyscale {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+        /// The pixel format found, e.g. `8-bit RGB`.
+        found: String,
+    },
+    /// A map with a zero width or height.
+    ZeroSize {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+    },
+    /// A map with a side over [`MAX_SIDE`].
+    TooLarge {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+        /// The offending (largest) side.
+        side: u32,
+    },
+    /// The colour map's size differs from the height map's.
+    SizeMismatch {
+        /// The colour map, e.g. `colour map "c.png"`.
+        color: String,
+        /// The colour map's width and height.
+        color_size: (u32, u32),
+        /// The height map, e.g. `height map "h.png"`.
+        heights: String,
+        /// The height map's width and height.
+        heights_size: (u32, u32),
+    },
+    /// A scale parameter that is not a finite number greater than zero.
+    BadParameter {
+        /// The command-line option, e.g. `--spacing`.
+        option: &'static str,
+        /// The rejected value.
+        value: f64,
+    },
+}
+
+impl fmt::Display for MapError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MapError::Io { what, error } => {
+                write!(f, "{what}: cannot read: {}", io_message(error))
+            }
+            MapError::IsDirectory { what } => write!(f, "{what} is a directory"),
+            MapError::NotPng { what, detail } => {
+                write!(f, "{what}: not a PNG file ({})", one_line(detail))
+            }
+            MapError::Corrupt { what, detail } => {
+                write!(f, "{what}: corrupt or unsupported PNG ({})", one_line(detail))
+            }
+            MapError::NotGreyscale { what, found } => write!(
+                f,
+                "{what}: a height map must be an 8- or 16-bit greyscale PNG, but this one is {found}"
+            ),
+            MapError::ZeroSize { what } => write!(f, "{what}: zero size"),
+            MapError::TooLarge { what, side } => {
+                write!(f, "{what}: side {side} exceeds {MAX_SIDE}")
+            }
+            MapError::SizeMismatch {
+                color,
+                color_size,
+                heights,
+                heights_size,
+            } => write!(
+                f,
+                "{color} is {}×{} but {heights} is {}×{}",
+                color_size.0, color_size.1, heights_size.0, heights_size.1
+            ),
+            MapError::BadParameter { option, value } => {
+                write!(f, "{option} must be a finite number greater than 0 (got {value})")
+            }
+        }
+    }
+}
+
+impl std::error::Error for MapError {}
+
+/// An I/O error's message without the trailing " (os error N)".
+fn io_message(error: &io::Error) -> String {
+    let text = one_line(&error.to_string());
+    match text.rfind(" (os error ") {
+        Some(i) if error.raw_os_error().is_some() => text[..i].to_owned(),
+        _ => text,
+    }
+}
+
+/// Collapses any line breaks so that a message stays on one line.
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn validate_size_limits() {
+        let what = describe("height map", Path::new("h.png"));
+        assert!(Map::validate_size(1, 1, &what).is_ok());
+        assert!(Map::validate_size(MAX_SIDE, MAX_SIDE, &what).is_ok());
+        let e = Map::validate_size(0, 5, &what).unwrap_err();
+        assert_eq!(e.to_string(), "height map \"h.png\": zero size");
+        let e = Map::validate_size(5, 0, &what).unwrap_err();
+        assert_eq!(e.to_string(), "height map \"h.png\": zero size");
+        let e = Map::validate_size(70_000, 10, &what).unwrap_err();
+        assert_eq!(e.to_string(), "height map \"h.png\": side 70000 exceeds 65536");
+        let e = Map::validate_size(10, MAX_SIDE + 1, &what).unwrap_err();
+        assert_eq!(e.to_string(), "height map \"h.png\": side 65537 exceeds 65536");
+    }
+
+    #[test]
+    fn messages_are_one_line() {
+        let e = MapError::Corrupt {
+            what: "colour map \"c.png\"".into(),
+            detail: "line one\nline two".into(),
+        };
+        assert_eq!(
+            e.to_string(),
+            "colour map \"c.png\": corrupt or unsupported PNG (line one line two)"
+        );
+        let e = MapError::Io {
+            what: "height map \"h.png\"".into(),
+            error: io::Error::from_raw_os_error(2),
+        };
+        assert!(!e.to_string().contains("os error"), "{e}");
+        assert!(e.to_string().starts_with("height map \"h.png\": cannot read: "));
+    }
+}
