@@ -104,3 +104,5 @@ pub(crate) fn check(
         })
     }
 }
+
+impl core::error::Error for Error {}

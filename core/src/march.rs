@@ -159,8 +159,20 @@ impl<'a, 't> March<'a, 't> {
         let period_v = 2 * self.len_v;
         match cv - self.cv {
             0 => {}
-            1 => self.pv = if self.pv + 1 == period_v { 0 } else { self.pv + 1 },
-            -1 => self.pv = if self.pv == 0 { period_v - 1 } else { self.pv - 1 },
+            1 => {
+                self.pv = if self.pv + 1 == period_v {
+                    0
+                } else {
+                    self.pv + 1
+                }
+            }
+            -1 => {
+                self.pv = if self.pv == 0 {
+                    period_v - 1
+                } else {
+                    self.pv - 1
+                }
+            }
             _ => self.pv = cv.rem_euclid(i64::from(period_v)) as u32,
         }
         self.cv = cv;
@@ -187,7 +199,8 @@ impl<'a, 't> March<'a, 't> {
 
     #[inline(always)]
     fn index(&self, pu: u32, pv: u32) -> usize {
-        fold(pu, self.len_u) as usize * self.stride_u + fold(pv, self.len_v) as usize * self.stride_v
+        fold(pu, self.len_u) as usize * self.stride_u
+            + fold(pv, self.len_v) as usize * self.stride_v
     }
 
     /// The height of the current voxel (the stick containing the ray's point).
@@ -214,7 +227,11 @@ impl<'a, 't> March<'a, 't> {
     #[inline(always)]
     pub fn sample_point(&self) -> Color16 {
         let c = self.level.colors()[self.index(self.pu, self.pv)];
-        [u16::from(c.r) << 8, u16::from(c.g) << 8, u16::from(c.b) << 8]
+        [
+            u16::from(c.r) << 8,
+            u16::from(c.g) << 8,
+            u16::from(c.b) << 8,
+        ]
     }
 
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose
@@ -225,10 +242,18 @@ impl<'a, 't> March<'a, 't> {
         let frac = ((self.v >> self.l) as u32) as u64; // the fraction of v / 2^l
         let period_v = 2 * self.len_v;
         let (p0, p1, f) = if frac >= 1 << 31 {
-            let p1 = if self.pv + 1 == period_v { 0 } else { self.pv + 1 };
+            let p1 = if self.pv + 1 == period_v {
+                0
+            } else {
+                self.pv + 1
+            };
             (self.pv, p1, ((frac - (1 << 31)) >> 24) as u32)
         } else {
-            let p0 = if self.pv == 0 { period_v - 1 } else { self.pv - 1 };
+            let p0 = if self.pv == 0 {
+                period_v - 1
+            } else {
+                self.pv - 1
+            };
             (p0, self.pv, ((frac + (1 << 31)) >> 24) as u32)
         };
         let colors = self.level.colors();

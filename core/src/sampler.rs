@@ -52,8 +52,13 @@ pub trait Sampler {
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel of `march`.
-    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, top: Height, ray: &mut Ray, cost: &mut C)
-        -> Hit;
+    fn hit<C: Cost>(
+        &mut self,
+        march: &March<'_, '_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit;
     /// The walk ended (far distance, or nothing left to hit) inside this pixel. Returns the
     /// pixel's colour if terrain was seen in it, `None` if it is all sky.
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
@@ -110,7 +115,10 @@ pub struct Super<const N: u32> {
 
 impl<const N: u32> Super<N> {
     const LOG2: u32 = {
-        assert!(N.is_power_of_two() && N >= 2 && N <= 256, "SS_N needs N = 2, 4, …, 256");
+        assert!(
+            N.is_power_of_two() && N >= 2 && N <= 256,
+            "SS_N needs N = 2, 4, …, 256"
+        );
         N.trailing_zeros()
     };
 
@@ -137,7 +145,10 @@ impl<const N: u32> Sampler for Super<N> {
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         self.sum = [0; 3];
         self.j = 0;
-        let gap = pixel.upper.at(pixel.n).saturating_sub(pixel.lower.at(pixel.n));
+        let gap = pixel
+            .upper
+            .at(pixel.n)
+            .saturating_sub(pixel.lower.at(pixel.n));
         self.delta = (gap >> Self::LOG2).max(Height::ZERO);
     }
     #[inline(always)]

@@ -1,3 +1,10 @@
-//! footprint-host: the `footprint` CLI's library.
+//! footprint-host: the `footprint` CLI's library — maps, the pyramid, rendering, experiments
+//! and report writers. The binary (`src/main.rs`) only parses arguments and calls in here.
 
+pub mod commands;
+pub mod experiment;
 pub mod map;
+pub mod pyramid;
+pub mod render;
+pub mod report;
+pub mod view;

@@ -1,1 +1,41 @@
-fn main() {}
+//! `footprint`: exact antialiasing of terrain, measured.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use footprint_host::commands::{self, BenchArgs, RenderArgs};
+
+/// Exact antialiasing for fixed-point terrain renderers (Cohen-Or): render a height field in
+/// point sampling, linear interpolation, supersampling or exact area sampling, and count what
+/// each costs.
+#[derive(Parser, Debug)]
+#[command(name = "footprint", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render one frame to PNG, and optionally print its cost counters.
+    Render(Box<RenderArgs>),
+    /// Time the paper's three cases in every mode, one thread, and print the ratio to PS.
+    Bench(Box<BenchArgs>),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Render(args) => commands::render(args),
+        Command::Bench(args) => commands::bench(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // One line: the context chain joined by ": ".
+            let msg = format!("{e:#}").replace('\n', " ");
+            eprintln!("error: {msg}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -238,9 +238,15 @@ mod tests {
         let e = Map::validate_size(5, 0, &what).unwrap_err();
         assert_eq!(e.to_string(), "height map \"h.png\": zero size");
         let e = Map::validate_size(70_000, 10, &what).unwrap_err();
-        assert_eq!(e.to_string(), "height map \"h.png\": side 70000 exceeds 65536");
+        assert_eq!(
+            e.to_string(),
+            "height map \"h.png\": side 70000 exceeds 65536"
+        );
         let e = Map::validate_size(10, MAX_SIDE + 1, &what).unwrap_err();
-        assert_eq!(e.to_string(), "height map \"h.png\": side 65537 exceeds 65536");
+        assert_eq!(
+            e.to_string(),
+            "height map \"h.png\": side 65537 exceeds 65536"
+        );
     }
 
     #[test]
@@ -258,6 +264,8 @@ mod tests {
             error: io::Error::from_raw_os_error(2),
         };
         assert!(!e.to_string().contains("os error"), "{e}");
-        assert!(e.to_string().starts_with("height map \"h.png\": cannot read: "));
+        assert!(e
+            .to_string()
+            .starts_with("height map \"h.png\": cannot read: "));
     }
 }

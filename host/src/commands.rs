@@ -1,0 +1,262 @@
+//! The subcommands' bodies: parse nothing, print results.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Result;
+use clap::Args;
+use footprint_core::cost::Tally;
+use serde::Serialize;
+
+use crate::experiment::bench;
+use crate::render::{count, render_timed, Mode, Tables};
+use crate::report::png::write_png;
+use crate::view::{CameraArgs, MapArgs, Size, Switch, View};
+
+/// `footprint render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    /// The map.
+    pub map: MapArgs,
+    #[command(flatten)]
+    /// The camera.
+    pub camera: CameraArgs,
+    /// Sampling mode: ps, li, ss2, ss4, …, ss256, or as.
+    #[arg(long, default_value = "as")]
+    pub mode: Mode,
+    /// Output PNG.
+    #[arg(long, value_name = "FILE.png")]
+    pub out: Option<PathBuf>,
+    /// Print the cost counters of Sect. 6 (a second, counting render).
+    #[arg(long)]
+    pub counts: bool,
+    /// With --counts, print them as one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The counters as JSON field names (the paper's letters).
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct CountsJson {
+    L: u64,
+    P: u64,
+    M: u64,
+    V: u64,
+    hits: u64,
+    a: u64,
+    b: u64,
+    c: u64,
+    d: u64,
+    d_prime: u64,
+    top_divisions: u64,
+    shifts: u64,
+    divisions: u64,
+}
+
+impl From<&Tally> for CountsJson {
+    fn from(t: &Tally) -> Self {
+        Self {
+            L: t.l,
+            P: t.p,
+            M: t.m,
+            V: t.v,
+            hits: t.hits,
+            a: t.a,
+            b: t.b,
+            c: t.c,
+            d: t.d,
+            d_prime: t.d_prime,
+            top_divisions: t.top_divisions,
+            shifts: t.shifts,
+            divisions: t.divisions,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct CameraJson {
+    x: f64,
+    y: f64,
+    height: f64,
+    heading: f64,
+    pitch: f64,
+    fov: f64,
+    far: f64,
+}
+
+#[derive(Serialize)]
+struct RenderJson {
+    mode: String,
+    width: u32,
+    height: u32,
+    counts: CountsJson,
+    column_average: ColumnAverage,
+    coverage: f64,
+    ms: f64,
+    lod: bool,
+    camera: CameraJson,
+    map: String,
+}
+
+/// Per-column averages, the unit of the paper's Tables 1–4.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct ColumnAverage {
+    L: f64,
+    P: f64,
+    M: f64,
+    V: f64,
+    hits: f64,
+}
+
+/// Runs `footprint render`.
+pub fn render(args: &RenderArgs) -> Result<()> {
+    let view = View::new(&args.map, &args.camera)?;
+    let terrain = view.pyramid.terrain(view.options.lod)?;
+    let mut tables = Tables::new(&view.camera);
+    let frame = tables.frame(&view.camera, &terrain, view.options)?;
+    let (rendered, ms) = render_timed(&frame, &terrain, args.mode, 3)?;
+    if let Some(out) = &args.out {
+        let (w, h) = rendered.size;
+        write_png(out, w, h, &rendered.image)?;
+    }
+    let p = view.camera.params();
+    if args.counts {
+        let (_, measured) = count(&frame, &terrain, args.mode)?;
+        let t = &measured.total;
+        let cols = p.width as f64;
+        if args.json {
+            let json = RenderJson {
+                mode: args.mode.to_string(),
+                width: p.width,
+                height: p.height,
+                counts: t.into(),
+                column_average: ColumnAverage {
+                    L: t.l as f64 / cols,
+                    P: t.p as f64 / cols,
+                    M: t.m as f64 / cols,
+                    V: t.v as f64 / cols,
+                    hits: t.hits as f64 / cols,
+                },
+                coverage: t.coverage(),
+                ms,
+                lod: view.options.lod,
+                camera: CameraJson {
+                    x: p.x_m,
+                    y: p.y_m,
+                    height: p.eye_m,
+                    heading: p.heading_deg,
+                    pitch: p.pitch_deg,
+                    fov: p.fov_deg,
+                    far: p.far_m,
+                },
+                map: view.map.source.clone(),
+            };
+            println!("{}", serde_json::to_string(&json)?);
+        } else {
+            println!(
+                "mode {}  {}x{}  height {:.1} m  pitch {}°  lod {}",
+                args.mode,
+                p.width,
+                p.height,
+                p.eye_m,
+                p.pitch_deg,
+                if view.options.lod { "on" } else { "off" }
+            );
+            println!(
+                "per column: L {:.1}  P {:.1}  M {:.1}  V {:.1}  hits {:.1}  coverage M/V {:.3}",
+                t.l as f64 / cols,
+                t.p as f64 / cols,
+                t.m as f64 / cols,
+                t.v as f64 / cols,
+                t.hits as f64 / cols,
+                t.coverage()
+            );
+            println!(
+                "frame: a {}  b {}  c {}  d {}  d' {}  top divisions {}  shifts {}  divisions {}",
+                t.a, t.b, t.c, t.d, t.d_prime, t.top_divisions, t.shifts, t.divisions
+            );
+            println!("render {ms:.2} ms (best of 3, no counting, one thread)");
+        }
+    } else if args.out.is_none() {
+        eprintln!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");
+    }
+    Ok(())
+}
+
+/// `footprint bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    /// The map.
+    pub map: MapArgs,
+    /// Modes to time (comma-separated).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "ps,li,as,ss2,ss4,ss8,ss16,ss32"
+    )]
+    pub modes: Vec<Mode>,
+    /// Image size.
+    #[arg(long, default_value = "400x400")]
+    pub size: Size,
+    /// Frames per mode and case; the best is reported.
+    #[arg(long, default_value_t = 5)]
+    pub repeats: usize,
+    /// Multiresolution traversal.
+    #[arg(long, value_enum, default_value_t = Switch::On)]
+    pub lod: Switch,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `footprint bench`.
+pub fn bench(args: &BenchArgs) -> Result<()> {
+    let started = Instant::now();
+    let map = args.map.load()?;
+    let pyramid = crate::pyramid::Pyramid::build(&map)?;
+    let mut modes = args.modes.clone();
+    if !modes.contains(&Mode::Ps) {
+        modes.insert(0, Mode::Ps);
+    }
+    let total = (modes.len() * bench::PAPER_PITCHES.len()) as u64;
+    let bar = indicatif::ProgressBar::new(total).with_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} frames·modes {elapsed}")
+            .expect("a valid template"),
+    );
+    if args.json {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let cases = bench::run(
+        &map,
+        &pyramid,
+        &modes,
+        args.size,
+        args.lod == Switch::On,
+        args.repeats,
+        || bar.inc(1),
+    )?;
+    bar.finish_and_clear();
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string(&serde_json::json!({ "cases": cases }))?
+        );
+        return Ok(());
+    }
+    println!(
+        "{} · {}x{} · FOV 10° · fit-first-hit · one thread · best of {}",
+        map.source, args.size.width, args.size.height, args.repeats
+    );
+    for case in &cases {
+        println!("pitch {:>2}°  height {:7.1} m", case.pitch, case.height);
+        for m in &case.modes {
+            println!("  {:>6}  {:8.2} ms  ×{:.2} PS", m.mode, m.ms, m.ratio_to_ps);
+        }
+    }
+    eprintln!("({:.1} s)", started.elapsed().as_secs_f64());
+    Ok(())
+}

@@ -1,0 +1,3 @@
+//! Experiments: each returns data and prints nothing.
+
+pub mod bench;

@@ -1,0 +1,177 @@
+//! Colouring a bare height map: a hypsometric tint times a hillshade.
+//!
+//! Everything is integer (fixed-point) arithmetic apart from turning the physical slope scale
+//! (`height_scale_m / spacing_m`) into a fixed-point factor, so the result is the same on every
+//! platform.
+
+use footprint_core::Rgb;
+
+/// Hypsometric tint stops: (position in the map's height range in 1/65536, colour).
+/// Low green, through yellow-green and brown, to grey rock and white at the top.
+const STOPS: [(i64, [i64; 3]); 6] = [
+    (0, [62, 112, 52]),
+    (13_107, [118, 142, 72]),
+    (26_214, [152, 132, 84]),
+    (39_322, [128, 98, 70]),
+    (52_429, [138, 132, 126]),
+    (65_536, [250, 250, 250]),
+];
+
+/// Colours a height map: a hypsometric tint by height (green at the map's own lowest height,
+/// through brown and grey, to white at its highest) multiplied by a hillshade lit from the
+/// north-west.
+///
+/// `heights` is row-major, `width * height` long. Slopes are computed from neighbour height
+/// differences scaled by `height_scale_m / spacing_m`, so the shading has the right strength for
+/// the map's real relief.
+///
+/// # Panics
+/// If `heights.len() != width * height`.
+pub fn tint(
+    width: u32,
+    height: u32,
+    heights: &[u16],
+    spacing_m: f64,
+    height_scale_m: f64,
+) -> Vec<Rgb> {
+    let (w, h) = (width as usize, height as usize);
+    assert_eq!(heights.len(), w * h, "heights must be width × height long");
+    if heights.is_empty() {
+        return Vec::new();
+    }
+    let min = i64::from(*heights.iter().min().unwrap_or(&0));
+    let max = i64::from(*heights.iter().max().unwrap_or(&0));
+    let range = (max - min).max(1);
+    // Height units → slope (rise over run) per voxel of run, in 1/65536.
+    let ratio = height_scale_m / spacing_m;
+    let slope_q16 = if ratio.is_finite() && ratio > 0.0 {
+        (ratio * 65_536.0).clamp(0.0, 1e12)
+    } else {
+        0.0
+    };
+
+    let mut out = Vec::with_capacity(w * h);
+    for y in 0..h {
+        let (yn, ys) = (y.saturating_sub(1), (y + 1).min(h - 1));
+        let dy_run = (ys - yn) as f64;
+        for x in 0..w {
+            let (xw, xe) = (x.saturating_sub(1), (x + 1).min(w - 1));
+            let dx_run = (xe - xw) as f64;
+            let dzx = i64::from(heights[y * w + xe]) - i64::from(heights[y * w + xw]);
+            let dzy = i64::from(heights[ys * w + x]) - i64::from(heights[yn * w + x]);
+            let gx = gradient_q16(dzx, dx_run, slope_q16);
+            let gy = gradient_q16(dzy, dy_run, slope_q16);
+            let t = (i64::from(heights[y * w + x]) - min) * 65_536 / range;
+            out.push(shade(hypsometric(t), hillshade_q8(gx, gy)));
+        }
+    }
+    out
+}
+
+/// The slope `dz * scale / run` in 1/65536, or 0 when `run` is 0 (a one-voxel-wide map).
+fn gradient_q16(dz: i64, run: f64, slope_q16: f64) -> i64 {
+    if run == 0.0 {
+        return 0;
+    }
+    // Float multiply/divide only (correctly rounded everywhere), then a saturating cast.
+    (dz as f64 * slope_q16 / run) as i64
+}
+
+/// The hypsometric tint at position `t` (0..=65536) of the height range.
+fn hypsometric(t: i64) -> [i64; 3] {
+    let t = t.clamp(0, 65_536);
+    for pair in STOPS.windows(2) {
+        let ((t0, c0), (t1, c1)) = (pair[0], pair[1]);
+        if t <= t1 {
+            let f = (t - t0) * 256 / (t1 - t0);
+            return lerp(c0, c1, f);
+        }
+    }
+    STOPS[STOPS.len() - 1].1
+}
+
+/// Linear interpolation between two colours, `f` in 0..=256.
+pub(crate) fn lerp(a: [i64; 3], b: [i64; 3], f: i64) -> [i64; 3] {
+    let f = f.clamp(0, 256);
+    [
+        a[0] + (b[0] - a[0]) * f / 256,
+        a[1] + (b[1] - a[1]) * f / 256,
+        a[2] + (b[2] - a[2]) * f / 256,
+    ]
+}
+
+/// Multiplies a colour by a shade factor in 1/256 (256 = unchanged) and clamps it to 0..=255.
+pub(crate) fn shade(c: [i64; 3], factor_q8: i64) -> Rgb {
+    let ch = |v: i64| (v * factor_q8 / 256).clamp(0, 255) as u8;
+    Rgb::new(ch(c[0]), ch(c[1]), ch(c[2]))
+}
+
+/// Hillshade factor for a surface with slopes `gx = dz/dx` (x east) and `gy = dz/dy` (y south),
+/// both in 1/65536, lit from the north-west at 45° elevation.
+///
+/// Returns a brightness factor in 1/256: 256 on flat ground, up to about 324 on slopes facing
+/// the light, down to an ambient 90 on slopes facing away from it. Integer arithmetic only.
+pub fn hillshade_q8(gx: i64, gy: i64) -> i64 {
+    const ONE: i64 = 65_536;
+    const LIMIT: i64 = 4_096 * ONE; // slopes beyond ~89.99° are all the same
+    const HALF: i64 = ONE / 2; // horizontal components of the light direction
+    const UP: i64 = 46_341; // vertical component: cos 45° in 1/65536
+    let gx = gx.clamp(-LIMIT, LIMIT);
+    let gy = gy.clamp(-LIMIT, LIMIT);
+    // normal n = (-gx, -gy, 1) / |..|; light l = (-1/2, -1/2, 1/√2).
+    let dot = gx * HALF + gy * HALF + UP * ONE; // in 1/2^32
+    let len = (ONE * ONE + gx * gx + gy * gy).unsigned_abs().isqrt() as i64; // in 1/65536
+    let diffuse = (dot / len).max(0); // in 1/65536; UP on flat ground
+    90 + 166 * diffuse / UP
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hillshade_is_neutral_on_flat_ground_and_directional() {
+        assert_eq!(hillshade_q8(0, 0), 256);
+        // Rising towards the east faces west: lit. Rising towards the west: in shadow.
+        assert!(hillshade_q8(30_000, 30_000) > 256);
+        assert!(hillshade_q8(-30_000, -30_000) < 256);
+        assert_eq!(hillshade_q8(-i64::MAX, -i64::MAX), 90);
+        assert!(hillshade_q8(i64::MAX, i64::MAX) <= 325);
+    }
+
+    #[test]
+    fn tint_spans_green_to_white() {
+        let (w, h) = (64u32, 4u32);
+        let heights: Vec<u16> = (0..h)
+            .flat_map(|_| (0..w).map(|x| x as u16 * 100))
+            .collect();
+        // A tiny height scale keeps the shading almost neutral.
+        let c = tint(w, h, &heights, 30.0, 1e-6);
+        let low = c[0];
+        let high = c[(w - 1) as usize];
+        assert!(low.g > low.r && low.g > low.b, "{low:?}");
+        assert!(high.r > 240 && high.g > 240 && high.b > 240, "{high:?}");
+    }
+
+    #[test]
+    fn tint_shades_slopes() {
+        // A ramp rising towards the east (facing west, towards the light) versus one rising
+        // towards the west: same tint, different shading.
+        let (w, h) = (16u32, 3u32);
+        let east: Vec<u16> = (0..h).flat_map(|_| (0..w).map(|x| x as u16 * 10)).collect();
+        let west: Vec<u16> = (0..h)
+            .flat_map(|_| (0..w).map(|x| (15 - x) as u16 * 10))
+            .collect();
+        let ce = tint(w, h, &east, 30.0, 1.0);
+        let cw = tint(w, h, &west, 30.0, 1.0);
+        let (a, b) = (ce[16 + 8], cw[16 + 7]); // same height (80), opposite slopes
+        assert!(a.g > b.g, "{a:?} vs {b:?}");
+    }
+
+    #[test]
+    fn tint_handles_degenerate_maps() {
+        assert_eq!(tint(1, 1, &[5], 1.0, 1.0).len(), 1);
+        assert_eq!(tint(3, 1, &[7, 7, 7], 1.0, 1.0).len(), 3);
+        assert!(tint(0, 0, &[], 1.0, 1.0).is_empty());
+    }
+}

@@ -1,0 +1,253 @@
+//! One frame: the sampling mode, the view, and the render with and without counting.
+
+use std::fmt;
+use std::str::FromStr;
+use std::time::Instant;
+
+use anyhow::{bail, Result};
+use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::column::{render, walk};
+use footprint_core::cost::{Cost, Counts, NoCost, Tally};
+use footprint_core::num::Coord;
+use footprint_core::sampler::{Area, FirstHit, Linear, Point, Super};
+use footprint_core::terrain::Terrain;
+use footprint_core::visibility::count_visible;
+use footprint_core::Rgb;
+
+/// A sampling mode of the paper: PS, LI, SS_N (N = 2, 4, …, 256) or AS.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Point sampling (Fig. 4).
+    Ps,
+    /// Linear interpolation (Eq. 4).
+    Li,
+    /// Supersampling at rate N (Fig. 8).
+    Ss(u32),
+    /// Exact area sampling (Fig. 12).
+    As,
+}
+
+/// The supersampling rates the renderer is compiled for.
+pub const SS_RATES: [u32; 8] = [2, 4, 8, 16, 32, 64, 128, 256];
+
+impl FromStr for Mode {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "ps" => Ok(Mode::Ps),
+            "li" => Ok(Mode::Li),
+            "as" => Ok(Mode::As),
+            other => match other.strip_prefix("ss").map(str::parse::<u32>) {
+                Some(Ok(n)) if SS_RATES.contains(&n) => Ok(Mode::Ss(n)),
+                _ => Err(format!(
+                    "unknown mode {s:?}: expected ps, li, as, or ss2, ss4, …, ss256"
+                )),
+            },
+        }
+    }
+}
+
+impl fmt::Display for Mode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Mode::Ps => write!(f, "ps"),
+            Mode::Li => write!(f, "li"),
+            Mode::Ss(n) => write!(f, "ss{n}"),
+            Mode::As => write!(f, "as"),
+        }
+    }
+}
+
+/// Runs `$body` with `$s` bound to a fresh sampler of `$mode`'s type: the one place where a
+/// run-time mode becomes a monomorphized `Sampler`.
+macro_rules! with_sampler {
+    ($mode:expr, $s:ident => $body:expr) => {
+        match $mode {
+            Mode::Ps => {
+                let $s = Point;
+                $body
+            }
+            Mode::Li => {
+                let $s = Linear;
+                $body
+            }
+            Mode::As => {
+                let $s = Area::new();
+                $body
+            }
+            Mode::Ss(2) => {
+                let $s = Super::<2>::new();
+                $body
+            }
+            Mode::Ss(4) => {
+                let $s = Super::<4>::new();
+                $body
+            }
+            Mode::Ss(8) => {
+                let $s = Super::<8>::new();
+                $body
+            }
+            Mode::Ss(16) => {
+                let $s = Super::<16>::new();
+                $body
+            }
+            Mode::Ss(32) => {
+                let $s = Super::<32>::new();
+                $body
+            }
+            Mode::Ss(64) => {
+                let $s = Super::<64>::new();
+                $body
+            }
+            Mode::Ss(128) => {
+                let $s = Super::<128>::new();
+                $body
+            }
+            Mode::Ss(256) => {
+                let $s = Super::<256>::new();
+                $body
+            }
+            Mode::Ss(n) => unreachable!("SS rate {n} is rejected when the mode is parsed"),
+        }
+    };
+}
+
+/// The camera tables of one frame, owned.
+pub struct Tables {
+    rows: Vec<Coord>,
+    columns: Vec<Column>,
+}
+
+impl Tables {
+    /// Buffers sized for `camera`.
+    pub fn new(camera: &Camera) -> Self {
+        Self {
+            rows: vec![Coord::ZERO; camera.height() + 1],
+            columns: vec![Column::default(); camera.width()],
+        }
+    }
+
+    /// Builds the frame's tables.
+    pub fn frame<'t>(
+        &'t mut self,
+        camera: &Camera,
+        terrain: &Terrain<'_>,
+        options: Options,
+    ) -> Result<Frame<'t>> {
+        Ok(Frame::new(
+            camera,
+            terrain,
+            options,
+            &mut self.rows,
+            &mut self.columns,
+        )?)
+    }
+}
+
+/// A rendered frame.
+pub struct Rendered {
+    /// The image, row-major from the top.
+    pub image: Vec<Rgb>,
+    /// Width and height.
+    pub size: (u32, u32),
+}
+
+/// Renders one frame with cost `cost` into a new image.
+pub fn render_with<C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+    cost: &mut C,
+) -> Result<Rendered> {
+    let (w, h) = (frame.width(), frame.height());
+    let mut image = vec![Rgb::default(); w * h];
+    let mut scratch = vec![Rgb::default(); h];
+    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut scratch, &mut image))?;
+    Ok(Rendered {
+        image,
+        size: (w as u32, h as u32),
+    })
+}
+
+/// Renders without counting and returns the image and the wall time of the render alone, in
+/// milliseconds: the best of `repeats` runs (at least one).
+pub fn render_timed(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+    repeats: usize,
+) -> Result<(Rendered, f64)> {
+    let mut best = f64::INFINITY;
+    let mut out = None;
+    for _ in 0..repeats.max(1) {
+        let t = Instant::now();
+        let r = render_with(frame, terrain, mode, &mut NoCost)?;
+        best = best.min(t.elapsed().as_secs_f64() * 1e3);
+        out = Some(r);
+    }
+    Ok((out.expect("at least one run"), best))
+}
+
+/// The counts of one frame: totals with `V` filled by the exact visibility pass, and one
+/// tally per column.
+pub struct Measured {
+    /// The frame's totals.
+    pub total: Tally,
+    /// One tally per column.
+    pub columns: Vec<Tally>,
+}
+
+/// Renders with every counter on, then counts the visible voxels `V` independently.
+pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Rendered, Measured)> {
+    let mut columns = vec![Tally::default(); frame.width()];
+    let mut counts = Counts::new(&mut columns);
+    let rendered = render_with(frame, terrain, mode, &mut counts)?;
+    count_visible(frame, terrain, &mut counts);
+    let total = counts.total;
+    Ok((rendered, Measured { total, columns }))
+}
+
+/// The horizontal distance, in voxels, at which the lowest ray of the middle column first
+/// hits the terrain, or `None` if it hits nothing within the far distance.
+pub fn first_hit_distance(frame: &Frame<'_>, terrain: &Terrain<'_>) -> Option<f64> {
+    let col = frame.width() / 2;
+    let mut probe = FirstHit::default();
+    let mut out = [Rgb::default()];
+    walk(frame, terrain, col, 0..1, &mut probe, &mut NoCost, &mut out);
+    probe.n.map(|n| frame.column(col).distance(n))
+}
+
+/// The paper's rule for Table 1: the eye height (metres) at which the pixel footprint at the
+/// first hit is one voxel wide, i.e. the lowest ray of the middle column first hits the terrain
+/// at `1/pixel_angle` voxels. Found by bisection on the eye height (the first-hit distance
+/// grows with it); the render's own walk is the probe, so the rule holds for what is drawn.
+pub fn fit_first_hit(params: CameraParams, terrain: &Terrain<'_>, options: Options) -> Result<f64> {
+    let camera = Camera::new(params)?;
+    let target = 1.0 / camera.pixel_angle();
+    let scale = terrain.scale();
+    let top_m = terrain.max_height().to_num::<f64>() * scale.height_scale_m;
+    let mut tables = Tables::new(&camera);
+    let mut probe = |eye_m: f64| -> Result<Option<f64>> {
+        let cam = Camera::new(CameraParams { eye_m, ..params })?;
+        let frame = tables.frame(&cam, terrain, options)?;
+        Ok(first_hit_distance(&frame, terrain))
+    };
+    // The lowest ray descends by |slope| per unit distance: from this high it reaches the
+    // ground no nearer than the target.
+    let slope = -camera.row_slope(0);
+    if slope <= 0.0 {
+        bail!("--fit-first-hit needs a lowest ray that descends: raise --pitch");
+    }
+    let (mut lo, mut hi) = (0.0, top_m + slope * target * scale.spacing_m * 1.01);
+    if probe(hi)?.is_none_or(|d| d < target) {
+        bail!("--fit-first-hit: no eye height up to {hi:.0} m puts the first hit at {target:.0} voxels");
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        match probe(mid)? {
+            Some(d) if d >= target => hi = mid,
+            _ => lo = mid,
+        }
+    }
+    Ok(hi)
+}

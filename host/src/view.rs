@@ -1,0 +1,193 @@
+//! The view options shared by every subcommand that renders: map, camera and LOD.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use footprint_core::camera::{Camera, CameraParams, Options};
+
+use crate::map::{self, Map};
+use crate::pyramid::Pyramid;
+use crate::render::fit_first_hit;
+
+/// An image size `WxH`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Size {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+impl std::str::FromStr for Size {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let err = || format!("size {s:?}: expected WxH with W, H in 1..=16384, e.g. 400x400");
+        let (w, h) = s.split_once(['x', 'X']).ok_or_else(err)?;
+        let (width, height) = (
+            w.trim().parse::<u32>().map_err(|_| err())?,
+            h.trim().parse::<u32>().map_err(|_| err())?,
+        );
+        if width == 0 || height == 0 || width > 16_384 || height > 16_384 {
+            return Err(err());
+        }
+        Ok(Size { width, height })
+    }
+}
+
+/// `on` or `off`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Switch {
+    /// Enabled.
+    On,
+    /// Disabled.
+    Off,
+}
+
+/// Where the terrain comes from.
+#[derive(Args, Clone, Debug)]
+pub struct MapArgs {
+    /// Height map: 8- or 16-bit greyscale PNG. Without it, the built-in procedural terrain.
+    #[arg(long, value_name = "HEIGHT.png")]
+    pub dem: Option<PathBuf>,
+    /// Colour map (RGB or palette PNG) of the same size as --dem; without it, a tint from height.
+    #[arg(long, value_name = "COLOR.png", requires = "dem")]
+    pub color: Option<PathBuf>,
+    /// Metres per voxel of --dem.
+    #[arg(long, default_value_t = 30.0)]
+    pub spacing: f64,
+    /// Metres per height unit of --dem.
+    #[arg(long = "height-scale", default_value_t = 0.1)]
+    pub height_scale: f64,
+    /// Seed of the built-in terrain.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Side of the built-in terrain, voxels.
+    #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE)]
+    pub terrain_size: u32,
+}
+
+impl MapArgs {
+    /// Loads the map (or generates the built-in one).
+    pub fn load(&self) -> Result<Map> {
+        match &self.dem {
+            Some(dem) => Ok(map::load_png_pair(
+                dem,
+                self.color.as_deref(),
+                self.spacing,
+                self.height_scale,
+            )?),
+            None => {
+                if self.terrain_size < map::MIN_SIZE || self.terrain_size > map::MAX_SIDE {
+                    bail!(
+                        "--terrain-size {}: must be {}..={}",
+                        self.terrain_size,
+                        map::MIN_SIZE,
+                        map::MAX_SIDE
+                    );
+                }
+                Ok(map::procedural(self.seed, self.terrain_size))
+            }
+        }
+    }
+}
+
+/// The camera.
+#[derive(Args, Clone, Debug)]
+pub struct CameraArgs {
+    /// Eye position east, metres [default: the map's centre].
+    #[arg(long, allow_hyphen_values = true)]
+    pub x: Option<f64>,
+    /// Eye position south, metres [default: the map's centre].
+    #[arg(long, allow_hyphen_values = true)]
+    pub y: Option<f64>,
+    /// Eye height above the datum, metres [default: --fit-first-hit].
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "fit_first_hit")]
+    pub height: Option<f64>,
+    /// Choose the eye height so that the pixel footprint at the first hit is one voxel wide
+    /// (the paper's Table 1 rule); the default when --height is absent.
+    #[arg(long)]
+    pub fit_first_hit: bool,
+    /// Heading, degrees clockwise from north (up the map).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub heading: f64,
+    /// Pitch, degrees, positive looking down; in (-90, 90).
+    #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
+    pub pitch: f64,
+    /// Vertical field of view, degrees; in (0, 180).
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
+    pub fov: f64,
+    /// Image size WxH.
+    #[arg(long, default_value = "400x400")]
+    pub size: Size,
+    /// Far distance, metres [default: 8 × the map's longer side].
+    #[arg(long, allow_hyphen_values = true)]
+    pub far: Option<f64>,
+    /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
+    #[arg(long, value_enum, default_value_t = Switch::On)]
+    pub lod: Switch,
+}
+
+/// A loaded map with its pyramid, and the view of it.
+pub struct View {
+    /// The map.
+    pub map: Map,
+    /// Its pyramid.
+    pub pyramid: Pyramid,
+    /// The camera, with its eye height resolved.
+    pub camera: Camera,
+    /// Frame options.
+    pub options: Options,
+}
+
+impl View {
+    /// Loads the map and resolves the camera (fitting the eye height if asked).
+    pub fn new(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
+        let map = map_args.load()?;
+        let pyramid = Pyramid::build(&map)?;
+        let options = Options {
+            lod: cam.lod == Switch::On,
+            ..Options::default()
+        };
+        let camera = resolve_camera(&map, &pyramid, cam, options)?;
+        Ok(Self {
+            map,
+            pyramid,
+            camera,
+            options,
+        })
+    }
+}
+
+/// Turns the camera options into a validated camera for `map`.
+pub fn resolve_camera(
+    map: &Map,
+    pyramid: &Pyramid,
+    cam: &CameraArgs,
+    options: Options,
+) -> Result<Camera> {
+    let centre = |n: u32| n as f64 * map.spacing_m / 2.0;
+    let mut params = CameraParams {
+        x_m: cam.x.unwrap_or_else(|| centre(map.width)),
+        y_m: cam.y.unwrap_or_else(|| centre(map.height)),
+        eye_m: 0.0,
+        heading_deg: cam.heading,
+        pitch_deg: cam.pitch,
+        fov_deg: cam.fov,
+        width: cam.size.width,
+        height: cam.size.height,
+        far_m: cam
+            .far
+            .unwrap_or(8.0 * f64::from(map.width.max(map.height)) * map.spacing_m),
+    };
+    // Validate everything but the eye height first, so errors name the bad argument.
+    Camera::new(params).context("camera")?;
+    params.eye_m = match cam.height {
+        Some(h) => h,
+        None => {
+            let terrain = pyramid.terrain(options.lod)?;
+            fit_first_hit(params, &terrain, options)?
+        }
+    };
+    Ok(Camera::new(params).context("camera")?)
+}
