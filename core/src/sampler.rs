@@ -196,7 +196,8 @@ impl<const N: u32> Sampler for Super<N> {
 /// hit that the rounding alone lets through is re-checked exactly and rejected.
 #[derive(Clone, Copy, Debug)]
 pub struct Area {
-    pixel: Option<Pixel>,
+    upper: Line,
+    eye: Eye,
     sum: [i64; 3],
     wsum: i64,
     top: Option<(i64, Height)>,
@@ -213,7 +214,14 @@ impl Area {
     /// A fresh area sampler.
     pub const fn new() -> Self {
         Self {
-            pixel: None,
+            upper: Line {
+                base: Height::ZERO,
+                slope: Slope::ZERO,
+            },
+            eye: Eye {
+                h: Height::ZERO,
+                n: Height::ZERO,
+            },
             sum: [0; 3],
             wsum: 0,
             top: None,
@@ -249,7 +257,8 @@ impl Sampler for Area {
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         *self = Self::new();
-        self.pixel = Some(*pixel);
+        self.upper = pixel.upper;
+        self.eye = pixel.eye;
     }
 
     #[inline(always)]
@@ -260,28 +269,25 @@ impl Sampler for Area {
         ray: &mut Ray,
         cost: &mut C,
     ) -> Hit {
-        let Some(pixel) = self.pixel else {
-            return Hit::Rejected;
-        };
         let n = march.n();
         if let Some((n_top, h_top)) = self.top {
             // The rounded-down ray lies at most (n − n_top) units in the last place below the
             // exact one: inside that band, ask the exact question.
             let margin = top.saturating_sub(ray.h).to_bits();
-            if margin <= n - n_top && !pixel.eye.above_ray_through(n_top, h_top, n, top) {
+            if margin <= n - n_top && !self.eye.above_ray_through(n_top, h_top, n, top) {
                 return Hit::Rejected;
             }
         }
         cost.sample(march.step_index());
         let color = march.sample_linear();
         self.seen = true;
-        if top >= pixel.upper.at(n) {
+        if top >= self.upper.at(n) {
             // The voxel reaches R_{i+1}: the pixel is done (H' = H(R_{i+1})).
-            self.accumulate(pixel.upper.slope.saturating_sub(ray.slope), color, cost);
+            self.accumulate(self.upper.slope.saturating_sub(ray.slope), color, cost);
             return Hit::Done(self.finish(color, cost));
         }
         cost.top_division();
-        let through_top = pixel.eye.slope_through(n, top).min(pixel.upper.slope);
+        let through_top = self.eye.slope_through(n, top).min(self.upper.slope);
         self.accumulate(through_top.saturating_sub(ray.slope), color, cost);
         ray.h = top;
         ray.slope = through_top.max(ray.slope);
@@ -290,7 +296,6 @@ impl Sampler for Area {
     }
 
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
-        let pixel = self.pixel?;
         if !self.seen {
             return None;
         }
@@ -299,7 +304,7 @@ impl Sampler for Area {
             u16::from(sky.g) << 8,
             u16::from(sky.b) << 8,
         ];
-        self.accumulate(pixel.upper.slope.saturating_sub(ray.slope), sky16, cost);
+        self.accumulate(self.upper.slope.saturating_sub(ray.slope), sky16, cost);
         Some(self.finish(sky16, cost))
     }
 }

@@ -120,7 +120,8 @@ pub struct CameraArgs {
     /// Image size WxH.
     #[arg(long, default_value = "400x400")]
     pub size: Size,
-    /// Far distance, metres [default: 8 × the map's longer side].
+    /// Far distance, metres [default: 8 × the map's longer side, at least 4 × the distance where
+    /// the footprint is one voxel wide].
     #[arg(long, allow_hyphen_values = true)]
     pub far: Option<f64>,
     /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
@@ -159,6 +160,12 @@ impl View {
     }
 }
 
+/// The default far distance in voxels: 8 × the map's longer side (the mirrored terrain is
+/// infinite), and at least 4 × the distance where a pixel's footprint is one voxel wide.
+pub fn default_far_voxels(map: &Map, pixel_angle: f64) -> f64 {
+    (8.0 * f64::from(map.width.max(map.height))).max(4.0 / pixel_angle)
+}
+
 /// Turns the camera options into a validated camera for `map`.
 pub fn resolve_camera(
     map: &Map,
@@ -176,11 +183,14 @@ pub fn resolve_camera(
         fov_deg: cam.fov,
         width: cam.size.width,
         height: cam.size.height,
-        far_m: cam
-            .far
-            .unwrap_or(8.0 * f64::from(map.width.max(map.height)) * map.spacing_m),
+        far_m: 1.0,
     };
     // Validate everything but the eye height first, so errors name the bad argument.
+    let probe = Camera::new(params).context("camera")?;
+    params.far_m = match cam.far {
+        Some(far) => far,
+        None => default_far_voxels(map, probe.pixel_angle()) * map.spacing_m,
+    };
     Camera::new(params).context("camera")?;
     params.eye_m = match cam.height {
         Some(h) => h,
