@@ -24,7 +24,24 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help and --version: print them whole.
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            // A usage error: its first line only ("error: invalid value … for '--fov'").
+            let text = e.render().to_string();
+            let line = text
+                .lines()
+                .find(|l| !l.trim().is_empty())
+                .unwrap_or("error");
+            eprintln!("{line}");
+            return ExitCode::from(2);
+        }
+    };
     let result = match &cli.command {
         Command::Render(args) => commands::render(args),
         Command::Bench(args) => commands::bench(args),

@@ -199,5 +199,5 @@ pub fn resolve_camera(
             fit_first_hit(params, &terrain, options)?
         }
     };
-    Ok(Camera::new(params).context("camera")?)
+    Camera::new(params).context("camera")
 }

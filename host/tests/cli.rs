@@ -1,0 +1,214 @@
+//! The `footprint` binary: its JSON, and bad input — one line on stderr naming the argument
+//! or the file, exit code 2, and no output file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn footprint(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// Runs a render that must fail, and checks the failure's shape.
+fn fails(args: &[&str], names: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let mut all: Vec<&str> = vec!["render", "--terrain-size", "64", "--out"];
+    let out_s = out.to_str().unwrap().to_string();
+    all.push(&out_s);
+    all.extend_from_slice(args);
+    let o = footprint(&all);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: stderr {stderr}");
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert!(
+        lines.len() == 1 || stderr.contains("Usage"),
+        "{args:?}: expected one line, got {stderr:?}"
+    );
+    assert!(
+        stderr.contains(names),
+        "{args:?}: the error should name {names:?}: {stderr}"
+    );
+    assert!(!out.exists(), "{args:?}: an output file was left behind");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "{args:?}: temp files left"
+    );
+}
+
+fn write_gray16(path: &Path, w: u32, h: u32) {
+    let img = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_fn(w, h, |x, y| {
+        image::Luma([((x * 37 + y * 11) % 500) as u16])
+    });
+    img.save(path).unwrap();
+}
+
+fn write_rgb(path: &Path, w: u32, h: u32) {
+    let img = image::RgbImage::from_fn(w, h, |x, y| image::Rgb([x as u8, y as u8, 90]));
+    img.save(path).unwrap();
+}
+
+/// A PNG whose header declares `w × h` (any value, even 0) with a valid CRC.
+fn png_with_header(w: u32, h: u32) -> Vec<u8> {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = 0xFFFF_FFFFu32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 != 0 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
+    }
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend_from_slice(&w.to_be_bytes());
+    ihdr.extend_from_slice(&h.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 0, 0, 0, 0]);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    png.extend_from_slice(&13u32.to_be_bytes());
+    png.extend_from_slice(&ihdr);
+    png.extend_from_slice(&crc32(&ihdr).to_be_bytes());
+    png
+}
+
+#[test]
+fn render_counts_json_has_the_documented_fields() {
+    let o = footprint(&[
+        "render",
+        "--terrain-size",
+        "128",
+        "--size",
+        "64x48",
+        "--pitch",
+        "20",
+        "--mode",
+        "as",
+        "--counts",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+    assert_eq!(v["mode"], "as");
+    assert_eq!(v["width"], 64);
+    assert_eq!(v["height"], 48);
+    for k in [
+        "L",
+        "P",
+        "M",
+        "V",
+        "hits",
+        "a",
+        "b",
+        "c",
+        "d",
+        "d_prime",
+        "shifts",
+        "divisions",
+    ] {
+        assert!(v["counts"][k].is_u64(), "counts.{k} missing: {v}");
+    }
+    assert!(v["ms"].as_f64().unwrap() > 0.0);
+    assert_eq!(
+        v["coverage"].as_f64().unwrap(),
+        1.0,
+        "AS samples every visible voxel"
+    );
+    assert!(v["counts"]["V"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn render_writes_a_png_of_the_asked_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.png");
+    let o = footprint(&[
+        "render",
+        "--terrain-size",
+        "64",
+        "--size",
+        "40x30",
+        "--mode",
+        "ss8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&out).unwrap();
+    assert_eq!((img.width(), img.height()), (40, 30));
+}
+
+#[test]
+fn bad_numbers_name_their_argument() {
+    fails(&["--fov", "0"], "fov");
+    fails(&["--fov", "180"], "fov");
+    fails(&["--fov", "-3"], "fov");
+    fails(&["--fov", "nan"], "fov");
+    fails(&["--pitch", "90"], "pitch");
+    fails(&["--pitch", "-90.5"], "pitch");
+    fails(&["--x", "inf"], "x");
+    fails(&["--height", "NaN"], "height");
+    fails(&["--heading", "-inf"], "heading");
+    fails(&["--size", "0x400"], "size");
+    fails(&["--size", "400x0"], "size");
+    fails(&["--size", "banana"], "size");
+    fails(&["--mode", "ss3"], "mode");
+}
+
+#[test]
+fn bad_maps_name_their_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| -> PathBuf { dir.path().join(n) };
+    let s = |b: &PathBuf| b.to_str().unwrap().to_string();
+
+    fails(&["--dem", &s(&p("missing.png"))], "missing.png");
+
+    std::fs::write(p("corrupt.png"), b"this is not a png at all").unwrap();
+    fails(&["--dem", &s(&p("corrupt.png"))], "corrupt.png");
+
+    write_gray16(&p("good.png"), 32, 32);
+    let bytes = std::fs::read(p("good.png")).unwrap();
+    std::fs::write(p("truncated.png"), &bytes[..bytes.len() / 2]).unwrap();
+    fails(&["--dem", &s(&p("truncated.png"))], "truncated.png");
+
+    write_rgb(&p("small_color.png"), 16, 32);
+    fails(
+        &[
+            "--dem",
+            &s(&p("good.png")),
+            "--color",
+            &s(&p("small_color.png")),
+        ],
+        "small_color.png",
+    );
+
+    std::fs::write(p("zero.png"), png_with_header(0, 10)).unwrap();
+    fails(&["--dem", &s(&p("zero.png"))], "zero.png");
+    std::fs::write(p("huge.png"), png_with_header(70_000, 1)).unwrap();
+    fails(&["--dem", &s(&p("huge.png"))], "huge.png");
+
+    fails(&["--dem", &s(&dir.path().to_path_buf())], "is a directory");
+}
+
+#[test]
+fn output_to_a_missing_folder_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("no/such/folder/x.png");
+    let o = footprint(&[
+        "render",
+        "--terrain-size",
+        "64",
+        "--size",
+        "8x8",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("does not exist"));
+    assert!(!out.exists());
+}

@@ -1,0 +1,120 @@
+//! The paper's three test cases (Sect. 7, Table 1) on the built-in terrain: pitch 40°, 20°
+//! and 5°, FOV 10°, 400×400, the eye at the fit-first-hit height.
+
+use footprint_core::camera::Options;
+use footprint_core::cost::Tally;
+use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
+use footprint_host::map::{procedural, DEFAULT_SIZE};
+use footprint_host::pyramid::Pyramid;
+use footprint_host::render::{count, first_hit_distance, Mode, Tables};
+use footprint_host::view::Size;
+
+const SIZE: Size = Size {
+    width: 400,
+    height: 400,
+};
+
+fn measure(pyramid: &Pyramid, map: &footprint_host::map::Map, pitch: f64, mode: Mode) -> Tally {
+    let camera = paper_camera(map, pyramid, pitch, SIZE, true).expect("paper camera");
+    let terrain = pyramid.terrain(true).unwrap();
+    let mut tables = Tables::new(&camera);
+    let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
+    count(&frame, &terrain, mode).unwrap().1.total
+}
+
+#[test]
+fn area_sampling_coverage_is_exactly_one_in_every_paper_case() {
+    let map = procedural(1, DEFAULT_SIZE);
+    let pyramid = Pyramid::build(&map).unwrap();
+    for pitch in PAPER_PITCHES {
+        let t = measure(&pyramid, &map, pitch, Mode::As);
+        assert!(
+            t.v > 100_000,
+            "pitch {pitch}: a real footprint, V = {}",
+            t.v
+        );
+        assert_eq!(
+            t.m, t.v,
+            "pitch {pitch}: AS must sample every visible voxel, once"
+        );
+    }
+}
+
+#[test]
+fn point_sampling_undersamples_more_as_the_pitch_falls() {
+    let map = procedural(1, DEFAULT_SIZE);
+    let pyramid = Pyramid::build(&map).unwrap();
+    let cov: Vec<f64> = PAPER_PITCHES
+        .iter()
+        .map(|&p| measure(&pyramid, &map, p, Mode::Ps).coverage())
+        .collect();
+    // PAPER_PITCHES is 40°, 20°, 5°: coverage falls with the pitch (Tables 2–4).
+    assert!(cov[0] > cov[1] && cov[1] > cov[2], "PS coverage {cov:?}");
+    assert!(cov[2] < 0.5, "at 5° PS misses most visible voxels: {cov:?}");
+}
+
+#[test]
+fn fit_first_hit_puts_a_one_voxel_footprint_at_the_first_hit() {
+    let map = procedural(1, DEFAULT_SIZE);
+    let pyramid = Pyramid::build(&map).unwrap();
+    let terrain = pyramid.terrain(true).unwrap();
+    for pitch in PAPER_PITCHES {
+        let camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
+        let d = first_hit_distance(&frame, &terrain).expect("the lowest ray hits");
+        let footprint = d * camera.pixel_angle();
+        // Bisection stops within one voxel step of the target distance.
+        assert!(
+            (footprint - 1.0).abs() < 0.01,
+            "pitch {pitch}: footprint {footprint} voxels at {d} voxels"
+        );
+    }
+}
+
+#[test]
+fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
+    // One view over the (mirrored, infinite) built-in terrain with the far distance at 2k, 8k
+    // and 32k voxels: the footprint of the rays near the horizon grows ×16. Voxel by voxel the
+    // steps grow with it; with the pyramid they grow with the log of the distance (Sect. 3).
+    use footprint_core::camera::{Camera, CameraParams};
+    let map = procedural(7, 512);
+    let pyramid = Pyramid::build(&map).unwrap();
+    let top_m = f64::from(map.height_range().1) * map.height_scale_m;
+    let mut with_lod = Vec::new();
+    let mut without = Vec::new();
+    for far_voxels in [2_048.0, 8_192.0, 32_768.0] {
+        let camera = Camera::new(CameraParams {
+            x_m: 100.0 * map.spacing_m,
+            y_m: 100.0 * map.spacing_m,
+            eye_m: 1.5 * top_m,
+            heading_deg: 30.0,
+            pitch_deg: 0.0,
+            fov_deg: 10.0,
+            width: 32,
+            height: 32,
+            far_m: far_voxels * map.spacing_m,
+        })
+        .unwrap();
+        for (lod, out) in [(true, &mut with_lod), (false, &mut without)] {
+            let terrain = pyramid.terrain(lod).unwrap();
+            let mut tables = Tables::new(&camera);
+            let options = Options {
+                lod,
+                ..Options::default()
+            };
+            let frame = tables.frame(&camera, &terrain, options).unwrap();
+            out.push(count(&frame, &terrain, Mode::Ps).unwrap().1.total.a as f64);
+        }
+    }
+    let growth_lod = with_lod[2] / with_lod[0];
+    let growth_flat = without[2] / without[0];
+    assert!(
+        growth_flat > 4.0,
+        "voxel by voxel the steps grew only ×{growth_flat:.2}: {without:?}"
+    );
+    assert!(
+        growth_lod < 1.6,
+        "with LOD the steps grew ×{growth_lod:.2}: {with_lod:?}"
+    );
+}
