@@ -150,8 +150,7 @@ mod tests {
             let h = height((next() % 65_536) as u16);
             let run = (i128::from(n) << 24) - i128::from(eye.n.to_bits());
             let rise = i128::from(h.to_bits()) - i128::from(eye.h.to_bits());
-            let exact = ((rise << 24).div_euclid(run))
-                .clamp(-(1i128 << 39), 1i128 << 39) as i64;
+            let exact = ((rise << 24).div_euclid(run)).clamp(-(1i128 << 39), 1i128 << 39) as i64;
             assert_eq!(eye.slope_through(n, h).to_bits(), exact);
         }
     }
