@@ -120,6 +120,16 @@ impl Camera {
     }
 }
 
+/// `⌊x⌋` as an `i64` (saturating), without `f64::floor`, which `core` lacks.
+fn floor_i64(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t - 1
+    } else {
+        t
+    }
+}
+
 /// The largest `|tan|` of a row's elevation kept in the row table.
 const MAX_TAN: f64 = 1.0e6;
 
@@ -291,7 +301,7 @@ impl<'t> Frame<'t> {
                 .saturating_sub(Coord::saturating_from_num(n_eye).saturating_mul(dv));
             let first = (n_eye / 2).ceil().saturating_to_num::<i64>();
             let n_start = 2 * first + 1;
-            let n_far = (n_eye.to_num::<f64>() + far / run) as i64;
+            let n_far = floor_i64(n_eye.to_num::<f64>() + far / run);
             // The footprint across the column at horizontal distance t is t·δ voxels, with δ
             // the column's angular width; the level is the one nearest in log2 (Sect. 3).
             let delta = pix / (1.0 + xc * xc);

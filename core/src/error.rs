@@ -14,7 +14,7 @@ pub enum Error {
     },
     /// A slice does not hold `width × height` elements.
     SliceLength {
-        /// Which slice: `"heights"`, `"colors"`, `"rows"`, `"columns"` or `"image"`.
+        /// Which slice: `"heights"`, `"colors"`, `"rows"`, `"columns"`, `"image"` or `"column"`.
         what: &'static str,
         /// The length the parameters require.
         expected: usize,

@@ -54,7 +54,7 @@ pub fn height(units: u16) -> Height {
 }
 
 /// A ray `H(n) = base + n·slope`: Eq. 3 in the walk's coordinates.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Line {
     /// The ray's height at `n = 0`.
     pub base: Height,

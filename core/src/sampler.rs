@@ -104,13 +104,19 @@ impl Sampler for Linear {
 ///
 /// Under the paper's parallel-ray assumption the rays between `R_i` and `R_{i+1}` share the
 /// slope of `R_i`, so after each hit the ray is raised by the constant
-/// `Δ_i = (H(R_{i+1}) − H(R_i)) >> log2 N`, both heights taken at the voxel where the pixel
-/// begins; the pixel is `Σ >> log2 N`.
+/// `Δ_i = (H(R_{i+1}) − H(R_i)) >> log2 N`; the pixel is `Σ >> log2 N`.
+///
+/// Both heights are taken at the voxel of the pixel's first sample: the first voxel that `R_i`
+/// hits, which is the same voxel whether `R_i` resumed where the pixel below finished or
+/// started from the eye. (Fig. 8 computes Δ where the walk resumes; that voxel depends on the
+/// pixel below, and would make the image depend on where the walk began.)
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Super<const N: u32> {
     sum: [u32; 3],
     j: u32,
     delta: Height,
+    lower: Line,
+    upper: Line,
 }
 
 impl<const N: u32> Super<N> {
@@ -145,11 +151,8 @@ impl<const N: u32> Sampler for Super<N> {
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         self.sum = [0; 3];
         self.j = 0;
-        let gap = pixel
-            .upper
-            .at(pixel.n)
-            .saturating_sub(pixel.lower.at(pixel.n));
-        self.delta = (gap >> Self::LOG2).max(Height::ZERO);
+        self.lower = pixel.lower;
+        self.upper = pixel.upper;
     }
     #[inline(always)]
     fn hit<C: Cost>(
@@ -161,6 +164,11 @@ impl<const N: u32> Sampler for Super<N> {
     ) -> Hit {
         cost.sample(march.step_index());
         cost.ss_hit();
+        if self.j == 0 {
+            let n = march.n();
+            let gap = self.upper.at(n).saturating_sub(self.lower.at(n));
+            self.delta = (gap >> Self::LOG2).max(Height::ZERO);
+        }
         let c = march.sample_linear();
         for (s, c) in self.sum.iter_mut().zip(c) {
             *s += u32::from(c);

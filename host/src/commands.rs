@@ -34,6 +34,9 @@ pub struct RenderArgs {
     /// With --counts, print them as one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// With --counts --json, add every column's counters (`columns`).
+    #[arg(long)]
+    pub per_column: bool,
 }
 
 /// The counters as JSON field names (the paper's letters).
@@ -98,6 +101,8 @@ struct RenderJson {
     lod: bool,
     camera: CameraJson,
     map: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    columns: Option<Vec<CountsJson>>,
 }
 
 /// Per-column averages, the unit of the paper's Tables 1–4.
@@ -153,6 +158,9 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                     far: p.far_m,
                 },
                 map: view.map.source.clone(),
+                columns: args
+                    .per_column
+                    .then(|| measured.columns.iter().map(CountsJson::from).collect()),
             };
             println!("{}", serde_json::to_string(&json)?);
         } else {

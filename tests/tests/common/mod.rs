@@ -1,0 +1,257 @@
+//! Shared helpers for the integration tests: analytic terrains with their full pyramids,
+//! camera set-ups, and a column-by-column renderer.
+//!
+//! Units used throughout: one voxel is 1 m wide (`spacing_m = 1`) and one height unit is
+//! 0.1 m (`height_scale_m = 0.1`), so a height of 300 units is 30 m and 10 height units rise
+//! as much as one voxel runs.
+
+#![allow(dead_code)]
+
+use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::column;
+use footprint_core::cost::Cost;
+use footprint_core::num::Coord;
+use footprint_core::sampler::Sampler;
+use footprint_core::terrain::{next_size, Level, Scale, Terrain};
+use footprint_core::Rgb;
+
+/// Metres per voxel.
+pub const SPACING_M: f64 = 1.0;
+/// Metres per height unit.
+pub const HEIGHT_SCALE_M: f64 = 0.1;
+
+/// The scale of every test terrain.
+pub fn scale() -> Scale {
+    Scale::new(SPACING_M, HEIGHT_SCALE_M).expect("valid scale")
+}
+
+/// A sky colour that no test terrain uses, so that "is this pixel sky?" is a colour test.
+pub const SKY: Rgb = Rgb::new(1, 2, 3);
+
+/// A 64-bit integer hash of `(x, y, seed)` (splitmix64 finaliser).
+pub fn hash(x: i64, y: i64, seed: u64) -> u64 {
+    let mut z = (x as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (y as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+        ^ seed.wrapping_mul(0x1656_67B1_9E37_79F9);
+    z ^= z >> 30;
+    z = z.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z ^= z >> 27;
+    z = z.wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// A colour from a hash, every channel in `16..=239` (never the test sky).
+pub fn hash_color(x: i64, y: i64, seed: u64) -> Rgb {
+    let h = hash(x, y, seed);
+    let ch = |k: u32| 16 + ((h >> k) & 0xff) as u8 % 224;
+    Rgb::new(ch(0), ch(8), ch(16))
+}
+
+/// One owned pyramid level.
+#[derive(Clone, Debug)]
+pub struct Owned {
+    pub w: u32,
+    pub h: u32,
+    pub heights: Vec<u16>,
+    pub colors: Vec<Rgb>,
+}
+
+/// A map and its whole pyramid (every level down to 1×1), owned.
+#[derive(Clone, Debug)]
+pub struct Map {
+    pub name: &'static str,
+    pub levels: Vec<Owned>,
+}
+
+impl Map {
+    /// A `w × h` map whose voxel `(x, y)` is `f(x, y) = (height, colour)`, with its pyramid
+    /// built by the core's [`Level::build_next`].
+    pub fn from_fn(name: &'static str, w: u32, h: u32, f: impl Fn(i64, i64) -> (u16, Rgb)) -> Self {
+        let mut heights = Vec::with_capacity((w * h) as usize);
+        let mut colors = Vec::with_capacity((w * h) as usize);
+        for y in 0..i64::from(h) {
+            for x in 0..i64::from(w) {
+                let (hh, c) = f(x, y);
+                heights.push(hh);
+                colors.push(c);
+            }
+        }
+        let mut levels = vec![Owned {
+            w,
+            h,
+            heights,
+            colors,
+        }];
+        loop {
+            let below = levels.last().expect("level 0");
+            let Some((nw, nh)) = next_size(below.w, below.h) else {
+                break;
+            };
+            let cells = (nw * nh) as usize;
+            let (mut hs, mut cs) = (vec![0u16; cells], vec![Rgb::default(); cells]);
+            Level::new(below.w, below.h, &below.heights, &below.colors)
+                .expect("valid level")
+                .build_next(&mut hs, &mut cs)
+                .expect("valid next level");
+            levels.push(Owned {
+                w: nw,
+                h: nh,
+                heights: hs,
+                colors: cs,
+            });
+        }
+        Self { name, levels }
+    }
+
+    /// Level 0 as a core level.
+    pub fn level0(&self) -> Level<'_> {
+        let l = &self.levels[0];
+        Level::new(l.w, l.h, &l.heights, &l.colors).expect("valid level")
+    }
+
+    /// The terrain with its whole pyramid.
+    pub fn terrain(&self) -> Terrain<'_> {
+        let mut t = Terrain::new(self.level0(), scale());
+        for l in &self.levels[1..] {
+            t.push_level(Level::new(l.w, l.h, &l.heights, &l.colors).expect("valid level"))
+                .expect("pyramid level fits");
+        }
+        t
+    }
+}
+
+/// Flat plane at height 50 (5 m), hash-coloured voxels.
+pub fn flat() -> Map {
+    Map::from_fn("flat", 64, 128, |x, y| (50, hash_color(x, y, 1)))
+}
+
+/// Flat ground at 0 with one wall, the row `y = 60`, 100 units (10 m) tall and red, across the
+/// whole view of a camera at `y = 120` looking north (−y). (Its mirror images stand at
+/// `y = −61, −196, …`; from a 30 m eye the ground behind each wall shows above it.)
+pub fn wall() -> Map {
+    Map::from_fn("wall", 64, 128, |x, y| {
+        if y == 60 {
+            (100, Rgb::new(220, 30, 30))
+        } else {
+            (0, hash_color(x, y, 2))
+        }
+    })
+}
+
+/// A staircase rising northwards (with distance, for a camera at `y = 120` looking north):
+/// steps 4 voxels deep and 15 units (1.5 m) high, starting at `y = 110`.
+pub fn staircase() -> Map {
+    Map::from_fn("staircase", 64, 128, |x, y| {
+        let step = ((110 - y).max(0) / 4) as u16;
+        (step * 15, hash_color(x, y, 3))
+    })
+}
+
+/// A flat black/white checkerboard at height 0 with `side`-voxel squares.
+pub fn checker(side: i64) -> Map {
+    let name = if side == 1 { "checker1" } else { "checker8" };
+    Map::from_fn(name, 64, 128, move |x, y| {
+        let white = ((x / side) + (y / side)) & 1 == 1;
+        let c = if white {
+            Rgb::new(255, 255, 255)
+        } else {
+            Rgb::new(0, 0, 0)
+        };
+        (0, c)
+    })
+}
+
+/// A random-ish terrain: heights `0..200` and colours from integer hashes of `(x, y)`.
+pub fn random() -> Map {
+    Map::from_fn("random", 64, 64, |x, y| {
+        ((hash(x, y, 7) % 200) as u16, hash_color(x, y, 8))
+    })
+}
+
+/// Where a scene's camera stands and looks (heading in degrees; metres).
+#[derive(Clone, Copy, Debug)]
+pub struct Pose {
+    pub x_m: f64,
+    pub y_m: f64,
+    pub eye_m: f64,
+    pub heading_deg: f64,
+}
+
+/// The pose used for each analytic map: south of the map looking north for the directional
+/// maps, in the middle of the random map looking north-east-ish.
+pub fn pose_for(map: &Map) -> Pose {
+    match map.name {
+        "random" => Pose {
+            x_m: 32.3,
+            y_m: 31.7,
+            eye_m: 30.0,
+            heading_deg: 37.0,
+        },
+        _ => Pose {
+            x_m: 32.25,
+            y_m: 120.5,
+            eye_m: 30.0,
+            heading_deg: 3.0,
+        },
+    }
+}
+
+/// A camera: 30° field of view, `size × size` pixels, 400 m far distance.
+pub fn camera(pose: Pose, pitch_deg: f64, size: u32) -> Camera {
+    camera_far(pose, pitch_deg, size, 400.0)
+}
+
+/// A camera with a chosen far distance.
+pub fn camera_far(pose: Pose, pitch_deg: f64, size: u32, far_m: f64) -> Camera {
+    Camera::new(CameraParams {
+        x_m: pose.x_m,
+        y_m: pose.y_m,
+        eye_m: pose.eye_m,
+        heading_deg: pose.heading_deg,
+        pitch_deg,
+        fov_deg: 30.0,
+        width: size,
+        height: size,
+        far_m,
+    })
+    .expect("valid camera")
+}
+
+/// Builds a frame for `camera` over `terrain` and hands it to `f`.
+pub fn with_frame<R>(
+    camera: &Camera,
+    terrain: &Terrain<'_>,
+    lod: bool,
+    f: impl FnOnce(&Frame<'_>) -> R,
+) -> R {
+    let mut rows = vec![Coord::ZERO; camera.height() + 1];
+    let mut cols = vec![Column::default(); camera.width()];
+    let frame = Frame::new(
+        camera,
+        terrain,
+        Options { sky: SKY, lod },
+        &mut rows,
+        &mut cols,
+    )
+    .expect("valid frame");
+    f(&frame)
+}
+
+/// Renders every column with `walk(.., 0..H, ..)` and a fresh sampler per column; returns the
+/// columns, each bottom to top.
+pub fn render_columns<S: Sampler + Clone, C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    sampler: &S,
+    cost: &mut C,
+) -> Vec<Vec<Rgb>> {
+    let h = frame.height();
+    (0..frame.width())
+        .map(|c| {
+            let mut out = vec![Rgb::default(); h];
+            let mut s = sampler.clone();
+            column::walk(frame, terrain, c, 0..h, &mut s, cost, &mut out);
+            out
+        })
+        .collect()
+}
