@@ -76,6 +76,10 @@ pub fn walk<S: Sampler, C: Cost>(
                         in_footprint = true;
                         continue;
                     }
+                    Hit::Next => {
+                        cost.hit();
+                        in_footprint = true;
+                    }
                     Hit::Done(color) => {
                         cost.hit();
                         cost.terrain_pixel();

@@ -33,7 +33,8 @@ pub struct March<'a, 't> {
     terrain: &'t Terrain<'a>,
     level: &'t Level<'a>,
     axis: Axis,
-    sign: i8,
+    /// The ray moves towards increasing major coordinate.
+    forward: bool,
     lod: bool,
     /// Index of the current level; `top` is the coarsest one present.
     l: u32,
@@ -41,12 +42,18 @@ pub struct March<'a, 't> {
     /// Cell index along `n` at level `l`; the centre is `n = (2j + 1)·2^l`.
     j: i64,
     n: i64,
-    /// The next level begins once `n − n_eye ≥ threshold` (`lod_base·2^l`).
+    /// The step at this level, `2^(l+1)` half-voxels.
+    dn: i64,
     n_eye: i64,
-    threshold: i64,
-    /// Minor coordinate, raw I32F32 voxels, and its increment per half-voxel.
+    /// The footprint reaches √2·2^l voxels at `n_eye + lod_base·2^l`.
+    lod_base: i64,
+    /// The walk may climb a level at the first odd cell at or after this `n` (`i64::MAX` when
+    /// it cannot climb).
+    climb_at: i64,
+    /// Minor coordinate, raw I32F32 voxels; its increment per half-voxel and per step.
     v: i64,
     dv: i64,
+    dv_step: i64,
     /// Infinite cross-axis cell index at level `l`.
     cv: i64,
     /// Positions in the mirrored periods of the major and cross axes.
@@ -57,6 +64,8 @@ pub struct March<'a, 't> {
     len_v: u32,
     stride_u: usize,
     stride_v: usize,
+    /// The array offset of the current cross-axis cell, `fold(pv)·stride_v`.
+    off_v: usize,
     /// Steps taken so far; identifies the voxel for the distinct-sample count `M`.
     k: u32,
 }
@@ -69,19 +78,22 @@ impl<'a, 't> March<'a, 't> {
             terrain,
             level,
             axis: column.axis,
-            sign: column.sign,
+            forward: column.sign > 0,
             lod: frame.lod(),
             l: 0,
             top: (terrain.levels().len() - 1) as u32,
             j: (column.n_start - 1) / 2,
             n: column.n_start,
+            dn: 2,
             n_eye: column.n_eye.to_num::<i64>(),
-            threshold: column.lod_base,
+            lod_base: column.lod_base,
+            climb_at: i64::MAX,
             v: column
                 .v_base
                 .to_bits()
                 .saturating_add(column.dv.to_bits().saturating_mul(column.n_start)),
             dv: column.dv.to_bits(),
+            dv_step: 0,
             cv: 0,
             pu: 0,
             pv: 0,
@@ -89,6 +101,7 @@ impl<'a, 't> March<'a, 't> {
             len_v: 0,
             stride_u: 0,
             stride_v: 0,
+            off_v: 0,
             k: 0,
         };
         m.enter_level();
@@ -107,15 +120,25 @@ impl<'a, 't> March<'a, 't> {
         self.len_v = len_v;
         self.stride_u = stride_u;
         self.stride_v = stride_v;
+        self.dn = 2i64 << self.l;
+        // |dv| ≤ ½, so one step moves at most one level-l cell across.
+        self.dv_step = self.dv.saturating_mul(self.dn);
+        self.climb_at = if self.lod && self.l < self.top {
+            self.n_eye
+                .saturating_add(self.lod_base.saturating_mul(1i64 << self.l))
+        } else {
+            i64::MAX
+        };
         self.pu = self.u_cell().rem_euclid(2 * i64::from(len_u)) as u32;
         self.cv = self.v >> (32 + self.l);
         self.pv = self.cv.rem_euclid(2 * i64::from(len_v)) as u32;
+        self.off_v = self.offset_v(self.pv);
     }
 
     /// The current cell index along the major axis, in map coordinates.
     #[inline(always)]
     fn u_cell(&self) -> i64 {
-        if self.sign > 0 {
+        if self.forward {
             self.j
         } else {
             -self.j - 1
@@ -125,58 +148,51 @@ impl<'a, 't> March<'a, 't> {
     /// Steps to the next voxel and returns the distance moved, in half-voxels.
     #[inline(always)]
     pub fn advance(&mut self) -> i64 {
-        let old_n = self.n;
-        let next_j = self.j + 1;
-        self.k = self.k.wrapping_add(1);
-        if self.lod && self.l < self.top && next_j & 1 == 0 && self.n - self.n_eye >= self.threshold
-        {
+        self.k = self.k.saturating_add(1);
+        if self.n >= self.climb_at && self.j & 1 == 1 {
+            // The next level-l voxel begins a level-(l+1) voxel: climb (Sect. 3).
+            let old_n = self.n;
             self.l += 1;
-            self.threshold = self.threshold.saturating_mul(2);
-            self.j = next_j >> 1;
+            self.j = (self.j + 1) >> 1;
             self.n = (2 * self.j + 1) << self.l;
             let dn = self.n - old_n;
             self.v = self.v.saturating_add(self.dv.saturating_mul(dn));
             self.enter_level();
             return dn;
         }
-        self.j = next_j;
-        let dn = 2i64 << self.l;
-        self.n += dn;
+        self.j += 1;
+        self.n += self.dn;
         let period_u = 2 * self.len_u;
-        self.pu = if self.sign > 0 {
-            if self.pu + 1 == period_u {
-                0
-            } else {
-                self.pu + 1
+        if self.forward {
+            self.pu += 1;
+            if self.pu == period_u {
+                self.pu = 0;
             }
-        } else if self.pu == 0 {
-            period_u - 1
         } else {
-            self.pu - 1
-        };
-        self.v = self.v.saturating_add(self.dv << (self.l + 1));
-        let cv = self.v >> (32 + self.l);
-        let period_v = 2 * self.len_v;
-        match cv - self.cv {
-            0 => {}
-            1 => {
-                self.pv = if self.pv + 1 == period_v {
-                    0
-                } else {
-                    self.pv + 1
-                }
+            if self.pu == 0 {
+                self.pu = period_u;
             }
-            -1 => {
-                self.pv = if self.pv == 0 {
-                    period_v - 1
-                } else {
-                    self.pv - 1
-                }
-            }
-            _ => self.pv = cv.rem_euclid(i64::from(period_v)) as u32,
+            self.pu -= 1;
         }
-        self.cv = cv;
-        dn
+        self.v = self.v.saturating_add(self.dv_step);
+        let cv = self.v >> (32 + self.l);
+        if cv != self.cv {
+            let period_v = 2 * self.len_v;
+            if cv > self.cv {
+                self.pv += 1;
+                if self.pv == period_v {
+                    self.pv = 0;
+                }
+            } else {
+                if self.pv == 0 {
+                    self.pv = period_v;
+                }
+                self.pv -= 1;
+            }
+            self.cv = cv;
+            self.off_v = self.offset_v(self.pv);
+        }
+        self.dn
     }
 
     /// The current voxel's centre, half-voxels along the ray.
@@ -197,16 +213,22 @@ impl<'a, 't> March<'a, 't> {
         self.k
     }
 
+    /// The array offset of the current voxel's major-axis coordinate.
     #[inline(always)]
-    fn index(&self, pu: u32, pv: u32) -> usize {
-        fold(pu, self.len_u) as usize * self.stride_u
-            + fold(pv, self.len_v) as usize * self.stride_v
+    fn offset_u(&self) -> usize {
+        fold(self.pu, self.len_u) as usize * self.stride_u
+    }
+
+    /// The array offset of cross-axis period position `pv`.
+    #[inline(always)]
+    fn offset_v(&self, pv: u32) -> usize {
+        fold(pv, self.len_v) as usize * self.stride_v
     }
 
     /// The height of the current voxel (the stick containing the ray's point).
     #[inline(always)]
     pub fn height(&self) -> Height {
-        height(self.level.heights()[self.index(self.pu, self.pv)])
+        height(self.level.heights()[self.offset_u() + self.off_v])
     }
 
     /// The current voxel's `(x, y)` at its level, after mirroring.
@@ -226,7 +248,7 @@ impl<'a, 't> March<'a, 't> {
     /// Point sampling: the colour of the current voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
     #[inline(always)]
     pub fn sample_point(&self) -> Color16 {
-        let c = self.level.colors()[self.index(self.pu, self.pv)];
+        let c = self.level.colors()[self.offset_u() + self.off_v];
         [
             u16::from(c.r) << 8,
             u16::from(c.g) << 8,
@@ -257,8 +279,9 @@ impl<'a, 't> March<'a, 't> {
             (p0, self.pv, ((frac + (1 << 31)) >> 24) as u32)
         };
         let colors = self.level.colors();
-        let c0 = colors[self.index(self.pu, p0)];
-        let c1 = colors[self.index(self.pu, p1)];
+        let u = self.offset_u();
+        let c0 = colors[u + self.offset_v(p0)];
+        let c1 = colors[u + self.offset_v(p1)];
         let mix = |a: u8, b: u8| (u32::from(a) * (256 - f) + u32::from(b) * f) as u16;
         [mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b)]
     }

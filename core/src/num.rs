@@ -102,6 +102,7 @@ impl Eye {
         rise * run_top > rise_top * run
     }
 
+    #[inline]
     /// The slope of the ray from the eye through `(n, h)`, rounded down (so the ray it
     /// describes never lies above the exact one), clamped to ±[`MAX_SLOPE`].
     pub fn slope_through(&self, n: i64, h: Height) -> Slope {
@@ -113,7 +114,11 @@ impl Eye {
         }
         // ⌊rise·2^24/run⌋ = q·2^24 + ⌊r·2^24/run⌋ with q = ⌊rise/run⌋, r = rise mod run:
         // two 64-bit divisions instead of a 128-bit one while r·2^24 fits in 63 bits.
-        let (q, r) = (rise.div_euclid(run), rise.rem_euclid(run));
+        let (mut q, mut r) = (rise / run, rise % run);
+        if r < 0 {
+            q -= 1;
+            r += run;
+        }
         if q.unsigned_abs() >= MAX_SLOPE as u64 {
             return Slope::from_bits(if q >= 0 { limit } else { -limit });
         }

@@ -39,8 +39,12 @@ pub struct Pixel {
 /// What a sampler did with a hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Hit {
-    /// The voxel was sampled; the pixel goes on with the (possibly raised) ray.
+    /// The voxel was sampled; the pixel goes on with the (possibly raised) ray, which is
+    /// tested against the same voxel again (SS_N's next sub-ray may hit it too).
     Sampled,
+    /// The voxel was sampled and the ray raised to its top: the walk steps on at once
+    /// (Fig. 12's "start traversing from the voxel's top").
+    Next,
     /// The voxel was sampled and the pixel is finished, with this colour.
     Done(Rgb),
     /// Not a hit after all (an exact test overruled the rounded one); the walk steps on.
@@ -237,14 +241,17 @@ impl Area {
         }
     }
 
+    /// Adds `w·c`. No overflow is possible: every weight is a difference of slopes clamped to
+    /// ±2^39 (raw), so a pixel's weights sum to at most `s_{i+1} − s_i ≤ 2^40`, and a colour is
+    /// below 2^16, so every sum stays below 2^56.
     #[inline(always)]
     fn accumulate<C: Cost>(&mut self, w: Weight, c: Color16, cost: &mut C) {
         cost.as_hit();
         let w = w.to_bits().max(0);
         for (s, c) in self.sum.iter_mut().zip(c) {
-            *s = s.saturating_add(w.saturating_mul(i64::from(c)));
+            *s += w * i64::from(c);
         }
-        self.wsum = self.wsum.saturating_add(w);
+        self.wsum += w;
     }
 
     #[inline(always)]
@@ -300,7 +307,7 @@ impl Sampler for Area {
         ray.h = top;
         ray.slope = through_top.max(ray.slope);
         self.top = Some((n, top));
-        Hit::Sampled
+        Hit::Next
     }
 
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
