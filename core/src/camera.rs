@@ -255,8 +255,20 @@ impl<'t> Frame<'t> {
             });
         }
         let scale = terrain.scale();
-        let ex = check("x (voxels)", p.x_m / scale.spacing_m, -MAX_COORD, MAX_COORD, false)?;
-        let ey = check("y (voxels)", p.y_m / scale.spacing_m, -MAX_COORD, MAX_COORD, false)?;
+        let ex = check(
+            "x (voxels)",
+            p.x_m / scale.spacing_m,
+            -MAX_COORD,
+            MAX_COORD,
+            false,
+        )?;
+        let ey = check(
+            "y (voxels)",
+            p.y_m / scale.spacing_m,
+            -MAX_COORD,
+            MAX_COORD,
+            false,
+        )?;
         let eye = check(
             "height (height units)",
             p.eye_m / scale.height_scale_m,
@@ -264,7 +276,13 @@ impl<'t> Frame<'t> {
             MAX_EYE_HEIGHT,
             false,
         )?;
-        let far = check("far (voxels)", p.far_m / scale.spacing_m, 0.0, MAX_FAR, true)?;
+        let far = check(
+            "far (voxels)",
+            p.far_m / scale.spacing_m,
+            0.0,
+            MAX_FAR,
+            true,
+        )?;
 
         // Rows: Eq. 2's slopes, strictly increasing so that each ray lies above the last.
         for (i, row) in rows.iter_mut().enumerate() {

@@ -1,0 +1,7 @@
+//! The subcommands' bodies, one module each: they parse nothing and print results.
+
+pub mod bench;
+pub mod render;
+
+pub use bench::{bench, BenchArgs};
+pub use render::{render, RenderArgs};
