@@ -23,7 +23,7 @@
 //! is +x. Pitch is positive looking down.
 
 use crate::color::Rgb;
-use crate::error::{check, Error};
+use crate::error::{check, check_in, Error};
 use crate::num::{
     fixed_from_f64, Coord, Height, Line, Slope, MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE,
 };
@@ -140,6 +140,9 @@ pub struct Options {
     pub sky: Rgb,
     /// Multiresolution traversal (Sect. 3); `false` walks level 0 voxel by voxel.
     pub lod: bool,
+    /// Columns walked per image pixel, 1..=64: with `k > 1` the frame has `W·k` columns, each
+    /// `1/k` of a pixel wide, for a horizontally supersampled reference image.
+    pub columns_per_pixel: u32,
 }
 
 impl Default for Options {
@@ -147,6 +150,7 @@ impl Default for Options {
         Self {
             sky: Rgb::new(150, 190, 235),
             lod: true,
+            columns_per_pixel: 1,
         }
     }
 }
@@ -227,7 +231,8 @@ pub struct Frame<'t> {
 }
 
 impl<'t> Frame<'t> {
-    /// Builds the tables into `rows` (`H + 1` entries) and `columns` (`W` entries).
+    /// Builds the tables into `rows` (`H + 1` entries) and `columns` (`W·k` entries, `k` =
+    /// [`Options::columns_per_pixel`]).
     ///
     /// Errors: buffers of the wrong length, or a camera outside the core's fixed-point range
     /// for this terrain (see [`crate::num`]): `|x|, |y| ≤ 2^21` voxels, `|eye| ≤ 2^22` height
@@ -247,37 +252,48 @@ impl<'t> Frame<'t> {
                 actual: rows.len(),
             });
         }
-        if columns.len() != camera.width() {
+        let k = check(
+            "columns-per-pixel",
+            f64::from(options.columns_per_pixel),
+            1.0,
+            64.0,
+            false,
+        )?;
+        if columns.len() != camera.width() * options.columns_per_pixel as usize {
             return Err(Error::SliceLength {
                 what: "columns",
-                expected: camera.width(),
+                expected: camera.width() * options.columns_per_pixel as usize,
                 actual: columns.len(),
             });
         }
         let scale = terrain.scale();
-        let ex = check(
-            "x (voxels)",
+        let ex = check_in(
+            "x",
+            " voxels",
             p.x_m / scale.spacing_m,
             -MAX_COORD,
             MAX_COORD,
             false,
         )?;
-        let ey = check(
-            "y (voxels)",
+        let ey = check_in(
+            "y",
+            " voxels",
             p.y_m / scale.spacing_m,
             -MAX_COORD,
             MAX_COORD,
             false,
         )?;
-        let eye = check(
-            "height (height units)",
+        let eye = check_in(
+            "height",
+            " height units",
             p.eye_m / scale.height_scale_m,
             -MAX_EYE_HEIGHT,
             MAX_EYE_HEIGHT,
             false,
         )?;
-        let far = check(
-            "far (voxels)",
+        let far = check_in(
+            "far",
+            " voxels",
             p.far_m / scale.spacing_m,
             0.0,
             MAX_FAR,
@@ -302,7 +318,7 @@ impl<'t> Frame<'t> {
         let w = p.width as f64;
         let height_per_voxel = scale.spacing_m / scale.height_scale_m;
         for (c, col) in columns.iter_mut().enumerate() {
-            let xc = (c as f64 + 0.5 - w / 2.0) * pix;
+            let xc = ((c as f64 + 0.5) / k - w / 2.0) * pix;
             let (dx, dy) = (fx + xc * rx, fy + xc * ry);
             let (axis, major, minor, u_eye, v_eye) = if dx.abs() >= dy.abs() {
                 (Axis::X, dx, dy, ex, ey)
@@ -322,7 +338,7 @@ impl<'t> Frame<'t> {
             let n_far = floor_i64(n_eye.to_num::<f64>() + far / run);
             // The footprint across the column at horizontal distance t is t·δ voxels, with δ
             // the column's angular width; the level is the one nearest in log2 (Sect. 3).
-            let delta = pix / (1.0 + xc * xc);
+            let delta = pix / k / (1.0 + xc * xc);
             let lod_base = (2.0 * core::f64::consts::SQRT_2 / (delta * sec)).clamp(2.0, 1e12);
             *col = Column {
                 axis,

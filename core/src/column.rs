@@ -64,6 +64,7 @@ pub fn walk<S: Sampler, C: Cost>(
         n: march.n(),
     };
     sampler.begin_pixel(&pixel, cost);
+    cost.begin_pixel(i);
     let mut in_footprint = false;
 
     if march.n() <= column.n_far {
@@ -105,6 +106,7 @@ pub fn walk<S: Sampler, C: Cost>(
                             eye,
                             n: march.n(),
                         };
+                        cost.begin_pixel(i);
                         sampler.begin_pixel(&pixel, cost);
                         continue;
                     }

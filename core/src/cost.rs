@@ -5,6 +5,12 @@
 //! places where those terms are spent. [`NoCost`] is zero-sized and every method is empty, so
 //! with it the counting compiles away and a benchmark measures the renderer alone; [`Counts`]
 //! records every term, per frame and per column.
+//!
+//! The hooks also carry what a sample was (its voxel, colour and weight), so that a host can
+//! draw the paper's diagnostic pictures (Figs. 9 and 13) from the renderer itself.
+
+use crate::march::{Color16, March};
+use crate::num::Weight;
 
 /// The per-event hooks of the walk. Every method defaults to doing nothing.
 pub trait Cost {
@@ -21,9 +27,17 @@ pub trait Cost {
     /// Term `b`: one new ray, Eqs. 2–3.
     #[inline(always)]
     fn new_ray(&mut self) {}
-    /// Term `c`: one voxel sample (with its interpolation) of the voxel at step `index`.
+    /// A pixel (row `row`, from the bottom) begins.
     #[inline(always)]
-    fn sample(&mut self, _index: u32) {}
+    fn begin_pixel(&mut self, _row: usize) {}
+    /// Term `c`: one voxel sample (with its interpolation) of the current voxel of `march`,
+    /// which gave `color` and enters its pixel with `weight` (1 per sample for PS, LI and
+    /// SS_N; the subtended slope for AS).
+    #[inline(always)]
+    fn sample(&mut self, _march: &March<'_, '_>, _color: Color16, _weight: Weight) {}
+    /// The sky fills the rest of a pixel that saw terrain, with `weight`.
+    #[inline(always)]
+    fn sky_sample(&mut self, _color: Color16, _weight: Weight) {}
     /// One ray–voxel hit.
     #[inline(always)]
     fn hit(&mut self) {}
@@ -176,7 +190,8 @@ impl Cost for Counts<'_> {
     fn new_ray(&mut self) {
         self.current.b += 1;
     }
-    fn sample(&mut self, index: u32) {
+    fn sample(&mut self, march: &March<'_, '_>, _: Color16, _: Weight) {
+        let index = march.step_index();
         self.current.c += 1;
         if self.last_sampled != Some(index) {
             self.current.m += 1;

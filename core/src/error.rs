@@ -38,6 +38,9 @@ pub enum Error {
         min: f64,
         /// The largest value allowed.
         max: f64,
+        /// The unit of `value`, `min` and `max` (empty for the parameter's own unit), e.g.
+        /// `" voxels"` when a length in metres was converted to map units.
+        unit: &'static str,
     },
     /// An image size is zero or exceeds [`crate::camera::MAX_IMAGE_SIDE`].
     ImageSize {
@@ -70,7 +73,11 @@ impl fmt::Display for Error {
                 value,
                 min,
                 max,
-            } => write!(f, "{what} = {value} is outside {min}..{max} or not finite"),
+                unit,
+            } => write!(
+                f,
+                "{what} = {value}{unit} is outside {min}..{max}{unit} or not finite"
+            ),
             Error::ImageSize { width, height } => write!(
                 f,
                 "image size {width}x{height}: each side must be 1..={}",
@@ -83,6 +90,18 @@ impl fmt::Display for Error {
 /// Checks that `value` is finite and inside `min..=max` (or `min < value < max` when `open`).
 pub(crate) fn check(
     what: &'static str,
+    value: f64,
+    min: f64,
+    max: f64,
+    open: bool,
+) -> Result<f64, Error> {
+    check_in(what, "", value, min, max, open)
+}
+
+/// [`check`] for a value converted to another unit, which the message names.
+pub(crate) fn check_in(
+    what: &'static str,
+    unit: &'static str,
     value: f64,
     min: f64,
     max: f64,
@@ -101,6 +120,7 @@ pub(crate) fn check(
             value,
             min,
             max,
+            unit,
         })
     }
 }

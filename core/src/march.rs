@@ -240,6 +240,16 @@ impl<'a, 't> March<'a, 't> {
         }
     }
 
+    /// The current voxel's `(x, y)` at its level in the infinite (unmirrored) grid: level-L
+    /// voxel `(x, y)` covers level-0 voxels `x·2^L .. (x+1)·2^L` and likewise in `y`.
+    pub fn cell_unmirrored(&self) -> (i64, i64) {
+        let (u, v) = (self.u_cell(), self.cv);
+        match self.axis {
+            Axis::X => (u, v),
+            Axis::Y => (v, u),
+        }
+    }
+
     /// The ray's cross-axis position at the current voxel, in level-0 voxels.
     pub fn cross(&self) -> f64 {
         self.v as f64 / 4_294_967_296.0

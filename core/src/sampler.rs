@@ -77,8 +77,9 @@ impl Sampler for Point {
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
     fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
-        cost.sample(march.step_index());
-        Hit::Done(to_rgb(march.sample_point()))
+        let color = march.sample_point();
+        cost.sample(march, color, Weight::ONE);
+        Hit::Done(to_rgb(color))
     }
     #[inline(always)]
     fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
@@ -95,8 +96,9 @@ impl Sampler for Linear {
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
     fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
-        cost.sample(march.step_index());
-        Hit::Done(to_rgb(march.sample_linear()))
+        let color = march.sample_linear();
+        cost.sample(march, color, Weight::ONE);
+        Hit::Done(to_rgb(color))
     }
     #[inline(always)]
     fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
@@ -166,7 +168,6 @@ impl<const N: u32> Sampler for Super<N> {
         ray: &mut Ray,
         cost: &mut C,
     ) -> Hit {
-        cost.sample(march.step_index());
         cost.ss_hit();
         if self.j == 0 {
             let n = march.n();
@@ -174,6 +175,7 @@ impl<const N: u32> Sampler for Super<N> {
             self.delta = (gap >> Self::LOG2).max(Height::ZERO);
         }
         let c = march.sample_linear();
+        cost.sample(march, c, Weight::ONE);
         for (s, c) in self.sum.iter_mut().zip(c) {
             *s += u32::from(c);
         }
@@ -190,6 +192,8 @@ impl<const N: u32> Sampler for Super<N> {
             return None;
         }
         let rest = N - self.j;
+        let sky16 = [sky.r, sky.g, sky.b].map(|c| u16::from(c) << 8);
+        cost.sky_sample(sky16, Weight::from_num(rest));
         for (s, c) in self.sum.iter_mut().zip([sky.r, sky.g, sky.b]) {
             *s += (u32::from(c) << 8) * rest;
         }
@@ -293,17 +297,20 @@ impl Sampler for Area {
                 return Hit::Rejected;
             }
         }
-        cost.sample(march.step_index());
         let color = march.sample_linear();
         self.seen = true;
         if top >= self.upper.at(n) {
             // The voxel reaches R_{i+1}: the pixel is done (H' = H(R_{i+1})).
-            self.accumulate(self.upper.slope.saturating_sub(ray.slope), color, cost);
+            let w = self.upper.slope.saturating_sub(ray.slope);
+            cost.sample(march, color, w);
+            self.accumulate(w, color, cost);
             return Hit::Done(self.finish(color, cost));
         }
         cost.top_division();
         let through_top = self.eye.slope_through(n, top).min(self.upper.slope);
-        self.accumulate(through_top.saturating_sub(ray.slope), color, cost);
+        let w = through_top.saturating_sub(ray.slope);
+        cost.sample(march, color, w);
+        self.accumulate(w, color, cost);
         ray.h = top;
         ray.slope = through_top.max(ray.slope);
         self.top = Some((n, top));
@@ -319,7 +326,9 @@ impl Sampler for Area {
             u16::from(sky.g) << 8,
             u16::from(sky.b) << 8,
         ];
-        self.accumulate(self.upper.slope.saturating_sub(ray.slope), sky16, cost);
+        let w = self.upper.slope.saturating_sub(ray.slope);
+        cost.sky_sample(sky16, w);
+        self.accumulate(w, sky16, cost);
         Some(self.finish(sky16, cost))
     }
 }

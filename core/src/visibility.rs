@@ -25,8 +25,23 @@ enum Horizon {
 
 /// The number of voxels of column `col` that are visible in the image.
 pub fn visible_voxels(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> u64 {
+    let mut count = 0;
+    visit(frame, terrain, col, |_, visible| {
+        count += u64::from(visible)
+    });
+    count
+}
+
+/// Calls `f(voxel, visible)` for every voxel of column `col`'s sequence, in order, until
+/// nothing further can be visible (the far distance, or the horizon reaching the highest ray).
+pub fn visit(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    mut f: impl FnMut(&March<'_, '_>, bool),
+) {
     if col >= frame.width() {
-        return 0;
+        return;
     }
     let column = frame.column(col);
     let eye = Eye {
@@ -38,7 +53,6 @@ pub fn visible_voxels(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> u
     let max_h = terrain.max_height();
     let mut march = March::new(frame, terrain, column);
     let mut horizon = Horizon::Lowest(lowest);
-    let mut count = 0;
     while march.n() <= column.n_far {
         let n = march.n();
         let top = march.height();
@@ -62,13 +76,12 @@ pub fn visible_voxels(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> u
         if !open {
             break;
         }
+        f(&march, above);
         if above {
-            count += 1;
             horizon = Horizon::Top(n, top);
         }
         march.advance();
     }
-    count
 }
 
 /// Fills `V` for every column of `counts`.

@@ -134,6 +134,8 @@ impl Tables {
         terrain: &Terrain<'_>,
         options: Options,
     ) -> Result<Frame<'t>> {
+        let columns = camera.width() * options.columns_per_pixel.max(1) as usize;
+        self.columns.resize(columns, Column::default());
         Ok(Frame::new(
             camera,
             terrain,

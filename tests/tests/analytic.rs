@@ -1223,6 +1223,7 @@ fn constructor_errors() {
         value: 0.0,
         min: 0.0,
         max: 180.0,
+        unit: "",
     });
     for e in &seen {
         assert!(!e.to_string().is_empty());

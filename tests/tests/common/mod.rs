@@ -229,7 +229,11 @@ pub fn with_frame<R>(
     let frame = Frame::new(
         camera,
         terrain,
-        Options { sky: SKY, lod },
+        Options {
+            sky: SKY,
+            lod,
+            columns_per_pixel: 1,
+        },
         &mut rows,
         &mut cols,
     )
