@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use footprint_host::commands::{self, BenchArgs, RenderArgs};
+use footprint_host::commands::{self, BenchArgs, RenderArgs, TableArgs};
 
 /// Exact antialiasing for fixed-point terrain renderers (Cohen-Or): render a height field in
 /// point sampling, linear interpolation, supersampling or exact area sampling, and count what
@@ -21,6 +21,8 @@ enum Command {
     Render(Box<RenderArgs>),
     /// Time the paper's three cases in every mode, one thread, and print the ratio to PS.
     Bench(Box<BenchArgs>),
+    /// The paper's Tables 1–5 (coverage, hits, time, error against the ground truth) on any map.
+    Table(Box<TableArgs>),
 }
 
 fn main() -> ExitCode {
@@ -45,6 +47,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Render(args) => commands::render(args),
         Command::Bench(args) => commands::bench(args),
+        Command::Table(args) => commands::table(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -171,6 +171,45 @@ pub fn render_with<C: Cost>(
     })
 }
 
+/// Renders without counting, one column per task on every core (rayon); the same pixels as
+/// [`render_with`], for runs where wall time is not measured.
+pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<Rendered> {
+    use rayon::prelude::*;
+    let (w, h) = (frame.width(), frame.height());
+    let columns: Vec<Vec<Rgb>> = (0..w)
+        .into_par_iter()
+        .map(|x| {
+            let mut out = vec![Rgb::default(); h];
+            with_sampler!(mode, s => {
+                let mut s = s;
+                walk(frame, terrain, x, 0..h, &mut s, &mut NoCost, &mut out)
+            });
+            out
+        })
+        .collect();
+    let mut image = vec![Rgb::default(); w * h];
+    for (x, col) in columns.iter().enumerate() {
+        for (i, px) in col.iter().enumerate() {
+            image[(h - 1 - i) * w + x] = *px;
+        }
+    }
+    Ok(Rendered {
+        image,
+        size: (w as u32, h as u32),
+    })
+}
+
+/// Renders one column (rows from the bottom) without counting.
+pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> Vec<Rgb> {
+    let h = frame.height();
+    let mut out = vec![Rgb::default(); h];
+    with_sampler!(mode, s => {
+        let mut s = s;
+        walk(frame, terrain, x, 0..h, &mut s, &mut NoCost, &mut out)
+    });
+    out
+}
+
 /// Renders without counting and returns the image and the wall time of the render alone, in
 /// milliseconds: the best of `repeats` runs (at least one).
 pub fn render_timed(

@@ -2,6 +2,8 @@
 
 pub mod bench;
 pub mod render;
+pub mod table;
 
 pub use bench::{bench, BenchArgs};
 pub use render::{render, RenderArgs};
+pub use table::{table, TableArgs};

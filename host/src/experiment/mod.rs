@@ -1,3 +1,5 @@
 //! Experiments: each returns data and prints nothing.
 
 pub mod bench;
+pub mod reference;
+pub mod table;

@@ -1,0 +1,189 @@
+//! The paper's Tables 1–5 (Sect. 7) on any map, plus each mode's error against the ground
+//! truth ([`super::reference`]).
+//!
+//! Each case is the paper's view: FOV 10°, 400×400, the eye at the fit-first-hit height, at
+//! pitch 40°, 20° or 5°. Counts are per-column averages, as in the paper.
+
+use anyhow::Result;
+use footprint_core::camera::Options;
+use serde::Serialize;
+
+use super::bench::paper_camera;
+use super::reference::{psnr, reference, rmse};
+use crate::map::Map;
+use crate::pyramid::Pyramid;
+use crate::render::{count, render_timed, Mode, Tables, SS_RATES};
+use crate::view::Size;
+
+/// The coverage ratios of Table 5.
+pub const TABLE5_COVERAGE: [f64; 4] = [0.3, 0.5, 0.7, 0.9];
+
+/// One mode in one case (a column of Tables 2–4).
+#[derive(Clone, Debug, Serialize)]
+#[allow(non_snake_case)]
+pub struct ModeRow {
+    /// `as`, `ps`, `li`, `ss2`, …
+    pub mode: String,
+    /// Distinct voxels sampled per column (`M`, or `M′` for AS).
+    pub M: f64,
+    /// Ray–voxel hits per column (`NP` for SS_N, `M′ + P` for AS).
+    pub hits: f64,
+    /// `M/V`.
+    pub coverage: f64,
+    /// Wall time of one frame, ms (best of 3, one thread, no counting).
+    pub ms: f64,
+    /// RMSE against the ground truth, 8-bit levels.
+    pub rmse: f64,
+    /// PSNR against the ground truth, dB (`null` if identical).
+    pub psnr: Option<f64>,
+}
+
+/// One case: Table 1's row and the modes of Tables 2–4.
+#[derive(Clone, Debug, Serialize)]
+#[allow(non_snake_case)]
+pub struct Case {
+    /// Pitch, degrees.
+    pub pitch: f64,
+    /// Eye height, metres (fit-first-hit).
+    pub height: f64,
+    /// Pixels per column through which terrain is visible.
+    pub P: f64,
+    /// Traversal steps per column after the first hit.
+    pub L: f64,
+    /// Visible voxels per column.
+    pub V: f64,
+    /// Every mode asked for.
+    pub modes: Vec<ModeRow>,
+    /// SS coverage for N = 1 (PS), 2, 4, …, 256, for Table 5 and the coverage plot.
+    pub coverage_by_rate: Vec<(u32, f64)>,
+}
+
+/// A Table 5 entry: the smallest SS rate reaching a coverage in a case.
+#[derive(Clone, Debug, Serialize)]
+pub struct Table5Entry {
+    /// The coverage ratio aimed at.
+    pub coverage: f64,
+    /// The case's pitch.
+    pub pitch: f64,
+    /// The smallest N ≤ 256 that reaches it, or the string `"> 256"`.
+    pub rate: Rate,
+}
+
+/// An SS rate, or "more than 256".
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(untagged)]
+pub enum Rate {
+    /// This N reaches the coverage.
+    N(u32),
+    /// No N ≤ 256 does.
+    #[serde(serialize_with = "over")]
+    Over,
+}
+
+fn over<S: serde::Serializer>(s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str("> 256")
+}
+
+impl std::fmt::Display for Rate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Rate::N(n) => write!(f, "{n}"),
+            Rate::Over => write!(f, "> 256"),
+        }
+    }
+}
+
+/// Tables 1–5.
+#[derive(Clone, Debug, Serialize)]
+pub struct Tables15 {
+    /// One entry per case.
+    pub cases: Vec<Case>,
+    /// Table 5.
+    pub table5: Vec<Table5Entry>,
+}
+
+/// What one step of the run is doing, for a progress bar.
+pub fn steps(pitches: usize, modes: usize) -> u64 {
+    (pitches * (modes + SS_RATES.len() + 2)) as u64
+}
+
+/// Runs the cases at `pitches` with `modes` at `size` (the paper's is 400×400).
+pub fn run(
+    map: &Map,
+    pyramid: &Pyramid,
+    pitches: &[f64],
+    modes: &[Mode],
+    size: Size,
+    mut progress: impl FnMut(&str),
+) -> Result<Tables15> {
+    let terrain = pyramid.terrain(true)?;
+    let options = Options::default();
+    let mut cases = Vec::new();
+    for &pitch in pitches {
+        let camera = paper_camera(map, pyramid, pitch, size, true)?;
+        progress(&format!("pitch {pitch}°: ground truth"));
+        let truth = reference(&camera, pyramid, options.sky)?;
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options)?;
+        let cols = camera.width() as f64;
+        progress(&format!("pitch {pitch}°: table 1"));
+        let (_, base) = count(&frame, &terrain, Mode::Ps)?;
+        let per = |x: u64| x as f64 / cols;
+
+        let mut rows = Vec::new();
+        for &mode in modes {
+            progress(&format!("pitch {pitch}°: {mode}"));
+            let (image, measured) = count(&frame, &terrain, mode)?;
+            let (_, ms) = render_timed(&frame, &terrain, mode, 3)?;
+            let t = measured.total;
+            let e = rmse(&image.image, &truth);
+            rows.push(ModeRow {
+                mode: mode.to_string(),
+                M: per(t.m),
+                hits: per(t.hits),
+                coverage: t.coverage(),
+                ms,
+                rmse: e,
+                psnr: psnr(e),
+            });
+        }
+
+        let mut coverage_by_rate = vec![(1, base.total.coverage())];
+        for n in SS_RATES {
+            progress(&format!("pitch {pitch}°: coverage of ss{n}"));
+            let known = rows
+                .iter()
+                .find(|r| r.mode == Mode::Ss(n).to_string())
+                .map(|r| r.coverage);
+            let c = match known {
+                Some(c) => c,
+                None => count(&frame, &terrain, Mode::Ss(n))?.1.total.coverage(),
+            };
+            coverage_by_rate.push((n, c));
+        }
+        cases.push(Case {
+            pitch,
+            height: camera.params().eye_m,
+            P: per(base.total.p),
+            L: per(base.total.l),
+            V: per(base.total.v),
+            modes: rows,
+            coverage_by_rate,
+        });
+    }
+    let table5 = TABLE5_COVERAGE
+        .iter()
+        .flat_map(|&cr| {
+            cases.iter().map(move |case| Table5Entry {
+                coverage: cr,
+                pitch: case.pitch,
+                rate: case
+                    .coverage_by_rate
+                    .iter()
+                    .find(|(_, c)| *c >= cr)
+                    .map_or(Rate::Over, |(n, _)| Rate::N(*n)),
+            })
+        })
+        .collect();
+    Ok(Tables15 { cases, table5 })
+}
