@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use footprint_host::commands::{self, BenchArgs, RenderArgs, TableArgs};
+use footprint_host::commands::{self, BenchArgs, FlyArgs, RenderArgs, TableArgs};
 
 /// Exact antialiasing for fixed-point terrain renderers (Cohen-Or): render a height field in
 /// point sampling, linear interpolation, supersampling or exact area sampling, and count what
@@ -23,6 +23,8 @@ enum Command {
     Bench(Box<BenchArgs>),
     /// The paper's Tables 1–5 (coverage, hits, time, error against the ground truth) on any map.
     Table(Box<TableArgs>),
+    /// The flight of Sect. 5: Table 6 (pixel changes between frames) and Fig. 14 (a column over time).
+    Fly(Box<FlyArgs>),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +50,7 @@ fn main() -> ExitCode {
         Command::Render(args) => commands::render(args),
         Command::Bench(args) => commands::bench(args),
         Command::Table(args) => commands::table(args),
+        Command::Fly(args) => commands::fly(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

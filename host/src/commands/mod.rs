@@ -1,9 +1,11 @@
 //! The subcommands' bodies, one module each: they parse nothing and print results.
 
 pub mod bench;
+pub mod fly;
 pub mod render;
 pub mod table;
 
 pub use bench::{bench, BenchArgs};
+pub use fly::{fly, FlyArgs};
 pub use render::{render, RenderArgs};
 pub use table::{table, TableArgs};

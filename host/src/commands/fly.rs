@@ -1,0 +1,138 @@
+//! `footprint fly`: the flight of Sect. 5 — Table 6 and the cut-in-time images of Fig. 14.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Result};
+use clap::Args;
+
+use crate::experiment::fly::{self, FlySpec, BINS};
+use crate::render::Mode;
+use crate::report::png::write_png;
+use crate::view::{MapArgs, Size};
+
+/// `footprint fly`.
+#[derive(Args, Debug)]
+pub struct FlyArgs {
+    #[command(flatten)]
+    /// The map.
+    pub map: MapArgs,
+    /// Frames to render.
+    #[arg(long, default_value_t = 400)]
+    pub frames: usize,
+    /// Metres the camera moves forward per frame.
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    pub step: f64,
+    /// The column of Table 6 and of the cut-in-time image [default: the middle one].
+    #[arg(long)]
+    pub column: Option<usize>,
+    /// Modes (comma-separated).
+    #[arg(long, value_delimiter = ',', default_value = "as,ps,ss8,ss16")]
+    pub modes: Vec<Mode>,
+    /// Image size.
+    #[arg(long, default_value = "400x400")]
+    pub size: Size,
+    /// Folder for the cut-in-time images (`cut_<mode>.png`); it must exist.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Histogram only the chosen column (much faster; no all-columns sum).
+    #[arg(long)]
+    pub column_only: bool,
+    /// One JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `footprint fly`.
+pub fn fly(args: &FlyArgs) -> Result<()> {
+    if args.frames < 2 {
+        bail!("--frames {}: at least 2 frames are needed", args.frames);
+    }
+    if args.modes.is_empty() {
+        bail!("--modes: give at least one mode");
+    }
+    if let Some(dir) = &args.out {
+        if !dir.is_dir() {
+            bail!(
+                "--out {:?}: not an existing folder",
+                dir.display().to_string()
+            );
+        }
+    }
+    if let Some(c) = args.column {
+        if c >= args.size.width as usize {
+            bail!(
+                "--column {c}: outside the image, which is {} columns wide",
+                args.size.width
+            );
+        }
+    }
+    let map = args.map.load()?;
+    let pyramid = crate::pyramid::Pyramid::build(&map)?;
+    let bar = indicatif::ProgressBar::new(args.frames as u64).with_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} frames {elapsed} eta {eta}")
+            .expect("a valid template"),
+    );
+    if args.json {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let spec = FlySpec {
+        frames: args.frames,
+        step_m: args.step,
+        column: args.column,
+        modes: args.modes.clone(),
+        size: args.size,
+        all_columns: !args.column_only,
+    };
+    let result = fly::run(&map, &pyramid, &spec, || bar.inc(1))?;
+    bar.finish_and_clear();
+    if let Some(dir) = &args.out {
+        for m in &result.modes {
+            let path = dir.join(format!("cut_{}.png", m.mode));
+            write_png(&path, result.frames as u32, args.size.height, &m.cut)?;
+        }
+    }
+    if args.json {
+        println!("{}", serde_json::to_string(&result)?);
+    } else {
+        print!("{}", markdown(&result));
+    }
+    Ok(())
+}
+
+/// Table 6 as Markdown.
+pub fn markdown(f: &fly::Fly) -> String {
+    let mut s = format!(
+        "**Table 6.** Changes in the 8-bit luminance of the pixels of column {}, between consecutive frames of {} ({} m per frame).\n\n| Change |",
+        f.column, f.frames, f.step
+    );
+    for m in &f.modes {
+        s += &format!(" {} |", m.mode.to_uppercase());
+    }
+    s += "\n|---|";
+    s += &"---|".repeat(f.modes.len());
+    s += "\n";
+    for (b, name) in BINS.iter().enumerate() {
+        s += &format!("| {name} |");
+        for m in &f.modes {
+            s += &format!(" {} |", m.histogram.0[b]);
+        }
+        s += "\n";
+    }
+    if f.modes.iter().any(|m| m.all_columns.is_some()) {
+        s += "\nSummed over every column:\n\n| Change |";
+        for m in &f.modes {
+            s += &format!(" {} |", m.mode.to_uppercase());
+        }
+        s += "\n|---|";
+        s += &"---|".repeat(f.modes.len());
+        s += "\n";
+        for (b, name) in BINS.iter().enumerate() {
+            s += &format!("| {name} |");
+            for m in &f.modes {
+                s += &format!(" {} |", m.all_columns.map_or(0, |h| h.0[b]));
+            }
+            s += "\n";
+        }
+    }
+    s
+}

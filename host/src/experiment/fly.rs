@@ -1,0 +1,221 @@
+//! The flight of Sect. 5: from the pitch-5° view the camera moves forward a little each frame,
+//! and we count how much each pixel's colour changes between consecutive frames (Table 6) and
+//! draw one column over time (Fig. 14).
+
+use anyhow::{bail, Result};
+use footprint_core::camera::{Camera, CameraParams, Options};
+use footprint_core::trig::sin_cos_deg;
+use footprint_core::Rgb;
+use rayon::prelude::*;
+use serde::ser::SerializeMap;
+use serde::{Serialize, Serializer};
+
+use super::bench::paper_camera;
+use crate::map::Map;
+use crate::pyramid::Pyramid;
+use crate::render::{render_column, render_with, Mode, Tables};
+use crate::view::Size;
+
+/// The bins of Table 6, by the change in 8-bit luminance.
+pub const BINS: [&str; 8] = ["0", "1", "2", "3", "4", "5", "6-60", ">60"];
+
+/// The bin of a change of `d` levels.
+pub fn bin(d: u8) -> usize {
+    match d {
+        0..=5 => usize::from(d),
+        6..=60 => 6,
+        _ => 7,
+    }
+}
+
+/// 8-bit luminance, `(77 R + 150 G + 29 B + 128) >> 8` (Rec. 601 weights).
+pub fn luminance(p: Rgb) -> u8 {
+    ((77 * u32::from(p.r) + 150 * u32::from(p.g) + 29 * u32::from(p.b) + 128) >> 8) as u8
+}
+
+/// Counts of pixel changes per bin of [`BINS`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Histogram(pub [u64; 8]);
+
+impl Histogram {
+    /// Adds the changes between two equally long luminance runs.
+    pub fn add(&mut self, before: &[u8], after: &[u8]) {
+        for (a, b) in before.iter().zip(after) {
+            self.0[bin(a.abs_diff(*b))] += 1;
+        }
+    }
+
+    /// The count of bin `name` (one of [`BINS`]).
+    pub fn get(&self, name: &str) -> u64 {
+        BINS.iter()
+            .position(|b| *b == name)
+            .map_or(0, |i| self.0[i])
+    }
+}
+
+impl Serialize for Histogram {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(BINS.len()))?;
+        for (name, count) in BINS.iter().zip(self.0) {
+            m.serialize_entry(name, &count)?;
+        }
+        m.end()
+    }
+}
+
+/// What to fly.
+#[derive(Clone, Debug)]
+pub struct FlySpec {
+    /// Frames (at least 2).
+    pub frames: usize,
+    /// Metres moved forward per frame.
+    pub step_m: f64,
+    /// The column of Table 6 and Fig. 14 (default: the middle one).
+    pub column: Option<usize>,
+    /// Modes.
+    pub modes: Vec<Mode>,
+    /// Image size.
+    pub size: Size,
+    /// Also histogram every column (renders whole frames; otherwise only the one column).
+    pub all_columns: bool,
+}
+
+/// One mode's flight.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModeFly {
+    /// The mode.
+    pub mode: String,
+    /// Table 6: changes of the chosen column's pixels.
+    pub histogram: Histogram,
+    /// The same, summed over every column (when asked for).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub all_columns: Option<Histogram>,
+    /// Fig. 14: the column over time, `H` rows × `frames` columns, row-major from the top.
+    #[serde(skip)]
+    pub cut: Vec<Rgb>,
+}
+
+/// The whole flight.
+#[derive(Clone, Debug, Serialize)]
+pub struct Fly {
+    /// The column.
+    pub column: usize,
+    /// Frames.
+    pub frames: usize,
+    /// Metres per frame.
+    pub step: f64,
+    /// The starting eye height (fit-first-hit at pitch 5°), metres.
+    pub height: f64,
+    /// Every mode.
+    pub modes: Vec<ModeFly>,
+}
+
+/// The camera of frame `t`: the start moved `t·step` metres along the heading.
+fn camera_at(start: &CameraParams, t: usize, step: f64) -> Result<Camera> {
+    let (s, c) = sin_cos_deg(start.heading_deg);
+    let d = t as f64 * step;
+    Ok(Camera::new(CameraParams {
+        x_m: start.x_m + d * s,
+        y_m: start.y_m - d * c,
+        ..*start
+    })?)
+}
+
+/// Flies `spec` over `map`, rendering frames on all cores; calls `progress` once per frame.
+pub fn run(
+    map: &Map,
+    pyramid: &Pyramid,
+    spec: &FlySpec,
+    progress: impl Fn() + Sync,
+) -> Result<Fly> {
+    if spec.frames < 2 {
+        bail!(
+            "--frames {}: at least 2 frames are needed to see a change",
+            spec.frames
+        );
+    }
+    if !spec.step_m.is_finite() {
+        bail!("--step {}: not a finite number", spec.step_m);
+    }
+    let start = *paper_camera(map, pyramid, 5.0, spec.size, true)?.params();
+    let (w, h) = (start.width as usize, start.height as usize);
+    let column = spec.column.unwrap_or(w / 2);
+    if column >= w {
+        bail!("--column {column}: outside the image, which is {w} columns wide");
+    }
+    let terrain = pyramid.terrain(true)?;
+    let options = Options::default();
+    // Each frame: per mode, the chosen column (bottom to top) and, if asked, the luminance of
+    // the whole image.
+    type Frame = Vec<(Vec<Rgb>, Option<Vec<u8>>)>;
+    let render_frame = |t: usize| -> Result<Frame> {
+        let camera = camera_at(&start, t, spec.step_m)?;
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options)?;
+        let out = spec
+            .modes
+            .iter()
+            .map(|&mode| -> Result<_> {
+                Ok(if spec.all_columns {
+                    let img =
+                        render_with(&frame, &terrain, mode, &mut footprint_core::cost::NoCost)?;
+                    let col = (0..h)
+                        .map(|i| img.image[(h - 1 - i) * w + column])
+                        .collect();
+                    (col, Some(img.image.iter().map(|&p| luminance(p)).collect()))
+                } else {
+                    (render_column(&frame, &terrain, mode, column), None)
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        progress();
+        Ok(out)
+    };
+
+    let n_modes = spec.modes.len();
+    let mut column_hist = vec![Histogram::default(); n_modes];
+    let mut all_hist = vec![Histogram::default(); n_modes];
+    let mut cuts = vec![vec![Rgb::default(); h * spec.frames]; n_modes];
+    let mut previous: Option<Frame> = None;
+    let chunk = 4 * rayon::current_num_threads().max(1);
+    for first in (0..spec.frames).step_by(chunk) {
+        let frames: Vec<Frame> = (first..(first + chunk).min(spec.frames))
+            .into_par_iter()
+            .map(render_frame)
+            .collect::<Result<_>>()?;
+        for (k, frame) in frames.into_iter().enumerate() {
+            let t = first + k;
+            for (m, (col, lum)) in frame.iter().enumerate() {
+                for (i, px) in col.iter().enumerate() {
+                    cuts[m][(h - 1 - i) * spec.frames + t] = *px;
+                }
+                if let Some((pcol, plum)) = previous.as_ref().map(|p| &p[m]) {
+                    let a: Vec<u8> = pcol.iter().map(|&p| luminance(p)).collect();
+                    let b: Vec<u8> = col.iter().map(|&p| luminance(p)).collect();
+                    column_hist[m].add(&a, &b);
+                    if let (Some(pl), Some(l)) = (plum, lum) {
+                        all_hist[m].add(pl, l);
+                    }
+                }
+            }
+            previous = Some(frame);
+        }
+    }
+    Ok(Fly {
+        column,
+        frames: spec.frames,
+        step: spec.step_m,
+        height: start.eye_m,
+        modes: spec
+            .modes
+            .iter()
+            .enumerate()
+            .map(|(m, mode)| ModeFly {
+                mode: mode.to_string(),
+                histogram: column_hist[m],
+                all_columns: spec.all_columns.then_some(all_hist[m]),
+                cut: std::mem::take(&mut cuts[m]),
+            })
+            .collect(),
+    })
+}
