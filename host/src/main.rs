@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use footprint_host::commands::{self, BenchArgs, FlyArgs, RenderArgs, TableArgs};
+use footprint_host::commands::{self, BenchArgs, FlyArgs, InspectArgs, RenderArgs, TableArgs};
 
 /// Exact antialiasing for fixed-point terrain renderers (Cohen-Or): render a height field in
 /// point sampling, linear interpolation, supersampling or exact area sampling, and count what
@@ -25,6 +25,8 @@ enum Command {
     Table(Box<TableArgs>),
     /// The flight of Sect. 5: Table 6 (pixel changes between frames) and Fig. 14 (a column over time).
     Fly(Box<FlyArgs>),
+    /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9).
+    Inspect(Box<InspectArgs>),
 }
 
 fn main() -> ExitCode {
@@ -51,6 +53,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => commands::bench(args),
         Command::Table(args) => commands::table(args),
         Command::Fly(args) => commands::fly(args),
+        Command::Inspect(args) => commands::inspect(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

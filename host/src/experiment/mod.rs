@@ -2,5 +2,6 @@
 
 pub mod bench;
 pub mod fly;
+pub mod inspect;
 pub mod reference;
 pub mod table;

@@ -1,0 +1,148 @@
+//! `footprint inspect`: the paper's diagnostic pictures for a view and a mode.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Result};
+use clap::Args;
+
+use crate::experiment::inspect;
+use crate::render::Mode;
+use crate::report::png::write_png;
+use crate::view::{CameraArgs, MapArgs, View};
+
+/// A pixel `ROW,COL`, counted from the top-left.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelArg {
+    /// Row from the top.
+    pub row: usize,
+    /// Column from the left.
+    pub col: usize,
+}
+
+impl std::str::FromStr for PixelArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let err = || format!("pixel {s:?}: expected ROW,COL, e.g. 200,150");
+        let (r, c) = s.split_once(',').ok_or_else(err)?;
+        Ok(PixelArg {
+            row: r.trim().parse().map_err(|_| err())?,
+            col: c.trim().parse().map_err(|_| err())?,
+        })
+    }
+}
+
+/// `footprint inspect`.
+#[derive(Args, Debug)]
+pub struct InspectArgs {
+    #[command(flatten)]
+    /// The map.
+    pub map: MapArgs,
+    #[command(flatten)]
+    /// The camera.
+    pub camera: CameraArgs,
+    /// The mode to inspect.
+    #[arg(long, default_value = "as")]
+    pub mode: Mode,
+    /// Fig. 5: a tiny window magnified, PS on the left and --mode on the right.
+    #[arg(long)]
+    pub zoom: bool,
+    /// How much smaller the zoom window's field of view is than --fov.
+    #[arg(long, default_value_t = 16.0)]
+    pub zoom_factor: f64,
+    /// Fig. 13: the samples of one pixel, each filling a band as tall as its weight.
+    #[arg(long, value_name = "ROW,COL")]
+    pub pixel: Option<PixelArg>,
+    /// Fig. 9: the ground under the frame — sampled blue, visible unsampled red, hidden green.
+    #[arg(long)]
+    pub footprint: bool,
+    /// Output PNG (with several pictures, `-zoom`, `-pixel`, `-footprint` are added to its stem).
+    #[arg(long, value_name = "FILE.png")]
+    pub out: PathBuf,
+    /// Print the pixel's samples or the footprint's counts as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `footprint inspect`.
+pub fn inspect(args: &InspectArgs) -> Result<()> {
+    let wanted = [args.zoom, args.pixel.is_some(), args.footprint];
+    let n = wanted.iter().filter(|&&w| w).count();
+    if n == 0 {
+        bail!("inspect: give --zoom, --pixel ROW,COL or --footprint");
+    }
+    let path_for = |suffix: &str| -> PathBuf {
+        if n == 1 {
+            return args.out.clone();
+        }
+        let stem = args
+            .out
+            .file_stem()
+            .map_or("inspect".into(), |s| s.to_string_lossy().into_owned());
+        args.out.with_file_name(format!("{stem}-{suffix}.png"))
+    };
+    let view = View::new(&args.map, &args.camera)?;
+    if let Some(p) = args.pixel {
+        let (w, h) = (view.camera.width(), view.camera.height());
+        if p.row >= h || p.col >= w {
+            bail!("--pixel {},{}: outside the {w}x{h} image", p.row, p.col);
+        }
+    }
+    let mut json = serde_json::Map::new();
+    if args.zoom {
+        let pic = inspect::zoom(
+            view.camera.params(),
+            &view.pyramid,
+            args.mode,
+            args.zoom_factor,
+            48,
+            6,
+        )?;
+        write_png(&path_for("zoom"), pic.width, pic.height, &pic.pixels)?;
+    }
+    if let Some(p) = args.pixel {
+        let (samples, color, pic) = inspect::pixel(
+            &view.camera,
+            &view.pyramid,
+            args.mode,
+            p.row,
+            p.col,
+            (64, 256),
+        )?;
+        write_png(&path_for("pixel"), pic.width, pic.height, &pic.pixels)?;
+        json.insert(
+            "pixel".into(),
+            serde_json::json!({
+                "row": p.row, "col": p.col, "mode": args.mode.to_string(),
+                "color": format!("#{:02x}{:02x}{:02x}", color.r, color.g, color.b),
+                "samples": samples,
+            }),
+        );
+        if !args.json {
+            println!(
+                "pixel {},{} ({}): {} samples, colour #{:02x}{:02x}{:02x}",
+                p.row,
+                p.col,
+                args.mode,
+                samples.len(),
+                color.r,
+                color.g,
+                color.b
+            );
+        }
+    }
+    if args.footprint {
+        let (counts, pic) = inspect::footprint(&view.camera, &view.pyramid, args.mode, 1024)?;
+        write_png(&path_for("footprint"), pic.width, pic.height, &pic.pixels)?;
+        json.insert("footprint".into(), serde_json::to_value(counts)?);
+        if !args.json {
+            println!(
+                "footprint ({}): {} sampled, {} visible but unsampled, {} hidden",
+                args.mode, counts.sampled, counts.unsampled, counts.hidden
+            );
+        }
+    }
+    if args.json {
+        println!("{}", serde_json::Value::Object(json));
+    }
+    Ok(())
+}
