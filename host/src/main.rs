@@ -3,7 +3,9 @@
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use footprint_host::commands::{self, BenchArgs, FlyArgs, InspectArgs, RenderArgs, TableArgs};
+use footprint_host::commands::{
+    self, BenchArgs, FlyArgs, InspectArgs, RenderArgs, ReportArgs, TableArgs,
+};
 
 /// Exact antialiasing for fixed-point terrain renderers (Cohen-Or): render a height field in
 /// point sampling, linear interpolation, supersampling or exact area sampling, and count what
@@ -27,6 +29,8 @@ enum Command {
     Fly(Box<FlyArgs>),
     /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9).
     Inspect(Box<InspectArgs>),
+    /// Every terrain experiment, written as REPORT.md, index.html, images and plots.
+    Report(Box<ReportArgs>),
 }
 
 fn main() -> ExitCode {
@@ -54,6 +58,7 @@ fn main() -> ExitCode {
         Command::Table(args) => commands::table(args),
         Command::Fly(args) => commands::fly(args),
         Command::Inspect(args) => commands::inspect(args),
+        Command::Report(args) => commands::report(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,10 +4,12 @@ pub mod bench;
 pub mod fly;
 pub mod inspect;
 pub mod render;
+pub mod report;
 pub mod table;
 
 pub use bench::{bench, BenchArgs};
 pub use fly::{fly, FlyArgs};
 pub use inspect::{inspect, InspectArgs};
 pub use render::{render, RenderArgs};
+pub use report::{report, ReportArgs};
 pub use table::{table, TableArgs};

@@ -1,6 +1,8 @@
 //! Writers: PNG images and JSON, each written atomically (temporary file, then rename), so an
 //! interrupted or failed run never leaves a half-written output.
 
+pub mod html;
+pub mod plot;
 pub mod png;
 
 use std::io::Write;
