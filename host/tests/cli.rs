@@ -212,3 +212,109 @@ fn output_to_a_missing_folder_is_refused() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("does not exist"));
     assert!(!out.exists());
 }
+
+/// Runs any subcommand that must fail with a one-line error naming `names`, exit code 2.
+fn fails_with(args: &[&str], names: &str) {
+    let o = footprint(args);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: stderr {stderr}");
+    assert_eq!(
+        stderr.lines().filter(|l| !l.trim().is_empty()).count(),
+        1,
+        "{args:?}: one line expected: {stderr:?}"
+    );
+    assert!(
+        stderr.contains(names),
+        "{args:?}: should name {names:?}: {stderr}"
+    );
+}
+
+#[test]
+fn experiments_refuse_bad_arguments() {
+    fails_with(&["table", "--modes", "as,ss3"], "mode");
+    fails_with(&["table", "--case", "7"], "case");
+    fails_with(&["fly", "--frames", "0"], "frames");
+    fails_with(&["fly", "--size", "40x40", "--column", "40"], "column");
+    fails_with(&["fly", "--modes", "xx"], "mode");
+    fails_with(&["fly", "--out", "/no/such/folder"], "--out");
+    fails_with(&["report", "--out", "/no/such/folder/report"], "--out");
+    fails_with(
+        &[
+            "inspect",
+            "--terrain-size",
+            "64",
+            "--size",
+            "20x20",
+            "--pixel",
+            "20,3",
+            "--out",
+            "/tmp/x.png",
+        ],
+        "--pixel",
+    );
+    fails_with(
+        &["inspect", "--terrain-size", "64", "--out", "/tmp/x.png"],
+        "--zoom",
+    );
+}
+
+#[test]
+fn inspect_writes_its_three_pictures() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("i.png");
+    let o = footprint(&[
+        "inspect",
+        "--terrain-size",
+        "128",
+        "--size",
+        "24x24",
+        "--mode",
+        "ss4",
+        "--zoom",
+        "--pixel",
+        "12,12",
+        "--footprint",
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for suffix in ["zoom", "pixel", "footprint"] {
+        assert!(
+            dir.path().join(format!("i-{suffix}.png")).is_file(),
+            "{suffix}"
+        );
+    }
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let samples = v["pixel"]["samples"].as_array().unwrap();
+    // SS4 takes four samples in a pixel that sees terrain (or fewer plus the sky).
+    assert!(!samples.is_empty() && samples.len() <= 4, "{v}");
+    assert!(v["footprint"]["sampled"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn fly_json_has_table_6_bins() {
+    let o = footprint(&[
+        "fly",
+        "--terrain-size",
+        "128",
+        "--size",
+        "32x32",
+        "--frames",
+        "6",
+        "--modes",
+        "as,ps",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let m = &v["modes"][0];
+    assert_eq!(m["mode"], "as");
+    let bins = ["0", "1", "2", "3", "4", "5", "6-60", ">60"];
+    let total: u64 = bins
+        .iter()
+        .map(|b| m["histogram"][b].as_u64().unwrap())
+        .sum();
+    assert_eq!(total, 5 * 32, "5 frame pairs × 32 pixels of one column");
+    assert!(m["all_columns"].is_object());
+}
