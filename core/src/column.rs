@@ -15,7 +15,7 @@ use crate::color::Rgb;
 use crate::cost::Cost;
 use crate::error::Error;
 use crate::march::March;
-use crate::num::Eye;
+use crate::num::{Eye, Line};
 use crate::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
@@ -50,21 +50,22 @@ pub fn walk<S: Sampler, C: Cost>(
     let mut march = March::new(frame, terrain, column);
     let mut i = first;
     cost.new_ray();
-    let mut lower = frame.ray(column, i);
-    cost.new_ray();
-    let mut upper = frame.ray(column, i + 1);
-    let mut ray = Ray {
-        h: lower.at(march.n()),
-        slope: lower.slope,
+    let mut upper = frame.ray(column, i);
+    // Pixel i spans R_i (the previous pixel's upper ray) to R_{i+1}, the one new ray (Eqs.
+    // 2–3); R_i resumes at the current voxel (Fig. 3). Returns the ray to walk.
+    let begin = |i: usize, lower: Line, march: &March<'_, '_>, sampler: &mut S, cost: &mut C| {
+        cost.new_ray();
+        let upper = frame.ray(column, i + 1);
+        cost.begin_pixel(i);
+        sampler.begin_pixel(&Pixel { lower, upper, eye }, cost);
+        let ray = Ray {
+            h: lower.at(march.n()),
+            slope: lower.slope,
+        };
+        (ray, upper)
     };
-    let mut pixel = Pixel {
-        lower,
-        upper,
-        eye,
-        n: march.n(),
-    };
-    sampler.begin_pixel(&pixel, cost);
-    cost.begin_pixel(i);
+    let mut ray;
+    (ray, upper) = begin(i, upper, &march, sampler, cost);
     let mut in_footprint = false;
 
     if march.n() <= column.n_far {
@@ -91,23 +92,7 @@ pub fn walk<S: Sampler, C: Cost>(
                             cost.end_column();
                             return;
                         }
-                        // The next ray resumes at this voxel (Fig. 3); only its upper
-                        // neighbour is new (Eqs. 2–3).
-                        lower = upper;
-                        cost.new_ray();
-                        upper = frame.ray(column, i + 1);
-                        ray = Ray {
-                            h: lower.at(march.n()),
-                            slope: lower.slope,
-                        };
-                        pixel = Pixel {
-                            lower,
-                            upper,
-                            eye,
-                            n: march.n(),
-                        };
-                        cost.begin_pixel(i);
-                        sampler.begin_pixel(&pixel, cost);
+                        (ray, upper) = begin(i, upper, &march, sampler, cost);
                         continue;
                     }
                     Hit::Rejected => {}

@@ -32,8 +32,6 @@ pub struct Pixel {
     pub upper: Line,
     /// The eye.
     pub eye: Eye,
-    /// Where the pixel's walk begins, half-voxels.
-    pub n: i64,
 }
 
 /// What a sampler did with a hit.
