@@ -258,12 +258,7 @@ impl<'a, 't> March<'a, 't> {
     /// Point sampling: the colour of the current voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
     #[inline(always)]
     pub fn sample_point(&self) -> Color16 {
-        let c = self.level.colors()[self.offset_u() + self.off_v];
-        [
-            u16::from(c.r) << 8,
-            u16::from(c.g) << 8,
-            u16::from(c.b) << 8,
-        ]
+        to_color16(self.level.colors()[self.offset_u() + self.off_v])
     }
 
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose
@@ -295,6 +290,12 @@ impl<'a, 't> March<'a, 't> {
         let mix = |a: u8, b: u8| (u32::from(a) * (256 - f) + u32::from(b) * f) as u16;
         [mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b)]
     }
+}
+
+/// An 8-bit colour as an 8.8 colour (exact).
+#[inline]
+pub fn to_color16(c: Rgb) -> Color16 {
+    [c.r, c.g, c.b].map(|x| u16::from(x) << 8)
 }
 
 /// Rounds an 8.8 colour to 8 bits.

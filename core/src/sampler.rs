@@ -11,7 +11,7 @@
 
 use crate::color::Rgb;
 use crate::cost::Cost;
-use crate::march::{to_rgb, Color16, March};
+use crate::march::{to_color16, to_rgb, Color16, March};
 use crate::num::{Eye, Height, Line, Slope, Weight};
 
 /// The ray being walked: its height at the current voxel and its slope per half-voxel.
@@ -190,10 +190,10 @@ impl<const N: u32> Sampler for Super<N> {
             return None;
         }
         let rest = N - self.j;
-        let sky16 = [sky.r, sky.g, sky.b].map(|c| u16::from(c) << 8);
+        let sky16 = to_color16(sky);
         cost.sky_sample(sky16, Weight::from_num(rest));
-        for (s, c) in self.sum.iter_mut().zip([sky.r, sky.g, sky.b]) {
-            *s += (u32::from(c) << 8) * rest;
+        for (s, c) in self.sum.iter_mut().zip(sky16) {
+            *s += u32::from(c) * rest;
         }
         Some(self.finish(cost))
     }
@@ -319,11 +319,7 @@ impl Sampler for Area {
         if !self.seen {
             return None;
         }
-        let sky16 = [
-            u16::from(sky.r) << 8,
-            u16::from(sky.g) << 8,
-            u16::from(sky.b) << 8,
-        ];
+        let sky16 = to_color16(sky);
         let w = self.upper.slope.saturating_sub(ray.slope);
         cost.sky_sample(sky16, w);
         self.accumulate(w, sky16, cost);
