@@ -31,6 +31,8 @@ enum Command {
     Inspect(Box<InspectArgs>),
     /// Every terrain experiment, written as REPORT.md, index.html, images and plots.
     Report(Box<ReportArgs>),
+    /// Print the lines the firmware (firmware/) prints, rendered on the host, for comparison.
+    FirmwareReference(commands::FirmwareReferenceArgs),
 }
 
 fn main() -> ExitCode {
@@ -59,6 +61,7 @@ fn main() -> ExitCode {
         Command::Fly(args) => commands::fly(args),
         Command::Inspect(args) => commands::inspect(args),
         Command::Report(args) => commands::report(args),
+        Command::FirmwareReference(args) => commands::firmware_reference(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,6 +1,7 @@
 //! The subcommands' bodies, one module each: they parse nothing and print results.
 
 pub mod bench;
+pub mod firmware_reference;
 pub mod fly;
 pub mod inspect;
 pub mod render;
@@ -8,6 +9,7 @@ pub mod report;
 pub mod table;
 
 pub use bench::{bench, BenchArgs};
+pub use firmware_reference::{firmware_reference, FirmwareReferenceArgs};
 pub use fly::{fly, FlyArgs};
 pub use inspect::{inspect, InspectArgs};
 pub use render::{render, RenderArgs};

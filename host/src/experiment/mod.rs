@@ -1,6 +1,7 @@
 //! Experiments: each returns data and prints nothing.
 
 pub mod bench;
+pub mod firmware;
 pub mod fly;
 pub mod inspect;
 pub mod reference;

@@ -1,0 +1,305 @@
+//! footprint-firmware: `footprint-core` on a Cortex-M4F, under QEMU's `mps2-an386`.
+//!
+//! From statics alone (no heap, no allocator) it builds the terrain pyramid on the chip from
+//! the level-0 map that `build.rs` baked into flash, renders the host's firmware scene
+//! (`footprint_host::experiment::firmware`: 128² built-in terrain, 160×120, FOV 10°, pitch 20°,
+//! the eye fitted by the paper's rule) in PS, SS8 and AS, and prints over semihosting:
+//!
+//! * one `frame` line per mode — the mode, the 64-bit FNV-1a of the image's RGB bytes and the
+//!   cost counters — byte for byte what `footprint firmware-reference` prints on the host;
+//! * one `error` line per constructor of the core, each called with one bad argument, also
+//!   byte for byte the host's;
+//! * `#` lines, which only the chip can print: the instructions each step took, read from
+//!   SysTick under `-icount shift=0` (instruction counts, not Cortex-M4 cycles), and the
+//!   stack's high-water mark.
+//!
+//! It exits 0 over semihosting when every check passed, and non-zero on a failed check, a
+//! panic (`panic-semihosting` with `exit`) or a hard fault.
+//!
+//! The specular plate of the specular issue is to be added as a fourth `frame` line, printed
+//! after the terrain frames, with its statics beside these; the host's
+//! `experiment::firmware::reference_lines` adds the same line in the same place.
+
+#![no_std]
+#![deny(unsafe_code)]
+#![no_main]
+
+use core::fmt;
+
+use cortex_m_rt::{entry, exception, ExceptionFrame};
+use cortex_m_semihosting::{debug, hprintln};
+use panic_semihosting as _;
+
+use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::cost::{Counts, NoCost, Tally};
+use footprint_core::num::Coord;
+use footprint_core::sampler::{Area, Point, Sampler, Super};
+use footprint_core::terrain::{Level, Scale, Terrain};
+use footprint_core::{Error, Rgb};
+use footprint_firmware::clock::{self, instructions};
+use footprint_firmware::scene::{
+    COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, SPACING_M, WIDTH,
+};
+use footprint_firmware::{core_calls, image_hash, stack, Buffers, Ratio};
+
+#[exception]
+fn SysTick() {
+    clock::on_wrap();
+}
+
+#[exception]
+#[allow(unsafe_code)]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    hprintln!("FAIL hard fault: {:?}", frame);
+    debug::exit(debug::EXIT_FAILURE);
+    #[allow(clippy::empty_loop)]
+    loop {}
+}
+
+/// Renders the frame in one mode: once without counting, timed, and once with every counter
+/// on; prints the `frame` line and the `#` instruction line. Returns the render's instructions,
+/// or `None` if the two renders differ.
+fn run_mode<S: Sampler + Clone>(
+    name: &str,
+    sampler: &S,
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    tables: u64,
+    scratch: &mut [Rgb],
+    image: &mut [Rgb],
+) -> Result<Option<u64>, Error> {
+    let (render, result) =
+        instructions(|| core_calls::render(frame, terrain, sampler, &mut NoCost, scratch, image));
+    result?;
+    let hash = image_hash(image);
+
+    let mut counts = Counts::new(&mut []);
+    core_calls::render(frame, terrain, sampler, &mut counts, scratch, image)?;
+    core_calls::count_visible(frame, terrain, &mut counts);
+    let counted_hash = image_hash(image);
+    let t: Tally = counts.total;
+    hprintln!(
+        "frame {} {}x{} fnv1a={:016x} L={} P={} M={} V={} hits={} a={} b={} c={} d={} d'={} top_div={} shifts={} div={}",
+        name, WIDTH, HEIGHT, hash, t.l, t.p, t.m, t.v, t.hits, t.a, t.b, t.c, t.d, t.d_prime,
+        t.top_divisions, t.shifts, t.divisions
+    );
+    let pixels = (WIDTH * HEIGHT) as u64;
+    hprintln!(
+        "# icount {}: render {} instructions, {} per pixel; with the frame tables {} per frame, {} per pixel (instructions, not cycles)",
+        name,
+        render,
+        Ratio::tenths(render, pixels),
+        render + tables,
+        Ratio::tenths(render + tables, pixels)
+    );
+    if counted_hash != hash {
+        hprintln!("FAIL {}: the counting render drew a different image", name);
+        return Ok(None);
+    }
+    Ok(Some(render))
+}
+
+/// Prints one `error` line; `false` if the call accepted its bad input.
+fn error_line<T>(call: fmt::Arguments<'_>, result: Result<T, Error>) -> bool {
+    match result {
+        Err(e) => {
+            hprintln!("error {}: {}", call, e);
+            true
+        }
+        Ok(_) => {
+            hprintln!("FAIL {}: accepted bad input", call);
+            false
+        }
+    }
+}
+
+/// Calls each constructor of the core with one bad argument (the host's
+/// `experiment::firmware::error_lines`, in the same order). `true` if every one refused.
+fn error_paths(
+    terrain: &Terrain<'static>,
+    camera: &Camera,
+    rows: &mut [Coord],
+    columns: &mut [Column],
+    scratch: &mut [Rgb],
+    image: &mut [Rgb],
+) -> Result<bool, Error> {
+    let level0 = *terrain.base();
+    let options = Options::default();
+    let mut ok = error_line(
+        format_args!("Level::new(0x{})", MAP_HEIGHT),
+        Level::new(0, MAP_HEIGHT, &HEIGHTS, &COLORS),
+    );
+    ok &= error_line(
+        format_args!("Level::build_next(empty buffers)"),
+        level0.build_next(&mut [], &mut []),
+    );
+    ok &= error_line(
+        format_args!("Scale::new(30, 0)"),
+        Scale::new(SPACING_M, 0.0),
+    );
+    let mut one = Terrain::new(level0, Scale::new(SPACING_M, HEIGHT_SCALE_M)?);
+    ok &= error_line(
+        format_args!("Terrain::push_level(level 0 again)"),
+        one.push_level(level0),
+    );
+    let mut all = terrain.clone();
+    ok &= error_line(
+        format_args!("Terrain::push_level(above 1x1)"),
+        all.push_level(*terrain.top()),
+    );
+    ok &= error_line(
+        format_args!("Camera::new(fov 180)"),
+        Camera::new(CameraParams {
+            fov_deg: 180.0,
+            ..PARAMS
+        }),
+    );
+    ok &= error_line(
+        format_args!("Camera::new(width 0)"),
+        Camera::new(CameraParams { width: 0, ..PARAMS }),
+    );
+    ok &= error_line(
+        format_args!("Frame::new(short rows)"),
+        core_calls::frame(camera, terrain, options, &mut rows[..HEIGHT], columns),
+    );
+    let too_high = Camera::new(CameraParams {
+        eye_m: 1e6,
+        ..PARAMS
+    })?;
+    ok &= error_line(
+        format_args!("Frame::new(eye 1e6 m)"),
+        core_calls::frame(&too_high, terrain, options, rows, columns),
+    );
+    let frame = core_calls::frame(camera, terrain, options, rows, columns)?;
+    ok &= error_line(
+        format_args!("column::render(short image)"),
+        core_calls::render(
+            &frame,
+            terrain,
+            &Point,
+            &mut NoCost,
+            scratch,
+            &mut image[..WIDTH * HEIGHT - 1],
+        ),
+    );
+    Ok(ok)
+}
+
+/// Everything after the clock is running; `Ok(true)` when every check passed.
+fn run() -> Result<bool, Error> {
+    let (expected, measured) = clock::calibrate();
+    hprintln!(
+        "# calibration: a loop of {} instructions measured {} ({} per SysTick tick at {} Hz under -icount shift=0)",
+        expected,
+        measured,
+        clock::INSTRUCTIONS_PER_TICK,
+        clock::SYSCLK_HZ
+    );
+    // Within 0.1 %: one tick's resolution and the few instructions around the loop.
+    let mut ok = measured.abs_diff(expected) * 1000 <= expected;
+    if !ok {
+        hprintln!(
+            "FAIL calibration: one SysTick tick is not 40 instructions; is -icount shift=0 set?"
+        );
+    }
+
+    stack::paint();
+    let Some(Buffers {
+        pyramid_heights,
+        pyramid_colors,
+        rows,
+        columns,
+        scratch,
+        image,
+    }) = Buffers::take()
+    else {
+        hprintln!("FAIL: the buffers were taken twice");
+        return Ok(false);
+    };
+    if let Some(bytes) = stack::used() {
+        hprintln!(
+            "# stack: {} bytes at most while taking the buffers (painted)",
+            bytes
+        );
+    }
+    // From here on the stack holds only what the core and this firmware need to render.
+    stack::paint();
+
+    let level0 = Level::new(MAP_WIDTH, MAP_HEIGHT, &HEIGHTS, &COLORS)?;
+    let scale = Scale::new(SPACING_M, HEIGHT_SCALE_M)?;
+    let (pyramid, terrain) =
+        instructions(|| core_calls::build_terrain(level0, scale, pyramid_heights, pyramid_colors));
+    let terrain = terrain?;
+    hprintln!(
+        "# icount pyramid: {} levels built on the chip (Level::build_next) in {} instructions",
+        terrain.levels().len(),
+        pyramid
+    );
+    let camera = Camera::new(PARAMS)?;
+    let (tables, frame) = instructions(|| {
+        core_calls::frame(
+            &camera,
+            &terrain,
+            Options::default(),
+            &mut rows[..],
+            &mut columns[..],
+        )
+    });
+    let frame = frame?;
+    hprintln!(
+        "# icount frame tables (Frame::new, soft-double trigonometry): {} instructions",
+        tables
+    );
+    let (scratch, image) = (&mut scratch[..], &mut image[..]);
+    let ps = run_mode("ps", &Point, &frame, &terrain, tables, scratch, image)?;
+    let ss8 = run_mode(
+        "ss8",
+        &Super::<8>::new(),
+        &frame,
+        &terrain,
+        tables,
+        scratch,
+        image,
+    )?;
+    let area = run_mode("as", &Area::new(), &frame, &terrain, tables, scratch, image)?;
+    match (ps, ss8, area) {
+        (Some(ps), Some(_), Some(area)) => hprintln!(
+            "# icount as/ps: {} (render instructions)",
+            Ratio {
+                num: area,
+                den: ps,
+                places: 2
+            }
+        ),
+        _ => ok = false,
+    }
+    ok &= error_paths(&terrain, &camera, rows, columns, scratch, image)?;
+    Ok(ok)
+}
+
+#[entry]
+fn main() -> ! {
+    let Some(mut peripherals) = cortex_m::Peripherals::take() else {
+        panic!("the core peripherals are taken once");
+    };
+    clock::start(&mut peripherals.SYST);
+
+    let mut code = match run() {
+        Ok(true) => debug::EXIT_SUCCESS,
+        Ok(false) => debug::EXIT_FAILURE,
+        Err(e) => {
+            hprintln!("FAIL: {}", e);
+            debug::EXIT_FAILURE
+        }
+    };
+    match stack::used() {
+        Some(bytes) => hprintln!("# stack: {} bytes at most while rendering (painted)", bytes),
+        None => {
+            hprintln!("FAIL stack: more than {} bytes", stack::WINDOW);
+            code = debug::EXIT_FAILURE;
+        }
+    }
+    debug::exit(code);
+    #[allow(clippy::empty_loop)]
+    loop {}
+}

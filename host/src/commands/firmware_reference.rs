@@ -1,0 +1,23 @@
+//! `footprint firmware-reference`: the lines the firmware (`firmware/`) prints, rendered on
+//! the host through the same core API, for a byte-for-byte comparison.
+
+use std::io::Write;
+
+use anyhow::Result;
+use clap::Args;
+
+use crate::experiment::firmware;
+
+/// `footprint firmware-reference`.
+#[derive(Args, Debug)]
+pub struct FirmwareReferenceArgs {}
+
+/// Prints the firmware's scene (128² built-in terrain, seed 1, 160×120, pitch 20°, FOV 10°,
+/// fit-first-hit) in PS, SS8 and AS as `frame` lines, then the constructor `error` lines.
+pub fn firmware_reference(_args: &FirmwareReferenceArgs) -> Result<()> {
+    let text = firmware::reference_text()?;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
+}

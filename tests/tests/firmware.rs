@@ -1,0 +1,238 @@
+//! The firmware (`firmware/`, issue 6): `footprint-core` on an emulated Cortex-M4F must draw
+//! what the host draws, bit for bit.
+//!
+//! [`firmware_output_equals_the_host_reference`] builds the firmware for
+//! `thumbv7em-none-eabihf`, runs it under `qemu-system-arm` (the runner of
+//! `firmware/.cargo/config.toml`, with a 120 s limit), and compares every line it prints,
+//! apart from the chip-only `#` lines (instruction counts, stack), with
+//! `footprint_host::experiment::firmware::reference_text()`, byte for byte: the frame
+//! checksums, the cost counters and the constructors' error messages.
+//!
+//! Without QEMU or the thumb target the test says so and passes, so that `cargo test
+//! --workspace` works on any developer machine, unless `FOOTPRINT_REQUIRE_QEMU=1` is set (as
+//! `.ci/run` does), which makes their absence a failure.
+//!
+//! Every constructor error of the core is tested on the host by `constructor_errors` in
+//! `analytic.rs`; the firmware's `error` lines show that the same errors come back, with the
+//! same messages, on the chip.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use footprint_core::Rgb;
+use footprint_host::experiment::firmware::{fnv1a64, image_hash, reference_lines, reference_text};
+
+const TARGET: &str = "thumbv7em-none-eabihf";
+
+/// How long the firmware may run before it counts as hung.
+const LIMIT: Duration = Duration::from_secs(120);
+
+fn firmware_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("the workspace root")
+        .join("firmware")
+}
+
+fn required() -> bool {
+    std::env::var("FOOTPRINT_REQUIRE_QEMU").is_ok_and(|v| v == "1")
+}
+
+/// Explains why the test cannot run; a failure if `FOOTPRINT_REQUIRE_QEMU=1`.
+fn cannot_run(why: &str) {
+    assert!(
+        !required(),
+        "FOOTPRINT_REQUIRE_QEMU=1, but the firmware test cannot run: {why}"
+    );
+    eprintln!(
+        "SKIPPED: the firmware bit-exactness test did not run: {why}. \
+         Set FOOTPRINT_REQUIRE_QEMU=1 to make this a failure."
+    );
+}
+
+/// The runner command of `firmware/.cargo/config.toml`: QEMU and its arguments.
+fn runner() -> Vec<String> {
+    let config = std::fs::read_to_string(firmware_dir().join(".cargo/config.toml"))
+        .expect("firmware/.cargo/config.toml");
+    let line = config
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("runner = \""))
+        .expect("a runner = \"…\" line");
+    line.trim_end_matches('"')
+        .split_whitespace()
+        .map(str::to_owned)
+        .collect()
+}
+
+fn has_thumb_target() -> bool {
+    let Ok(out) = Command::new("rustc").args(["--print", "sysroot"]).output() else {
+        return false;
+    };
+    let sysroot = String::from_utf8_lossy(&out.stdout).trim().to_owned();
+    Path::new(&sysroot)
+        .join("lib/rustlib")
+        .join(TARGET)
+        .is_dir()
+}
+
+/// Builds both firmware binaries (release), in `firmware/target`.
+fn build_firmware() -> PathBuf {
+    let dir = firmware_dir();
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let target_dir = dir.join("target");
+    let status = Command::new(cargo)
+        .args(["build", "--release", "--bins"])
+        .current_dir(&dir)
+        // Its own target folder and flags: .cargo/config.toml's linker script must apply.
+        .env("CARGO_TARGET_DIR", &target_dir)
+        .env_remove("RUSTFLAGS")
+        .env_remove("CARGO_ENCODED_RUSTFLAGS")
+        .env_remove("CARGO_BUILD_TARGET")
+        .status()
+        .expect("run cargo build in firmware/");
+    assert!(status.success(), "the firmware does not build");
+    target_dir.join(TARGET).join("release")
+}
+
+/// Runs `elf` under the runner; its standard output. Fails if it runs longer than [`LIMIT`]
+/// or exits non-zero (a failed check, a panic or a hard fault on the firmware).
+fn run_under_qemu(runner: &[String], elf: &Path) -> Vec<u8> {
+    let mut child = Command::new(&runner[0])
+        .args(&runner[1..])
+        .arg(elf)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .expect("start qemu-system-arm");
+    let mut stdout = child.stdout.take().expect("piped stdout");
+    let reader = std::thread::spawn(move || {
+        let mut buf = Vec::new();
+        stdout.read_to_end(&mut buf).map(|_| buf)
+    });
+    let started = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait for qemu") {
+            break status;
+        }
+        if started.elapsed() > LIMIT {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{} hung: no exit within {LIMIT:?}", elf.display());
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let out = reader.join().expect("reader").expect("read qemu's output");
+    assert!(
+        status.success(),
+        "{} exited with {status}; it printed:\n{}",
+        elf.display(),
+        String::from_utf8_lossy(&out)
+    );
+    out
+}
+
+/// The lines of `out` that the host can reproduce: all but the `#` lines, each with its `\n`.
+fn comparable(out: &[u8]) -> Vec<u8> {
+    out.split_inclusive(|&b| b == b'\n')
+        .filter(|line| !line.starts_with(b"#"))
+        .flatten()
+        .copied()
+        .collect()
+}
+
+#[test]
+fn firmware_output_equals_the_host_reference() {
+    let runner = runner();
+    if Command::new(&runner[0]).arg("--version").output().is_err() {
+        return cannot_run(&format!(
+            "{} is not installed (apt-get install -y --no-install-recommends qemu-system-arm)",
+            runner[0]
+        ));
+    }
+    if !has_thumb_target() {
+        return cannot_run(&format!(
+            "the {TARGET} target is not installed (rustup target add {TARGET})"
+        ));
+    }
+    let expected = reference_text().expect("the host reference");
+    let bin = build_firmware();
+
+    let out = run_under_qemu(&runner, &bin.join("footprint-firmware"));
+    let got = comparable(&out);
+    assert!(
+        got == expected.as_bytes(),
+        "the firmware's output differs from the host's.\n--- firmware\n{}--- host\n{}",
+        String::from_utf8_lossy(&got),
+        expected
+    );
+    // The chip-only lines are there too: one instruction count per mode, calibrated.
+    let text = String::from_utf8_lossy(&out);
+    for mode in ["ps", "ss8", "as"] {
+        assert!(
+            text.contains(&format!("# icount {mode}: render ")),
+            "no instruction count for {mode}:\n{text}"
+        );
+    }
+    assert!(text.contains("# calibration: "), "{text}");
+
+    // The smallest embedding draws the same area-sampled image.
+    let minimal = String::from_utf8(run_under_qemu(&runner, &bin.join("minimal"))).unwrap();
+    let first = minimal.lines().next().unwrap_or_default().to_owned();
+    let area = expected
+        .lines()
+        .find(|l| l.starts_with("frame as "))
+        .expect("an AS frame line");
+    assert!(
+        area.starts_with(&(first.clone() + " ")),
+        "minimal printed {first:?}, the host's AS line is {area:?}"
+    );
+}
+
+#[test]
+fn fnv1a64_matches_the_published_test_vectors() {
+    assert_eq!(fnv1a64(*b""), 0xcbf2_9ce4_8422_2325);
+    assert_eq!(fnv1a64(*b"a"), 0xaf63_dc4c_8601_ec8c);
+    assert_eq!(fnv1a64(*b"foobar"), 0x8594_4171_f739_67e8);
+    assert_eq!(
+        image_hash(&[Rgb::new(b'f', b'o', b'o'), Rgb::new(b'b', b'a', b'r')]),
+        0x8594_4171_f739_67e8
+    );
+}
+
+/// The reference itself, on the host alone: the counters obey the README's identities, and
+/// every constructor refused its bad input.
+#[test]
+fn the_reference_is_consistent() {
+    let lines = reference_lines().expect("the host reference");
+    let field = |line: &str, key: &str| -> u64 {
+        line.split_whitespace()
+            .find_map(|w| w.strip_prefix(key).and_then(|v| v.strip_prefix('=')))
+            .unwrap_or_else(|| panic!("{key} in {line}"))
+            .parse()
+            .unwrap()
+    };
+    let frames: Vec<&String> = lines.iter().filter(|l| l.starts_with("frame ")).collect();
+    assert_eq!(frames.len(), 3, "{lines:#?}");
+    let (ps, ss8, area) = (frames[0], frames[1], frames[2]);
+    assert!(ps.starts_with("frame ps 160x120 "), "{ps}");
+    assert_eq!(field(ps, "hits"), field(ps, "P"));
+    assert!(ss8.starts_with("frame ss8 160x120 "), "{ss8}");
+    assert_eq!(field(ss8, "hits"), 8 * field(ss8, "P"));
+    assert!(area.starts_with("frame as 160x120 "), "{area}");
+    assert_eq!(
+        field(area, "M"),
+        field(area, "V"),
+        "AS samples every visible voxel"
+    );
+    assert!(field(area, "V") > 10_000, "a real footprint: {area}");
+    // The images differ between modes.
+    let hash = |l: &str| l.split_whitespace().nth(3).unwrap().to_owned();
+    assert_ne!(hash(ps), hash(area));
+    assert_ne!(hash(ss8), hash(area));
+    let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
+    assert_eq!(errors, 10, "{lines:#?}");
+    assert_eq!(lines.len(), 13);
+}
