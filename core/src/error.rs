@@ -49,6 +49,15 @@ pub enum Error {
         /// The height that was given.
         height: u32,
     },
+    /// A normal vector is zero, or a component is not finite ([`crate::specular::Normal::new`]).
+    BadNormal {
+        /// The x component given.
+        x: f64,
+        /// The y component given.
+        y: f64,
+        /// The z component given.
+        z: f64,
+    },
 }
 
 impl fmt::Display for Error {
@@ -83,6 +92,9 @@ impl fmt::Display for Error {
                 "image size {width}x{height}: each side must be 1..={}",
                 crate::camera::MAX_IMAGE_SIDE
             ),
+            Error::BadNormal { x, y, z } => {
+                write!(f, "normal ({x}, {y}, {z}) is zero or not finite")
+            }
         }
     }
 }

@@ -10,6 +10,9 @@
 //!   in four sampling modes — point sampling ([`sampler::Point`]), linear interpolation
 //!   ([`sampler::Linear`]), supersampling ([`sampler::Super`]) and exact area sampling
 //!   ([`sampler::Area`]) — and the paper's cost model ([`cost`]).
+//! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*: the
+//!   tables, Phong highlight, detection and clamping of [`specular`], drawn by the z-buffer
+//!   tiler [`raster`].
 //!
 //! The crate is `no_std`, allocates nothing, and uses only integer fixed-point arithmetic per
 //! pixel, so it links into firmware. The caller lends every buffer.
@@ -46,7 +49,9 @@ pub mod cost;
 pub mod error;
 pub mod march;
 pub mod num;
+pub mod raster;
 pub mod sampler;
+pub mod specular;
 pub mod terrain;
 pub mod trig;
 pub mod visibility;

@@ -7,4 +7,5 @@ pub mod map;
 pub mod pyramid;
 pub mod render;
 pub mod report;
+pub mod scene;
 pub mod view;

@@ -25,6 +25,8 @@ enum Command {
     Bench(Box<BenchArgs>),
     /// The paper's Tables 1–5 (coverage, hits, time, error against the ground truth) on any map.
     Table(Box<TableArgs>),
+    /// Specular aliasing (Amanatides): the plates, Figures 2 and 3, and the measurements.
+    Specular(Box<commands::SpecularArgs>),
     /// The flight of Sect. 5: Table 6 (pixel changes between frames) and Fig. 14 (a column over time).
     Fly(Box<FlyArgs>),
     /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9).
@@ -58,6 +60,7 @@ fn main() -> ExitCode {
         Command::Render(args) => commands::render(args),
         Command::Bench(args) => commands::bench(args),
         Command::Table(args) => commands::table(args),
+        Command::Specular(args) => commands::specular(args),
         Command::Fly(args) => commands::fly(args),
         Command::Inspect(args) => commands::inspect(args),
         Command::Report(args) => commands::report(args),

@@ -6,6 +6,7 @@ pub mod fly;
 pub mod inspect;
 pub mod render;
 pub mod report;
+pub mod specular;
 pub mod table;
 
 pub use bench::{bench, BenchArgs};
@@ -14,4 +15,5 @@ pub use fly::{fly, FlyArgs};
 pub use inspect::{inspect, InspectArgs};
 pub use render::{render, RenderArgs};
 pub use report::{report, ReportArgs};
+pub use specular::{specular, SpecularArgs};
 pub use table::{table, TableArgs};

@@ -5,4 +5,5 @@ pub mod firmware;
 pub mod fly;
 pub mod inspect;
 pub mod reference;
+pub mod specular;
 pub mod table;

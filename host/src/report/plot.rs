@@ -1,5 +1,5 @@
-//! Plots, drawn with `plotters` into PNG files (atomically: a temporary file, then a rename).
-//! Text uses DejaVu Sans, embedded from the `dejavu` crate, so no system font is needed.
+//! Plots, drawn with `plotters` in memory and written as PNG files atomically. Text uses
+//! DejaVu Sans, embedded from the `dejavu` crate, so no system font is needed.
 
 use std::path::Path;
 use std::sync::Once;
@@ -20,33 +20,30 @@ pub fn ensure_font() {
     });
 }
 
-/// Draws into a temporary PNG beside `path` and renames it into place.
-fn draw_atomic(
+/// The drawing area that [`draw_png`] lends to a plot.
+pub type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
+/// Draws a `size` plot on white into memory with `draw`, then writes it as a PNG atomically
+/// ([`super::png::write_png`]).
+pub fn draw_png(
     path: &Path,
     size: (u32, u32),
-    draw: impl FnOnce(DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<()>,
+    draw: impl FnOnce(&Area<'_>) -> Result<()>,
 ) -> Result<()> {
     ensure_font();
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let tmp = tempfile::Builder::new()
-        .prefix(".plot-")
-        .suffix(".png")
-        .tempfile_in(dir)
-        .map_err(|e| anyhow!("plot {:?}: {e}", path.display().to_string()))?;
+    let (w, h) = size;
+    let mut buf = vec![255u8; (w * h * 3) as usize];
     {
-        let root = BitMapBackend::new(tmp.path(), size).into_drawing_area();
-        root.fill(&WHITE)
-            .map_err(|e| anyhow!("plot {:?}: {e}", path.display().to_string()))?;
-        draw(root.clone())?;
-        root.present()
-            .map_err(|e| anyhow!("plot {:?}: {e}", path.display().to_string()))?;
+        let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
+        root.fill(&WHITE).map_err(err)?;
+        draw(&root)?;
+        root.present().map_err(err)?;
     }
-    tmp.persist(path)
-        .map_err(|e| anyhow!("plot {:?}: {e}", path.display().to_string()))?;
-    Ok(())
+    let pixels: Vec<footprint_core::Rgb> = buf
+        .chunks(3)
+        .map(|c| footprint_core::Rgb::new(c[0], c[1], c[2]))
+        .collect();
+    super::png::write_png(path, w, h, &pixels)
 }
 
 /// A palette for series.
@@ -67,8 +64,8 @@ fn err<E: std::fmt::Display>(e: E) -> anyhow::Error {
 
 /// Coverage `M/V` against the supersampling rate `N` (log2 axis), one line per series.
 pub fn coverage_vs_rate(path: &Path, series: &[(String, Vec<(u32, f64)>)]) -> Result<()> {
-    draw_atomic(path, (800, 500), |root| {
-        let mut chart = ChartBuilder::on(&root)
+    draw_png(path, (800, 500), |root| {
+        let mut chart = ChartBuilder::on(root)
             .caption(
                 "Coverage M/V against the supersampling rate N",
                 ("sans-serif", 22),
@@ -128,9 +125,9 @@ pub fn grouped_bars_log(
         .max()
         .unwrap_or(1)
         .max(10) as f64;
-    draw_atomic(path, (900, 500), |root| {
+    draw_png(path, (900, 500), |root| {
         let groups = categories.len() as f64;
-        let mut chart = ChartBuilder::on(&root)
+        let mut chart = ChartBuilder::on(root)
             .caption(title, ("sans-serif", 22))
             .margin(15)
             .x_label_area_size(45)

@@ -1,0 +1,118 @@
+//! Eliminating specular aliasing by clamping `n` (the paper's "Eliminating Specular
+//! Aliasing", its code fragment, Figure 3).
+//!
+//! In a pixel that aliases, `cos^n` is replaced by the duller `cos^n′`, whose highest
+//! frequency the pixel can sample, and renormalised so that the level of the signal stays the
+//! same: `K′_spec = K_spec·Maximum[n]/Maximum[n′]`. The paper's fragment, as [`clamp`] runs it:
+//!
+//! ```text
+//! if dot_ΔN >= MinDot[n]            (MinDot_p[n] = MinDot[K_p(n)] when aggressive)
+//!     n′ = n; K′_spec = K_spec
+//! else
+//!     Δα_N = 2·ArcCosine(dot_ΔN); sampleFrequency = π/Δα_N
+//!     n′ = ⌊sampleFrequency⌋        (conservative)
+//!     n′ = MaxnAllowed_p[⌊sampleFrequency⌋]   (aggressive)
+//!     K′_spec = K_spec·Maximum[n]/Maximum[n′]
+//! ```
+//!
+//! `⌊sampleFrequency⌋` comes from a binary search of `MinDot` (see [`super::detect`]), and
+//! `n′` is also capped at `n`, so clamping never raises `n`. Because `K_p(n)` alternates with
+//! the parity of `n`, `MaxnAllowed_p[f]` can be `n + 1` for an `n` with `K_p(n) > f`; the cap
+//! then steps down to the largest `n′ < n` with `K_p(n′) ≤ f`, so a clamped pixel never aliases; since `Maximum` is non-increasing,
+//! `K′_spec ≤ K_spec` (the division rounds down). `n′ = 0` is possible (a pixel across which
+//! the normal turns by more than 90°): cos^0 is the flat DC level, `K_spec·Maximum[n]/2`.
+
+use fixed::types::U2F30;
+
+use super::detect::Spread;
+use super::phong::Phong;
+use super::tables::{cutoff, maxn_allowed, MAXIMUM};
+use super::Power;
+
+/// Which table the detection and the clamp use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Clamp {
+    /// `MinDot[n]` and `n′ = ⌊sampleFrequency⌋`: no frequency of cos^n′ above the pixel's
+    /// sampling frequency (Plate 3).
+    Conservative,
+    /// `MinDot_p[n]` and `n′ = MaxnAllowed_p[⌊sampleFrequency⌋]`: keep the frequencies that
+    /// hold the fraction `p` of the power below the sampling frequency (Plate 4: 99.9 %).
+    Aggressive(Power),
+}
+
+impl Clamp {
+    /// The highest frequency of cos^n that the policy insists on sampling: `n`, or `K_p(n)`
+    /// (`n` clamped to `N_MAX` first).
+    #[inline]
+    pub fn frequency_limit(self, n: u16) -> u16 {
+        match self {
+            Clamp::Conservative => n.min(super::N_MAX),
+            Clamp::Aggressive(p) => cutoff(u32::from(n), p),
+        }
+    }
+
+    /// The largest exponent whose kept frequencies fit under sampling frequency `f`.
+    #[inline]
+    pub fn max_n(self, f: u16) -> u16 {
+        match self {
+            Clamp::Conservative => f,
+            Clamp::Aggressive(p) => maxn_allowed(u32::from(f), p),
+        }
+    }
+}
+
+/// What [`clamp`] decided for one pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Clamped {
+    /// The surface to shade the pixel with: `n′` and `K′_spec`.
+    pub phong: Phong,
+    /// Whether the pixel was detected as aliasing (then `phong` may differ from the input).
+    pub aliased: bool,
+}
+
+/// The paper's code fragment: detect with the policy's table and, in an aliasing pixel, clamp
+/// `n` to `n′ ≤ n` and renormalise `K′_spec = K_spec·Maximum[n]/Maximum[n′] ≤ K_spec`.
+pub fn clamp(phong: &Phong, spread: Spread, policy: Clamp) -> Clamped {
+    let n = phong.n();
+    if !spread.aliases(n, policy) {
+        return Clamped {
+            phong: *phong,
+            aliased: false,
+        };
+    }
+    let f = spread.sample_frequency();
+    let mut n2 = policy.max_n(f).min(n);
+    // K_p alternates with parity, so MaxnAllowed_p[f] can exceed an n whose own K_p(n) > f;
+    // capped at n, step down to the largest n′ ≤ n that fits (one or two steps).
+    while n2 > 0 && policy.frequency_limit(n2) > f {
+        n2 -= 1;
+    }
+    let k = u64::from(phong.k_spec().to_bits());
+    let k2 = k * u64::from(MAXIMUM[usize::from(n)]) / u64::from(MAXIMUM[usize::from(n2)]);
+    Clamped {
+        phong: Phong::from_parts(n2, U2F30::from_bits(k2 as u32)),
+        aliased: true,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fixed::types::I2F30;
+
+    #[test]
+    fn the_fragment_on_a_known_pixel() {
+        // A normal turning by 0.01 rad: sampleFrequency = π/0.02 = 157.08.
+        let phong = Phong::new(500, 0.8).unwrap();
+        let s = Spread::Dot(I2F30::from_num(0.01f64.cos()));
+        let c = clamp(&phong, s, Clamp::Conservative);
+        assert!(c.aliased);
+        assert_eq!(c.phong.n(), 157);
+        // 99.9 %: K_99.9(500) = 52 ≤ 157, so no aliasing at all.
+        let c = clamp(&phong, s, Clamp::Aggressive(Power::P999));
+        assert!(!c.aliased);
+        assert_eq!(c.phong, phong);
+        // A flat pixel never clamps.
+        assert!(!clamp(&phong, Spread::NONE, Clamp::Conservative).aliased);
+    }
+}

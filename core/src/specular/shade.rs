@@ -1,0 +1,144 @@
+//! Shading one [`Fragment`] with a specular antialiasing method: no antialiasing, the paper's
+//! clamping (one shade per pixel), Crow's adaptive supersampling, or a fixed supersampling
+//! grid (the ground truth).
+//!
+//! Only the specular term is antialiased; the ambient and diffuse terms are evaluated once at
+//! the pixel's centre in every method, and so is the coverage (the z-buffer's), so that two
+//! methods differ only where the highlight does.
+
+use fixed::types::U2F30;
+
+use super::clamp::{clamp, Clamp};
+use super::detect::Spread;
+use super::normal::ONE;
+use super::phong::{Light, Phong};
+use crate::color::Rgb;
+use crate::raster::{Fragment, MAX_GRID};
+
+/// How the specular term of a pixel is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// One evaluation at the centre, no detection: the aliasing image (Plate 2).
+    Point,
+    /// Detection and clamping, one evaluation at the centre (Plates 3 and 4).
+    Clamp(Clamp),
+    /// Crow's method: conservative detection at the corners; in a detected pixel the specular
+    /// term is averaged over an `s × s` grid with `s = ⌈Δα_ΔN/Δα_n⌉`, the detection's
+    /// oversampling rate, capped at [`MAX_GRID`].
+    Crow,
+    /// An `s × s` grid in every pixel (`s` clamped to `1..=MAX_GRID`): 32 is the reference.
+    Supersample(u8),
+}
+
+/// The specular term of one pixel and what it cost.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Specular {
+    /// `K_spec·cos^n α`, averaged over the pixel's samples.
+    pub value: U2F30,
+    /// Evaluations of the highlight spent on this pixel.
+    pub shades: u32,
+    /// Whether detection flagged the pixel (always false for `Point` and `Supersample`).
+    pub aliased: bool,
+}
+
+/// The specular term of `fragment` for `phong` under `light`, by `method`.
+pub fn specular(fragment: &Fragment<'_>, light: &Light, phong: &Phong, method: Method) -> Specular {
+    let centre = |p: &Phong| p.highlight(light.cos_alpha(&fragment.centre()));
+    match method {
+        Method::Point => Specular {
+            value: centre(phong),
+            shades: 1,
+            aliased: false,
+        },
+        Method::Clamp(policy) => {
+            let c = clamp(phong, Spread::from_corners(&fragment.corners()), policy);
+            Specular {
+                value: centre(&c.phong),
+                shades: 1,
+                aliased: c.aliased,
+            }
+        }
+        Method::Crow => {
+            let spread = Spread::from_corners(&fragment.corners());
+            if !spread.aliases(phong.n(), Clamp::Conservative) {
+                return Specular {
+                    value: centre(phong),
+                    shades: 1,
+                    aliased: false,
+                };
+            }
+            let rate = spread
+                .oversampling(phong.n())
+                .saturating_ceil()
+                .to_num::<u32>();
+            let s = grid_average(fragment, light, phong, rate.clamp(2, MAX_GRID));
+            Specular { aliased: true, ..s }
+        }
+        Method::Supersample(s) => grid_average(fragment, light, phong, u32::from(s)),
+    }
+}
+
+fn grid_average(fragment: &Fragment<'_>, light: &Light, phong: &Phong, s: u32) -> Specular {
+    let mut sum: u64 = 0;
+    let shades = fragment.grid(s, |v| {
+        sum += u64::from(phong.highlight(light.cos_alpha(&v)).to_bits());
+    });
+    Specular {
+        value: U2F30::from_bits(((sum + u64::from(shades) / 2) / u64::from(shades.max(1))) as u32),
+        shades,
+        aliased: false,
+    }
+}
+
+/// A surface: base colour, ambient and diffuse weights, and its Phong highlight (white).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Material {
+    /// The base colour.
+    pub color: Rgb,
+    /// Ambient weight.
+    pub ambient: U2F30,
+    /// Diffuse weight, times `max(N·L, 0)`.
+    pub diffuse: U2F30,
+    /// The highlight.
+    pub phong: Phong,
+}
+
+impl Material {
+    /// A material from `f64` weights, each in `[0, 1]`.
+    ///
+    /// Errors: [`crate::Error::OutOfRange`] (`"ambient"`, `"diffuse"`) when a weight is not
+    /// finite or outside `[0, 1]`.
+    pub fn new(color: Rgb, ambient: f64, diffuse: f64, phong: Phong) -> Result<Self, crate::Error> {
+        let q = |what, w| -> Result<U2F30, crate::Error> {
+            let w = crate::error::check(what, w, 0.0, 1.0, false)?;
+            Ok(U2F30::from_bits((w * ONE as f64 + 0.5) as u32))
+        };
+        Ok(Self {
+            color,
+            ambient: q("ambient", ambient)?,
+            diffuse: q("diffuse", diffuse)?,
+            phong,
+        })
+    }
+}
+
+/// The colour of a fragment: `color·(ambient + diffuse·max(N·L, 0)) + 255·specular`, each
+/// channel rounded and saturated to 255, and the specular term it used.
+pub fn shade(
+    fragment: &Fragment<'_>,
+    light: &Light,
+    material: &Material,
+    method: Method,
+) -> (Rgb, Specular) {
+    let spec = specular(fragment, light, &material.phong, method);
+    let lambert = u64::from(light.lambert(&fragment.centre()).to_bits());
+    let base = u64::from(material.ambient.to_bits())
+        + ((u64::from(material.diffuse.to_bits()) * lambert) >> 30);
+    let s = u64::from(spec.value.to_bits()) * 255;
+    let ch = |c: u8| -> u8 {
+        let v = u64::from(c) * base + s + (ONE as u64 / 2);
+        (v >> 30).min(255) as u8
+    };
+    let c = material.color;
+    (Rgb::new(ch(c.r), ch(c.g), ch(c.b)), spec)
+}

@@ -1,0 +1,327 @@
+//! The scenes of Amanatides' plates: shiny cylinders and cones, tessellated into triangles with
+//! per-vertex normals, projected orthographically and handed to the core's z-buffer tiler
+//! ([`footprint_core::raster`]).
+//!
+//! World coordinates: the image spans `x, y ∈ [−1, 1]` (x right, y up), `z` points at the
+//! viewer, and depth runs over `z ∈ [−2, 2]`. The eye looks down −z from infinity (`E = +z`),
+//! the light is a distant one from behind the viewer (`L = E`). Triangles whose three vertex normals
+//! all face away from the eye are culled. A frame can turn the whole scene
+//! about the view axis by an angle (the animation of `--measure`).
+//!
+//! | scene | objects | the paper |
+//! |---|---|---|
+//! | `plate1` | two cylinders (radius 0.1), the right one tilted 8° | Plate 1 |
+//! | `plate2`, `plate4` | four cylinders of radius 0.12, 0.06, 0.03 and 0.012 at four angles | Plates 2–4 (the same scene; the plates differ by mode) |
+//! | `plate5` | two cones (base radius 0.2, height 1.6), apex up, leaning 6°; the left one is always shaded without antialiasing (the paper's control), in every mode, the reference included | Plate 5 |
+//!
+//! Every surface has `n = 1000`, `K_spec = 0.9`: "very shiny", near the tables' `N_MAX` of
+//! 1024. The highlight down a cylinder of radius `r` pixels is about `r/(2√n)` pixels wide, so
+//! for it to break up as in the paper's plates (severe aliasing at 256 × 256) the radii are
+//! 1.5–15 pixels at 256 × 256 (0.012–0.12 of the half-image). With `n ≤ 1024` a cylinder as
+//! large as the paper's central one would carry a highlight about a pixel wide that barely
+//! aliases.
+
+pub mod mesh;
+
+use anyhow::{Context, Result};
+use footprint_core::raster::{self, Target, Triangle, Vertex};
+use footprint_core::specular::{self, Light, Material, Method, Normal, Phong};
+use footprint_core::Rgb;
+
+pub use mesh::{cone, cylinder, Tri, Vert};
+
+/// The Phong exponent of every surface in the plates.
+pub const SHININESS: u32 = 1000;
+/// The specular weight of every surface in the plates.
+pub const K_SPEC: f64 = 0.9;
+/// The background colour.
+pub const BACKGROUND: Rgb = Rgb::new(16, 16, 24);
+
+/// One of the paper's scenes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SceneName {
+    /// Two very shiny cylinders, one slightly tilted (Plate 1).
+    Plate1,
+    /// Four cylinders of one surface, different sizes and orientations (Plates 2–4).
+    Plate2,
+    /// The same scene as `plate2` (Plate 4 is Plate 2's scene with 99.9 % clamping).
+    Plate4,
+    /// Two cones, the right one antialiased (Plate 5).
+    Plate5,
+}
+
+impl SceneName {
+    /// The name as the CLI spells it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SceneName::Plate1 => "plate1",
+            SceneName::Plate2 => "plate2",
+            SceneName::Plate4 => "plate4",
+            SceneName::Plate5 => "plate5",
+        }
+    }
+
+    /// The distinct scenes (`plate4` is `plate2`'s scene), as `--measure` runs them.
+    pub const DISTINCT: [SceneName; 3] = [SceneName::Plate1, SceneName::Plate2, SceneName::Plate5];
+}
+
+/// A shading mode of `footprint specular`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Mode {
+    /// One highlight evaluation at the pixel's centre (Plate 2).
+    None,
+    /// Conservative detection and clamping, `MinDot[n]` (Plate 3).
+    Clamp,
+    /// Aggressive clamping at 99 % of the power.
+    Clamp99,
+    /// Aggressive clamping at 99.9 % of the power (Plate 4).
+    #[value(name = "clamp99.9")]
+    Clamp999,
+    /// Crow's method: supersample the highlight in detected pixels at the detection's rate.
+    Crow,
+    /// Ground truth: the highlight supersampled 32 × 32 in every pixel.
+    Reference,
+}
+
+impl Mode {
+    /// Every mode, in the order of the reports.
+    pub const ALL: [Mode; 6] = [
+        Mode::None,
+        Mode::Clamp,
+        Mode::Clamp99,
+        Mode::Clamp999,
+        Mode::Crow,
+        Mode::Reference,
+    ];
+
+    /// The name as the CLI spells it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Mode::None => "none",
+            Mode::Clamp => "clamp",
+            Mode::Clamp99 => "clamp99",
+            Mode::Clamp999 => "clamp99.9",
+            Mode::Crow => "crow",
+            Mode::Reference => "reference",
+        }
+    }
+
+    /// The core's method, with the reference grid `reference_grid × reference_grid`.
+    pub fn method(self, reference_grid: u8) -> Method {
+        use footprint_core::specular::{Clamp, Power};
+        match self {
+            Mode::None => Method::Point,
+            Mode::Clamp => Method::Clamp(Clamp::Conservative),
+            Mode::Clamp99 => Method::Clamp(Clamp::Aggressive(Power::P99)),
+            Mode::Clamp999 => Method::Clamp(Clamp::Aggressive(Power::P999)),
+            Mode::Crow => Method::Crow,
+            Mode::Reference => Method::Supersample(reference_grid),
+        }
+    }
+}
+
+impl std::fmt::Display for Mode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// One object: its triangles, its colour, and whether it is the paper's control (always shaded
+/// without antialiasing).
+#[derive(Clone, Debug)]
+pub struct Object {
+    /// Triangles in world coordinates.
+    pub triangles: Vec<Tri>,
+    /// Base colour.
+    pub color: Rgb,
+    /// Shade this object with [`Method::Point`] whatever the mode (Plate 5's left cone).
+    pub control: bool,
+}
+
+/// A scene: objects and the direction to the light.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The objects.
+    pub objects: Vec<Object>,
+    /// Direction to the light (unnormalised).
+    pub light: [f64; 3],
+}
+
+/// The direction to the light of every plate: from behind the viewer, so that the highlight
+/// runs down the middle of every cylinder whose axis lies in the image plane (Plate 1).
+pub const LIGHT: [f64; 3] = [0.0, 0.0, 1.0];
+
+/// The half-way vector between the light and the eye (`+z`): where the highlight peaks.
+fn half_vector() -> [f64; 3] {
+    let l = mesh::normalize(LIGHT);
+    mesh::normalize([l[0], l[1], l[2] + 1.0])
+}
+
+impl Scene {
+    /// The scene of `name`.
+    pub fn new(name: SceneName) -> Self {
+        let seg = 160;
+        let obj = |triangles: Vec<Tri>, color: Rgb| Object {
+            triangles,
+            color,
+            control: false,
+        };
+        let objects = match name {
+            SceneName::Plate1 => vec![
+                obj(
+                    cylinder([-0.4, 0.0, 0.0], 90.0, 0.0, 0.1, 1.6, seg),
+                    Rgb::new(150, 40, 40),
+                ),
+                obj(
+                    cylinder([0.4, 0.0, 0.0], 98.0, 0.0, 0.1, 1.6, seg),
+                    Rgb::new(40, 60, 160),
+                ),
+            ],
+            SceneName::Plate2 | SceneName::Plate4 => vec![
+                obj(
+                    cylinder([-0.05, -0.05, 0.0], 65.0, 0.0, 0.12, 1.3, seg),
+                    Rgb::new(150, 40, 40),
+                ),
+                obj(
+                    cylinder([0.6, -0.62, 0.0], 150.0, 0.0, 0.06, 0.7, seg),
+                    Rgb::new(40, 130, 60),
+                ),
+                obj(
+                    cylinder([-0.62, 0.66, 0.0], 20.0, 0.0, 0.03, 0.6, seg),
+                    Rgb::new(40, 60, 160),
+                ),
+                obj(
+                    cylinder([0.62, 0.66, 0.0], 105.0, 0.0, 0.012, 0.6, seg),
+                    Rgb::new(150, 130, 40),
+                ),
+            ],
+            SceneName::Plate5 => {
+                // Tilt the cones (apex away from the viewer) so that a generator's normal
+                // meets the half-way vector and the highlight runs from base to apex.
+                let (radius, height) = (0.2, 1.6);
+                let half_angle = f64::atan(radius / height);
+                let tilt = half_angle - half_vector()[1].asin();
+                // Both lean 6° in the image plane, so that the highlight crosses pixel columns.
+                let mut left = obj(
+                    mesh::rotate_z(
+                        cone([-0.48, -0.8, 0.0], tilt, radius, height, seg, 24),
+                        [-0.48, -0.8],
+                        6.0,
+                    ),
+                    Rgb::new(150, 40, 40),
+                );
+                left.control = true;
+                let right = obj(
+                    mesh::rotate_z(
+                        cone([0.48, -0.8, 0.0], tilt, radius, height, seg, 24),
+                        [0.48, -0.8],
+                        6.0,
+                    ),
+                    Rgb::new(150, 40, 40),
+                );
+                vec![left, right]
+            }
+        };
+        Self {
+            objects,
+            light: LIGHT,
+        }
+    }
+}
+
+/// What one rendered frame holds.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// Side of the square image, pixels.
+    pub size: u32,
+    /// The image, row-major from the top.
+    pub image: Vec<Rgb>,
+    /// Per pixel: detection flagged it (in the last fragment drawn there).
+    pub flagged: Vec<bool>,
+    /// Per pixel: some fragment was drawn there.
+    pub covered: Vec<bool>,
+    /// Fragments shaded (pixels drawn, counting overdraw).
+    pub fragments: u64,
+    /// Highlight evaluations spent on them.
+    pub shades: u64,
+}
+
+/// The surface of every plate object.
+pub fn material(color: Rgb) -> Result<Material> {
+    Ok(Material::new(
+        color,
+        0.15,
+        0.7,
+        Phong::new(SHININESS, K_SPEC)?,
+    )?)
+}
+
+/// Renders `scene` turned by `angle_deg` about the view axis into a `size × size` image with
+/// the core's tiler, shading every object by `mode` (a control object always by
+/// [`Method::Point`]); the reference uses a `reference_grid²` grid.
+pub fn render(
+    scene: &Scene,
+    size: u32,
+    angle_deg: f64,
+    mode: Mode,
+    reference_grid: u8,
+) -> Result<Frame> {
+    let n_px = (size * size) as usize;
+    let mut color = vec![BACKGROUND; n_px];
+    let mut depth = vec![u16::MAX; n_px];
+    let mut flagged = vec![false; n_px];
+    let mut covered = vec![false; n_px];
+    let mut target = Target::new(size, size, &mut color, &mut depth).context("image size")?;
+    target.clear(BACKGROUND);
+    let l = scene.light;
+    let light = Light::new(Normal::new(l[0], l[1], l[2])?, Normal::new(0.0, 0.0, 1.0)?);
+    let (s, c) = angle_deg.to_radians().sin_cos();
+    let rot = |v: [f64; 3]| [c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]];
+    let half = f64::from(size) / 2.0;
+    let (mut fragments, mut shades) = (0u64, 0u64);
+    for (id, object) in scene.objects.iter().enumerate() {
+        let material = material(object.color)?;
+        let method = if object.control {
+            Method::Point
+        } else {
+            mode.method(reference_grid)
+        };
+        let mut shader = |f: &raster::Fragment<'_>| {
+            let (rgb, spec) = specular::shade(f, &light, &material, method);
+            let i = (f.y() * size + f.x()) as usize;
+            flagged[i] = spec.aliased;
+            covered[i] = true;
+            shades += u64::from(spec.shades);
+            rgb
+        };
+        for tri in &object.triangles {
+            // Back faces: every vertex normal turned away from the eye (orthographic, +z).
+            if tri.iter().all(|v| rot(v.n)[2] < 0.0) {
+                continue;
+            }
+            let vertex = |vert: &Vert| -> Result<Vertex> {
+                let (p, n) = (rot(vert.p), rot(vert.n));
+                Ok(Vertex::new(
+                    (p[0] + 1.0) * half,
+                    (1.0 - p[1]) * half,
+                    ((2.0 - p[2]) / 4.0).clamp(0.0, 1.0),
+                    Normal::new(n[0], n[1], n[2])?,
+                )?)
+            };
+            let tri = Triangle {
+                v: [vertex(&tri[0])?, vertex(&tri[1])?, vertex(&tri[2])?],
+                id: id as u16,
+            };
+            fragments += u64::from(raster::draw(&mut target, &tri, &mut shader));
+        }
+    }
+    Ok(Frame {
+        size,
+        image: color,
+        flagged,
+        covered,
+        fragments,
+        shades,
+    })
+}

@@ -1,0 +1,156 @@
+//! `footprint specular`: plates, figures, measurements, and bad input (one line on stderr,
+//! exit code 2, no output file).
+
+use std::process::{Command, Output};
+
+fn footprint(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// Runs `footprint specular … --out DIR/out.png` that must fail, and checks the failure.
+fn fails(args: &[&str], names: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    let out_s = out.to_str().unwrap().to_string();
+    let mut all = vec!["specular"];
+    all.extend_from_slice(args);
+    all.extend(["--out", &out_s]);
+    let o = footprint(&all);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: stderr {stderr}");
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(
+        lines.len(),
+        1,
+        "{args:?}: expected one line, got {stderr:?}"
+    );
+    assert!(
+        stderr.contains(names),
+        "{args:?}: the error should name {names:?}: {stderr}"
+    );
+    assert!(!out.exists(), "{args:?}: an output file was left behind");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn unknown_scene_or_mode_is_one_line_and_exit_2() {
+    fails(&["--scene", "plate3", "--mode", "clamp"], "plate3");
+    fails(&["--scene", "plate1", "--mode", "clamp99.5"], "clamp99.5");
+    // clap's first line: "the following required arguments were not provided:".
+    fails(&["--scene", "plate1"], "required");
+    fails(&["--mode", "none"], "required");
+    fails(
+        &["--scene", "plate1", "--mode", "none", "--size", "0"],
+        "--size",
+    );
+    fails(&["--figure", "4"], "--figure");
+    fails(&[], "required");
+}
+
+fn png_size(path: &std::path::Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let w = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
+    let h = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
+    (w, h)
+}
+
+#[test]
+fn a_plate_is_written_as_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("plate.png");
+    let o = footprint(&[
+        "specular",
+        "--scene",
+        "plate4",
+        "--mode",
+        "clamp99.9",
+        "--size",
+        "48",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(png_size(&out), (48, 48));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("shades/pixel 1.000"), "{stdout}");
+}
+
+#[test]
+fn figure_2_csv_has_the_papers_point() {
+    let o = footprint(&["specular", "--figure", "2", "--csv"]);
+    assert!(o.status.success());
+    let csv = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines[0], "n,p90,p99,p999");
+    assert_eq!(lines.len(), 1001);
+    let row500: Vec<&str> = lines[500].split(',').collect();
+    assert_eq!(row500[0], "500");
+    assert_eq!(row500[2], "40");
+    assert_eq!(row500[3], "52");
+}
+
+#[test]
+fn figures_are_plotted() {
+    let dir = tempfile::tempdir().unwrap();
+    for fig in ["2", "3"] {
+        let out = dir.path().join(format!("fig{fig}.png"));
+        let o = footprint(&["specular", "--figure", fig, "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(png_size(&out), (800, 560));
+    }
+    let o = footprint(&["specular", "--figure", "3", "--csv"]);
+    let csv = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        csv.starts_with("m,n20,n40,n60,n80,n100,n120,n140\n"),
+        "{csv}"
+    );
+    // At m = 0 every clamped, normalised curve equals cos^160's component.
+    let first: Vec<f64> = csv
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .skip(1)
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert!(first.iter().all(|&r| (r - 1.0).abs() < 1e-9), "{first:?}");
+}
+
+#[test]
+fn measure_json_has_one_record_per_scene_and_mode() {
+    let o = footprint(&[
+        "specular",
+        "--measure",
+        "--json",
+        "--size",
+        "24",
+        "--frames",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let records = v.as_array().unwrap();
+    assert_eq!(records.len(), 3 * 6);
+    for r in records {
+        for field in [
+            "scene",
+            "mode",
+            "rmse",
+            "flicker",
+            "excess_flicker",
+            "shades_per_pixel",
+        ] {
+            assert!(r.get(field).is_some(), "missing {field}: {r}");
+        }
+        if r["mode"] == "reference" {
+            assert_eq!(r["rmse"].as_f64(), Some(0.0));
+        }
+        if r["mode"] == "clamp" {
+            assert_eq!(r["shades_per_pixel"].as_f64(), Some(1.0));
+        }
+    }
+}
