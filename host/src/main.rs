@@ -33,6 +33,8 @@ enum Command {
     Inspect(Box<InspectArgs>),
     /// Every terrain experiment, written as REPORT.md, index.html, images and plots.
     Report(Box<ReportArgs>),
+    /// Check a height map (`map info FILE`) or convert it to another format (`map convert IN OUT`).
+    Map(commands::MapCommandArgs),
     /// Print the lines the firmware (firmware/) prints, rendered on the host, for comparison.
     FirmwareReference(commands::FirmwareReferenceArgs),
 }
@@ -64,6 +66,7 @@ fn main() -> ExitCode {
         Command::Fly(args) => commands::fly(args),
         Command::Inspect(args) => commands::inspect(args),
         Command::Report(args) => commands::report(args),
+        Command::Map(args) => commands::map(args),
         Command::FirmwareReference(args) => commands::firmware_reference(args),
     };
     match result {

@@ -47,18 +47,23 @@ pub enum Switch {
 /// Where the terrain comes from.
 #[derive(Args, Clone, Debug)]
 pub struct MapArgs {
-    /// Height map: 8- or 16-bit greyscale PNG. Without it, the built-in procedural terrain.
-    #[arg(long, value_name = "HEIGHT.png")]
+    /// Height map: .png (8/16-bit grey), .hgt (SRTM), .asc (ESRI ASCII grid) or .tif/.tiff
+    /// (GeoTIFF), by extension (see --format). Without it, the built-in procedural terrain.
+    #[arg(long, value_name = "FILE")]
     pub dem: Option<PathBuf>,
+    /// The format of --dem, overriding its extension.
+    #[arg(long, value_enum, requires = "dem")]
+    pub format: Option<map::Format>,
     /// Colour map (RGB or palette PNG) of the same size as --dem; without it, a tint from height.
     #[arg(long, value_name = "COLOR.png", requires = "dem")]
     pub color: Option<PathBuf>,
-    /// Metres per voxel of --dem.
-    #[arg(long, default_value_t = 30.0)]
-    pub spacing: f64,
-    /// Metres per height unit of --dem.
-    #[arg(long = "height-scale", default_value_t = 0.1)]
-    pub height_scale: f64,
+    /// Metres per voxel of --dem [default: from the file; 30 for PNG].
+    #[arg(long, allow_hyphen_values = true)]
+    pub spacing: Option<f64>,
+    /// Metres per height unit of --dem [default: 0.1 for PNG; chosen to fit the heights for
+    /// other formats].
+    #[arg(long = "height-scale", allow_hyphen_values = true)]
+    pub height_scale: Option<f64>,
     /// Seed of the built-in terrain.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -71,12 +76,25 @@ impl MapArgs {
     /// Loads the map (or generates the built-in one).
     pub fn load(&self) -> Result<Map> {
         match &self.dem {
-            Some(dem) => Ok(map::load_png_pair(
-                dem,
-                self.color.as_deref(),
-                self.spacing,
-                self.height_scale,
-            )?),
+            Some(dem) => {
+                let loaded = map::load(
+                    dem,
+                    &map::LoadOptions {
+                        format: self.format,
+                        color: self.color.as_deref(),
+                        spacing_m: self.spacing,
+                        height_scale_m: self.height_scale,
+                    },
+                )?;
+                if loaded.voids_filled > 0 {
+                    eprintln!(
+                        "note: {}: {} voids filled from their neighbours",
+                        dem.display(),
+                        loaded.voids_filled
+                    );
+                }
+                Ok(loaded.map)
+            }
             None => {
                 if self.terrain_size < map::MIN_SIZE || self.terrain_size > map::MAX_SIDE {
                     bail!(
@@ -193,7 +211,8 @@ pub fn resolve_camera(
     };
     Camera::new(params).context("camera")?;
     params.eye_m = match cam.height {
-        Some(h) => h,
+        // --height is metres above the datum; the camera counts from height unit 0.
+        Some(h) => h - map.base_m,
         None => {
             let terrain = pyramid.terrain(options.lod)?;
             fit_first_hit(params, &terrain, options)?

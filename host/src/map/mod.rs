@@ -2,6 +2,10 @@
 //!
 //! Everything here produces a [`Map`]: an owned, row-major height field plus a colour per voxel,
 //! ready to lend to `footprint_core::terrain::Level`.
+//!
+//! Real elevation data (SRTM `.hgt`, ESRI ASCII grids, GeoTIFF) is read by [`load`]: one reader
+//! per format ([`hgt`], [`asc`], [`tiff`]) gives a [`Grid`] of metres, whose voids are filled
+//! ([`voids`]) and whose heights are mapped into 16-bit height units above [`Map::base_m`].
 
 use std::fmt;
 use std::io;
@@ -9,10 +13,18 @@ use std::path::Path;
 
 use footprint_core::Rgb;
 
+pub mod asc;
+pub mod format;
+pub mod grid;
+pub mod hgt;
 pub mod png;
 pub mod procedural;
+pub mod tiff;
 pub mod tint;
+pub mod voids;
 
+pub use self::format::{load, Format, LoadOptions, Loaded};
+pub use self::grid::Grid;
 pub use self::png::load_png_pair;
 pub use self::procedural::{procedural, DEFAULT_SIZE, MIN_SIZE};
 pub use self::tint::tint;
@@ -35,6 +47,9 @@ pub struct Map {
     pub spacing_m: f64,
     /// Metres per height unit.
     pub height_scale_m: f64,
+    /// Metres above the datum (sea level) of height unit 0: a height `u` is
+    /// `base_m + u · height_scale_m` metres above the datum. 0 for PNG and built-in maps.
+    pub base_m: f64,
     /// Human-readable origin: a file path or "built-in (seed N)".
     pub source: String,
 }
@@ -87,6 +102,7 @@ impl fmt::Debug for Map {
             .field("colors", &format_args!("[{} values]", self.colors.len()))
             .field("spacing_m", &self.spacing_m)
             .field("height_scale_m", &self.height_scale_m)
+            .field("base_m", &self.base_m)
             .field("source", &self.source)
             .finish()
     }
@@ -168,6 +184,49 @@ pub enum MapError {
         /// The rejected value.
         value: f64,
     },
+    /// A file that is not a valid file of its format: wrong magic bytes, a truncated file, a
+    /// malformed header, a declared size that disagrees with the file's length.
+    Malformed {
+        /// The map, e.g. `height map "N46E008.hgt"`.
+        what: String,
+        /// The format's name, e.g. `SRTM .hgt`.
+        format: &'static str,
+        /// What is wrong.
+        detail: String,
+    },
+    /// A valid file that uses a feature the readers do not support (several bands, a sample
+    /// format other than int16, uint16, int32 or float32, …).
+    Unsupported {
+        /// The map.
+        what: String,
+        /// What is not supported.
+        detail: String,
+    },
+    /// Every cell of the map is a void (no data): there is nothing to fill them from.
+    AllVoid {
+        /// The map.
+        what: String,
+        /// The number of cells.
+        cells: u64,
+    },
+    /// A height of +inf or −inf (a NaN is a void and is filled instead).
+    InfiniteHeight {
+        /// The map.
+        what: String,
+        /// Column of the first infinite height.
+        x: u32,
+        /// Row of the first infinite height (from the top).
+        y: u32,
+        /// The value, +inf or −inf.
+        value: f64,
+    },
+    /// Anything else about the map or an option that makes it unusable; `detail` says what.
+    Invalid {
+        /// The map or the option.
+        what: String,
+        /// What is wrong.
+        detail: String,
+    },
 }
 
 impl fmt::Display for MapError {
@@ -204,6 +263,23 @@ impl fmt::Display for MapError {
             MapError::BadParameter { option, value } => {
                 write!(f, "{option} must be a finite number greater than 0 (got {value})")
             }
+            MapError::Malformed {
+                what,
+                format,
+                detail,
+            } => write!(f, "{what}: not a valid {format} file ({})", one_line(detail)),
+            MapError::Unsupported { what, detail } => {
+                write!(f, "{what}: unsupported: {}", one_line(detail))
+            }
+            MapError::AllVoid { what, cells } => write!(
+                f,
+                "{what}: all {cells} cells are voids (no data): there is nothing to fill them from"
+            ),
+            MapError::InfiniteHeight { what, x, y, value } => write!(
+                f,
+                "{what}: height {value} at column {x}, row {y}: heights must be finite (NaN is a void)"
+            ),
+            MapError::Invalid { what, detail } => write!(f, "{what}: {}", one_line(detail)),
         }
     }
 }

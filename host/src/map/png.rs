@@ -72,8 +72,32 @@ pub fn load_png_pair(
         colors,
         spacing_m,
         height_scale_m,
+        base_m: 0.0,
         source,
     })
+}
+
+/// Loads a colour map `path` (RGB, RGBA, palette or greyscale PNG) that must be
+/// `width`×`height`, the size of the height map described by `heights` (e.g.
+/// `height map "N46E008.hgt"`, named in a size mismatch). The size is checked from the PNG
+/// header before any pixel data is decoded.
+pub fn load_color_map(
+    path: &Path,
+    width: u32,
+    height: u32,
+    heights: &str,
+) -> Result<Vec<Rgb>, MapError> {
+    let what = describe("colour map", path);
+    let png = PngFile::open(path, &what)?;
+    if (png.width, png.height) != (width, height) {
+        return Err(MapError::SizeMismatch {
+            color: what,
+            color_size: (png.width, png.height),
+            heights: heights.to_owned(),
+            heights_size: (width, height),
+        });
+    }
+    png.decode_colors()
 }
 
 /// Rejects scale parameters that are not finite and positive.

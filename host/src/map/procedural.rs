@@ -74,6 +74,7 @@ pub fn procedural(seed: u64, size: u32) -> Map {
         colors,
         spacing_m: SPACING_M,
         height_scale_m: HEIGHT_SCALE_M,
+        base_m: 0.0,
         source: format!("built-in (seed {seed})"),
     }
 }

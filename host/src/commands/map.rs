@@ -1,0 +1,245 @@
+//! `footprint map info FILE` and `footprint map convert IN OUT`: check a height map before
+//! rendering it, and convert between formats.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::{Args, Subcommand};
+use footprint_core::terrain::{next_size, MAX_LEVELS};
+use serde::Serialize;
+
+use crate::map::{self, describe, Format, LoadOptions, Loaded};
+use crate::report::write_atomic;
+
+/// `footprint map`.
+#[derive(Args, Debug)]
+pub struct MapCommandArgs {
+    /// What to do.
+    #[command(subcommand)]
+    pub action: MapAction,
+}
+
+/// The `map` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum MapAction {
+    /// Print a height map's format, size, spacing, height range, voids filled and pyramid levels.
+    Info(InfoArgs),
+    /// Convert a height map to another format: .asc, .png (16-bit grey height units), .hgt
+    /// (1201² or 3601² maps) or .tif (float32 metres).
+    Convert(ConvertArgs),
+}
+
+/// How to read the input map (as for `render --dem`).
+#[derive(Args, Debug, Clone)]
+pub struct ReadArgs {
+    /// The input's format, overriding its extension.
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+    /// Metres per voxel [default: from the file; 30 for PNG].
+    #[arg(long, allow_hyphen_values = true)]
+    pub spacing: Option<f64>,
+    /// Metres per height unit [default: 0.1 for PNG; chosen to fit the heights for other
+    /// formats].
+    #[arg(long = "height-scale", allow_hyphen_values = true)]
+    pub height_scale: Option<f64>,
+}
+
+impl ReadArgs {
+    fn load(&self, path: &Path) -> Result<Loaded> {
+        Ok(map::load(
+            path,
+            &LoadOptions {
+                format: self.format,
+                color: None,
+                spacing_m: self.spacing,
+                height_scale_m: self.height_scale,
+            },
+        )?)
+    }
+}
+
+/// `footprint map info`.
+#[derive(Args, Debug)]
+pub struct InfoArgs {
+    /// The height map: .png, .hgt, .asc, .tif or .tiff.
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// How to read it.
+    #[command(flatten)]
+    pub read: ReadArgs,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `footprint map convert`.
+#[derive(Args, Debug)]
+pub struct ConvertArgs {
+    /// The input height map.
+    #[arg(value_name = "IN")]
+    pub input: PathBuf,
+    /// The output file; its format comes from its extension (see --to).
+    #[arg(value_name = "OUT")]
+    pub output: PathBuf,
+    /// How to read the input.
+    #[command(flatten)]
+    pub read: ReadArgs,
+    /// The output's format, overriding its extension.
+    #[arg(long, value_enum)]
+    pub to: Option<Format>,
+}
+
+/// What `map info` prints, as JSON.
+#[derive(Serialize, Debug)]
+struct InfoJson {
+    file: String,
+    format: String,
+    detail: String,
+    width: u32,
+    height: u32,
+    spacing_m: f64,
+    spacing_note: String,
+    min_m: f64,
+    max_m: f64,
+    base_m: f64,
+    height_scale_m: f64,
+    min_unit: u16,
+    max_unit: u16,
+    voids_filled: u64,
+    pyramid_levels: usize,
+}
+
+/// The number of pyramid levels of a `width`×`height` map (level 0 down to 1×1, at most
+/// `MAX_LEVELS`), as `Pyramid::build` makes them.
+pub fn pyramid_levels(width: u32, height: u32) -> usize {
+    let (mut w, mut h, mut n) = (width, height, 1);
+    while n < MAX_LEVELS {
+        match next_size(w, h) {
+            Some((nw, nh)) => {
+                (w, h) = (nw, nh);
+                n += 1;
+            }
+            None => break,
+        }
+    }
+    n
+}
+
+/// Runs `footprint map …`.
+pub fn map(args: &MapCommandArgs) -> Result<()> {
+    match &args.action {
+        MapAction::Info(a) => info(a),
+        MapAction::Convert(a) => convert(a),
+    }
+}
+
+fn info(args: &InfoArgs) -> Result<()> {
+    let loaded = args.read.load(&args.file)?;
+    let m = &loaded.map;
+    let (lo, hi) = m.height_range();
+    let levels = pyramid_levels(m.width, m.height);
+    let json = InfoJson {
+        file: args.file.display().to_string(),
+        format: loaded.format.to_string(),
+        detail: loaded.detail.clone(),
+        width: m.width,
+        height: m.height,
+        spacing_m: m.spacing_m,
+        spacing_note: loaded.spacing_note.clone(),
+        min_m: loaded.range_m.0,
+        max_m: loaded.range_m.1,
+        base_m: m.base_m,
+        height_scale_m: m.height_scale_m,
+        min_unit: lo,
+        max_unit: hi,
+        voids_filled: loaded.voids_filled,
+        pyramid_levels: levels,
+    };
+    if args.json {
+        println!("{}", serde_json::to_string(&json)?);
+        return Ok(());
+    }
+    println!("file      {}", json.file);
+    println!("format    {} ({})", json.format, json.detail);
+    println!("size      {} × {} ({} cells)", m.width, m.height, m.len());
+    println!("spacing   {:.3} m ({})", m.spacing_m, json.spacing_note);
+    println!(
+        "heights   {:.2} to {:.2} m (range {:.2} m)",
+        json.min_m,
+        json.max_m,
+        json.max_m - json.min_m
+    );
+    println!(
+        "stored    height units of {} m above {} m: {lo} to {hi}",
+        m.height_scale_m, m.base_m
+    );
+    println!(
+        "voids     {} filled from their neighbours",
+        loaded.voids_filled
+    );
+    println!(
+        "pyramid   {levels} levels ({}×{} down to 1×1)",
+        m.width, m.height
+    );
+    Ok(())
+}
+
+fn convert(args: &ConvertArgs) -> Result<()> {
+    let out_what = describe("output", &args.output);
+    // The output format first: a wrong name fails before the input is read.
+    let to = Format::resolve(args.to, &args.output, &out_what)?;
+    let loaded = args.read.load(&args.input)?;
+    let m = &loaded.map;
+    map::format::check_writable(m, to, &out_what)?;
+    write_atomic(&args.output, |w| {
+        map::format::write(m, to, w, &out_what)?;
+        Ok(())
+    })
+    .with_context(|| format!("converting {}", describe("height map", &args.input)))?;
+    println!(
+        "wrote {}: {to}, {}×{}, heights {:.2} to {:.2} m, spacing {:.3} m, {} voids filled",
+        args.output.display(),
+        m.width,
+        m.height,
+        loaded.range_m.0,
+        loaded.range_m.1,
+        m.spacing_m,
+        loaded.voids_filled
+    );
+    match to {
+        Format::Png => println!(
+            "the PNG holds height units: render it with --spacing {} --height-scale {} (unit 0 is \
+             {} m above the datum)",
+            m.spacing_m, m.height_scale_m, m.base_m
+        ),
+        Format::Hgt => println!(
+            "a .hgt tile's spacing comes from its name (e.g. N46E008.hgt); else give --spacing {}",
+            m.spacing_m
+        ),
+        Format::Asc | Format::Tiff => {}
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pyramid_levels_match_the_pyramid() {
+        for (w, h) in [(1, 1), (2, 2), (64, 64), (65, 17), (1201, 1201)] {
+            let map = crate::map::Map {
+                width: w,
+                height: h,
+                heights: vec![0; (w * h) as usize],
+                colors: vec![footprint_core::Rgb::default(); (w * h) as usize],
+                spacing_m: 30.0,
+                height_scale_m: 0.1,
+                base_m: 0.0,
+                source: String::new(),
+            };
+            let p = crate::pyramid::Pyramid::build(&map).unwrap();
+            assert_eq!(pyramid_levels(w, h), p.len(), "{w}×{h}");
+        }
+    }
+}

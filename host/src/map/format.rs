@@ -1,0 +1,348 @@
+//! Map formats: chosen by file extension (or `--format`), read into a [`Map`], and written.
+
+use std::fmt;
+use std::io::{Read, Write};
+use std::path::Path;
+
+use footprint_core::terrain::Scale;
+use image::codecs::png::PngEncoder;
+use image::{ExtendedColorType, ImageEncoder};
+
+use super::grid::{Grid, Spacing};
+use super::png::{load_color_map, load_png_pair};
+use super::{asc, describe, hgt, tiff, tint::tint, Map, MapError};
+
+/// The spacing of a PNG height map, or of a TIFF without `ModelPixelScale`, when `--spacing`
+/// is not given: metres per voxel.
+pub const DEFAULT_SPACING_M: f64 = 30.0;
+
+/// The height scale of a PNG height map when `--height-scale` is not given: metres per unit.
+pub const DEFAULT_PNG_HEIGHT_SCALE_M: f64 = 0.1;
+
+/// A height map format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+pub enum Format {
+    /// 8- or 16-bit greyscale PNG (`.png`): height units, with `--spacing` and `--height-scale`.
+    Png,
+    /// SRTM tile (`.hgt`): big-endian int16 metres, 1201² or 3601² cells.
+    Hgt,
+    /// ESRI ASCII grid (`.asc`).
+    Asc,
+    /// GeoTIFF or TIFF (`.tif`, `.tiff`): one band of int16, uint16, int32 or float32.
+    Tiff,
+}
+
+impl Format {
+    /// Every format.
+    pub const ALL: [Format; 4] = [Format::Png, Format::Hgt, Format::Asc, Format::Tiff];
+
+    /// The format of a file with this extension (case-insensitive), if known.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "png" => Some(Format::Png),
+            "hgt" => Some(Format::Hgt),
+            "asc" => Some(Format::Asc),
+            "tif" | "tiff" => Some(Format::Tiff),
+            _ => None,
+        }
+    }
+
+    /// `format` if given, else the format from the extension of `path`; an error naming the
+    /// file (`what`) if neither says.
+    pub fn resolve(format: Option<Format>, path: &Path, what: &str) -> Result<Format, MapError> {
+        format.or_else(|| Format::from_path(path)).ok_or_else(|| {
+            let ext = path
+                .extension()
+                .map(|e| format!("extension .{}", e.to_string_lossy()))
+                .unwrap_or_else(|| "no extension".to_owned());
+            MapError::Invalid {
+                what: what.to_owned(),
+                detail: format!(
+                    "unknown map format ({ext}): name it .png, .hgt, .asc, .tif or .tiff, or give \
+                     --format png|hgt|asc|tiff"
+                ),
+            }
+        })
+    }
+
+    /// The name used by `--format`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Png => "png",
+            Format::Hgt => "hgt",
+            Format::Asc => "asc",
+            Format::Tiff => "tiff",
+        }
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How to load a map.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LoadOptions<'a> {
+    /// The format; `None` to choose it by extension.
+    pub format: Option<Format>,
+    /// A colour map (PNG) of the same size; `None` to colour by [`tint`].
+    pub color: Option<&'a Path>,
+    /// `--spacing`: metres per voxel. `None`: the file's own (hgt: from the name; asc:
+    /// `cellsize`; TIFF: `ModelPixelScale`), else [`DEFAULT_SPACING_M`].
+    pub spacing_m: Option<f64>,
+    /// `--height-scale`: metres per height unit. `None`: PNG [`DEFAULT_PNG_HEIGHT_SCALE_M`];
+    /// other formats, chosen to fit the heights (see [`Grid::into_heights`]).
+    pub height_scale_m: Option<f64>,
+}
+
+/// A loaded map and what was learnt on the way.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    /// The map.
+    pub map: Map,
+    /// Its format.
+    pub format: Format,
+    /// The file's own description, e.g. `SRTM 1″ tile, big-endian int16 metres`.
+    pub detail: String,
+    /// Where the spacing came from.
+    pub spacing_note: String,
+    /// Voids filled from their neighbours.
+    pub voids_filled: u64,
+    /// Lowest and highest heights in metres, after void filling and before rounding to height
+    /// units.
+    pub range_m: (f64, f64),
+}
+
+/// Checks a `--spacing` or `--height-scale` value.
+fn check_option(option: &'static str, value: Option<f64>) -> Result<(), MapError> {
+    match value {
+        Some(v) if !(v.is_finite() && v > 0.0) => Err(MapError::BadParameter { option, value: v }),
+        _ => Ok(()),
+    }
+}
+
+/// Loads the height map `path` in any supported format (see [`Format`]), with its colour map
+/// if given, else coloured by [`tint`].
+///
+/// Every error is one line naming the file or the option; sizes are checked before the data is
+/// allocated.
+pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
+    check_option("--spacing", opts.spacing_m)?;
+    check_option("--height-scale", opts.height_scale_m)?;
+    let what = describe("height map", path);
+    let meta = std::fs::metadata(path).map_err(|error| MapError::Io {
+        what: what.clone(),
+        error,
+    })?;
+    if meta.is_dir() {
+        return Err(MapError::IsDirectory { what });
+    }
+    let format = Format::resolve(opts.format, path, &what)?;
+
+    let (grid, detail, file_spacing) = match format {
+        Format::Png => {
+            let spacing = opts.spacing_m.unwrap_or(DEFAULT_SPACING_M);
+            let scale = opts.height_scale_m.unwrap_or(DEFAULT_PNG_HEIGHT_SCALE_M);
+            check_scale(&what, spacing, scale)?;
+            let map = load_png_pair(path, opts.color, spacing, scale)?;
+            let (lo, hi) = map.height_range();
+            let range_m = (f64::from(lo) * scale, f64::from(hi) * scale);
+            return Ok(Loaded {
+                map,
+                format,
+                detail: "PNG greyscale height units".to_owned(),
+                spacing_note: spacing_note(opts.spacing_m, "the default for PNG"),
+                voids_filled: 0,
+                range_m,
+            });
+        }
+        Format::Hgt => {
+            // The spacing comes from the name: check it before reading the data.
+            let side = hgt::side_from_len(meta.len()).unwrap_or(0);
+            let spacing = match opts.spacing_m {
+                Some(_) => None,
+                None => match hgt::spacing(path, side) {
+                    Some(s) => Some(s),
+                    None if side == 0 => None, // the reader reports the odd size
+                    None => {
+                        return Err(MapError::Invalid {
+                            what,
+                            detail: "cannot tell the tile's latitude from its name (expected \
+                                     e.g. N46E008.hgt): rename it or give --spacing"
+                                .to_owned(),
+                        })
+                    }
+                },
+            };
+            let (grid, detail) = hgt::read(path, &what).map_err(|e| hint(e, path))?;
+            (grid, detail, spacing)
+        }
+        Format::Asc => {
+            let (grid, _, spacing) = asc::read(path, &what).map_err(|e| hint(e, path))?;
+            (grid, asc::FORMAT.to_owned(), Some(spacing))
+        }
+        Format::Tiff => {
+            let (grid, info) = tiff::read(path, &what).map_err(|e| hint(e, path))?;
+            (grid, info.detail, info.spacing)
+        }
+    };
+    let spacing = match (opts.spacing_m, file_spacing) {
+        (Some(s), _) => Spacing::metres(s, "--spacing"),
+        (None, Some(s)) => s,
+        (None, None) => Spacing::metres(
+            DEFAULT_SPACING_M,
+            "the default: the file gives no pixel size (give --spacing)",
+        ),
+    };
+    from_grid(grid, path, &what, format, detail, spacing, opts)
+}
+
+/// The note for a spacing that is either `--spacing` or a default.
+fn spacing_note(given: Option<f64>, default: &str) -> String {
+    match given {
+        Some(_) => "--spacing".to_owned(),
+        None => default.to_owned(),
+    }
+}
+
+/// Checks that the spacing and the height scale are within the core's range.
+fn check_scale(what: &str, spacing_m: f64, height_scale_m: f64) -> Result<(), MapError> {
+    Scale::new(spacing_m, height_scale_m)
+        .map(|_| ())
+        .map_err(|e| MapError::Invalid {
+            what: what.to_owned(),
+            detail: format!(
+                "a spacing of {spacing_m} m with {height_scale_m} m per height unit is out of \
+                 range ({e})"
+            ),
+        })
+}
+
+/// Turns a grid of metres into a map: heights into units, colours from `opts.color` or tinted.
+fn from_grid(
+    grid: Grid,
+    path: &Path,
+    what: &str,
+    format: Format,
+    detail: String,
+    spacing: Spacing,
+    opts: &LoadOptions<'_>,
+) -> Result<Loaded, MapError> {
+    let (width, height) = (grid.width, grid.height);
+    let h = grid.into_heights(what, opts.height_scale_m)?;
+    check_scale(what, spacing.spacing_m, h.height_scale_m)?;
+    let colors = match opts.color {
+        Some(c) => load_color_map(c, width, height, what)?,
+        None => tint(
+            width,
+            height,
+            &h.heights,
+            spacing.spacing_m,
+            h.height_scale_m,
+        ),
+    };
+    let source = match opts.color {
+        Some(c) => format!("{} (colours {})", path.display(), c.display()),
+        None => path.display().to_string(),
+    };
+    Ok(Loaded {
+        map: Map {
+            width,
+            height,
+            heights: h.heights,
+            colors,
+            spacing_m: spacing.spacing_m,
+            height_scale_m: h.height_scale_m,
+            base_m: h.base_m,
+            source,
+        },
+        format,
+        detail,
+        spacing_note: spacing.note,
+        voids_filled: h.voids_filled,
+        range_m: (h.min_m, h.max_m),
+    })
+}
+
+/// Writes `map`'s heights to `out` in `format`: `.asc` and TIFF in metres, `.hgt` in whole
+/// metres (1201² or 3601² maps only), PNG as 16-bit grey height units (render it with
+/// `--spacing` and `--height-scale` set to the map's). `what` names the output in errors.
+pub fn write(map: &Map, format: Format, out: &mut dyn Write, what: &str) -> Result<(), MapError> {
+    match format {
+        Format::Asc => asc::write(map, out, what),
+        Format::Hgt => hgt::write(map, out, what),
+        Format::Tiff => tiff::write(map, out, what),
+        Format::Png => {
+            // The encoder takes 16-bit samples in native byte order.
+            let bytes: Vec<u8> = map.heights.iter().flat_map(|h| h.to_ne_bytes()).collect();
+            let mut buf = Vec::new();
+            PngEncoder::new(&mut buf)
+                .write_image(&bytes, map.width, map.height, ExtendedColorType::L16)
+                .map_err(|e| MapError::Invalid {
+                    what: what.to_owned(),
+                    detail: format!("cannot encode the PNG: {e}"),
+                })?;
+            out.write_all(&buf).map_err(|error| MapError::Io {
+                what: what.to_owned(),
+                error,
+            })
+        }
+    }
+}
+
+/// Checks, before anything is written, that `map` can be written in `format` (`.hgt` needs a
+/// 1201² or 3601² map with heights in ±32767 m).
+pub fn check_writable(map: &Map, format: Format, what: &str) -> Result<(), MapError> {
+    match format {
+        Format::Hgt => hgt::check_writable(map, what),
+        _ => Ok(()),
+    }
+}
+
+/// Adds what the file looks like to a [`MapError::Malformed`] error, when its first bytes say it
+/// is another format (e.g. a PNG named `.tif`).
+fn hint(e: MapError, path: &Path) -> MapError {
+    match e {
+        MapError::Malformed {
+            what,
+            format,
+            detail,
+        } => {
+            let detail = match sniff(path) {
+                Some(looks) if !looks.contains(format) => {
+                    format!("{detail}; it looks like {looks}")
+                }
+                _ => detail,
+            };
+            MapError::Malformed {
+                what,
+                format,
+                detail,
+            }
+        }
+        other => other,
+    }
+}
+
+/// What a file looks like from its first bytes: `a PNG file`, `a TIFF file`,
+/// `an ESRI ASCII grid`, or `None`.
+pub fn sniff(path: &Path) -> Option<&'static str> {
+    let mut head = [0u8; 8];
+    let mut f = std::fs::File::open(path).ok()?;
+    let n = f.read(&mut head).ok()?;
+    let head = &head[..n];
+    if head.starts_with(b"\x89PNG") {
+        Some("a PNG file")
+    } else if head.starts_with(b"II*\0") || head.starts_with(b"MM\0*") {
+        Some("a TIFF file")
+    } else if head.len() >= 5 && head[..5].eq_ignore_ascii_case(b"ncols")
+        || head.len() >= 5 && head[..5].eq_ignore_ascii_case(b"nrows")
+    {
+        Some("an ESRI ASCII grid")
+    } else {
+        None
+    }
+}

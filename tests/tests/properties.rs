@@ -1,0 +1,494 @@
+//! Property tests of footprint-core on random terrains and cameras (issue 5, item 5).
+//!
+//! Every case is a random map (1–40 voxels a side, heights from a few values with many exact
+//! ties up to the whole 16-bit range, random colours), a random scale, and a random camera
+//! (anywhere over or beside the mirrored map, the eye from below the ground to far above it,
+//! any heading, pitch in ±89.9°, field of view 0.01°–179°, 1–10 pixels a side, any far
+//! distance), with and without the pyramid. Properties:
+//!
+//! * AS and LI pixels lie within the range of the colours they sampled;
+//! * AS coverage M/V is 1;
+//! * the hits satisfy the foundation issue's identities (hits = P for PS and LI, N·P for SS_N
+//!   when a column is all terrain, M′ + P − 1 per column for AS, and the per-hit counts);
+//! * nothing panics and nothing overflows (the tests run in the dev profile, with overflow
+//!   checks on);
+//! * rendering the same input twice gives identical bytes.
+
+mod common;
+
+use common::SKY;
+use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::column;
+use footprint_core::cost::{Cost, Counts, NoCost, Tally};
+use footprint_core::march::{Color16, March};
+use footprint_core::num::{Coord, Weight};
+use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::{Level, Scale, Terrain};
+use footprint_core::visibility::count_visible;
+use footprint_core::Rgb;
+use proptest::prelude::*;
+use proptest::test_runner::Config;
+
+/// A random terrain, its scale and a camera.
+#[derive(Clone, Debug)]
+struct Case {
+    w: u32,
+    h: u32,
+    heights: Vec<u16>,
+    colors: Vec<Rgb>,
+    spacing_m: f64,
+    height_scale_m: f64,
+    camera: CameraParams,
+    lod: bool,
+}
+
+/// Heights: either random over `0..=top`, or drawn from a palette of at most 4 values (flat
+/// areas and exact ties between voxel tops and rays).
+fn heights(n: usize) -> impl Strategy<Value = Vec<u16>> {
+    let top = prop_oneof![Just(0u16), Just(1), Just(30), Just(1000), Just(u16::MAX)];
+    let random = top.prop_flat_map(move |top| proptest::collection::vec(0..=top, n));
+    let palette = (
+        proptest::collection::vec(any::<u16>().prop_map(|h| h % 2000), 1..=4),
+        proptest::collection::vec(any::<u8>(), n),
+    )
+        .prop_map(|(p, idx)| idx.iter().map(|&i| p[i as usize % p.len()]).collect());
+    prop_oneof![random, palette]
+}
+
+fn case() -> impl Strategy<Value = Case> {
+    (1u32..=40, 1u32..=40)
+        .prop_flat_map(|(w, h)| {
+            let n = (w * h) as usize;
+            (
+                Just((w, h)),
+                heights(n),
+                proptest::collection::vec(any::<(u8, u8, u8)>(), n),
+                prop_oneof![Just(1.0f64), Just(30.0), 0.05f64..200.0],
+                prop_oneof![Just(0.1f64), Just(1.0), 0.01f64..10.0],
+            )
+        })
+        .prop_flat_map(|((w, h), heights, colors, spacing_m, height_scale_m)| {
+            let (wm, hm) = (f64::from(w) * spacing_m, f64::from(h) * spacing_m);
+            let top_m = f64::from(*heights.iter().max().unwrap_or(&0)) * height_scale_m;
+            let camera = (
+                -wm..2.0 * wm,
+                -hm..2.0 * hm,
+                prop_oneof![-20.0..top_m + 2.0, -1000.0..top_m * 3.0 + 1000.0],
+                0.0f64..360.0,
+                prop_oneof![-89.9f64..89.9, Just(89.9), Just(-89.9), Just(0.0)],
+                prop_oneof![0.01f64..179.0, Just(0.01), Just(179.0), Just(10.0)],
+                (1u32..=10, 1u32..=10),
+                prop_oneof![1.0f64..50.0, 50.0..3000.0].prop_map(move |f| f * spacing_m),
+            )
+                .prop_map(
+                    |(x_m, y_m, eye_m, heading_deg, pitch_deg, fov_deg, (width, height), far_m)| {
+                        CameraParams {
+                            x_m,
+                            y_m,
+                            eye_m,
+                            heading_deg,
+                            pitch_deg,
+                            fov_deg,
+                            width,
+                            height,
+                            far_m,
+                        }
+                    },
+                );
+            (
+                Just((w, h, heights, colors, spacing_m, height_scale_m)),
+                camera,
+                any::<bool>(),
+            )
+        })
+        .prop_map(
+            |((w, h, heights, colors, spacing_m, height_scale_m), camera, lod)| Case {
+                w,
+                h,
+                heights,
+                colors: colors
+                    .into_iter()
+                    .map(|(r, g, b)| Rgb::new(r, g, b))
+                    .collect(),
+                spacing_m,
+                height_scale_m,
+                camera,
+                lod,
+            },
+        )
+}
+
+/// The case's pyramid, owned (built by the core's `Level::build_next`).
+fn pyramid(case: &Case) -> common::Map {
+    common::Map::from_fn("prop", case.w, case.h, |x, y| {
+        let i = (y * i64::from(case.w) + x) as usize;
+        (case.heights[i], case.colors[i])
+    })
+}
+
+/// Runs `f` on the case's terrain and frame; `None` if the core refuses the scale, the camera
+/// or the frame (a `Result`, never a panic), which the properties skip.
+fn with_case<R>(case: &Case, f: impl FnOnce(&Terrain<'_>, &Frame<'_>) -> R) -> Option<R> {
+    let map = pyramid(case);
+    let scale = Scale::new(case.spacing_m, case.height_scale_m).ok()?;
+    let l0 = &map.levels[0];
+    let mut terrain = Terrain::new(Level::new(l0.w, l0.h, &l0.heights, &l0.colors).ok()?, scale);
+    for l in &map.levels[1..] {
+        terrain
+            .push_level(Level::new(l.w, l.h, &l.heights, &l.colors).ok()?)
+            .ok()?;
+    }
+    let camera = Camera::new(case.camera).ok()?;
+    let mut rows = vec![Coord::ZERO; camera.height() + 1];
+    let mut cols = vec![Column::default(); camera.width()];
+    let options = Options {
+        sky: SKY,
+        lod: case.lod,
+        columns_per_pixel: 1,
+    };
+    let frame = Frame::new(&camera, &terrain, options, &mut rows, &mut cols).ok()?;
+    Some(f(&terrain, &frame))
+}
+
+/// Renders every column with a fresh sampler; returns the columns, each bottom to top.
+fn columns<S: Sampler + Clone, C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    sampler: &S,
+    cost: &mut C,
+) -> Vec<Vec<Rgb>> {
+    common::render_columns(frame, terrain, sampler, cost)
+}
+
+/// Per channel, the lowest and highest 8.8 value sampled into a pixel.
+type Range = [(u16, u16); 3];
+
+/// Records, per pixel, the range of the 8.8 colours sampled into it (terrain and sky).
+#[derive(Default)]
+struct Ranges {
+    col: usize,
+    row: usize,
+    height: usize,
+    /// `[column][row]`: per channel (min, max).
+    ranges: Vec<Vec<Option<Range>>>,
+}
+
+impl Ranges {
+    fn new(width: usize, height: usize) -> Self {
+        Self {
+            height,
+            ranges: vec![vec![None; height]; width],
+            ..Self::default()
+        }
+    }
+
+    fn add(&mut self, c: Color16) {
+        let slot = &mut self.ranges[self.col][self.row.min(self.height - 1)];
+        let r = slot.get_or_insert([(u16::MAX, 0); 3]);
+        for (ch, (lo, hi)) in r.iter_mut().enumerate() {
+            *lo = (*lo).min(c[ch]);
+            *hi = (*hi).max(c[ch]);
+        }
+    }
+
+    /// Checks that every pixel lies in the range of its samples, rounded as `to_rgb` rounds,
+    /// and that a pixel without samples is the sky.
+    fn check(&self, image: &[Vec<Rgb>], mode: &str) -> Result<(), TestCaseError> {
+        for (c, column) in image.iter().enumerate() {
+            for (i, px) in column.iter().enumerate() {
+                let got = [px.r, px.g, px.b];
+                match self.ranges[c][i] {
+                    None => prop_assert_eq!(*px, SKY, "{} column {} row {}: no sample", mode, c, i),
+                    Some(r) => {
+                        for ch in 0..3 {
+                            let lo = ((u32::from(r[ch].0) + 128) >> 8).min(255);
+                            let hi = ((u32::from(r[ch].1) + 128) >> 8).min(255);
+                            let v = u32::from(got[ch]);
+                            prop_assert!(
+                                lo <= v && v <= hi,
+                                "{} column {} row {} channel {}: {} outside the samples' {}..={}",
+                                mode,
+                                c,
+                                i,
+                                ch,
+                                v,
+                                lo,
+                                hi
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Cost for Ranges {
+    fn begin_column(&mut self, column: usize) {
+        self.col = column;
+    }
+    fn begin_pixel(&mut self, row: usize) {
+        self.row = row;
+    }
+    fn sample(&mut self, _: &March<'_, '_>, color: Color16, _: Weight) {
+        self.add(color);
+    }
+    fn sky_sample(&mut self, color: Color16, _: Weight) {
+        self.add(color);
+    }
+}
+
+/// The counters of a frame, per column, with `V` from the visibility pass.
+fn tallies<S: Sampler + Clone>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    sampler: &S,
+) -> (Tally, Vec<Tally>, Vec<Vec<Rgb>>) {
+    let mut cols = vec![Tally::default(); frame.width()];
+    let mut counts = Counts::new(&mut cols);
+    let image = columns(frame, terrain, sampler, &mut counts);
+    count_visible(frame, terrain, &mut counts);
+    (counts.total, counts.columns().to_vec(), image)
+}
+
+/// PS and LI: one hit and one sample per pixel where terrain is visible, of visible voxels only.
+fn check_one_sample_per_pixel(t: &Tally, cols: &[Tally], mode: &str) -> Result<(), TestCaseError> {
+    prop_assert_eq!(t.hits, t.p, "{}: hits = P: {:?}", mode, t);
+    prop_assert_eq!(t.c, t.p, "{}: one sample per visible pixel: {:?}", mode, t);
+    prop_assert!(t.m <= t.c, "{}: {:?}", mode, t);
+    for (c, ct) in cols.iter().enumerate() {
+        prop_assert!(
+            ct.m <= ct.v,
+            "{} column {}: samples only visible voxels: {:?}",
+            mode,
+            c,
+            ct
+        );
+    }
+    Ok(())
+}
+
+/// SS_N: N sub-samples per terrain pixel, each one hit, one accumulate and one sample.
+fn check_super(t: &Tally, cols: &[Tally], n: u64, mode: &str) -> Result<(), TestCaseError> {
+    prop_assert_eq!(t.d, t.hits, "{}: d = hits: {:?}", mode, t);
+    prop_assert_eq!(t.c, t.hits, "{}: every hit samples: {:?}", mode, t);
+    prop_assert_eq!(
+        t.shifts,
+        3 * t.p,
+        "{}: one shift per channel per pixel: {:?}",
+        mode,
+        t
+    );
+    for (c, ct) in cols.iter().enumerate() {
+        // Every terrain pixel takes N samples, except the column's last one, whose missing
+        // sub-samples are sky when the walk ends inside it.
+        prop_assert!(
+            ct.hits <= n * ct.p,
+            "{} column {}: hits ≤ N·P: {:?}",
+            mode,
+            c,
+            ct
+        );
+        prop_assert!(
+            ct.hits > n * ct.p.saturating_sub(1) || ct.p == 0,
+            "{} column {}: hits > N·(P − 1): {:?}",
+            mode,
+            c,
+            ct
+        );
+    }
+    Ok(())
+}
+
+/// AS: the per-hit counts, M′ ≤ hits ≤ M′ + P − 1 per column, and M′ = V.
+fn check_area(t: &Tally, cols: &[Tally], width: u64) -> Result<(), TestCaseError> {
+    prop_assert_eq!(t.c, t.hits, "AS: every hit samples: {:?}", t);
+    prop_assert_eq!(
+        t.top_divisions + t.p,
+        t.d_prime,
+        "AS: top divisions: {:?}",
+        t
+    );
+    prop_assert!(
+        t.d_prime >= t.hits && t.d_prime - t.hits <= width,
+        "AS: d′: {:?}",
+        t
+    );
+    prop_assert_eq!((t.d, t.shifts), (0, 0), "AS: {:?}", t);
+    for (c, ct) in cols.iter().enumerate() {
+        prop_assert_eq!(ct.m, ct.v, "AS column {}: coverage M′/V = 1: {:?}", c, ct);
+        if ct.p == 0 {
+            prop_assert_eq!((ct.hits, ct.m), (0, 0), "AS column {}: {:?}", c, ct);
+        } else {
+            // hits = M′ + P − 1 (every pixel after the first re-hits the voxel that finished the
+            // pixel below), less the re-hits that an exact tie with R_{i+1} saves.
+            prop_assert!(
+                ct.m <= ct.hits && ct.hits < ct.m + ct.p,
+                "AS column {}: M′ ≤ hits ≤ M′ + P − 1: {:?}",
+                c,
+                ct
+            );
+        }
+    }
+    prop_assert_eq!(t.m, t.v, "AS: coverage M′/V = 1: {:?}", t);
+    Ok(())
+}
+
+/// The whole image, row-major from the top, through `column::render` with `NoCost`.
+fn image<S: Sampler + Clone>(frame: &Frame<'_>, terrain: &Terrain<'_>, sampler: &S) -> Vec<u8> {
+    let (w, h) = (frame.width(), frame.height());
+    let mut scratch = vec![Rgb::default(); h];
+    let mut image = vec![Rgb::default(); w * h];
+    column::render(
+        frame,
+        terrain,
+        sampler,
+        &mut NoCost,
+        &mut scratch,
+        &mut image,
+    )
+    .expect("buffers of the right size");
+    image.iter().flat_map(|p| [p.r, p.g, p.b]).collect()
+}
+
+/// 256 cases (a fraction of a second), or `PROPTEST_CASES` for a longer search.
+fn config() -> Config {
+    let base = Config::default();
+    Config {
+        cases: if std::env::var_os("PROPTEST_CASES").is_some() {
+            base.cases
+        } else {
+            256
+        },
+        failure_persistence: None,
+        ..base
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// AS and LI pixels lie within the range of the colours they sampled.
+    #[test]
+    fn as_and_li_pixels_lie_within_their_samples(case in case()) {
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            let (w, h) = (frame.width(), frame.height());
+            let mut r = Ranges::new(w, h);
+            let img = columns(frame, terrain, &Area::new(), &mut r);
+            r.check(&img, "AS")?;
+            let mut r = Ranges::new(w, h);
+            let img = columns(frame, terrain, &Linear, &mut r);
+            r.check(&img, "LI")
+        })
+        .unwrap_or(Ok(()))?;
+    }
+
+    /// AS coverage M′/V is exactly 1, in every column.
+    #[test]
+    fn area_sampling_covers_every_visible_voxel(case in case()) {
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            let (t, cols, _) = tallies(frame, terrain, &Area::new());
+            prop_assert_eq!(t.m, t.v, "{:?}", t);
+            prop_assert_eq!(t.coverage(), 1.0);
+            for (c, ct) in cols.iter().enumerate() {
+                prop_assert_eq!(ct.m, ct.v, "column {}: {:?}", c, ct);
+            }
+            Ok(())
+        })
+        .unwrap_or(Ok(()))?;
+    }
+
+    /// The counters satisfy the identities of the cost model, in every mode.
+    #[test]
+    fn hits_satisfy_the_identities(case in case()) {
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            let w = frame.width() as u64;
+            let (t, cols, _) = tallies(frame, terrain, &Point);
+            check_one_sample_per_pixel(&t, &cols, "PS")?;
+            let (t, cols, _) = tallies(frame, terrain, &Linear);
+            check_one_sample_per_pixel(&t, &cols, "LI")?;
+            let (t, cols, _) = tallies(frame, terrain, &Super::<2>::new());
+            check_super(&t, &cols, 2, "SS2")?;
+            let (t, cols, _) = tallies(frame, terrain, &Super::<16>::new());
+            check_super(&t, &cols, 16, "SS16")?;
+            let (t, cols, _) = tallies(frame, terrain, &Area::new());
+            check_area(&t, &cols, w)
+        })
+        .unwrap_or(Ok(()))?;
+    }
+
+    /// Every mode renders any input without a panic or an overflow, and the same input twice
+    /// gives identical bytes.
+    #[test]
+    fn rendering_is_total_and_deterministic(case in case()) {
+        let first = with_case(&case, |terrain, frame| {
+            [
+                image(frame, terrain, &Point),
+                image(frame, terrain, &Linear),
+                image(frame, terrain, &Super::<4>::new()),
+                image(frame, terrain, &Super::<256>::new()),
+                image(frame, terrain, &Area::new()),
+            ]
+        });
+        // A second, independent run: a new pyramid, new tables, new samplers.
+        let second = with_case(&case, |terrain, frame| {
+            [
+                image(frame, terrain, &Point),
+                image(frame, terrain, &Linear),
+                image(frame, terrain, &Super::<4>::new()),
+                image(frame, terrain, &Super::<256>::new()),
+                image(frame, terrain, &Area::new()),
+            ]
+        });
+        prop_assert_eq!(first, second);
+        // The column walk agrees with the whole-frame render.
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            let (w, h) = (frame.width(), frame.height());
+            let cols = columns(frame, terrain, &Area::new(), &mut NoCost);
+            let img = image(frame, terrain, &Area::new());
+            for (x, col) in cols.iter().enumerate() {
+                for (i, px) in col.iter().enumerate() {
+                    let at = ((h - 1 - i) * w + x) * 3;
+                    prop_assert_eq!(&img[at..at + 3], &[px.r, px.g, px.b][..]);
+                }
+            }
+            Ok(())
+        })
+        .unwrap_or(Ok(()))?;
+    }
+}
+
+/// The strategies reach the cases the properties are about: the core accepts most of them,
+/// and they include all-terrain, all-sky and mixed frames.
+#[test]
+fn the_cases_are_not_vacuous() {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::TestRunner;
+    let mut runner = TestRunner::deterministic();
+    let (mut accepted, mut all_terrain, mut all_sky, mut mixed) = (0, 0, 0, 0);
+    for _ in 0..200 {
+        let case = case().new_tree(&mut runner).unwrap().current();
+        let Some(p) = with_case(&case, |terrain, frame| {
+            let (t, _, _) = tallies(frame, terrain, &Point);
+            (t.p, (frame.width() * frame.height()) as u64)
+        }) else {
+            continue;
+        };
+        accepted += 1;
+        match p {
+            (0, _) => all_sky += 1,
+            (p, n) if p == n => all_terrain += 1,
+            _ => mixed += 1,
+        }
+    }
+    assert!(
+        accepted >= 150,
+        "the core refused {} of 200 cases",
+        200 - accepted
+    );
+    assert!(
+        all_terrain >= 10 && all_sky >= 10 && mixed >= 10,
+        "terrain {all_terrain}, sky {all_sky}, mixed {mixed}"
+    );
+}
