@@ -149,7 +149,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 camera: CameraJson {
                     x: p.x_m,
                     y: p.y_m,
-                    height: p.eye_m,
+                    height: p.eye_m + view.map.base_m,
                     heading: p.heading_deg,
                     pitch: p.pitch_deg,
                     fov: p.fov_deg,
@@ -167,7 +167,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 args.mode,
                 p.width,
                 p.height,
-                p.eye_m,
+                p.eye_m + view.map.base_m,
                 p.pitch_deg,
                 if view.options.lod { "on" } else { "off" }
             );

@@ -36,7 +36,7 @@ pub struct ModeTime {
 pub struct CaseTime {
     /// Pitch, degrees.
     pub pitch: f64,
-    /// Eye height from the fit-first-hit rule, metres.
+    /// Eye height from the fit-first-hit rule, metres above sea level.
     pub height: f64,
     /// Every mode.
     pub modes: Vec<ModeTime>,
@@ -102,7 +102,7 @@ pub fn run(
             .unwrap_or(f64::NAN);
         cases.push(CaseTime {
             pitch,
-            height: camera.params().eye_m,
+            height: camera.params().eye_m + map.base_m,
             modes: times
                 .into_iter()
                 .map(|(m, ms)| ModeTime {

@@ -104,7 +104,7 @@ pub struct Fly {
     pub frames: usize,
     /// Metres per frame.
     pub step: f64,
-    /// The starting eye height (fit-first-hit at pitch 5°), metres.
+    /// The starting eye height (fit-first-hit at pitch 5°), metres above sea level.
     pub height: f64,
     /// Every mode.
     pub modes: Vec<ModeFly>,
@@ -205,7 +205,7 @@ pub fn run(
         column,
         frames: spec.frames,
         step: spec.step_m,
-        height: start.eye_m,
+        height: start.eye_m + map.base_m,
         modes: spec
             .modes
             .iter()

@@ -44,7 +44,7 @@ pub struct ModeRow {
 pub struct Case {
     /// Pitch, degrees.
     pub pitch: f64,
-    /// Eye height, metres (fit-first-hit).
+    /// Eye height, metres above sea level (fit-first-hit).
     pub height: f64,
     /// Pixels per column through which terrain is visible.
     pub P: f64,
@@ -163,7 +163,7 @@ pub fn run(
         }
         cases.push(Case {
             pitch,
-            height: camera.params().eye_m,
+            height: camera.params().eye_m + map.base_m,
             P: per(base.total.p),
             L: per(base.total.l),
             V: per(base.total.v),

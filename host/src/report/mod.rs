@@ -35,6 +35,13 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     })?;
     write(tmp.as_file_mut()).with_context(|| format!("output {:?}", path.display().to_string()))?;
     tmp.as_file_mut().flush()?;
+    // A temporary file is private (0600); the output is an ordinary file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    }
     tmp.persist(path)
         .with_context(|| format!("output {:?}: cannot write", path.display().to_string()))?;
     Ok(())
