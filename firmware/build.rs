@@ -13,7 +13,10 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::PathBuf;
 
-use footprint_host::experiment::firmware::{scene, MODES};
+use footprint_core::specular::{Clamp, Method};
+use footprint_host::experiment::firmware::{
+    plate, plate_mode_name, scene, MODES, PLATE_MODE, PLATE_SIZE,
+};
 
 fn f64_const(v: f64) -> String {
     format!("f64::from_bits(0x{:016x}) /* {v:?} */", v.to_bits())
@@ -137,5 +140,82 @@ fn main() {
         write!(s, " Rgb::new({}, {}, {}),", c.r, c.g, c.b).unwrap();
     }
     s.push_str("\n];\n");
+    write_plate(&mut s);
     fs::write(out.join("scene.rs"), s).expect("write scene.rs");
+}
+
+/// The specular plate: `footprint_host::experiment::firmware::plate()`, its triangles exactly
+/// as the host's tiler receives them (culled, in drawing order), vertices deduplicated.
+fn write_plate(s: &mut String) {
+    let plate = plate().expect("the firmware's specular plate");
+    let method = match PLATE_MODE.method(1) {
+        Method::Clamp(Clamp::Conservative) => "Method::Clamp(Clamp::Conservative)".to_owned(),
+        Method::Clamp(Clamp::Aggressive(p)) => {
+            format!("Method::Clamp(Clamp::Aggressive(Power::{p:?}))")
+        }
+        Method::Point => "Method::Point".to_owned(),
+        other => panic!("the firmware renders one evaluation per pixel, not {other:?}"),
+    };
+    let rgb = |c: footprint_core::Rgb| format!("Rgb::new({}, {}, {})", c.r, c.g, c.b);
+    writeln!(
+        s,
+        "\n// The specular plate: {name}, {nv} vertices, {nt} triangles (after the host's culling).\n\
+         /// The plate's mode name on its `frame` line.\npub const PLATE_MODE: &str = {name:?};\n\
+         /// The plate's square image side, pixels.\npub const PLATE_SIZE: u32 = {PLATE_SIZE};\n\
+         /// The plate's pixels.\npub const PLATE_PIXELS: usize = {px};\n\
+         /// Distinct vertices.\npub const PLATE_VERTEX_COUNT: usize = {nv};\n\
+         /// The shading method.\npub const PLATE_METHOD: Method = {method};\n\
+         /// Phong exponent.\npub const PLATE_N: u32 = {n};\n\
+         /// Phong weight.\npub const PLATE_K_SPEC: f64 = {k};\n\
+         /// Ambient weight.\npub const PLATE_AMBIENT: f64 = {a};\n\
+         /// Diffuse weight.\npub const PLATE_DIFFUSE: f64 = {d};\n\
+         /// Direction to the light (the eye is +z).\npub const PLATE_LIGHT: [f64; 3] = [{l0}, {l1}, {l2}];\n\
+         /// The background colour.\npub const PLATE_BACKGROUND: Rgb = {bg};\n\
+         /// Base colour per object (a triangle's tag).\npub const PLATE_COLORS: [Rgb; {nc}] = [{colors}];",
+        name = plate_mode_name(),
+        nv = plate.vertices.len(),
+        nt = plate.triangles.len(),
+        px = PLATE_SIZE as usize * PLATE_SIZE as usize,
+        n = plate.n,
+        k = f64_const(plate.k_spec),
+        a = f64_const(plate.ambient),
+        d = f64_const(plate.diffuse),
+        l0 = f64_const(plate.light[0]),
+        l1 = f64_const(plate.light[1]),
+        l2 = f64_const(plate.light[2]),
+        bg = rgb(plate.background),
+        nc = plate.colors.len(),
+        colors = plate.colors.iter().map(|&c| rgb(c)).collect::<Vec<_>>().join(", "),
+    )
+    .unwrap();
+    write!(
+        s,
+        "/// Vertices: x and y in Q8 pixels, depth in 1/65,535, the normal direction as `f64` bits.\n\
+         #[link_section = \".scene\"]\npub static PLATE_VERTICES: [PlateVertex; {}] = [",
+        plate.vertices.len()
+    )
+    .unwrap();
+    for v in &plate.vertices {
+        write!(
+            s,
+            "\n    PlateVertex {{ x_q8: {}, y_q8: {}, z: {}, normal: [0x{:016x}, 0x{:016x}, 0x{:016x}] }},",
+            v.x_q8, v.y_q8, v.z, v.normal[0], v.normal[1], v.normal[2]
+        )
+        .unwrap();
+    }
+    s.push_str("\n];\n");
+    write!(
+        s,
+        "/// Triangles in drawing order: three vertex indices and the object's index.\n\
+         #[link_section = \".scene\"]\npub static PLATE_TRIANGLES: [[u16; 4]; {}] = [",
+        plate.triangles.len()
+    )
+    .unwrap();
+    for (i, ([a, b, c], id)) in plate.triangles.iter().enumerate() {
+        if i % 6 == 0 {
+            s.push_str("\n   ");
+        }
+        write!(s, " [{a}, {b}, {c}, {id}],").unwrap();
+    }
+    s.push_str("\n];\n");
 }

@@ -42,7 +42,7 @@ report() {
       sym = $0; sub(/^[0-9a-f]+ [0-9a-f]+ . /, "", sym)
       s = sym; sub(/^[<&]+/, "", s); sub(/^dyn /, "", s)
       if (s ~ /^(footprint_core|fixed|heapless|az)::/ || s ~ /^footprint_firmware::core_calls::/) who = "core"
-      else if (s ~ /^compiler_builtins::/ || s ~ /^(__aeabi|__[a-z]+[sd]f[0-9]|__[a-z]*div|__[a-z]*mod|__mul|__ashl|__lshr|__ashr|__clz|__ctz|mem(cpy|set|move|cmp)|__llvm_memcpy|__llvm_memset)/) who = "builtins"
+      else if (s ~ /^compiler_builtins::/ || s ~ /^(__aeabi|__[a-z]+[sd]f[0-9]|__[a-z]*div|__[a-z]*mod|__mul|__ashl|__lshr|__ashr|__clz|__ctz|mem(cpy|set|move|cmp)|fmax|fmin|__llvm_memcpy|__llvm_memset)/) who = "builtins"
       else if (s ~ /^(core|u8|u16|u32|u64|u128|usize|i8|i16|i32|i64|i128|isize|f32|f64|str|bool|char)( |::|$)/) who = "libcore"
       else if (s ~ /^(cortex_m|cortex_m_rt|cortex_m_semihosting|panic_semihosting|critical_section)::/ || s ~ /^(Reset|DefaultHandler_|DefaultPreInit|HardFault_|__RESET_VECTOR|__EXCEPTIONS|__INTERRUPTS|__pre_init)$/) who = "runtime"
       else if (s ~ /^\.L/) who = "anon"

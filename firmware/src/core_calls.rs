@@ -8,10 +8,14 @@ use footprint_core::camera::{Camera, Column, Frame, Options};
 use footprint_core::column;
 use footprint_core::cost::{Cost, Counts};
 use footprint_core::num::Coord;
+use footprint_core::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::sampler::Sampler;
+use footprint_core::specular::{self, Light, Material, Method, Normal};
 use footprint_core::terrain::{next_size, Level, Scale, Terrain};
 use footprint_core::visibility;
 use footprint_core::{Error, Rgb};
+
+use crate::PlateVertex;
 
 /// `column::render`: one frame in one mode, with one kind of cost counter.
 #[inline(never)]
@@ -66,4 +70,58 @@ pub fn build_terrain(
         below = level;
     }
     Ok(terrain)
+}
+
+/// One baked plate vertex in the core's form: `Vertex::new` and `Normal::new` (soft double)
+/// on exactly the host's `f64`s (`footprint_host::experiment::firmware::PlateVertex::vertex`).
+#[inline(never)]
+pub fn plate_vertex(v: &PlateVertex) -> Result<Vertex, Error> {
+    let [nx, ny, nz] = v.normal.map(f64::from_bits);
+    Vertex::new(
+        f64::from(v.x_q8) / 256.0,
+        f64::from(v.y_q8) / 256.0,
+        f64::from(v.z) / 65535.0,
+        Normal::new(nx, ny, nz)?,
+    )
+}
+
+/// What [`draw_plate`] counted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PlateCounts {
+    /// Fragments shaded (pixels drawn, overdraw included).
+    pub fragments: u64,
+    /// Highlight evaluations.
+    pub shades: u64,
+}
+
+/// `raster::draw` of every triangle (`[a, b, c, object]` into `vertices`) with
+/// `specular::shade` by `method`, the object's material from `materials`; records per pixel
+/// whether detection flagged the last fragment drawn there.
+#[inline(never)]
+pub fn draw_plate(
+    target: &mut Target<'_>,
+    triangles: &[[u16; 4]],
+    vertices: &[Vertex],
+    light: &Light,
+    materials: &[Material],
+    method: Method,
+    flagged: &mut [bool],
+) -> PlateCounts {
+    let width = target.width();
+    let mut counts = PlateCounts::default();
+    for &[a, b, c, id] in triangles {
+        let material = &materials[usize::from(id)];
+        let mut shader = |f: &Fragment<'_>| {
+            let (rgb, spec) = specular::shade(f, light, material, method);
+            flagged[(f.y() * width + f.x()) as usize] = spec.aliased;
+            counts.shades += u64::from(spec.shades);
+            rgb
+        };
+        let triangle = Triangle {
+            v: [a, b, c].map(|i| vertices[usize::from(i)]),
+            id,
+        };
+        counts.fragments += u64::from(raster::draw(target, &triangle, &mut shader));
+    }
+    counts
 }

@@ -1,7 +1,8 @@
 //! footprint-firmware's library: what both firmware binaries share.
 //!
 //! * [`scene`]: the level-0 map and the camera that `build.rs` baked from the host's
-//!   `footprint_host::experiment::firmware::scene()`;
+//!   `footprint_host::experiment::firmware::scene()`, and the specular plate from its
+//!   `plate()` ([`PlateVertex`], decoded on the chip by [`core_calls::plate_vertex`]);
 //! * [`core_calls`]: every call into `footprint-core` that does real work, behind
 //!   `#[inline(never)]`, so the core's code can be told apart in the symbol table;
 //! * [`clock`]: instruction counts from SysTick under QEMU's `-icount shift=0`;
@@ -20,7 +21,8 @@ use footprint_core::camera::Column;
 use footprint_core::num::Coord;
 use footprint_core::Rgb;
 
-use scene::{HEIGHT, PYRAMID_CELLS, WIDTH};
+use footprint_core::raster::Vertex;
+use scene::{HEIGHT, PLATE_PIXELS, PLATE_VERTEX_COUNT, PYRAMID_CELLS, WIDTH};
 
 pub mod core_calls;
 
@@ -28,7 +30,11 @@ pub mod core_calls;
 // `link_section` counts as unsafe code: the section is memory.x's `.scene`, in flash, read-only.
 #[allow(clippy::unreadable_literal, clippy::large_const_arrays, unsafe_code)]
 pub mod scene {
+    use crate::PlateVertex;
     use footprint_core::camera::CameraParams;
+    #[allow(unused_imports)] // used when the plate's mode is an aggressive clamp
+    use footprint_core::specular::Power;
+    use footprint_core::specular::{Clamp, Method};
     use footprint_core::Rgb;
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
@@ -197,6 +203,53 @@ impl Buffers {
             scratch: cortex_m::singleton!(SCRATCH: [Rgb; HEIGHT] = [Rgb::new(0, 0, 0); HEIGHT])?,
             image: cortex_m::singleton!(
                 IMAGE: [Rgb; WIDTH * HEIGHT] = [Rgb::new(0, 0, 0); WIDTH * HEIGHT]
+            )?,
+        })
+    }
+}
+
+/// One vertex of the specular plate as `build.rs` bakes it (the host's
+/// `footprint_host::experiment::firmware::PlateVertex`): position and depth in the fixed-point
+/// form of the core's [`Vertex`], the normal as the host's `f64` direction (bit patterns).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlateVertex {
+    /// `x`, pixels × 256.
+    pub x_q8: i32,
+    /// `y`, pixels × 256 (down).
+    pub y_q8: i32,
+    /// Depth, 0 nearest.
+    pub z: u16,
+    /// The normal direction, `f64::to_bits` of each component.
+    pub normal: [u64; 3],
+}
+
+/// The specular plate's buffers, in `.bss`; only `src/main.rs` takes them.
+pub struct PlateBuffers {
+    /// The plate's vertices in the core's form, decoded on the chip from `PLATE_VERTICES`;
+    /// empty when taken.
+    pub vertices: &'static mut heapless::Vec<Vertex, PLATE_VERTEX_COUNT>,
+    /// The colour buffer.
+    pub color: &'static mut [Rgb; PLATE_PIXELS],
+    /// The depth buffer.
+    pub depth: &'static mut [u16; PLATE_PIXELS],
+    /// Per pixel: detection flagged the last fragment drawn there.
+    pub flagged: &'static mut [bool; PLATE_PIXELS],
+}
+
+impl PlateBuffers {
+    /// Takes the buffers: `Some` the first time only.
+    #[inline(never)]
+    pub fn take() -> Option<Self> {
+        Some(Self {
+            vertices: cortex_m::singleton!(
+                PLATE_VERTICES: heapless::Vec<Vertex, PLATE_VERTEX_COUNT> = heapless::Vec::new()
+            )?,
+            color: cortex_m::singleton!(
+                PLATE_COLOR: [Rgb; PLATE_PIXELS] = [Rgb::new(0, 0, 0); PLATE_PIXELS]
+            )?,
+            depth: cortex_m::singleton!(PLATE_DEPTH: [u16; PLATE_PIXELS] = [0; PLATE_PIXELS])?,
+            flagged: cortex_m::singleton!(
+                PLATE_FLAGGED: [bool; PLATE_PIXELS] = [false; PLATE_PIXELS]
             )?,
         })
     }

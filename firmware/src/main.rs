@@ -16,9 +16,11 @@
 //! It exits 0 over semihosting when every check passed, and non-zero on a failed check, a
 //! panic (`panic-semihosting` with `exit`) or a hard fault.
 //!
-//! The specular plate of the specular issue is to be added as a fourth `frame` line, printed
-//! after the terrain frames, with its statics beside these; the host's
-//! `experiment::firmware::reference_lines` adds the same line in the same place.
+//! After the terrain frames it renders the specular plate that `build.rs` baked from the host's
+//! `experiment::firmware::plate()` (Plate 2's cylinders at 64×64, conservative clamping) with
+//! the core's z-buffer tiler and shader, and prints a fourth `frame` line: the mode, the
+//! FNV-1a-64 of its RGB bytes, fragments drawn, highlight evaluations and flagged pixels. The
+//! host's `experiment::firmware::reference_lines` prints the same line in the same place.
 
 #![no_std]
 #![deny(unsafe_code)]
@@ -33,14 +35,19 @@ use panic_semihosting as _;
 use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::cost::{Counts, NoCost, Tally};
 use footprint_core::num::Coord;
+use footprint_core::raster::Target;
 use footprint_core::sampler::{Area, Point, Sampler, Super};
+use footprint_core::specular::{Light, Material, Normal, Phong};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
-    COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, SPACING_M, WIDTH,
+    COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT,
+    PLATE_BACKGROUND, PLATE_COLORS, PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD,
+    PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, SPACING_M,
+    WIDTH,
 };
-use footprint_firmware::{core_calls, image_hash, stack, Buffers, Ratio};
+use footprint_firmware::{core_calls, image_hash, stack, Buffers, PlateBuffers, Ratio};
 
 #[exception]
 fn SysTick() {
@@ -97,6 +104,72 @@ fn run_mode<S: Sampler + Clone>(
         return Ok(None);
     }
     Ok(Some(render))
+}
+
+/// Renders the specular plate: decodes the baked vertices into the core's form (soft double,
+/// timed apart), then clears and draws every triangle, timed; prints the `frame` line and the
+/// `#` instruction line.
+fn run_plate(buffers: PlateBuffers) -> Result<(), Error> {
+    let PlateBuffers {
+        vertices,
+        color,
+        depth,
+        flagged,
+    } = buffers;
+    let (setup, decoded) = instructions(|| -> Result<(), Error> {
+        vertices.clear();
+        for baked in &PLATE_VERTICES {
+            // The capacity is PLATE_VERTICES' length: never full.
+            let _ = vertices.push(core_calls::plate_vertex(baked)?);
+        }
+        Ok(())
+    });
+    decoded?;
+    let [lx, ly, lz] = PLATE_LIGHT;
+    let light = Light::new(Normal::new(lx, ly, lz)?, Normal::new(0.0, 0.0, 1.0)?);
+    let phong = Phong::new(PLATE_N, PLATE_K_SPEC)?;
+    let mut materials = [Material::new(Rgb::new(0, 0, 0), 0.0, 0.0, phong)?; PLATE_COLORS.len()];
+    for (m, &c) in materials.iter_mut().zip(PLATE_COLORS.iter()) {
+        *m = Material::new(c, PLATE_AMBIENT, PLATE_DIFFUSE, phong)?;
+    }
+    let mut target = Target::new(PLATE_SIZE, PLATE_SIZE, &mut color[..], &mut depth[..])?;
+    let (render, counts) = instructions(|| {
+        target.clear(PLATE_BACKGROUND);
+        flagged.fill(false);
+        core_calls::draw_plate(
+            &mut target,
+            &PLATE_TRIANGLES,
+            &vertices[..],
+            &light,
+            &materials,
+            PLATE_METHOD,
+            &mut flagged[..],
+        )
+    });
+    let flagged_pixels = flagged.iter().filter(|&&f| f).count();
+    hprintln!(
+        "frame {} {}x{} fnv1a={:016x} fragments={} shades={} flagged={}",
+        PLATE_MODE,
+        PLATE_SIZE,
+        PLATE_SIZE,
+        image_hash(target.color()),
+        counts.fragments,
+        counts.shades,
+        flagged_pixels
+    );
+    hprintln!(
+        "# icount {}: render {} instructions for {} triangles, {} per pixel ({}x{}), {} per fragment drawn; decoding {} vertices (soft double) {} (instructions, not cycles)",
+        PLATE_MODE,
+        render,
+        PLATE_TRIANGLES.len(),
+        Ratio::tenths(render, PLATE_PIXELS as u64),
+        PLATE_SIZE,
+        PLATE_SIZE,
+        Ratio::tenths(render, counts.fragments),
+        PLATE_VERTICES.len(),
+        setup
+    );
+    Ok(())
 }
 
 /// Prints one `error` line; `false` if the call accepted its bad input.
@@ -216,6 +289,10 @@ fn run() -> Result<bool, Error> {
         hprintln!("FAIL: the buffers were taken twice");
         return Ok(false);
     };
+    let Some(plate_buffers) = PlateBuffers::take() else {
+        hprintln!("FAIL: the plate's buffers were taken twice");
+        return Ok(false);
+    };
     if let Some(bytes) = stack::used() {
         hprintln!(
             "# stack: {} bytes at most while taking the buffers (painted)",
@@ -273,6 +350,7 @@ fn run() -> Result<bool, Error> {
         ),
         _ => ok = false,
     }
+    run_plate(plate_buffers)?;
     ok &= error_paths(&terrain, &camera, rows, columns, scratch, image)?;
     Ok(ok)
 }

@@ -22,7 +22,9 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use footprint_core::Rgb;
-use footprint_host::experiment::firmware::{fnv1a64, image_hash, reference_lines, reference_text};
+use footprint_host::experiment::firmware::{
+    fnv1a64, image_hash, plate, plate_mode_name, reference_lines, reference_text, PLATE_SIZE,
+};
 
 const TARGET: &str = "thumbv7em-none-eabihf";
 
@@ -170,7 +172,8 @@ fn firmware_output_equals_the_host_reference() {
     );
     // The chip-only lines are there too: one instruction count per mode, calibrated.
     let text = String::from_utf8_lossy(&out);
-    for mode in ["ps", "ss8", "as"] {
+    let plate_mode = plate_mode_name();
+    for mode in ["ps", "ss8", "as", plate_mode.as_str()] {
         assert!(
             text.contains(&format!("# icount {mode}: render ")),
             "no instruction count for {mode}:\n{text}"
@@ -215,7 +218,7 @@ fn the_reference_is_consistent() {
             .unwrap()
     };
     let frames: Vec<&String> = lines.iter().filter(|l| l.starts_with("frame ")).collect();
-    assert_eq!(frames.len(), 3, "{lines:#?}");
+    assert_eq!(frames.len(), 4, "{lines:#?}");
     let (ps, ss8, area) = (frames[0], frames[1], frames[2]);
     assert!(ps.starts_with("frame ps 160x120 "), "{ps}");
     assert_eq!(field(ps, "hits"), field(ps, "P"));
@@ -232,7 +235,24 @@ fn the_reference_is_consistent() {
     let hash = |l: &str| l.split_whitespace().nth(3).unwrap().to_owned();
     assert_ne!(hash(ps), hash(area));
     assert_ne!(hash(ss8), hash(area));
+    // The specular plate, after the terrain frames (`plate_reference_line` has already checked
+    // it against `footprint specular`'s own render of the same plate): one shade per fragment
+    // (clamping), the cylinders alias at 64×64, and every flagged pixel was drawn.
+    let specular = frames[3];
+    assert!(
+        specular.starts_with(&format!(
+            "frame {} {PLATE_SIZE}x{PLATE_SIZE} ",
+            plate_mode_name()
+        )),
+        "{specular}"
+    );
+    assert_eq!(plate_mode_name(), "specular-plate2-clamp");
+    assert_eq!(field(specular, "shades"), field(specular, "fragments"));
+    assert!(field(specular, "flagged") > 0, "{specular}");
+    assert!(field(specular, "flagged") <= field(specular, "fragments"));
+    let baked = plate().expect("the plate");
+    assert!(baked.triangles.len() > 1000 && baked.vertices.len() < baked.triangles.len() * 3);
     let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
     assert_eq!(errors, 10, "{lines:#?}");
-    assert_eq!(lines.len(), 13);
+    assert_eq!(lines.len(), 14);
 }

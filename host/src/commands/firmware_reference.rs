@@ -13,7 +13,8 @@ use crate::experiment::firmware;
 pub struct FirmwareReferenceArgs {}
 
 /// Prints the firmware's scene (128² built-in terrain, seed 1, 160×120, pitch 20°, FOV 10°,
-/// fit-first-hit) in PS, SS8 and AS as `frame` lines, then the constructor `error` lines.
+/// fit-first-hit) in PS, SS8 and AS as `frame` lines, the specular plate (Plate 2, 64×64,
+/// conservative clamping) as a fourth, then the constructor `error` lines.
 pub fn firmware_reference(_args: &FirmwareReferenceArgs) -> Result<()> {
     let text = firmware::reference_text()?;
     let mut out = std::io::stdout().lock();
