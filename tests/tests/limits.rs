@@ -1,0 +1,177 @@
+//! The core at the edges of its documented range (README "Fixed-point ranges", `core::num`):
+//! a 65,536-wide map, heights of 0 and 65,535, an eye 1 mm above the ground and one below it,
+//! pitch ±89.9°, FOV 0.01° and 179°. Every mode renders, nothing panics or overflows (the
+//! tests run with overflow checks on), and what can be predicted is checked.
+
+use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::column::render;
+use footprint_core::cost::{Counts, Tally};
+use footprint_core::num::Coord;
+use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::{Level, Scale, Terrain, MAX_SIDE};
+use footprint_core::visibility::count_visible;
+use footprint_core::Rgb;
+
+const SKY: Rgb = Rgb::new(1, 2, 3);
+
+/// Renders `camera` over `terrain` in `sampler`'s mode; returns the image and the totals.
+fn draw<S: Sampler + Clone>(terrain: &Terrain<'_>, camera: &Camera, s: &S) -> (Vec<Rgb>, Tally) {
+    let (w, h) = (camera.width(), camera.height());
+    let (mut rows, mut cols) = (vec![Coord::ZERO; h + 1], vec![Column::default(); w]);
+    let options = Options {
+        sky: SKY,
+        ..Options::default()
+    };
+    let frame = Frame::new(camera, terrain, options, &mut rows, &mut cols).expect("in range");
+    let mut tallies = vec![Tally::default(); w];
+    let mut counts = Counts::new(&mut tallies);
+    let (mut scratch, mut image) = (vec![Rgb::default(); h], vec![Rgb::default(); w * h]);
+    render(&frame, terrain, s, &mut counts, &mut scratch, &mut image).expect("sized");
+    count_visible(&frame, terrain, &mut counts);
+    (image, counts.total)
+}
+
+/// Every mode; returns PS's and AS's images.
+fn all_modes(terrain: &Terrain<'_>, camera: &Camera) -> (Vec<Rgb>, Vec<Rgb>) {
+    let (ps, _) = draw(terrain, camera, &Point);
+    draw(terrain, camera, &Linear);
+    draw(terrain, camera, &Super::<2>::new());
+    draw(terrain, camera, &Super::<256>::new());
+    let (area, t) = draw(terrain, camera, &Area::new());
+    assert_eq!(t.m, t.v, "AS covers every visible voxel");
+    (ps, area)
+}
+
+fn params(eye_m: f64) -> CameraParams {
+    CameraParams {
+        x_m: 100.0,
+        y_m: 100.0,
+        eye_m,
+        heading_deg: 30.0,
+        pitch_deg: 10.0,
+        fov_deg: 10.0,
+        width: 8,
+        height: 8,
+        far_m: 100_000.0,
+    }
+}
+
+#[test]
+fn a_map_65536_voxels_wide() {
+    let (w, h) = (MAX_SIDE, 2);
+    let heights: Vec<u16> = (0..w * h).map(|i| (i % 1000) as u16).collect();
+    let colors = vec![Rgb::new(90, 120, 60); (w * h) as usize];
+    let terrain = Terrain::new(
+        Level::new(w, h, &heights, &colors).unwrap(),
+        Scale::new(1.0, 1.0).unwrap(),
+    );
+    let camera = Camera::new(CameraParams {
+        x_m: 65_000.0,
+        heading_deg: 90.0,
+        ..params(2_000.0)
+    })
+    .unwrap();
+    let (ps, _) = all_modes(&terrain, &camera);
+    assert!(ps.iter().any(|&p| p != SKY), "the map is seen");
+    assert!(Level::new(MAX_SIDE + 1, 1, &[0; 65_537], &[Rgb::default(); 65_537]).is_err());
+}
+
+#[test]
+fn heights_of_zero_and_of_the_maximum() {
+    let (w, h) = (32u32, 32u32);
+    let heights: Vec<u16> = (0..w * h)
+        .map(|i| if (i / 4) % 2 == 0 { 0 } else { u16::MAX })
+        .collect();
+    let colors: Vec<Rgb> = heights
+        .iter()
+        .map(|&v| {
+            if v == 0 {
+                Rgb::new(0, 0, 0)
+            } else {
+                Rgb::new(255, 255, 255)
+            }
+        })
+        .collect();
+    let terrain = Terrain::new(
+        Level::new(w, h, &heights, &colors).unwrap(),
+        Scale::new(1.0, 1.0).unwrap(),
+    );
+    for eye in [0.5, 65_535.5, 200_000.0] {
+        all_modes(&terrain, &Camera::new(params(eye)).unwrap());
+    }
+}
+
+/// A flat plane at 500 m: an eye 1 mm above it sees ground below the horizon, and an eye below
+/// it sees nothing but terrain.
+#[test]
+fn an_eye_a_millimetre_above_the_ground_and_one_below_it() {
+    let (w, h) = (16u32, 16u32);
+    let heights = vec![5_000u16; (w * h) as usize]; // 500 m at 0.1 m per unit
+    let colors = vec![Rgb::new(40, 140, 40); (w * h) as usize];
+    let terrain = Terrain::new(
+        Level::new(w, h, &heights, &colors).unwrap(),
+        Scale::new(30.0, 0.1).unwrap(),
+    );
+    let above = Camera::new(CameraParams {
+        pitch_deg: 0.0,
+        ..params(500.001)
+    })
+    .unwrap();
+    let (ps, area) = all_modes(&terrain, &above);
+    let w = above.width();
+    // Pitch 0: the bottom row looks down and sees the plane; the top row looks up at the sky.
+    assert!(ps[(above.height() - 1) * w..]
+        .iter()
+        .all(|&p| p == Rgb::new(40, 140, 40)));
+    assert!(ps[..w].iter().all(|&p| p == SKY), "{:?}", &ps[..w]);
+    assert!(area[..w].iter().all(|&p| p == SKY));
+    let below = Camera::new(CameraParams {
+        pitch_deg: 0.0,
+        ..params(400.0)
+    })
+    .unwrap();
+    let (ps, area) = all_modes(&terrain, &below);
+    assert!(
+        ps.iter().chain(&area).all(|&p| p == Rgb::new(40, 140, 40)),
+        "all terrain"
+    );
+}
+
+#[test]
+fn pitch_and_field_of_view_at_their_limits() {
+    let (w, h) = (24u32, 24u32);
+    let heights: Vec<u16> = (0..w * h).map(|i| ((i * 7919) % 3000) as u16).collect();
+    let colors: Vec<Rgb> = (0..w * h)
+        .map(|i| Rgb::new(i as u8, (i / 3) as u8, 90))
+        .collect();
+    let terrain = Terrain::new(
+        Level::new(w, h, &heights, &colors).unwrap(),
+        Scale::new(30.0, 0.1).unwrap(),
+    );
+    for pitch in [89.9, -89.9] {
+        for fov in [0.01, 179.0] {
+            let camera = Camera::new(CameraParams {
+                pitch_deg: pitch,
+                fov_deg: fov,
+                ..params(1_000.0)
+            })
+            .unwrap();
+            all_modes(&terrain, &camera);
+        }
+    }
+    // Looking straight down from above the map sees only terrain; straight up, only sky.
+    let down = Camera::new(CameraParams {
+        pitch_deg: 89.9,
+        fov_deg: 0.01,
+        ..params(1_000.0)
+    })
+    .unwrap();
+    assert!(all_modes(&terrain, &down).0.iter().all(|&p| p != SKY));
+    let up = Camera::new(CameraParams {
+        pitch_deg: -89.9,
+        fov_deg: 0.01,
+        ..params(1_000.0)
+    })
+    .unwrap();
+    assert!(all_modes(&terrain, &up).0.iter().all(|&p| p == SKY));
+}
