@@ -45,6 +45,19 @@ pub(crate) fn fold(p: u32, len: u32) -> u32 {
     }
 }
 
+/// Checks that a slice holds the `expected` number of cells.
+fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), Error> {
+    if actual == expected {
+        Ok(())
+    } else {
+        Err(Error::SliceLength {
+            what,
+            expected,
+            actual,
+        })
+    }
+}
+
 /// The size of the level above a `width × height` level, or `None` at 1×1.
 pub fn next_size(width: u32, height: u32) -> Option<(u32, u32)> {
     if width <= 1 && height <= 1 {
@@ -68,20 +81,8 @@ impl<'a> Level<'a> {
             return Err(Error::MapSize { width, height });
         }
         let cells = width as usize * height as usize;
-        if heights.len() != cells {
-            return Err(Error::SliceLength {
-                what: "heights",
-                expected: cells,
-                actual: heights.len(),
-            });
-        }
-        if colors.len() != cells {
-            return Err(Error::SliceLength {
-                what: "colors",
-                expected: cells,
-                actual: colors.len(),
-            });
-        }
+        check_len("heights", cells, heights.len())?;
+        check_len("colors", cells, colors.len())?;
         Ok(Self {
             heights,
             colors,
@@ -135,20 +136,8 @@ impl<'a> Level<'a> {
     ) -> Result<Level<'b>, Error> {
         let (w, h) = next_size(self.width, self.height).ok_or(Error::TooManyLevels)?;
         let cells = w as usize * h as usize;
-        if heights.len() != cells {
-            return Err(Error::SliceLength {
-                what: "heights",
-                expected: cells,
-                actual: heights.len(),
-            });
-        }
-        if colors.len() != cells {
-            return Err(Error::SliceLength {
-                what: "colors",
-                expected: cells,
-                actual: colors.len(),
-            });
-        }
+        check_len("heights", cells, heights.len())?;
+        check_len("colors", cells, colors.len())?;
         for y in 0..h {
             let (y0, y1) = (2 * y, (2 * y + 1).min(self.height - 1));
             for x in 0..w {
