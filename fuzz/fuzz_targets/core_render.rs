@@ -1,0 +1,170 @@
+//! The core on arbitrary input: a small terrain (any size up to 24×24, any heights and
+//! colours, with its pyramid), a camera from arbitrary numbers (finite or not), a mode, and a
+//! frame of up to 12×12 rendered with every counter and the visibility pass. Constructors may
+//! refuse; nothing may panic, overflow (overflow checks are on) or hang.
+#![no_main]
+
+use arbitrary::Arbitrary;
+use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::column::render;
+use footprint_core::cost::{Counts, Tally};
+use footprint_core::num::Coord;
+use footprint_core::sampler::{Area, Linear, Point, Super};
+use footprint_core::terrain::{next_size, Level, Scale, Terrain};
+use footprint_core::visibility::count_visible;
+use footprint_core::Rgb;
+
+#[derive(Arbitrary, Debug)]
+struct Input {
+    width: u8,
+    height: u8,
+    heights: Vec<u16>,
+    colors: Vec<[u8; 3]>,
+    spacing: f64,
+    height_scale: f64,
+    x: f64,
+    y: f64,
+    eye: f64,
+    heading: f64,
+    pitch: f64,
+    fov: f64,
+    far: f64,
+    image: (u8, u8),
+    mode: u8,
+    lod: bool,
+}
+
+libfuzzer_sys::fuzz_target!(|input: Input| {
+    let (w, h) = (u32::from(input.width % 25), u32::from(input.height % 25));
+    let cells = (w * h) as usize;
+    let heights: Vec<u16> = (0..cells)
+        .map(|i| {
+            input
+                .heights
+                .get(i % input.heights.len().max(1))
+                .copied()
+                .unwrap_or(0)
+        })
+        .collect();
+    let colors: Vec<Rgb> = (0..cells)
+        .map(|i| {
+            let c = input
+                .colors
+                .get(i % input.colors.len().max(1))
+                .copied()
+                .unwrap_or([0; 3]);
+            Rgb::new(c[0], c[1], c[2])
+        })
+        .collect();
+    let Ok(level0) = Level::new(w, h, &heights, &colors) else {
+        return;
+    };
+    let Ok(scale) = Scale::new(input.spacing, input.height_scale) else {
+        return;
+    };
+    // The pyramid, each level in its own buffers.
+    let mut levels: Vec<(u32, u32, Vec<u16>, Vec<Rgb>)> = Vec::new();
+    let (mut lw, mut lh, mut lhs, mut lcs) = (w, h, heights.clone(), colors.clone());
+    while let Some((nw, nh)) = next_size(lw, lh) {
+        let below = Level::new(lw, lh, &lhs, &lcs).expect("built above");
+        let n = (nw * nh) as usize;
+        let (mut hs, mut cs) = (vec![0u16; n], vec![Rgb::default(); n]);
+        below
+            .build_next(&mut hs, &mut cs)
+            .expect("sized by next_size");
+        levels.push((nw, nh, hs.clone(), cs.clone()));
+        (lw, lh, lhs, lcs) = (nw, nh, hs, cs);
+    }
+    let mut terrain = Terrain::new(level0, scale);
+    if input.lod {
+        for (lw, lh, hs, cs) in &levels {
+            terrain
+                .push_level(Level::new(*lw, *lh, hs, cs).expect("built"))
+                .expect("in order");
+        }
+    }
+    let Ok(camera) = Camera::new(CameraParams {
+        x_m: input.x,
+        y_m: input.y,
+        eye_m: input.eye,
+        heading_deg: input.heading,
+        pitch_deg: input.pitch,
+        fov_deg: input.fov,
+        width: u32::from(input.image.0 % 13),
+        height: u32::from(input.image.1 % 13),
+        far_m: input.far,
+    }) else {
+        return;
+    };
+    let (cw, ch) = (camera.width(), camera.height());
+    let mut rows = vec![Coord::ZERO; ch + 1];
+    let mut cols = vec![Column::default(); cw];
+    let options = Options {
+        lod: input.lod,
+        ..Options::default()
+    };
+    let Ok(frame) = Frame::new(&camera, &terrain, options, &mut rows, &mut cols) else {
+        return;
+    };
+    let mut tallies = vec![Tally::default(); cw];
+    let mut counts = Counts::new(&mut tallies);
+    let (mut scratch, mut image) = (vec![Rgb::default(); ch], vec![Rgb::default(); cw * ch]);
+    let done = match input.mode % 6 {
+        0 => render(
+            &frame,
+            &terrain,
+            &Point,
+            &mut counts,
+            &mut scratch,
+            &mut image,
+        ),
+        1 => render(
+            &frame,
+            &terrain,
+            &Linear,
+            &mut counts,
+            &mut scratch,
+            &mut image,
+        ),
+        2 => render(
+            &frame,
+            &terrain,
+            &Super::<2>::new(),
+            &mut counts,
+            &mut scratch,
+            &mut image,
+        ),
+        3 => render(
+            &frame,
+            &terrain,
+            &Super::<16>::new(),
+            &mut counts,
+            &mut scratch,
+            &mut image,
+        ),
+        4 => render(
+            &frame,
+            &terrain,
+            &Super::<256>::new(),
+            &mut counts,
+            &mut scratch,
+            &mut image,
+        ),
+        _ => render(
+            &frame,
+            &terrain,
+            &Area::new(),
+            &mut counts,
+            &mut scratch,
+            &mut image,
+        ),
+    };
+    assert!(done.is_ok(), "buffers were sized from the camera");
+    count_visible(&frame, &terrain, &mut counts);
+    if input.mode % 6 == 5 {
+        assert_eq!(
+            counts.total.m, counts.total.v,
+            "area sampling covers every visible voxel"
+        );
+    }
+});
