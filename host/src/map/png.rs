@@ -100,6 +100,9 @@ pub fn load_color_map(
     png.decode_colors()
 }
 
+/// Deflate's largest expansion (a 258-byte match in under two bits), rounded up.
+const MAX_DEFLATE_EXPANSION: u64 = 1_100;
+
 /// Rejects scale parameters that are not finite and positive.
 fn check_parameter(option: &'static str, value: f64) -> Result<(), MapError> {
     if value.is_finite() && value > 0.0 {
@@ -164,6 +167,19 @@ impl PngFile {
         let be = |b: &[u8]| u32::from_be_bytes([b[0], b[1], b[2], b[3]]);
         let (width, height) = (be(&head[16..20]), be(&head[20..24]));
         Map::validate_size(width, height, what)?;
+        // Deflate expands at most 1032:1, and a row holds at least one filter byte and one bit
+        // per pixel: a header that declares more than the file can hold is refused before the
+        // decoder allocates the image (found by the `png` fuzz target).
+        let least_raw = u64::from(width).div_ceil(8) * u64::from(height) + u64::from(height);
+        if least_raw > meta.len().saturating_mul(MAX_DEFLATE_EXPANSION) {
+            return Err(MapError::Corrupt {
+                what: what.to_owned(),
+                detail: format!(
+                    "declares {width}×{height} pixels, which {} bytes cannot hold",
+                    meta.len()
+                ),
+            });
+        }
         reader.seek(SeekFrom::Start(0)).map_err(io_err)?;
         Ok(Self {
             what: what.to_owned(),
@@ -278,6 +294,24 @@ mod tests {
     use super::*;
     use image::{GrayImage, ImageBuffer, Luma, LumaA, Rgb as IRgb, RgbImage, Rgba, RgbaImage};
     use std::path::PathBuf;
+
+    /// The `png` fuzz target's out-of-memory finding: 56 bytes declaring a 65,295×23,312
+    /// 16-bit image, which the decoder would have allocated (3 GB) before failing.
+    #[test]
+    fn a_header_larger_than_the_file_can_hold_is_refused_before_decoding() {
+        let bytes: [u8; 56] = [
+            137, 80, 78, 71, 13, 10, 26, 10, 0, 0, 0, 13, 73, 72, 68, 82, 0, 0, 255, 15, 0, 0, 91,
+            16, 16, 0, 0, 0, 0, 106, 8, 124, 254, 0, 0, 1, 163, 73, 68, 65, 84, 120, 183, 138, 137,
+            80, 78, 71, 13, 91, 108, 10, 131, 245, 108, 101,
+        ];
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bomb.png");
+        std::fs::write(&path, bytes).unwrap();
+        match load_png_pair(&path, None, 30.0, 0.1) {
+            Err(MapError::Corrupt { detail, .. }) => assert!(detail.contains("65295×23312")),
+            other => panic!("expected a refusal, got {other:?}"),
+        }
+    }
 
     fn write_grey16(path: &Path, w: u32, h: u32) {
         let img: ImageBuffer<Luma<u16>, Vec<u16>> =
