@@ -119,7 +119,7 @@ pub struct CameraArgs {
     /// Eye position south, metres [default: the map's centre].
     #[arg(long, allow_hyphen_values = true)]
     pub y: Option<f64>,
-    /// Eye height above the datum, metres [default: --fit-first-hit].
+    /// Eye height, metres above sea level (height 0 of the map) [default: --fit-first-hit].
     #[arg(long, allow_hyphen_values = true, conflicts_with = "fit_first_hit")]
     pub height: Option<f64>,
     /// Choose the eye height so that the pixel footprint at the first hit is one voxel wide
