@@ -2,41 +2,14 @@
 //! or the file, exit code 2, and no output file.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn footprint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_footprint"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+
+use common::{assert_one_line_error, fails_writing, footprint};
 
 /// Runs a render that must fail, and checks the failure's shape.
 fn fails(args: &[&str], names: &str) {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out.png");
-    let mut all: Vec<&str> = vec!["render", "--terrain-size", "64", "--out"];
-    let out_s = out.to_str().unwrap().to_string();
-    all.push(&out_s);
-    all.extend_from_slice(args);
-    let o = footprint(&all);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{args:?}: stderr {stderr}");
-    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert!(
-        lines.len() == 1 || stderr.contains("Usage"),
-        "{args:?}: expected one line, got {stderr:?}"
-    );
-    assert!(
-        stderr.contains(names),
-        "{args:?}: the error should name {names:?}: {stderr}"
-    );
-    assert!(!out.exists(), "{args:?}: an output file was left behind");
-    assert_eq!(
-        std::fs::read_dir(dir.path()).unwrap().count(),
-        0,
-        "{args:?}: temp files left"
-    );
+    fails_writing(&["render", "--terrain-size", "64"], args, names);
 }
 
 fn write_gray16(path: &Path, w: u32, h: u32) {
@@ -215,18 +188,7 @@ fn output_to_a_missing_folder_is_refused() {
 
 /// Runs any subcommand that must fail with a one-line error naming `names`, exit code 2.
 fn fails_with(args: &[&str], names: &str) {
-    let o = footprint(args);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{args:?}: stderr {stderr}");
-    assert_eq!(
-        stderr.lines().filter(|l| !l.trim().is_empty()).count(),
-        1,
-        "{args:?}: one line expected: {stderr:?}"
-    );
-    assert!(
-        stderr.contains(names),
-        "{args:?}: should name {names:?}: {stderr}"
-    );
+    assert_one_line_error(&footprint(args), args, names);
 }
 
 #[test]

@@ -1,38 +1,13 @@
 //! `footprint specular`: plates, figures, measurements, and bad input (one line on stderr,
 //! exit code 2, no output file).
 
-use std::process::{Command, Output};
+mod common;
 
-fn footprint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_footprint"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use common::{fails_writing, footprint};
 
-/// Runs `footprint specular … --out DIR/out.png` that must fail, and checks the failure.
+/// Runs `footprint specular …` that must fail, and checks the failure.
 fn fails(args: &[&str], names: &str) {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("out.png");
-    let out_s = out.to_str().unwrap().to_string();
-    let mut all = vec!["specular"];
-    all.extend_from_slice(args);
-    all.extend(["--out", &out_s]);
-    let o = footprint(&all);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{args:?}: stderr {stderr}");
-    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert_eq!(
-        lines.len(),
-        1,
-        "{args:?}: expected one line, got {stderr:?}"
-    );
-    assert!(
-        stderr.contains(names),
-        "{args:?}: the error should name {names:?}: {stderr}"
-    );
-    assert!(!out.exists(), "{args:?}: an output file was left behind");
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    fails_writing(&["specular"], args, names);
 }
 
 #[test]
