@@ -40,19 +40,7 @@ pub fn load_png_pair(
     let dem_png = PngFile::open(dem, &dem_what)?;
     let (width, height) = (dem_png.width, dem_png.height);
     let color_png = match color {
-        Some(path) => {
-            let what = describe("colour map", path);
-            let png = PngFile::open(path, &what)?;
-            if (png.width, png.height) != (width, height) {
-                return Err(MapError::SizeMismatch {
-                    color: what,
-                    color_size: (png.width, png.height),
-                    heights: dem_what,
-                    heights_size: (width, height),
-                });
-            }
-            Some(png)
-        }
+        Some(path) => Some(open_color(path, width, height, &dem_what)?),
         None => None,
     };
 
@@ -87,6 +75,12 @@ pub fn load_color_map(
     height: u32,
     heights: &str,
 ) -> Result<Vec<Rgb>, MapError> {
+    open_color(path, width, height, heights)?.decode_colors()
+}
+
+/// Opens colour map `path` and checks from its header that it is `width`×`height`, the size
+/// of the height map described by `heights`.
+fn open_color(path: &Path, width: u32, height: u32, heights: &str) -> Result<PngFile, MapError> {
     let what = describe("colour map", path);
     let png = PngFile::open(path, &what)?;
     if (png.width, png.height) != (width, height) {
@@ -97,7 +91,7 @@ pub fn load_color_map(
             heights_size: (width, height),
         });
     }
-    png.decode_colors()
+    Ok(png)
 }
 
 /// Deflate's largest expansion (a 258-byte match in under two bits), rounded up.
