@@ -49,6 +49,7 @@ pub mod cost;
 pub mod error;
 pub mod march;
 pub mod num;
+pub mod pyramid;
 pub mod raster;
 pub mod sampler;
 pub mod specular;

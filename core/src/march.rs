@@ -13,7 +13,8 @@
 //!
 //! **Reading a height.** At a step the ray's cross-axis position `v` is fractional. The height
 //! is that of the voxel *containing* the point, `⌊v / 2^L⌋` on the cross axis: the stick the
-//! ray is over. Colours are read by [`March::sample_point`] (the same voxel) or by
+//! ray is over, from the level's height grid for the column's major axis (see
+//! [`crate::pyramid`]). Colours are read by [`March::sample_point`] (the same voxel) or by
 //! [`March::sample_linear`] (Eq. 4).
 //!
 //! **Mirroring.** Cell indices are tracked modulo the mirrored period `2·len` by ±1 updates,
@@ -32,6 +33,8 @@ pub type Color16 = [u16; 3];
 pub struct March<'a, 't> {
     terrain: &'t Terrain<'a>,
     level: &'t Level<'a>,
+    /// The current level's heights as rays along `axis` see them.
+    heights: &'a [u16],
     axis: Axis,
     /// The ray moves towards increasing major coordinate.
     forward: bool,
@@ -77,6 +80,7 @@ impl<'a, 't> March<'a, 't> {
         let mut m = Self {
             terrain,
             level,
+            heights: level.heights(column.axis),
             axis: column.axis,
             forward: column.sign > 0,
             lod: frame.lod(),
@@ -111,6 +115,7 @@ impl<'a, 't> March<'a, 't> {
     /// Recomputes the level-dependent state after a change of level (a few times a column).
     fn enter_level(&mut self) {
         self.level = self.terrain.level(self.l as usize);
+        self.heights = self.level.heights(self.axis);
         let (w, h) = (self.level.width(), self.level.height());
         let (len_u, len_v, stride_u, stride_v) = match self.axis {
             Axis::X => (w, h, 1, w as usize),
@@ -228,7 +233,7 @@ impl<'a, 't> March<'a, 't> {
     /// The height of the current voxel (the stick containing the ray's point).
     #[inline(always)]
     pub fn height(&self) -> Height {
-        height(self.level.heights()[self.offset_u() + self.off_v])
+        height(self.heights[self.offset_u() + self.off_v])
     }
 
     /// The current voxel's `(x, y)` at its level, after mirroring.

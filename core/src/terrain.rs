@@ -5,10 +5,12 @@
 //! reflected about its edges with period `2·len`.
 //!
 //! The multiresolution pyramid (Sect. 3) holds level 0 (the map) and levels `k+1` built from
-//! `k` by a 2×2 box average of heights and colours. Odd sides round up, and the missing
-//! neighbour is the mirrored one. The caller owns every buffer; [`Level::build_next`] only
-//! writes into the slices it is lent.
+//! `k` by [`Level::build_next`] (see [`crate::pyramid`]). Every level holds one colour grid and
+//! two height grids, one for rays that step along x and one for rays that step along y: a
+//! coarse voxel can look different from the two directions. At level 0 both are the map's
+//! heights. The caller owns every buffer; the core only reads the slices it is lent.
 
+use crate::camera::Axis;
 use crate::color::Rgb;
 use crate::error::{check, Error};
 use crate::num::{height, Height};
@@ -22,7 +24,10 @@ pub const MAX_LEVELS: usize = 17;
 /// One level of the pyramid: `width × height` voxels, row-major (`heights[y·width + x]`).
 #[derive(Clone, Copy, Debug)]
 pub struct Level<'a> {
-    heights: &'a [u16],
+    /// The heights that rays stepping along x see ([`Axis::X`]).
+    along_x: &'a [u16],
+    /// The heights that rays stepping along y see ([`Axis::Y`]).
+    along_y: &'a [u16],
     colors: &'a [Rgb],
     width: u32,
     height: u32,
@@ -46,7 +51,7 @@ pub(crate) fn fold(p: u32, len: u32) -> u32 {
 }
 
 /// Checks that a slice holds the `expected` number of cells.
-fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), Error> {
+pub(crate) fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), Error> {
     if actual == expected {
         Ok(())
     } else {
@@ -68,23 +73,56 @@ pub fn next_size(width: u32, height: u32) -> Option<(u32, u32)> {
 }
 
 impl<'a> Level<'a> {
-    /// A level over borrowed slices of `width × height` heights and colours.
+    /// A level over borrowed slices of `width × height` heights and colours, the same heights
+    /// for rays along either axis (level 0, or any level of a [`HeightFilter::Mean`] pyramid).
     ///
     /// Errors: a side of 0 or over [`MAX_SIDE`], or a slice of the wrong length.
+    ///
+    /// [`HeightFilter::Mean`]: crate::pyramid::HeightFilter::Mean
     pub fn new(
         width: u32,
         height: u32,
         heights: &'a [u16],
         colors: &'a [Rgb],
     ) -> Result<Self, Error> {
+        // One slice given: name it as the caller knows it.
+        Self::directional(width, height, heights, heights, colors).map_err(|e| match e {
+            Error::SliceLength {
+                what: "heights along x",
+                expected,
+                actual,
+            } => Error::SliceLength {
+                what: "heights",
+                expected,
+                actual,
+            },
+            e => e,
+        })
+    }
+
+    /// A level whose rays see `along_x` when they step along x and `along_y` when they step
+    /// along y (a [`HeightFilter::Silhouette`] level).
+    ///
+    /// Errors: a side of 0 or over [`MAX_SIDE`], or a slice of the wrong length.
+    ///
+    /// [`HeightFilter::Silhouette`]: crate::pyramid::HeightFilter::Silhouette
+    pub fn directional(
+        width: u32,
+        height: u32,
+        along_x: &'a [u16],
+        along_y: &'a [u16],
+        colors: &'a [Rgb],
+    ) -> Result<Self, Error> {
         if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
             return Err(Error::MapSize { width, height });
         }
         let cells = width as usize * height as usize;
-        check_len("heights", cells, heights.len())?;
+        check_len("heights along x", cells, along_x.len())?;
+        check_len("heights along y", cells, along_y.len())?;
         check_len("colors", cells, colors.len())?;
         Ok(Self {
-            heights,
+            along_x,
+            along_y,
             colors,
             width,
             height,
@@ -101,9 +139,13 @@ impl<'a> Level<'a> {
         self.height
     }
 
-    /// The heights, row-major.
-    pub fn heights(&self) -> &'a [u16] {
-        self.heights
+    /// The heights that rays stepping along `axis` see, row-major.
+    #[inline(always)]
+    pub fn heights(&self, axis: Axis) -> &'a [u16] {
+        match axis {
+            Axis::X => self.along_x,
+            Axis::Y => self.along_y,
+        }
     }
 
     /// The colours, row-major.
@@ -111,9 +153,10 @@ impl<'a> Level<'a> {
         self.colors
     }
 
-    /// The height of voxel `(x, y)` of this level, with mirrored addressing.
-    pub fn height_at(&self, x: i64, y: i64) -> u16 {
-        self.heights[self.index(mirror(x, self.width), mirror(y, self.height))]
+    /// The height of voxel `(x, y)` of this level seen by rays along `axis`, with mirrored
+    /// addressing.
+    pub fn height_at(&self, axis: Axis, x: i64, y: i64) -> u16 {
+        self.heights(axis)[self.index(mirror(x, self.width), mirror(y, self.height))]
     }
 
     /// The colour of voxel `(x, y)` of this level, with mirrored addressing.
@@ -121,52 +164,15 @@ impl<'a> Level<'a> {
         self.colors[self.index(mirror(x, self.width), mirror(y, self.height))]
     }
 
+    /// The largest height in either grid.
+    fn max_height(&self) -> u16 {
+        let top = |hs: &[u16]| hs.iter().copied().max().unwrap_or(0);
+        top(self.along_x).max(top(self.along_y))
+    }
+
     #[inline(always)]
     pub(crate) fn index(&self, x: u32, y: u32) -> usize {
         y as usize * self.width as usize + x as usize
-    }
-
-    /// Builds the next pyramid level into the caller's buffers: each voxel is the rounded 2×2
-    /// box average of heights and of each colour channel (Sect. 3). The buffers must hold
-    /// exactly the cells of [`next_size`].
-    pub fn build_next<'b>(
-        &self,
-        heights: &'b mut [u16],
-        colors: &'b mut [Rgb],
-    ) -> Result<Level<'b>, Error> {
-        let (w, h) = next_size(self.width, self.height).ok_or(Error::TooManyLevels)?;
-        let cells = w as usize * h as usize;
-        check_len("heights", cells, heights.len())?;
-        check_len("colors", cells, colors.len())?;
-        for y in 0..h {
-            let (y0, y1) = (2 * y, (2 * y + 1).min(self.height - 1));
-            for x in 0..w {
-                let (x0, x1) = (2 * x, (2 * x + 1).min(self.width - 1));
-                let quad = [
-                    self.index(x0, y0),
-                    self.index(x1, y0),
-                    self.index(x0, y1),
-                    self.index(x1, y1),
-                ];
-                let sum_h: u32 = quad.iter().map(|&i| u32::from(self.heights[i])).sum();
-                let mut sum = [0u32; 3];
-                for &i in &quad {
-                    let c = self.colors[i];
-                    sum[0] += u32::from(c.r);
-                    sum[1] += u32::from(c.g);
-                    sum[2] += u32::from(c.b);
-                }
-                let out = y as usize * w as usize + x as usize;
-                // Each quotient is at most the largest input, so the narrowing is exact.
-                heights[out] = ((sum_h + 2) / 4) as u16;
-                colors[out] = Rgb::new(
-                    ((sum[0] + 2) / 4) as u8,
-                    ((sum[1] + 2) / 4) as u8,
-                    ((sum[2] + 2) / 4) as u8,
-                );
-            }
-        }
-        Level::new(w, h, heights, colors)
     }
 }
 
@@ -209,7 +215,7 @@ pub struct Terrain<'a> {
 impl<'a> Terrain<'a> {
     /// A terrain of one level; add pyramid levels with [`Terrain::push_level`].
     pub fn new(level0: Level<'a>, scale: Scale) -> Self {
-        let max_height = level0.heights.iter().copied().max().unwrap_or(0);
+        let max_height = level0.max_height();
         let mut levels = heapless::Vec::new();
         // Capacity is MAX_LEVELS ≥ 1, so the first push cannot fail.
         let _ = levels.push(level0);
@@ -230,7 +236,9 @@ impl<'a> Terrain<'a> {
                 level: self.levels.len(),
             });
         }
-        self.levels.push(level).map_err(|_| Error::TooManyLevels)
+        self.levels.push(level).map_err(|_| Error::TooManyLevels)?;
+        self.max_height = self.max_height.max(level.max_height());
+        Ok(())
     }
 
     /// The levels, finest first.
@@ -258,8 +266,9 @@ impl<'a> Terrain<'a> {
         self.scale
     }
 
-    /// The largest height of level 0 (no pyramid level can exceed it): a ray above it that
-    /// does not descend can hit nothing, which ends a column early.
+    /// The largest height of any level (a pyramid built by [`Level::build_next`] never exceeds
+    /// level 0's): a ray above it that does not descend can hit nothing, which ends a column
+    /// early.
     pub fn max_height(&self) -> Height {
         height(self.max_height)
     }

@@ -8,6 +8,7 @@ use footprint_core::camera::{Camera, Column, Frame, Options};
 use footprint_core::column;
 use footprint_core::cost::{Cost, Counts};
 use footprint_core::num::Coord;
+use footprint_core::pyramid::HeightFilter;
 use footprint_core::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::sampler::Sampler;
 use footprint_core::specular::{self, Light, Material, Method, Normal};
@@ -49,7 +50,8 @@ pub fn count_visible(frame: &Frame<'_>, terrain: &Terrain<'_>, counts: &mut Coun
 }
 
 /// The terrain over `level0` and the levels above it, which `Level::build_next` builds on
-/// the chip (2×2 box averages) into `heights` and `colors`; they must hold every level's cells.
+/// the chip (the default height filter, the host's) into `heights` (two grids per level) and
+/// `colors`; they must hold every level's cells.
 #[inline(never)]
 pub fn build_terrain(
     level0: Level<'static>,
@@ -62,10 +64,11 @@ pub fn build_terrain(
     let mut below = level0;
     while let Some((w, h)) = next_size(below.width(), below.height()) {
         let cells = w as usize * h as usize;
-        let (hs, rest_h) = core::mem::take(&mut heights).split_at_mut(cells);
+        let (hx, rest_h) = core::mem::take(&mut heights).split_at_mut(cells);
+        let (hy, rest_h) = rest_h.split_at_mut(cells);
         let (cs, rest_c) = core::mem::take(&mut colors).split_at_mut(cells);
         (heights, colors) = (rest_h, rest_c);
-        let level = below.build_next(hs, cs)?;
+        let level = below.build_next(HeightFilter::default(), hx, hy, cs)?;
         terrain.push_level(level)?;
         below = level;
     }

@@ -35,6 +35,7 @@ use panic_semihosting as _;
 use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::cost::{Counts, NoCost, Tally};
 use footprint_core::num::Coord;
+use footprint_core::pyramid::HeightFilter;
 use footprint_core::raster::Target;
 use footprint_core::sampler::{Area, Point, Sampler, Super};
 use footprint_core::specular::{Light, Material, Normal, Phong};
@@ -204,7 +205,7 @@ fn error_paths(
     );
     ok &= error_line(
         format_args!("Level::build_next(empty buffers)"),
-        level0.build_next(&mut [], &mut []),
+        level0.build_next(HeightFilter::default(), &mut [], &mut [], &mut []),
     );
     ok &= error_line(
         format_args!("Scale::new(30, 0)"),

@@ -9,6 +9,7 @@ use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::column::render;
 use footprint_core::cost::{Counts, Tally};
 use footprint_core::num::Coord;
+use footprint_core::pyramid::HeightFilter;
 use footprint_core::sampler::{Area, Linear, Point, Super};
 use footprint_core::terrain::{next_size, Level, Scale, Terrain};
 use footprint_core::visibility::count_visible;
@@ -32,6 +33,7 @@ struct Input {
     image: (u8, u8),
     mode: u8,
     lod: bool,
+    mean_heights: bool,
 }
 
 libfuzzer_sys::fuzz_target!(|input: Input| {
@@ -62,24 +64,30 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     let Ok(scale) = Scale::new(input.spacing, input.height_scale) else {
         return;
     };
-    // The pyramid, each level in its own buffers.
-    let mut levels: Vec<(u32, u32, Vec<u16>, Vec<Rgb>)> = Vec::new();
-    let (mut lw, mut lh, mut lhs, mut lcs) = (w, h, heights.clone(), colors.clone());
-    while let Some((nw, nh)) = next_size(lw, lh) {
-        let below = Level::new(lw, lh, &lhs, &lcs).expect("built above");
+    // The pyramid, each level in its own buffers: (width, height, along x, along y, colours).
+    let filter = if input.mean_heights {
+        HeightFilter::Mean
+    } else {
+        HeightFilter::Silhouette
+    };
+    type Owned = (u32, u32, Vec<u16>, Vec<u16>, Vec<Rgb>);
+    let mut levels: Vec<Owned> = Vec::new();
+    let mut below = level0;
+    while let Some((nw, nh)) = next_size(below.width(), below.height()) {
         let n = (nw * nh) as usize;
-        let (mut hs, mut cs) = (vec![0u16; n], vec![Rgb::default(); n]);
+        let (mut hx, mut hy, mut cs) = (vec![0u16; n], vec![0u16; n], vec![Rgb::default(); n]);
         below
-            .build_next(&mut hs, &mut cs)
+            .build_next(filter, &mut hx, &mut hy, &mut cs)
             .expect("sized by next_size");
-        levels.push((nw, nh, hs.clone(), cs.clone()));
-        (lw, lh, lhs, lcs) = (nw, nh, hs, cs);
+        levels.push((nw, nh, hx, hy, cs));
+        let (lw, lh, hx, hy, cs) = levels.last().expect("just pushed");
+        below = Level::directional(*lw, *lh, hx, hy, cs).expect("built above");
     }
     let mut terrain = Terrain::new(level0, scale);
     if input.lod {
-        for (lw, lh, hs, cs) in &levels {
+        for (lw, lh, hx, hy, cs) in &levels {
             terrain
-                .push_level(Level::new(*lw, *lh, hs, cs).expect("built"))
+                .push_level(Level::directional(*lw, *lh, hx, hy, cs).expect("built"))
                 .expect("in order");
         }
     }

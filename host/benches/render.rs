@@ -7,6 +7,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use footprint_core::camera::Options;
 use footprint_core::cost::NoCost;
+use footprint_core::pyramid::HeightFilter;
 use footprint_host::experiment::bench::{paper_camera, paper_modes, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
@@ -15,7 +16,7 @@ use footprint_host::view::Size;
 
 fn paper_cases(c: &mut Criterion) {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map).expect("the built-in map builds");
+    let pyramid = Pyramid::build(&map, HeightFilter::default()).expect("the built-in map builds");
     let terrain = pyramid.terrain(true).expect("the pyramid lends a terrain");
     let size = Size {
         width: 400,

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use footprint_core::camera::{Camera, CameraParams, Options};
+use footprint_core::pyramid::HeightFilter;
 
 use crate::map::{self, Map};
 use crate::pyramid::Pyramid;
@@ -44,6 +45,26 @@ pub enum Switch {
     Off,
 }
 
+/// How the pyramid's coarse heights are made (`footprint_core::pyramid::HeightFilter`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum HeightFilterArg {
+    /// The 2×2 block's silhouette along the ray: the maximum along its major axis, the mean
+    /// across it.
+    #[default]
+    Silhouette,
+    /// The 2×2 box average (distant ridges sink at low pitch).
+    Mean,
+}
+
+impl From<HeightFilterArg> for HeightFilter {
+    fn from(a: HeightFilterArg) -> Self {
+        match a {
+            HeightFilterArg::Silhouette => HeightFilter::Silhouette,
+            HeightFilterArg::Mean => HeightFilter::Mean,
+        }
+    }
+}
+
 /// Where the terrain comes from.
 #[derive(Args, Clone, Debug)]
 pub struct MapArgs {
@@ -70,9 +91,17 @@ pub struct MapArgs {
     /// Side of the built-in terrain, voxels.
     #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE)]
     pub terrain_size: u32,
+    /// How the pyramid's coarse voxels get their heights (colours are always 2×2 averages).
+    #[arg(long = "height-filter", value_enum, default_value_t = HeightFilterArg::Silhouette)]
+    pub height_filter: HeightFilterArg,
 }
 
 impl MapArgs {
+    /// Builds the pyramid of `map` with `--height-filter`.
+    pub fn pyramid(&self, map: &Map) -> Result<Pyramid> {
+        Pyramid::build(map, self.height_filter.into())
+    }
+
     /// Loads the map (or generates the built-in one).
     pub fn load(&self) -> Result<Map> {
         match &self.dem {
@@ -163,7 +192,7 @@ impl View {
     /// Loads the map and resolves the camera (fitting the eye height if asked).
     pub fn new(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
         let map = map_args.load()?;
-        let pyramid = Pyramid::build(&map)?;
+        let pyramid = map_args.pyramid(&map)?;
         let options = Options {
             lod: cam.lod == Switch::On,
             ..Options::default()

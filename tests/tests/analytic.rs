@@ -9,11 +9,12 @@
 mod common;
 
 use common::*;
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::camera::{Axis, Camera, CameraParams, Column, Frame, Options};
 use footprint_core::column;
 use footprint_core::cost::{Counts, NoCost, Tally};
 use footprint_core::march::{to_rgb, March};
 use footprint_core::num::{Coord, Height};
+use footprint_core::pyramid::HeightFilter;
 use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
 use footprint_core::terrain::{mirror, next_size, Level, Scale, Terrain, MAX_SIDE};
 use footprint_core::visibility;
@@ -617,8 +618,18 @@ fn area_sampling_covers_every_visible_voxel() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// 7. Pyramid levels are rounded 2×2 averages with a mirrored odd edge
+// 7. Pyramid levels: rounded 2×2 colour averages, heights by the filter, a mirrored odd edge
 // ---------------------------------------------------------------------------------------------
+
+/// Builds the level above `level` with `filter`, returning (along x, along y, colours).
+fn next_level(level: &Level<'_>, filter: HeightFilter) -> (Vec<u16>, Vec<u16>, Vec<Rgb>) {
+    let (w, h) = next_size(level.width(), level.height()).unwrap();
+    let cells = (w * h) as usize;
+    let (mut hx, mut hy, mut cs) = (vec![0; cells], vec![0; cells], vec![Rgb::default(); cells]);
+    let up = level.build_next(filter, &mut hx, &mut hy, &mut cs).unwrap();
+    assert_eq!((up.width(), up.height()), (w, h));
+    (hx, hy, cs)
+}
 
 #[test]
 fn pyramid_levels_average_2x2() {
@@ -629,15 +640,15 @@ fn pyramid_levels_average_2x2() {
     let colors: Vec<Rgb> = (0..15u8).map(|k| Rgb::new(k, 3 * k, 255 - k)).collect();
     let level = Level::new(5, 3, &heights, &colors).unwrap();
     assert_eq!(next_size(5, 3), Some((3, 2)));
-    let (mut h1, mut c1) = ([0u16; 6], [Rgb::default(); 6]);
-    let up = level.build_next(&mut h1, &mut c1).unwrap();
-    assert_eq!((up.width(), up.height()), (3, 2));
+    let (hx, hy, c1) = next_level(&level, HeightFilter::Mean);
     // By hand, (sum + 2) / 4, i.e. halves round up:
     // (0,0): 0+1+10+11 = 22 → 5.5 → 6     (1,0): 2+3+12+13 = 30 → 7.5 → 8
     // (2,0): the odd column 4 is its own mirrored neighbour: 4+4+14+14 = 36 → 9
     // (0,1): the odd row 2 is its own mirrored neighbour: 20+21+20+21 = 82 → 20.5 → 21
     // (1,1): 22+23+22+23 = 90 → 22.5 → 23  (2,1): the corner, 4×24 → 24
-    assert_eq!(up.heights(), &[6, 8, 9, 21, 23, 24]);
+    assert_eq!(hx, [6, 8, 9, 21, 23, 24]);
+    assert_eq!(hy, hx, "the mean is the same along both axes");
+    let up = Level::directional(3, 2, &hx, &hy, &c1).unwrap();
     // Every voxel equals the rounded average of the four mirrored-address voxels below.
     for y in 0..2i64 {
         for x in 0..3i64 {
@@ -649,10 +660,10 @@ fn pyramid_levels_average_2x2() {
             ];
             let hsum: u32 = quad
                 .iter()
-                .map(|&(a, b)| u32::from(level.height_at(a, b)))
+                .map(|&(a, b)| u32::from(level.height_at(Axis::X, a, b)))
                 .sum();
             assert_eq!(
-                up.height_at(x, y),
+                up.height_at(Axis::X, x, y),
                 ((hsum + 2) / 4) as u16,
                 "height ({x},{y})"
             );
@@ -669,6 +680,8 @@ fn pyramid_levels_average_2x2() {
     }
     // Colour (2,0): red = voxel index (4, 4, 9, 9) → 26/4 = 6.5 → 7.
     assert_eq!(up.color_at(2, 0).r, 7);
+    // The silhouette filter gives the same colours.
+    assert_eq!(next_level(&level, HeightFilter::Silhouette).2, c1);
     // Rounding of a 2×2: sums 1, 2, 3, 4·65535 → 0, 1 (0.5 rounds up), 1, 65535 (no overflow).
     for (vals, want) in [
         ([0u16, 0, 0, 1], 0u16),
@@ -677,18 +690,18 @@ fn pyramid_levels_average_2x2() {
     ] {
         let black = [Rgb::default(); 4];
         let l = Level::new(2, 2, &vals, &black).unwrap();
-        let (mut h, mut c) = ([0u16; 1], [Rgb::default(); 1]);
-        assert_eq!(l.build_next(&mut h, &mut c).unwrap().heights(), &[want]);
+        assert_eq!(next_level(&l, HeightFilter::Mean).0, [want]);
     }
     let tall = [u16::MAX; 4];
     let white = [Rgb::new(255, 255, 255); 4];
     let l = Level::new(2, 2, &tall, &white).unwrap();
-    let (mut h, mut c) = ([0u16; 1], [Rgb::default(); 1]);
-    let top = l.build_next(&mut h, &mut c).unwrap();
-    assert_eq!(
-        (top.heights(), top.colors()),
-        (&[u16::MAX][..], &white[..1])
-    );
+    for filter in [HeightFilter::Mean, HeightFilter::Silhouette] {
+        let (hx, hy, cs) = next_level(&l, filter);
+        assert_eq!(
+            (hx, hy, cs),
+            (vec![u16::MAX], vec![u16::MAX], white[..1].to_vec())
+        );
+    }
     // The chain of sizes down to 1×1.
     let mut size = (5, 3);
     let mut chain = vec![size];
@@ -710,6 +723,127 @@ fn pyramid_levels_average_2x2() {
     );
 }
 
+#[test]
+fn silhouette_keeps_the_taller_stick_along_the_ray_and_averages_across() {
+    let black = [Rgb::default(); 4];
+    let silhouette = |vals: [u16; 4]| {
+        let l = Level::new(2, 2, &vals, &black).unwrap();
+        let (hx, hy, _) = next_level(&l, HeightFilter::Silhouette);
+        let (mean, _, _) = next_level(&l, HeightFilter::Mean);
+        (hx[0], hy[0], mean[0])
+    };
+    // Row-major [0 100; 0 20]: along x the rows' maxima are 100 and 20 → 60; along y the
+    // columns' maxima are 0 and 100 → 50; the box average is 30.
+    assert_eq!(silhouette([0, 100, 0, 20]), (60, 50, 30));
+    // A ridge along x (the top row): a ray along y must cross it and keeps its whole height;
+    // a ray along x runs beside it, and half its footprint sees past.
+    assert_eq!(silhouette([100, 100, 0, 0]), (50, 100, 50));
+    // Rounding: halves round up, and the largest heights do not overflow.
+    assert_eq!(silhouette([0, 1, 0, 0]), (1, 1, 0));
+    assert_eq!(silhouette([u16::MAX; 4]), (u16::MAX, u16::MAX, u16::MAX));
+    // The odd 5×3 map of the test above (heights 10·y + x; the missing neighbour mirrored).
+    let heights: Vec<u16> = (0..3u16)
+        .flat_map(|y| (0..5u16).map(move |x| 10 * y + x))
+        .collect();
+    let colors = vec![Rgb::default(); 15];
+    let level = Level::new(5, 3, &heights, &colors).unwrap();
+    let (hx, hy, _) = next_level(&level, HeightFilter::Silhouette);
+    // Along x, e.g. (0,0): rows' maxima 1 and 11 → 6; along y, columns' maxima 10 and 11 → 11.
+    assert_eq!(hx, [6, 8, 9, 21, 23, 24]);
+    assert_eq!(hy, [11, 13, 14, 21, 23, 24]);
+}
+
+#[test]
+fn silhouette_lies_between_the_mean_and_the_maximum_and_transposes() {
+    let (w, h) = (9u32, 7u32);
+    let f = |x: i64, y: i64| (hash(x, y, 5) % 4000) as u16;
+    let map = Map::from_fn("rough", w, h, |x, y| (f(x, y), Rgb::default()));
+    let transposed = Map::from_fn("rough-t", h, w, |x, y| (f(y, x), Rgb::default()));
+    let top0 = *map.levels[0].heights.iter().max().unwrap();
+    for (k, (l, t)) in map
+        .levels
+        .iter()
+        .zip(&transposed.levels)
+        .enumerate()
+        .skip(1)
+    {
+        let (lw, lh) = (i64::from(l.w), i64::from(l.h));
+        for y in 0..lh {
+            for x in 0..lw {
+                let (hx, hy) = (
+                    l.level().height_at(Axis::X, x, y),
+                    l.level().height_at(Axis::Y, x, y),
+                );
+                // Along x here is along y in the transposed map, level by level.
+                assert_eq!(
+                    hx,
+                    t.level().height_at(Axis::Y, y, x),
+                    "level {k} ({x},{y})"
+                );
+                assert_eq!(
+                    hy,
+                    t.level().height_at(Axis::X, y, x),
+                    "level {k} ({x},{y})"
+                );
+                assert!(hx <= top0 && hy <= top0, "level {k} rises above level 0");
+            }
+        }
+    }
+    // At level 1, each grid lies between the 2×2 mean and the 2×2 maximum of level 0.
+    let (l0, l1) = (map.levels[0].level(), map.levels[1].level());
+    for y in 0..i64::from(map.levels[1].h) {
+        for x in 0..i64::from(map.levels[1].w) {
+            let quad = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| {
+                u32::from(l0.height_at(Axis::X, (2 * x + dx).min(8), (2 * y + dy).min(6)))
+            });
+            let mean = (quad.iter().sum::<u32>() + 2) / 4;
+            let max = *quad.iter().max().unwrap();
+            for axis in [Axis::X, Axis::Y] {
+                let v = u32::from(l1.height_at(axis, x, y));
+                assert!(
+                    mean <= v && v <= max,
+                    "({x},{y}) {axis:?}: {mean} ≤ {v} ≤ {max}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn each_column_reads_the_height_grid_of_its_major_axis() {
+    // A flat map whose level-1 grids differ: 0 along x, 500 along y. Stepping past the level
+    // switch, a column that steps along y reads 500 and one that steps along x reads 0.
+    let map = flat();
+    let l0 = map.level0();
+    let (w1, h1) = next_size(l0.width(), l0.height()).unwrap();
+    let cells = (w1 * h1) as usize;
+    let (low, high, colors) = (vec![0u16; cells], vec![500u16; cells], vec![SKY; cells]);
+    let mut terrain = Terrain::new(l0, scale());
+    terrain
+        .push_level(Level::directional(w1, h1, &low, &high, &colors).unwrap())
+        .unwrap();
+    for (heading, axis, want) in [(0.0, Axis::Y, 500), (90.0, Axis::X, 0)] {
+        let pose = Pose {
+            heading_deg: heading,
+            ..pose_for(&map)
+        };
+        let cam = camera_far(pose, 10.0, 8, 10_000.0);
+        with_frame(&cam, &terrain, true, |frame| {
+            let column = frame.column(4);
+            assert_eq!(column.axis(), axis);
+            let mut march = March::new(frame, &terrain, column);
+            while march.level() == 0 {
+                march.advance();
+            }
+            assert_eq!(
+                march.height(),
+                footprint_core::num::height(want),
+                "heading {heading}"
+            );
+        });
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // 8. Mirrored addressing
 // ---------------------------------------------------------------------------------------------
@@ -721,20 +855,44 @@ fn mirrored_addressing() {
     let colors: Vec<Rgb> = (0..(w * h) as u8).map(|k| Rgb::new(k, k, k)).collect();
     let level = Level::new(w, h, &heights, &colors).unwrap();
     let (wi, hi) = (i64::from(w), i64::from(h));
-    assert_eq!(level.height_at(-1, 0), level.height_at(0, 0));
-    assert_eq!(level.height_at(wi, 0), level.height_at(wi - 1, 0));
-    assert_eq!(level.height_at(0, -1), level.height_at(0, 0));
-    assert_eq!(level.height_at(0, hi), level.height_at(0, hi - 1));
-    assert_eq!(level.height_at(-2, -3), level.height_at(1, 2));
+    assert_eq!(
+        level.height_at(Axis::X, -1, 0),
+        level.height_at(Axis::X, 0, 0)
+    );
+    assert_eq!(
+        level.height_at(Axis::X, wi, 0),
+        level.height_at(Axis::X, wi - 1, 0)
+    );
+    assert_eq!(
+        level.height_at(Axis::X, 0, -1),
+        level.height_at(Axis::X, 0, 0)
+    );
+    assert_eq!(
+        level.height_at(Axis::X, 0, hi),
+        level.height_at(Axis::X, 0, hi - 1)
+    );
+    assert_eq!(
+        level.height_at(Axis::X, -2, -3),
+        level.height_at(Axis::X, 1, 2)
+    );
     // The folded sequence …, 1, 0, 0, 1, …, len−1, len−1, len−2, …
     let fold: Vec<u32> = (-6..12).map(|i| mirror(i, w)).collect();
     assert_eq!(fold, [4, 4, 3, 2, 1, 0, 0, 1, 2, 3, 4, 4, 3, 2, 1, 0, 0, 1]);
     for y in -10..10i64 {
         for x in -20..20i64 {
             // Period 2w across, 2h down; reflection about the edge −½.
-            assert_eq!(level.height_at(x, y), level.height_at(x + 2 * wi, y));
-            assert_eq!(level.height_at(x, y), level.height_at(x, y - 2 * hi));
-            assert_eq!(level.height_at(x, y), level.height_at(-1 - x, y));
+            assert_eq!(
+                level.height_at(Axis::X, x, y),
+                level.height_at(Axis::X, x + 2 * wi, y)
+            );
+            assert_eq!(
+                level.height_at(Axis::X, x, y),
+                level.height_at(Axis::X, x, y - 2 * hi)
+            );
+            assert_eq!(
+                level.height_at(Axis::X, x, y),
+                level.height_at(Axis::X, -1 - x, y)
+            );
             assert_eq!(level.color_at(x, y), level.color_at(-1 - x, -1 - y));
         }
     }
@@ -758,7 +916,10 @@ fn walk_reads_mirrored_terrain() {
     // tiled(x, y) = small(x − 16, y − 16) for every x, y (inside and, by mirroring, outside).
     let tiled = Map::from_fn("tiled", 48, 48, |x, y| {
         let l = small.level0();
-        (l.height_at(x - 16, y - 16), l.color_at(x - 16, y - 16))
+        (
+            l.height_at(Axis::X, x - 16, y - 16),
+            l.color_at(x - 16, y - 16),
+        )
     });
     let (ts, tt) = (small.terrain(), tiled.terrain());
     for heading in [37.0, 100.0, 200.0, 300.0] {
@@ -936,16 +1097,25 @@ fn constructor_errors() {
     let cs = [c; 15];
     let base = Level::new(5, 3, &hs, &cs).unwrap();
     let (mut h6, mut c6, mut h5) = ([0u16; 6], [c; 6], [0u16; 5]);
+    let f = HeightFilter::default();
     expect(
-        ok(base.build_next(&mut h5, &mut c6)),
+        ok(base.build_next(f, &mut h5, &mut [0; 6], &mut c6)),
         Error::SliceLength {
-            what: "heights",
+            what: "heights along x",
             expected: 6,
             actual: 5,
         },
     );
     expect(
-        ok(base.build_next(&mut h6, &mut [c; 7])),
+        ok(base.build_next(f, &mut [0; 6], &mut h5, &mut c6)),
+        Error::SliceLength {
+            what: "heights along y",
+            expected: 6,
+            actual: 5,
+        },
+    );
+    expect(
+        ok(base.build_next(f, &mut h6, &mut [0; 6], &mut [c; 7])),
         Error::SliceLength {
             what: "colors",
             expected: 6,
@@ -954,7 +1124,18 @@ fn constructor_errors() {
     );
     let (h1, c1, h4, c4, h6b, c6b) = ([7u16], [c], [0u16; 4], [c; 4], [0u16; 6], [c; 6]);
     let one = Level::new(1, 1, &h1, &c1).unwrap();
-    expect(ok(one.build_next(&mut [], &mut [])), Error::TooManyLevels);
+    expect(
+        ok(one.build_next(f, &mut [], &mut [], &mut [])),
+        Error::TooManyLevels,
+    );
+    expect(
+        ok(Level::directional(3, 2, &h6b, &h4, &c6b)),
+        Error::SliceLength {
+            what: "heights along y",
+            expected: 6,
+            actual: 4,
+        },
+    );
 
     // Pyramid levels.
     let scale = Scale::new(1.0, 0.1).unwrap();

@@ -3,6 +3,7 @@
 
 use footprint_core::camera::Options;
 use footprint_core::cost::Tally;
+use footprint_core::pyramid::HeightFilter;
 use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
@@ -25,7 +26,7 @@ fn measure(pyramid: &Pyramid, map: &footprint_host::map::Map, pitch: f64, mode: 
 #[test]
 fn area_sampling_coverage_is_exactly_one_in_every_paper_case() {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map).unwrap();
+    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
     for pitch in PAPER_PITCHES {
         let t = measure(&pyramid, &map, pitch, Mode::As);
         assert!(
@@ -43,7 +44,7 @@ fn area_sampling_coverage_is_exactly_one_in_every_paper_case() {
 #[test]
 fn point_sampling_undersamples_more_as_the_pitch_falls() {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map).unwrap();
+    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
     let cov: Vec<f64> = PAPER_PITCHES
         .iter()
         .map(|&p| measure(&pyramid, &map, p, Mode::Ps).coverage())
@@ -56,7 +57,7 @@ fn point_sampling_undersamples_more_as_the_pitch_falls() {
 #[test]
 fn fit_first_hit_puts_a_one_voxel_footprint_at_the_first_hit() {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map).unwrap();
+    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
     let terrain = pyramid.terrain(true).unwrap();
     for pitch in PAPER_PITCHES {
         let camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
@@ -79,7 +80,7 @@ fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
     // steps grow with it; with the pyramid they grow with the log of the distance (Sect. 3).
     use footprint_core::camera::{Camera, CameraParams};
     let map = procedural(7, 512);
-    let pyramid = Pyramid::build(&map).unwrap();
+    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
     let top_m = f64::from(map.height_range().1) * map.height_scale_m;
     let mut with_lod = Vec::new();
     let mut without = Vec::new();

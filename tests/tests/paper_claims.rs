@@ -4,6 +4,7 @@
 
 use std::sync::OnceLock;
 
+use footprint_core::pyramid::HeightFilter;
 use footprint_host::commands::report::claims;
 use footprint_host::experiment::bench::PAPER_PITCHES;
 use footprint_host::experiment::fly::{self, Fly, FlySpec};
@@ -23,7 +24,7 @@ fn results() -> &'static (Tables15, Fly) {
     static RESULTS: OnceLock<(Tables15, Fly)> = OnceLock::new();
     RESULTS.get_or_init(|| {
         let map = procedural(1, DEFAULT_SIZE);
-        let pyramid = Pyramid::build(&map).unwrap();
+        let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
         let modes: Vec<Mode> = [Mode::As, Mode::Ps, Mode::Li]
             .into_iter()
             .chain([2, 4, 8, 16, 32].map(Mode::Ss))

@@ -23,7 +23,7 @@ use footprint_core::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::march::{Color16, March};
 use footprint_core::num::{Coord, Weight};
 use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
-use footprint_core::terrain::{Level, Scale, Terrain};
+use footprint_core::terrain::{Scale, Terrain};
 use footprint_core::visibility::count_visible;
 use footprint_core::Rgb;
 use proptest::prelude::*;
@@ -132,11 +132,9 @@ fn with_case<R>(case: &Case, f: impl FnOnce(&Terrain<'_>, &Frame<'_>) -> R) -> O
     let map = pyramid(case);
     let scale = Scale::new(case.spacing_m, case.height_scale_m).ok()?;
     let l0 = &map.levels[0];
-    let mut terrain = Terrain::new(Level::new(l0.w, l0.h, &l0.heights, &l0.colors).ok()?, scale);
+    let mut terrain = Terrain::new(l0.level(), scale);
     for l in &map.levels[1..] {
-        terrain
-            .push_level(Level::new(l.w, l.h, &l.heights, &l.colors).ok()?)
-            .ok()?;
+        terrain.push_level(l.level()).ok()?;
     }
     let camera = Camera::new(case.camera).ok()?;
     let mut rows = vec![Coord::ZERO; camera.height() + 1];

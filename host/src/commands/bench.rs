@@ -40,7 +40,7 @@ pub struct BenchArgs {
 pub fn bench(args: &BenchArgs) -> Result<()> {
     let started = Instant::now();
     let map = args.map.load()?;
-    let pyramid = crate::pyramid::Pyramid::build(&map)?;
+    let pyramid = args.map.pyramid(&map)?;
     let mut modes = args.modes.clone();
     if !modes.contains(&Mode::Ps) {
         modes.insert(0, Mode::Ps);

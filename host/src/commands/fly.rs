@@ -67,7 +67,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         }
     }
     let map = args.map.load()?;
-    let pyramid = crate::pyramid::Pyramid::build(&map)?;
+    let pyramid = args.map.pyramid(&map)?;
     let bar = indicatif::ProgressBar::new(args.frames as u64).with_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} frames {elapsed} eta {eta}")
             .expect("a valid template"),

@@ -58,7 +58,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         )
     })?;
     let map = args.map.load()?;
-    let pyramid = crate::pyramid::Pyramid::build(&map)?;
+    let pyramid = args.map.pyramid(&map)?;
     let size = Size {
         width: 400,
         height: 400,

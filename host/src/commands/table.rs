@@ -72,7 +72,7 @@ pub fn table(args: &TableArgs) -> Result<()> {
         bail!("--modes: give at least one mode");
     }
     let map = args.map.load()?;
-    let pyramid = crate::pyramid::Pyramid::build(&map)?;
+    let pyramid = args.map.pyramid(&map)?;
     let pitches = args.case.pitches();
     let bar = indicatif::ProgressBar::new(table::steps(pitches.len(), args.modes.len()))
         .with_style(

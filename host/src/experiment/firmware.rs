@@ -35,6 +35,7 @@ use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::column;
 use footprint_core::cost::{NoCost, Tally};
 use footprint_core::num::Coord;
+use footprint_core::pyramid::HeightFilter;
 use footprint_core::sampler::Point;
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
@@ -81,7 +82,7 @@ pub struct Scene {
 /// paper's camera (`experiment::bench::paper_camera`, the rule of Table 1).
 pub fn scene() -> Result<Scene> {
     let map = procedural(SEED, MAP_SIDE);
-    let pyramid = Pyramid::build(&map)?;
+    let pyramid = Pyramid::build(&map, HeightFilter::default())?;
     let camera = paper_camera(&map, &pyramid, PITCH_DEG, SIZE, true)?;
     Ok(Scene {
         params: *camera.params(),
@@ -131,7 +132,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
     let (w, h) = (SIZE.width as usize, SIZE.height as usize);
     let level0 = Level::new(map.width, map.height, &map.heights, &map.colors)?;
     let scale = Scale::new(map.spacing_m, map.height_scale_m)?;
-    let pyramid = Pyramid::build(map)?;
+    let pyramid = Pyramid::build(map, HeightFilter::default())?;
     let full = pyramid.terrain(true)?;
     let camera = Camera::new(scene.params)?;
     let (mut rows, mut cols) = (vec![Coord::ZERO; h + 1], vec![Column::default(); w]);
@@ -144,7 +145,9 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
         )?,
         error_line(
             "Level::build_next(empty buffers)",
-            level0.build_next(&mut [], &mut []).map(unit),
+            level0
+                .build_next(HeightFilter::default(), &mut [], &mut [], &mut [])
+                .map(unit),
         )?,
         error_line(
             "Scale::new(30, 0)",
@@ -208,7 +211,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
 /// [`MODES`], the specular plate's `frame` line, then the `error` lines.
 pub fn reference_lines() -> Result<Vec<String>> {
     let scene = scene()?;
-    let pyramid = Pyramid::build(&scene.map)?;
+    let pyramid = Pyramid::build(&scene.map, HeightFilter::default())?;
     let terrain = pyramid.terrain(scene.options.lod)?;
     let camera = Camera::new(scene.params)?;
     let mut tables = Tables::new(&camera);

@@ -11,6 +11,7 @@ use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::column;
 use footprint_core::cost::Cost;
 use footprint_core::num::Coord;
+use footprint_core::pyramid::HeightFilter;
 use footprint_core::sampler::Sampler;
 use footprint_core::terrain::{next_size, Level, Scale, Terrain};
 use footprint_core::Rgb;
@@ -52,8 +53,19 @@ pub fn hash_color(x: i64, y: i64, seed: u64) -> Rgb {
 pub struct Owned {
     pub w: u32,
     pub h: u32,
+    /// The heights rays along x see (the map's heights at level 0).
     pub heights: Vec<u16>,
+    /// The heights rays along y see (the same as `heights` at level 0).
+    pub along_y: Vec<u16>,
     pub colors: Vec<Rgb>,
+}
+
+impl Owned {
+    /// The level as the core sees it.
+    pub fn level(&self) -> Level<'_> {
+        Level::directional(self.w, self.h, &self.heights, &self.along_y, &self.colors)
+            .expect("valid level")
+    }
 }
 
 /// A map and its whole pyramid (every level down to 1×1), owned.
@@ -79,6 +91,7 @@ impl Map {
         let mut levels = vec![Owned {
             w,
             h,
+            along_y: heights.clone(),
             heights,
             colors,
         }];
@@ -88,15 +101,17 @@ impl Map {
                 break;
             };
             let cells = (nw * nh) as usize;
-            let (mut hs, mut cs) = (vec![0u16; cells], vec![Rgb::default(); cells]);
-            Level::new(below.w, below.h, &below.heights, &below.colors)
-                .expect("valid level")
-                .build_next(&mut hs, &mut cs)
+            let (mut hx, mut hy) = (vec![0u16; cells], vec![0u16; cells]);
+            let mut cs = vec![Rgb::default(); cells];
+            below
+                .level()
+                .build_next(HeightFilter::default(), &mut hx, &mut hy, &mut cs)
                 .expect("valid next level");
             levels.push(Owned {
                 w: nw,
                 h: nh,
-                heights: hs,
+                heights: hx,
+                along_y: hy,
                 colors: cs,
             });
         }
@@ -105,16 +120,14 @@ impl Map {
 
     /// Level 0 as a core level.
     pub fn level0(&self) -> Level<'_> {
-        let l = &self.levels[0];
-        Level::new(l.w, l.h, &l.heights, &l.colors).expect("valid level")
+        self.levels[0].level()
     }
 
     /// The terrain with its whole pyramid.
     pub fn terrain(&self) -> Terrain<'_> {
         let mut t = Terrain::new(self.level0(), scale());
         for l in &self.levels[1..] {
-            t.push_level(Level::new(l.w, l.h, &l.heights, &l.colors).expect("valid level"))
-                .expect("pyramid level fits");
+            t.push_level(l.level()).expect("pyramid level fits");
         }
         t
     }

@@ -1,0 +1,104 @@
+//! Building pyramid level `k+1` from level `k` (Sect. 3): the prefilter of the multiresolution
+//! traversal.
+//!
+//! Colours are the rounded 2×2 box average, as the paper's prefiltered pyramid. Heights have
+//! two filters ([`HeightFilter`]):
+//!
+//! * [`HeightFilter::Mean`], the 2×2 box average. Seen at a grazing angle it lowers the
+//!   ridges that hide what lies behind them, so distant terrain sinks and the far rows of a
+//!   low-pitch image show terrain from too far away.
+//! * [`HeightFilter::Silhouette`], the default: the coarse stick keeps the *silhouette* of the
+//!   2×2 sticks it replaces, as a ray sees them. Along the ray the nearer stick and the farther
+//!   one hide each other, so a grazing ray is stopped by the taller: the **maximum** along the
+//!   ray's major axis. Across the ray the pixel's footprint (about one coarse voxel wide, Sect.
+//!   4.1) is box-filtered, so each half of it is stopped by its own row: the **mean** across.
+//!   The coarse stick then blocks the same area of the footprint as the two rows below it.
+//!   Because "along" depends on the ray, a level holds one height grid per major axis
+//!   ([`Level::heights`]).
+//!
+//! Odd sides round up, and the missing neighbour is the mirrored one (the edge voxel itself).
+//! Every value is an average or maximum of the level below, so no level rises above level 0.
+
+use crate::camera::Axis;
+use crate::color::Rgb;
+use crate::error::Error;
+use crate::terrain::{check_len, next_size, Level};
+
+/// How a coarse voxel's height is made from the 2×2 voxels below it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum HeightFilter {
+    /// The maximum along the ray's major axis, averaged across it: the 2×2 block's silhouette
+    /// as a ray along that axis sees it (one grid per axis).
+    #[default]
+    Silhouette,
+    /// The 2×2 box average, the same for both axes.
+    Mean,
+}
+
+/// The rounded mean of two heights (halves round up).
+#[inline]
+fn mean2(a: u16, b: u16) -> u16 {
+    // The quotient is at most the larger input, so the narrowing is exact.
+    (u32::from(a) + u32::from(b)).div_ceil(2) as u16
+}
+
+/// The rounded mean of four heights.
+#[inline]
+fn mean4(q: [u16; 4]) -> u16 {
+    ((q.iter().map(|&h| u32::from(h)).sum::<u32>() + 2) / 4) as u16
+}
+
+/// The rounded mean of four colours, channel by channel.
+#[inline]
+fn mean_color(q: [Rgb; 4]) -> Rgb {
+    let avg = |f: fn(&Rgb) -> u8| ((q.iter().map(|c| u32::from(f(c))).sum::<u32>() + 2) / 4) as u8;
+    Rgb::new(avg(|c| c.r), avg(|c| c.g), avg(|c| c.b))
+}
+
+impl<'a> Level<'a> {
+    /// Builds the next pyramid level into the caller's buffers (`along_x`, `along_y`: the
+    /// height grids for rays along x and along y; `colors`), each holding exactly the cells of
+    /// [`next_size`]. See the module documentation for `filter`.
+    ///
+    /// Errors: a buffer of the wrong length, or this level is already 1×1.
+    pub fn build_next<'b>(
+        &self,
+        filter: HeightFilter,
+        along_x: &'b mut [u16],
+        along_y: &'b mut [u16],
+        colors: &'b mut [Rgb],
+    ) -> Result<Level<'b>, Error> {
+        let (w, h) = next_size(self.width(), self.height()).ok_or(Error::TooManyLevels)?;
+        let cells = w as usize * h as usize;
+        check_len("heights along x", cells, along_x.len())?;
+        check_len("heights along y", cells, along_y.len())?;
+        check_len("colors", cells, colors.len())?;
+        let (hx, hy) = (self.heights(Axis::X), self.heights(Axis::Y));
+        for y in 0..h {
+            let (y0, y1) = (2 * y, (2 * y + 1).min(self.height() - 1));
+            for x in 0..w {
+                let (x0, x1) = (2 * x, (2 * x + 1).min(self.width() - 1));
+                // Top-left, top-right, bottom-left, bottom-right.
+                let quad = [
+                    self.index(x0, y0),
+                    self.index(x1, y0),
+                    self.index(x0, y1),
+                    self.index(x1, y1),
+                ];
+                let out = y as usize * w as usize + x as usize;
+                let (qx, qy) = (quad.map(|i| hx[i]), quad.map(|i| hy[i]));
+                (along_x[out], along_y[out]) = match filter {
+                    HeightFilter::Mean => (mean4(qx), mean4(qy)),
+                    HeightFilter::Silhouette => (
+                        // Along x: the taller of each row, then the mean of the two rows.
+                        mean2(qx[0].max(qx[1]), qx[2].max(qx[3])),
+                        // Along y: the taller of each column, then the mean of the columns.
+                        mean2(qy[0].max(qy[2]), qy[1].max(qy[3])),
+                    ),
+                };
+                colors[out] = mean_color(quad.map(|i| self.colors()[i]));
+            }
+        }
+        Level::directional(w, h, along_x, along_y, colors)
+    }
+}
