@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod firmware;
 pub mod fly;
+pub mod heights;
 pub mod inspect;
 pub mod reference;
 pub mod specular;

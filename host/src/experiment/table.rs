@@ -187,30 +187,3 @@ pub fn run(
         .collect();
     Ok(Tables15 { cases, table5 })
 }
-
-/// RMSE against the ground truth of each mode rendered *without* the pyramid (level 0 voxel by
-/// voxel), at one paper case: what is left is the horizontal sampling of one column per pixel.
-pub fn rmse_without_lod(
-    map: &Map,
-    pyramid: &Pyramid,
-    pitch: f64,
-    modes: &[Mode],
-    size: Size,
-) -> Result<Vec<(String, f64)>> {
-    let camera = paper_camera(map, pyramid, pitch, size, true)?;
-    let options = Options {
-        lod: false,
-        ..Options::default()
-    };
-    let truth = reference(&camera, pyramid, options.sky)?;
-    let terrain = pyramid.terrain(false)?;
-    let mut tables = Tables::new(&camera);
-    let frame = tables.frame(&camera, &terrain, options)?;
-    modes
-        .iter()
-        .map(|&mode| {
-            let img = crate::render::render_parallel(&frame, &terrain, mode)?;
-            Ok((mode.to_string(), rmse(&img.image, &truth)))
-        })
-        .collect()
-}
