@@ -131,6 +131,42 @@ fn bad_numbers_name_their_argument() {
     fails(&["--size", "400x0"], "size");
     fails(&["--size", "banana"], "size");
     fails(&["--mode", "ss3"], "mode");
+    fails(&["--height-filter", "max"], "height-filter");
+}
+
+#[test]
+fn the_height_filter_changes_the_distant_terrain_only() {
+    // At pitch 5° the upper rows come from coarse pyramid voxels, whose heights the filter
+    // makes; with the eye fitted so that the first hit's footprint is one voxel, the bottom
+    // rows are level 0 and do not change.
+    let dir = tempfile::tempdir().unwrap();
+    let render = |filter: &str| {
+        let out = dir.path().join(format!("{filter}.png"));
+        let o = footprint(&[
+            "render",
+            "--terrain-size",
+            "256",
+            "--size",
+            "128x128",
+            "--fit-first-hit",
+            "--pitch",
+            "5",
+            "--mode",
+            "as",
+            "--height-filter",
+            filter,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        image::open(&out).unwrap().to_rgb8()
+    };
+    let (silhouette, mean) = (render("silhouette"), render("mean"));
+    let rows_differ = |y0: u32, y1: u32| {
+        (y0..y1).any(|y| (0..128).any(|x| silhouette.get_pixel(x, y) != mean.get_pixel(x, y)))
+    };
+    assert!(rows_differ(0, 64), "the upper half is the same with both filters");
+    assert!(!rows_differ(120, 128), "the bottom rows differ");
 }
 
 #[test]
