@@ -165,7 +165,10 @@ fn the_height_filter_changes_the_distant_terrain_only() {
     let rows_differ = |y0: u32, y1: u32| {
         (y0..y1).any(|y| (0..128).any(|x| silhouette.get_pixel(x, y) != mean.get_pixel(x, y)))
     };
-    assert!(rows_differ(0, 64), "the upper half is the same with both filters");
+    assert!(
+        rows_differ(0, 64),
+        "the upper half is the same with both filters"
+    );
     assert!(!rows_differ(120, 128), "the bottom rows differ");
 }
 
