@@ -1148,6 +1148,14 @@ fn constructor_errors() {
     let mut t1 = Terrain::new(one, scale);
     expect(t1.push_level(one), Error::TooManyLevels);
     assert_eq!(t1.levels().len(), 1);
+    // A level pushed by hand may stand taller than level 0: the early end of a column (a ray
+    // above every height) must know it.
+    let tall = [900u16; 6];
+    let mut t2 = Terrain::new(base, scale);
+    assert_eq!(t2.max_height(), footprint_core::num::height(0));
+    t2.push_level(Level::directional(3, 2, &h6b, &tall, &c6b).unwrap())
+        .unwrap();
+    assert_eq!(t2.max_height(), footprint_core::num::height(900));
 
     // Camera parameters.
     let cam = |p: CameraParams| Camera::new(p).map(|_| ());
