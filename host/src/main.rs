@@ -48,13 +48,17 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) => {
-            // A usage error: its first line only ("error: invalid value … for '--fov'").
+            // A usage error on one line: clap's message without the usage that follows it
+            // ("error: the following required arguments were not provided: --out <DIR>").
             let text = e.render().to_string();
             let line = text
                 .lines()
-                .find(|l| !l.trim().is_empty())
-                .unwrap_or("error");
-            eprintln!("{line}");
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+                .map(str::trim)
+                .filter(|l| !l.is_empty())
+                .collect::<Vec<_>>()
+                .join(" ");
+            eprintln!("{}", if line.is_empty() { "error" } else { &line });
             return ExitCode::from(2);
         }
     };

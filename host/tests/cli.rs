@@ -238,6 +238,7 @@ fn experiments_refuse_bad_arguments() {
     fails_with(&["fly", "--size", "40x40", "--column", "40"], "column");
     fails_with(&["fly", "--modes", "xx"], "mode");
     fails_with(&["fly", "--out", "/no/such/folder"], "--out");
+    fails_with(&["fly", "--animation"], "--out");
     fails_with(&["report", "--out", "/no/such/folder/report"], "--out");
     fails_with(
         &[
@@ -318,4 +319,53 @@ fn fly_json_has_table_6_bins() {
         .sum();
     assert_eq!(total, 5 * 32, "5 frame pairs × 32 pixels of one column");
     assert!(m["all_columns"].is_object());
+}
+
+#[test]
+fn fly_animation_starts_with_the_rendered_view() {
+    use image::AnimationDecoder;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    let view = ["--terrain-size", "128", "--size", "40x30"];
+    let mut args = vec![
+        "fly",
+        "--frames",
+        "3",
+        "--column-only",
+        "--animation",
+        "--out",
+        d,
+    ];
+    args.extend(view);
+    let o = footprint(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let file = std::io::BufReader::new(std::fs::File::open(dir.path().join("flight.png")).unwrap());
+    let frames: Vec<image::RgbaImage> = image::codecs::png::PngDecoder::new(file)
+        .unwrap()
+        .apng()
+        .unwrap()
+        .into_frames()
+        .map(|f| f.unwrap().into_buffer())
+        .collect();
+    assert_eq!(frames.len(), 3);
+    assert_eq!(frames[0].dimensions(), (40 + 2 + 40, 30));
+    // Frame 0 is the flight's start, the pitch-5° view with the fitted eye: PS on the left, AS
+    // on the right, pixel for pixel what `footprint render` draws.
+    for (mode, x0) in [("ps", 0), ("as", 42)] {
+        let out = dir.path().join(format!("{mode}.png"));
+        let mut render = vec!["render", "--pitch", "5", "--fit-first-hit", "--mode", mode];
+        render.extend(view);
+        render.extend(["--out", out.to_str().unwrap()]);
+        let o = footprint(&render);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let want = image::open(&out).unwrap().to_rgb8();
+        for (x, y, p) in want.enumerate_pixels() {
+            let got = frames[0].get_pixel(x0 + x, y);
+            assert_eq!(
+                [got[0], got[1], got[2], got[3]],
+                [p[0], p[1], p[2], 255],
+                "{mode} ({x},{y})"
+            );
+        }
+    }
 }

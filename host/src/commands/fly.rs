@@ -4,11 +4,19 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Result};
 use clap::Args;
+use footprint_core::Rgb;
 
 use crate::experiment::fly::{self, FlySpec, BINS};
 use crate::render::Mode;
+use crate::report::apng::Animation;
 use crate::report::png::write_png;
 use crate::view::{MapArgs, Size};
+
+/// The modes of `--animation`, left to right.
+const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
+
+/// Black columns between the panels of `--animation`.
+const GAP: usize = 2;
 
 /// `footprint fly`.
 #[derive(Args, Debug)]
@@ -37,6 +45,10 @@ pub struct FlyArgs {
     /// Histogram only the chosen column (much faster; no all-columns sum).
     #[arg(long)]
     pub column_only: bool,
+    /// Also write `DIR/flight.png`, an animated PNG of the flight at 25 frames per second:
+    /// point sampling (left) and area sampling (right) side by side.
+    #[arg(long, requires = "out")]
+    pub animation: bool,
     /// One JSON object.
     #[arg(long)]
     pub json: bool,
@@ -83,7 +95,42 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         size: args.size,
         all_columns: !args.column_only,
     };
-    let result = fly::run(&map, &pyramid, &spec, || bar.inc(1))?;
+    let result = if args.animation {
+        let dir = args
+            .out
+            .as_deref()
+            .expect("clap requires --out with --animation");
+        let (w, h) = (args.size.width as usize, args.size.height as usize);
+        let width = PANELS.len() * w + (PANELS.len() - 1) * GAP;
+        let mut animation = Animation::create(
+            &dir.join("flight.png"),
+            width as u32,
+            h as u32,
+            args.frames as u32,
+            25,
+        )?;
+        let mut canvas = vec![Rgb::default(); width * h];
+        let result = fly::run_with_frames(
+            &map,
+            &pyramid,
+            &spec,
+            &PANELS,
+            || bar.inc(1),
+            |_, images| {
+                for (k, image) in images.iter().enumerate() {
+                    for (y, row) in image.chunks_exact(w).enumerate() {
+                        let at = y * width + k * (w + GAP);
+                        canvas[at..at + w].copy_from_slice(row);
+                    }
+                }
+                animation.push(&canvas)
+            },
+        )?;
+        animation.finish()?;
+        result
+    } else {
+        fly::run(&map, &pyramid, &spec, || bar.inc(1))?
+    };
     bar.finish_and_clear();
     if let Some(dir) = &args.out {
         for m in &result.modes {

@@ -128,6 +128,20 @@ pub fn run(
     spec: &FlySpec,
     progress: impl Fn() + Sync,
 ) -> Result<Fly> {
+    run_with_frames(map, pyramid, spec, &[], progress, |_, _| Ok(()))
+}
+
+/// [`run`], and also hands `on_frame(t, images)` the whole image of each mode of `panels`
+/// (row-major from the top, in `panels`' order), for `t = 0, 1, …` in order: the frames of an
+/// animation. Panel modes need not be among `spec.modes`.
+pub fn run_with_frames(
+    map: &Map,
+    pyramid: &Pyramid,
+    spec: &FlySpec,
+    panels: &[Mode],
+    progress: impl Fn() + Sync,
+    mut on_frame: impl FnMut(usize, &[Vec<Rgb>]) -> Result<()>,
+) -> Result<Fly> {
     if spec.frames < 2 {
         bail!(
             "--frames {}: at least 2 frames are needed to see a change",
@@ -145,51 +159,67 @@ pub fn run(
     }
     let terrain = pyramid.terrain(true)?;
     let options = Options::default();
-    // Each frame: per mode, the chosen column (bottom to top) and, if asked, the luminance of
-    // the whole image.
-    type Frame = Vec<(Vec<Rgb>, Option<Vec<u8>>)>;
-    let render_frame = |t: usize| -> Result<Frame> {
+    // Each frame: per mode of `spec.modes`, the chosen column (bottom to top) and, if asked,
+    // the luminance of the whole image; then the whole image of each panel.
+    struct Rendered {
+        measured: Vec<(Vec<Rgb>, Option<Vec<u8>>)>,
+        panels: Vec<Vec<Rgb>>,
+    }
+    let render_frame = |t: usize| -> Result<Rendered> {
         let camera = camera_at(&start, t, spec.step_m)?;
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;
-        let out = spec
-            .modes
+        let whole = |mode: Mode| -> Result<Vec<Rgb>> {
+            Ok(render_with(&frame, &terrain, mode, &mut footprint_core::cost::NoCost)?.image)
+        };
+        let mut panel_images: Vec<Option<Vec<Rgb>>> = vec![None; panels.len()];
+        let mut measured = Vec::with_capacity(spec.modes.len());
+        for &mode in &spec.modes {
+            let panel = panels.iter().position(|&p| p == mode);
+            measured.push(if spec.all_columns || panel.is_some() {
+                let img = whole(mode)?;
+                let col = (0..h).map(|i| img[(h - 1 - i) * w + column]).collect();
+                let lum = spec
+                    .all_columns
+                    .then(|| img.iter().map(|&p| luminance(p)).collect());
+                if let Some(k) = panel {
+                    panel_images[k] = Some(img);
+                }
+                (col, lum)
+            } else {
+                (render_column(&frame, &terrain, mode, column), None)
+            });
+        }
+        let panels = panels
             .iter()
-            .map(|&mode| -> Result<_> {
-                Ok(if spec.all_columns {
-                    let img =
-                        render_with(&frame, &terrain, mode, &mut footprint_core::cost::NoCost)?;
-                    let col = (0..h)
-                        .map(|i| img.image[(h - 1 - i) * w + column])
-                        .collect();
-                    (col, Some(img.image.iter().map(|&p| luminance(p)).collect()))
-                } else {
-                    (render_column(&frame, &terrain, mode, column), None)
-                })
-            })
+            .zip(panel_images)
+            .map(|(&mode, img)| img.map_or_else(|| whole(mode), Ok))
             .collect::<Result<Vec<_>>>()?;
         progress();
-        Ok(out)
+        Ok(Rendered { measured, panels })
     };
 
     let n_modes = spec.modes.len();
     let mut column_hist = vec![Histogram::default(); n_modes];
     let mut all_hist = vec![Histogram::default(); n_modes];
     let mut cuts = vec![vec![Rgb::default(); h * spec.frames]; n_modes];
-    let mut previous: Option<Frame> = None;
+    let mut previous: Option<Rendered> = None;
     let chunk = 4 * rayon::current_num_threads().max(1);
     for first in (0..spec.frames).step_by(chunk) {
-        let frames: Vec<Frame> = (first..(first + chunk).min(spec.frames))
+        let frames: Vec<Rendered> = (first..(first + chunk).min(spec.frames))
             .into_par_iter()
             .map(render_frame)
             .collect::<Result<_>>()?;
-        for (k, frame) in frames.into_iter().enumerate() {
+        for (k, rendered) in frames.into_iter().enumerate() {
             let t = first + k;
-            for (m, (col, lum)) in frame.iter().enumerate() {
+            if !panels.is_empty() {
+                on_frame(t, &rendered.panels)?;
+            }
+            for (m, (col, lum)) in rendered.measured.iter().enumerate() {
                 for (i, px) in col.iter().enumerate() {
                     cuts[m][(h - 1 - i) * spec.frames + t] = *px;
                 }
-                if let Some((pcol, plum)) = previous.as_ref().map(|p| &p[m]) {
+                if let Some((pcol, plum)) = previous.as_ref().map(|p| &p.measured[m]) {
                     let a: Vec<u8> = pcol.iter().map(|&p| luminance(p)).collect();
                     let b: Vec<u8> = col.iter().map(|&p| luminance(p)).collect();
                     column_hist[m].add(&a, &b);
@@ -198,7 +228,7 @@ pub fn run(
                     }
                 }
             }
-            previous = Some(frame);
+            previous = Some(rendered);
         }
     }
     Ok(Fly {
