@@ -22,6 +22,7 @@ use footprint_core::column;
 use footprint_core::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::march::{Color16, March};
 use footprint_core::num::{Coord, Weight};
+use footprint_core::pyramid::HeightFilter;
 use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
 use footprint_core::terrain::{Scale, Terrain};
 use footprint_core::visibility::count_visible;
@@ -40,6 +41,8 @@ struct Case {
     height_scale_m: f64,
     camera: CameraParams,
     lod: bool,
+    /// How the pyramid's heights are made.
+    filter: HeightFilter,
 }
 
 /// Heights: either random over `0..=top`, or drawn from a palette of at most 4 values (flat
@@ -99,10 +102,11 @@ fn case() -> impl Strategy<Value = Case> {
                 Just((w, h, heights, colors, spacing_m, height_scale_m)),
                 camera,
                 any::<bool>(),
+                prop_oneof![Just(HeightFilter::Silhouette), Just(HeightFilter::Mean)],
             )
         })
         .prop_map(
-            |((w, h, heights, colors, spacing_m, height_scale_m), camera, lod)| Case {
+            |((w, h, heights, colors, spacing_m, height_scale_m), camera, lod, filter)| Case {
                 w,
                 h,
                 heights,
@@ -114,13 +118,14 @@ fn case() -> impl Strategy<Value = Case> {
                 height_scale_m,
                 camera,
                 lod,
+                filter,
             },
         )
 }
 
 /// The case's pyramid, owned (built by the core's `Level::build_next`).
 fn pyramid(case: &Case) -> common::Map {
-    common::Map::from_fn("prop", case.w, case.h, |x, y| {
+    common::Map::with_filter("prop", case.w, case.h, case.filter, |x, y| {
         let i = (y * i64::from(case.w) + x) as usize;
         (case.heights[i], case.colors[i])
     })

@@ -79,6 +79,17 @@ impl Map {
     /// A `w × h` map whose voxel `(x, y)` is `f(x, y) = (height, colour)`, with its pyramid
     /// built by the core's [`Level::build_next`].
     pub fn from_fn(name: &'static str, w: u32, h: u32, f: impl Fn(i64, i64) -> (u16, Rgb)) -> Self {
+        Self::with_filter(name, w, h, HeightFilter::default(), f)
+    }
+
+    /// [`Map::from_fn`] with the pyramid's heights made by `filter`.
+    pub fn with_filter(
+        name: &'static str,
+        w: u32,
+        h: u32,
+        filter: HeightFilter,
+        f: impl Fn(i64, i64) -> (u16, Rgb),
+    ) -> Self {
         let mut heights = Vec::with_capacity((w * h) as usize);
         let mut colors = Vec::with_capacity((w * h) as usize);
         for y in 0..i64::from(h) {
@@ -105,7 +116,7 @@ impl Map {
             let mut cs = vec![Rgb::default(); cells];
             below
                 .level()
-                .build_next(HeightFilter::default(), &mut hx, &mut hy, &mut cs)
+                .build_next(filter, &mut hx, &mut hy, &mut cs)
                 .expect("valid next level");
             levels.push(Owned {
                 w: nw,
