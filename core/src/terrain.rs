@@ -50,6 +50,15 @@ pub(crate) fn fold(p: u32, len: u32) -> u32 {
     }
 }
 
+/// The number of cells of a `width × height` level; errors if a side is 0 or over
+/// [`MAX_SIDE`].
+fn cells(width: u32, height: u32) -> Result<usize, Error> {
+    if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
+        return Err(Error::MapSize { width, height });
+    }
+    Ok(width as usize * height as usize)
+}
+
 /// Checks that a slice holds the `expected` number of cells.
 pub(crate) fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), Error> {
     if actual == expected {
@@ -85,18 +94,15 @@ impl<'a> Level<'a> {
         heights: &'a [u16],
         colors: &'a [Rgb],
     ) -> Result<Self, Error> {
-        // One slice given: name it as the caller knows it.
-        Self::directional(width, height, heights, heights, colors).map_err(|e| match e {
-            Error::SliceLength {
-                what: "heights along x",
-                expected,
-                actual,
-            } => Error::SliceLength {
-                what: "heights",
-                expected,
-                actual,
-            },
-            e => e,
+        let cells = cells(width, height)?;
+        check_len("heights", cells, heights.len())?;
+        check_len("colors", cells, colors.len())?;
+        Ok(Self {
+            along_x: heights,
+            along_y: heights,
+            colors,
+            width,
+            height,
         })
     }
 
@@ -113,10 +119,7 @@ impl<'a> Level<'a> {
         along_y: &'a [u16],
         colors: &'a [Rgb],
     ) -> Result<Self, Error> {
-        if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
-            return Err(Error::MapSize { width, height });
-        }
-        let cells = width as usize * height as usize;
+        let cells = cells(width, height)?;
         check_len("heights along x", cells, along_x.len())?;
         check_len("heights along y", cells, along_y.len())?;
         check_len("colors", cells, colors.len())?;

@@ -185,6 +185,16 @@ mod tests {
         assert!(a.push(&frame[..3]).is_err(), "a frame of the wrong size");
         drop(a);
         assert!(!path.exists());
+        let mut full = Animation::create(&path, 2, 2, 1, 25).unwrap();
+        full.push(&frame).unwrap();
+        assert!(full.push(&frame).is_err(), "more frames than announced");
+        drop(full);
+        assert!(!path.exists());
+        assert!(
+            Animation::create(&path, 0, 2, 3, 25).is_err(),
+            "an empty animation"
+        );
+        assert!(Animation::create(&path, 2, 2, 0, 25).is_err(), "no frames");
         let mut short = Animation::create(&path, 2, 2, 3, 25).unwrap();
         short.push(&frame).unwrap();
         assert!(short.finish().is_err(), "1 of 3 frames");
