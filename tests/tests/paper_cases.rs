@@ -1,6 +1,8 @@
 //! The paper's three test cases (Sect. 7, Table 1) on the built-in terrain: pitch 40°, 20°
 //! and 5°, FOV 10°, 400×400, the eye at the fit-first-hit height.
 
+mod common;
+
 use footprint_core::camera::Options;
 use footprint_core::cost::Tally;
 use footprint_core::pyramid::HeightFilter;
@@ -118,4 +120,34 @@ fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
         growth_lod < 1.6,
         "with LOD the steps grew ×{growth_lod:.2}: {with_lod:?}"
     );
+}
+
+/// Every mode's image and counters in the three paper cases equal the pinned ones
+/// (`tests/golden/walk/paper_cases.txt`, written by the walk before it was made faster).
+#[test]
+fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
+    let map = procedural(1, DEFAULT_SIZE);
+    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let terrain = pyramid.terrain(true).unwrap();
+    let mut lines = Vec::new();
+    for pitch in PAPER_PITCHES {
+        let camera = paper_camera(&map, &pyramid, pitch, SIZE, true).expect("paper camera");
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
+        for mode in [
+            Mode::Ps,
+            Mode::Li,
+            Mode::Ss(2),
+            Mode::Ss(4),
+            Mode::Ss(8),
+            Mode::Ss(16),
+            Mode::Ss(32),
+            Mode::As,
+        ] {
+            let (img, m) = count(&frame, &terrain, mode).unwrap();
+            let name = format!("pitch{pitch} {mode}");
+            lines.push(common::pin_line(&name, common::image_hash(&img.image), &m.total));
+        }
+    }
+    common::check_pins("paper_cases", &lines);
 }

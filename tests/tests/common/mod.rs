@@ -283,3 +283,57 @@ pub fn render_columns<S: Sampler + Clone, C: Cost>(
         })
         .collect()
 }
+
+/// FNV-1a over an image's RGB bytes: a fingerprint for pinned images.
+pub fn image_hash<'a>(pixels: impl IntoIterator<Item = &'a Rgb>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for p in pixels {
+        for b in [p.r, p.g, p.b] {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    h
+}
+
+/// One pinned line per frame: the image's hash and the counters the samplers decide (`P`,
+/// `L`, `M`, hits, `c`, `b`, `V`). The traversal steps `a` are not pinned: skipping empty
+/// air changes how many steps reach a column's first hit, and nothing the samplers see.
+pub fn pin_line(name: &str, image_hash: u64, t: &footprint_core::cost::Tally) -> String {
+    format!(
+        "{name} {image_hash:016x} P={} L={} M={} hits={} c={} b={} V={}",
+        t.p, t.l, t.m, t.hits, t.c, t.b, t.v
+    )
+}
+
+/// Compares `lines` with the pinned file `tests/golden/walk/<file>.txt`, line by line. With
+/// `FOOTPRINT_BLESS=1` it writes the file instead (after an intended change of pixels:
+/// `FOOTPRINT_BLESS=1 cargo test -p footprint-tests`).
+pub fn check_pins(file: &str, lines: &[String]) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("golden/walk")
+        .join(format!("{file}.txt"));
+    let text = lines.join("\n") + "\n";
+    if std::env::var_os("FOOTPRINT_BLESS").is_some() {
+        std::fs::create_dir_all(path.parent().expect("a parent")).expect("create golden/walk");
+        std::fs::write(&path, text).expect("write the pins");
+        return;
+    }
+    let pinned = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (bless with FOOTPRINT_BLESS=1)", path.display()));
+    let differ: Vec<String> = pinned
+        .lines()
+        .zip(lines)
+        .filter(|(a, b)| a != b)
+        .map(|(a, b)| format!("  pinned {a}\n  now    {b}"))
+        .collect();
+    assert!(
+        differ.is_empty() && pinned.lines().count() == lines.len(),
+        "{} of {} frames differ from {} ({} pinned lines):\n{}",
+        differ.len(),
+        lines.len(),
+        path.display(),
+        pinned.lines().count(),
+        differ.iter().take(8).cloned().collect::<Vec<_>>().join("\n")
+    );
+}
