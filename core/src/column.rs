@@ -3,8 +3,9 @@
 //! A column is generated bottom to top. Ray `R_i` starts where `R_{i−1}` hit (vertical
 //! coherence, Fig. 3): its height is Eq. 3 evaluated at the current voxel, with no step back.
 //! While the ray passes above the current voxel the walk advances along the multiresolution
-//! sequence ([`March`]) and raises the ray by its slope times the step; when the voxel's top is
-//! above the ray it hands the hit to the [`Sampler`]. A column ends when its pixels are done,
+//! sequence ([`March`]) and raises the ray by its slope times the step — a run of such steps
+//! at a time ([`March::ride`]) — and when the voxel's top is above the ray it hands the hit to
+//! the [`Sampler`]. A column ends when its pixels are done,
 //! when the next voxel lies beyond the far distance, or when the ray is above the highest
 //! point of the map and not descending; the rest of it is sky.
 
@@ -15,7 +16,7 @@ use crate::color::Rgb;
 use crate::cost::Cost;
 use crate::error::Error;
 use crate::march::March;
-use crate::num::{Eye, Line};
+use crate::num::{Eye, Height, Line};
 use crate::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
@@ -70,13 +71,25 @@ pub fn walk<S: Sampler, C: Cost>(
 
     if march.n() <= column.n_far {
         loop {
-            let top = march.height();
-            if top > ray.h {
+            // Ride the run while the voxels stay at or below the ray (the inner loop).
+            let rise = Height::from_bits(ray.slope.to_bits() * march.step());
+            let mut steps = 0;
+            let hit = if ray.slope >= 0 {
+                march.ride::<true>(&mut ray.h, rise, max_h, &mut steps)
+            } else {
+                march.ride::<false>(&mut ray.h, rise, max_h, &mut steps)
+            };
+            cost.steps(steps, in_footprint);
+            // The hits on this voxel: each sampler call may raise the ray or begin the next
+            // pixel, and the same voxel is tested again until the ray passes above it.
+            let mut hit = hit;
+            while let Some(top) = hit {
+                hit = None;
                 match sampler.hit(&march, top, &mut ray, cost) {
                     Hit::Sampled => {
                         cost.hit();
                         in_footprint = true;
-                        continue;
+                        hit = (top > ray.h).then_some(top);
                     }
                     Hit::Next => {
                         cost.hit();
@@ -93,7 +106,7 @@ pub fn walk<S: Sampler, C: Cost>(
                             return;
                         }
                         (ray, upper) = begin(i, upper, &march, sampler, cost);
-                        continue;
+                        hit = (top > ray.h).then_some(top);
                     }
                     Hit::Rejected => {}
                 }

@@ -24,6 +24,13 @@ pub trait Cost {
     /// (the paper's `L` ignores those steps).
     #[inline(always)]
     fn step(&mut self, _in_footprint: bool) {}
+    /// Term `a`, `count` times: the steps of one ride through a run ([`March::ride`]).
+    #[inline(always)]
+    fn steps(&mut self, count: u32, in_footprint: bool) {
+        for _ in 0..count {
+            self.step(in_footprint);
+        }
+    }
     /// Term `b`: one new ray, Eqs. 2–3.
     #[inline(always)]
     fn new_ray(&mut self) {}
@@ -182,9 +189,12 @@ impl Cost for Counts<'_> {
         }
     }
     fn step(&mut self, in_footprint: bool) {
-        self.current.a += 1;
+        self.steps(1, in_footprint);
+    }
+    fn steps(&mut self, count: u32, in_footprint: bool) {
+        self.current.a += u64::from(count);
         if in_footprint {
-            self.current.l += 1;
+            self.current.l += u64::from(count);
         }
     }
     fn new_ray(&mut self) {

@@ -19,6 +19,15 @@
 //!
 //! **Mirroring.** Cell indices are tracked modulo the mirrored period `2·len` by ±1 updates,
 //! so the inner loop has no division.
+//!
+//! **Runs.** Between two events — a climb to the next level, a mirror edge along the major
+//! axis (where the mirrored index repeats), or the far distance — every step moves the array
+//! index by the same `±stride` and raises the ray by the same amount. The cursor computes, once
+//! per run, how many such steps remain ([`March::new`] and every step that ends a run plan the
+//! next one), so a step inside a run is an add to the index, the ray and the cross coordinate,
+//! one load and one compare ([`March::ride`]); the climb test, the mirror folds and the far test
+//! are paid once per run. Crossing a cell boundary across the ray (at most once per step,
+//! because `|dv| ≤ ½`) moves the index by one row.
 
 use crate::camera::{Axis, Column, Frame};
 use crate::color::Rgb;
@@ -71,6 +80,14 @@ pub struct March<'a, 't> {
     off_v: usize,
     /// Steps taken so far; identifies the voxel for the distinct-sample count `M`.
     k: u32,
+    /// The current voxel's index in the level's arrays, `fold(pu)·stride_u + off_v`.
+    idx: usize,
+    /// What a step inside the current run adds to `idx` (`±stride_u`).
+    du: isize,
+    /// Steps left in the current run (see the module documentation).
+    run: u32,
+    /// The last `n` within the far distance.
+    n_far: i64,
 }
 
 impl<'a, 't> March<'a, 't> {
@@ -107,6 +124,10 @@ impl<'a, 't> March<'a, 't> {
             stride_v: 0,
             off_v: 0,
             k: 0,
+            idx: 0,
+            du: 0,
+            run: 0,
+            n_far: column.n_far,
         };
         m.enter_level();
         m
@@ -138,6 +159,147 @@ impl<'a, 't> March<'a, 't> {
         self.cv = self.v >> (32 + self.l);
         self.pv = self.cv.rem_euclid(2 * i64::from(len_v)) as u32;
         self.off_v = self.offset_v(self.pv);
+        self.plan_run();
+    }
+
+    /// Sets `idx` for the current voxel and counts the steps of the run that starts here:
+    /// steps that keep the major-axis fold moving one way, stay at or before the climb voxel
+    /// and within the far distance.
+    fn plan_run(&mut self) {
+        self.idx = self.offset_u() + self.off_v;
+        let (len, pu, stride) = (self.len_u, self.pu, self.stride_u as isize);
+        // Along the major axis the fold moves by ±1 until the step that crosses an edge of
+        // the map (where the mirrored index repeats).
+        let (du, to_edge) = match (self.forward, pu < len) {
+            (true, true) => (stride, len - 1 - pu),
+            (true, false) => (-stride, 2 * len - 1 - pu),
+            (false, true) => (-stride, pu),
+            (false, false) => (stride, pu - len),
+        };
+        self.du = du;
+        let mut run = i64::from(to_edge);
+        if self.climb_at != i64::MAX {
+            // The climb is taken from the first odd cell whose centre is at or past climb_at:
+            // the smallest j with (2j + 1)·2^l ≥ climb_at is ⌈climb_at / 2^l⌉ >> 1.
+            let q = -((-self.climb_at) >> self.l);
+            let mut j_climb = (q >> 1).max(self.j);
+            if j_climb & 1 == 0 {
+                j_climb += 1;
+            }
+            run = run.min(j_climb - self.j);
+        }
+        let to_far = if self.n <= self.n_far {
+            (self.n_far - self.n) >> (self.l + 1)
+        } else {
+            0
+        };
+        self.run = run.min(to_far).clamp(0, i64::from(u32::MAX)) as u32;
+    }
+
+    /// Moves the cross coordinate to `v` and, if it entered another cell, the index with it.
+    #[inline(always)]
+    fn cross_to(&mut self, v: i64) {
+        self.v = v;
+        let cv = v >> (32 + self.l);
+        if cv != self.cv {
+            let period_v = 2 * self.len_v;
+            if cv > self.cv {
+                self.pv += 1;
+                if self.pv == period_v {
+                    self.pv = 0;
+                }
+            } else {
+                if self.pv == 0 {
+                    self.pv = period_v;
+                }
+                self.pv -= 1;
+            }
+            self.cv = cv;
+            let off_v = self.offset_v(self.pv);
+            self.idx = self.idx.wrapping_sub(self.off_v).wrapping_add(off_v);
+            self.off_v = off_v;
+        }
+    }
+
+    /// Takes `steps` steps of the current run at once (`steps ≤ run`), except for the cross
+    /// coordinate, which the caller has already moved.
+    #[inline(always)]
+    fn commit(&mut self, steps: u32) {
+        let s = i64::from(steps);
+        self.run -= steps;
+        self.k = self.k.saturating_add(steps);
+        self.j += s;
+        self.n += s * self.dn;
+        // Inside a run the period position does not wrap (the run ends at the edge).
+        if self.forward {
+            self.pu += steps;
+        } else {
+            self.pu -= steps;
+        }
+    }
+
+    /// The walk's inner loop: from the current voxel, steps along the run while the voxel's
+    /// top is at or below the ray, whose height here is `*h` and which rises by `rise` per
+    /// step. Returns the top of the first voxel above the ray (the cursor is on it), or `None`
+    /// when the run ends first (the cursor is on the run's last voxel, which the ray passes
+    /// above; [`March::advance`] takes the step out of the run). `*h` follows the ray, and
+    /// `*steps` counts the steps taken. With `ASCENDING` (a ray that does not descend) the ride
+    /// also stops, returning `None`, on the first voxel where the ray is above `ceiling` (the
+    /// highest point of the terrain: nothing further can be hit).
+    #[inline(always)]
+    pub fn ride<const ASCENDING: bool>(
+        &mut self,
+        h: &mut Height,
+        rise: Height,
+        ceiling: Height,
+        steps: &mut u32,
+    ) -> Option<Height> {
+        let ceiling = ceiling.to_bits();
+        let heights = self.heights;
+        let (du, dv_step, shift) = (self.du, self.dv_step, 32 + self.l);
+        let rise = rise.to_bits();
+        let mut ray = h.to_bits();
+        enum Stop {
+            Hit(i64),
+            End,
+            Cross,
+        }
+        loop {
+            let (mut left, mut idx, mut v, cv) = (self.run, self.idx, self.v, self.cv);
+            // The tight loop: one voxel per iteration, until a hit, the run's end, or a new
+            // cell across the ray.
+            let found = loop {
+                let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
+                if top > ray {
+                    break Stop::Hit(top);
+                }
+                if left == 0 || (ASCENDING && ray > ceiling) {
+                    break Stop::End;
+                }
+                left -= 1;
+                idx = idx.wrapping_add_signed(du);
+                ray += rise;
+                v += dv_step;
+                if v >> shift != cv {
+                    break Stop::Cross;
+                }
+            };
+            let taken = self.run - left;
+            self.idx = idx;
+            self.commit(taken);
+            *steps += taken;
+            if let Stop::Cross = found {
+                // Moved across: shift the index by a row and go on with the same run.
+                self.cross_to(v);
+                continue;
+            }
+            self.v = v;
+            *h = Height::from_bits(ray);
+            return match found {
+                Stop::Hit(top) => Some(Height::from_bits(top)),
+                _ => None,
+            };
+        }
     }
 
     /// The current cell index along the major axis, in map coordinates.
@@ -153,6 +315,19 @@ impl<'a, 't> March<'a, 't> {
     /// Steps to the next voxel and returns the distance moved, in half-voxels.
     #[inline(always)]
     pub fn advance(&mut self) -> i64 {
+        if self.run > 0 {
+            self.idx = self.idx.wrapping_add_signed(self.du);
+            self.cross_to(self.v + self.dv_step);
+            self.commit(1);
+            return self.dn;
+        }
+        self.step_out_of_run()
+    }
+
+    /// The step that ends a run: a climb, a mirror edge, or a step past the far distance.
+    /// Plans the next run.
+    #[inline(never)]
+    fn step_out_of_run(&mut self) -> i64 {
         self.k = self.k.saturating_add(1);
         if self.n >= self.climb_at && self.j & 1 == 1 {
             // The next level-l voxel begins a level-(l+1) voxel: climb (Sect. 3).
@@ -179,24 +354,9 @@ impl<'a, 't> March<'a, 't> {
             }
             self.pu -= 1;
         }
-        self.v = self.v.saturating_add(self.dv_step);
-        let cv = self.v >> (32 + self.l);
-        if cv != self.cv {
-            let period_v = 2 * self.len_v;
-            if cv > self.cv {
-                self.pv += 1;
-                if self.pv == period_v {
-                    self.pv = 0;
-                }
-            } else {
-                if self.pv == 0 {
-                    self.pv = period_v;
-                }
-                self.pv -= 1;
-            }
-            self.cv = cv;
-            self.off_v = self.offset_v(self.pv);
-        }
+        self.idx = self.offset_u() + self.off_v;
+        self.cross_to(self.v.saturating_add(self.dv_step));
+        self.plan_run();
         self.dn
     }
 
@@ -233,7 +393,20 @@ impl<'a, 't> March<'a, 't> {
     /// The height of the current voxel (the stick containing the ray's point).
     #[inline(always)]
     pub fn height(&self) -> Height {
-        height(self.heights[self.offset_u() + self.off_v])
+        height(self.heights.get(self.idx).copied().unwrap_or(0))
+    }
+
+    /// The steps left in the current run: the next `run_left()` calls of [`March::advance`]
+    /// each move one voxel at this level.
+    #[inline(always)]
+    pub fn run_left(&self) -> u32 {
+        self.run
+    }
+
+    /// The distance of one step in the current run, half-voxels (`2^(l+1)`).
+    #[inline(always)]
+    pub fn step(&self) -> i64 {
+        self.dn
     }
 
     /// The current voxel's `(x, y)` at its level, after mirroring.
@@ -263,7 +436,13 @@ impl<'a, 't> March<'a, 't> {
     /// Point sampling: the colour of the current voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
     #[inline(always)]
     pub fn sample_point(&self) -> Color16 {
-        to_color16(self.level.colors()[self.offset_u() + self.off_v])
+        to_color16(
+            self.level
+                .colors()
+                .get(self.idx)
+                .copied()
+                .unwrap_or_default(),
+        )
     }
 
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose

@@ -146,7 +146,11 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
         ] {
             let (img, m) = count(&frame, &terrain, mode).unwrap();
             let name = format!("pitch{pitch} {mode}");
-            lines.push(common::pin_line(&name, common::image_hash(&img.image), &m.total));
+            lines.push(common::pin_line(
+                &name,
+                common::image_hash(&img.image),
+                &m.total,
+            ));
         }
     }
     common::check_pins("paper_cases", &lines);

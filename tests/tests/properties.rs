@@ -514,7 +514,11 @@ fn every_mode_draws_the_pinned_images_on_random_terrains() {
         }
         let frames = with_case(&case, |terrain, frame| {
             let pin = |mode: &str, (t, _, img): (Tally, Vec<Tally>, Vec<Vec<Rgb>>)| {
-                common::pin_line(&format!("{k} {mode}"), common::image_hash(img.iter().flatten()), &t)
+                common::pin_line(
+                    &format!("{k} {mode}"),
+                    common::image_hash(img.iter().flatten()),
+                    &t,
+                )
             };
             [
                 pin("ps", tallies(frame, terrain, &Point)),

@@ -334,6 +334,11 @@ pub fn check_pins(file: &str, lines: &[String]) {
         lines.len(),
         path.display(),
         pinned.lines().count(),
-        differ.iter().take(8).cloned().collect::<Vec<_>>().join("\n")
+        differ
+            .iter()
+            .take(8)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
     );
 }
