@@ -73,11 +73,24 @@ pub fn walk<S: Sampler, C: Cost>(
         loop {
             // Ride the run while the voxels stay at or below the ray (the inner loop).
             let rise = Height::from_bits(ray.slope.to_bits() * march.step());
+            // Before the column's first hit, cross empty air a block at a time; the ride then
+            // takes one step between attempts.
+            let limit = if in_footprint {
+                u32::MAX
+            } else if march.skip(&mut ray.h, rise) > 0 {
+                cost.step(false);
+                if ray.slope >= 0 && ray.h > max_h {
+                    break;
+                }
+                continue;
+            } else {
+                1
+            };
             let mut steps = 0;
             let hit = if ray.slope >= 0 {
-                march.ride::<true>(&mut ray.h, rise, max_h, &mut steps)
+                march.ride::<true>(&mut ray.h, rise, max_h, limit, &mut steps)
             } else {
-                march.ride::<false>(&mut ray.h, rise, max_h, &mut steps)
+                march.ride::<false>(&mut ray.h, rise, max_h, limit, &mut steps)
             };
             cost.steps(steps, in_footprint);
             // The hits on this voxel: each sampler call may raise the ray or begin the next

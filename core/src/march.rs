@@ -78,6 +78,10 @@ pub struct March<'a, 't> {
     stride_v: usize,
     /// The array offset of the current cross-axis cell, `fold(pv)·stride_v`.
     off_v: usize,
+    /// What crossing into the next cell across the ray adds to `idx` (`±stride_v`), and how
+    /// many such crossings remain before a mirror edge across the ray.
+    dcross: isize,
+    cross_left: u32,
     /// Steps taken so far; identifies the voxel for the distinct-sample count `M`.
     k: u32,
     /// The current voxel's index in the level's arrays, `fold(pu)·stride_u + off_v`.
@@ -123,6 +127,8 @@ impl<'a, 't> March<'a, 't> {
             stride_u: 0,
             stride_v: 0,
             off_v: 0,
+            dcross: 0,
+            cross_left: 0,
             k: 0,
             idx: 0,
             du: 0,
@@ -159,6 +165,7 @@ impl<'a, 't> March<'a, 't> {
         self.cv = self.v >> (32 + self.l);
         self.pv = self.cv.rem_euclid(2 * i64::from(len_v)) as u32;
         self.off_v = self.offset_v(self.pv);
+        self.plan_cross();
         self.plan_run();
     }
 
@@ -196,6 +203,18 @@ impl<'a, 't> March<'a, 't> {
         self.run = run.min(to_far).clamp(0, i64::from(u32::MAX)) as u32;
     }
 
+    /// Counts the crossings into the next cell across the ray that keep the cross fold moving
+    /// one way (the ray moves across in the direction of `dv`).
+    fn plan_cross(&mut self) {
+        let (len, pv, stride) = (self.len_v, self.pv, self.stride_v as isize);
+        (self.dcross, self.cross_left) = match (self.dv_step > 0, pv < len) {
+            (true, true) => (stride, len - 1 - pv),
+            (true, false) => (-stride, 2 * len - 1 - pv),
+            (false, true) => (-stride, pv),
+            (false, false) => (stride, pv - len),
+        };
+    }
+
     /// Moves the cross coordinate to `v` and, if it entered another cell, the index with it.
     #[inline(always)]
     fn cross_to(&mut self, v: i64) {
@@ -218,6 +237,7 @@ impl<'a, 't> March<'a, 't> {
             let off_v = self.offset_v(self.pv);
             self.idx = self.idx.wrapping_sub(self.off_v).wrapping_add(off_v);
             self.off_v = off_v;
+            self.plan_cross();
         }
     }
 
@@ -243,7 +263,7 @@ impl<'a, 't> March<'a, 't> {
     /// step. Returns the top of the first voxel above the ray (the cursor is on it), or `None`
     /// when the run ends first (the cursor is on the run's last voxel, which the ray passes
     /// above; [`March::advance`] takes the step out of the run). `*h` follows the ray, and
-    /// `*steps` counts the steps taken. With `ASCENDING` (a ray that does not descend) the ride
+    /// `*steps` counts the steps taken, at most `limit`. With `ASCENDING` (a ray that does not descend) the ride
     /// also stops, returning `None`, on the first voxel where the ray is above `ceiling` (the
     /// highest point of the terrain: nothing further can be hit).
     #[inline(always)]
@@ -252,6 +272,7 @@ impl<'a, 't> March<'a, 't> {
         h: &mut Height,
         rise: Height,
         ceiling: Height,
+        limit: u32,
         steps: &mut u32,
     ) -> Option<Height> {
         let ceiling = ceiling.to_bits();
@@ -262,12 +283,14 @@ impl<'a, 't> March<'a, 't> {
         enum Stop {
             Hit(i64),
             End,
-            Cross,
+            Edge,
         }
         loop {
-            let (mut left, mut idx, mut v, cv) = (self.run, self.idx, self.v, self.cv);
-            // The tight loop: one voxel per iteration, until a hit, the run's end, or a new
-            // cell across the ray.
+            let start = self.run.min(limit);
+            let (mut left, mut idx, mut v, mut cv) = (start, self.idx, self.v, self.cv);
+            let (dcross, mut cross_left) = (self.dcross, self.cross_left);
+            // The tight loop: one voxel per iteration, until a hit, the run's end, or a mirror
+            // edge across the ray.
             let found = loop {
                 let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
                 if top > ray {
@@ -280,16 +303,34 @@ impl<'a, 't> March<'a, 't> {
                 idx = idx.wrapping_add_signed(du);
                 ray += rise;
                 v += dv_step;
-                if v >> shift != cv {
-                    break Stop::Cross;
+                let c = v >> shift;
+                if c != cv {
+                    if cross_left == 0 {
+                        break Stop::Edge;
+                    }
+                    // Into the next cell across the ray: one row over.
+                    cross_left -= 1;
+                    cv = c;
+                    idx = idx.wrapping_add_signed(dcross);
                 }
             };
-            let taken = self.run - left;
+            let crossed = self.cross_left - cross_left;
+            if crossed > 0 {
+                self.cv = cv;
+                self.cross_left = cross_left;
+                self.off_v = self.off_v.wrapping_add_signed(dcross * crossed as isize);
+                if self.dv_step > 0 {
+                    self.pv += crossed;
+                } else {
+                    self.pv -= crossed;
+                }
+            }
+            let taken = start - left;
             self.idx = idx;
             self.commit(taken);
             *steps += taken;
-            if let Stop::Cross = found {
-                // Moved across: shift the index by a row and go on with the same run.
+            if let Stop::Edge = found {
+                // A mirror edge across the ray: the general crossing, then the same run.
                 self.cross_to(v);
                 continue;
             }
@@ -300,6 +341,118 @@ impl<'a, 't> March<'a, 't> {
                 _ => None,
             };
         }
+    }
+
+    /// Crosses empty air (Sect. 3's traversal, accelerated by the conservative maximum of
+    /// [`crate::pyramid`]): finds the coarsest block of the maximum pyramid that holds the
+    /// current voxel and the next ones of the run, and whose highest level-0 height is at or
+    /// below the ray over all of them, and steps past them at once. The ray is at `*h` here and
+    /// rises by `rise` per step. Returns the number of voxels stepped over, 0 if the next
+    /// coarser block already reaches the ray. The voxels passed over are exactly those the
+    /// walk would have tested and found below the ray, so no sampler sees a different voxel.
+    pub fn skip(&mut self, h: &mut Height, rise: Height) -> u32 {
+        if self.run == 0 {
+            return 0;
+        }
+        let levels = self.terrain.levels();
+        let (fu, fv) = (fold(self.pu, self.len_u), fold(self.pv, self.len_v));
+        let (ray, rise) = (h.to_bits(), rise.to_bits());
+        let shift = 32 + self.l;
+        let mut best = 0;
+        let mut k = self.l + 1;
+        while let Some(level) = levels.get(k as usize) {
+            let Some(max) = level.max_heights() else {
+                break;
+            };
+            let d = k - self.l;
+            // The block's extent in this level's (folded) cells, along and across the ray.
+            let extent = |f: u32, len: u32| {
+                let b = f >> d;
+                (b, b << d, ((b + 1) << d).min(len) - 1)
+            };
+            let (bu, lo_u, hi_u) = extent(fu, self.len_u);
+            let (bv, lo_v, hi_v) = extent(fv, self.len_v);
+            // Voxels from here to the block's edge along the ray, within the run.
+            let along = if self.du > 0 { hi_u - fu } else { fu - lo_u };
+            let mut s = (along + 1).min(self.run);
+            if self.dv_step != 0 {
+                // Crossings into the next cell across that stay in the block: with at most
+                // one per step, the first `allow + 1` voxels are inside; beyond, count them.
+                let allow = if self.dcross > 0 {
+                    hi_v - fv
+                } else {
+                    fv - lo_v
+                }
+                .min(self.cross_left);
+                if allow.saturating_add(1) < s {
+                    let a = i64::from(allow);
+                    let inside = if self.dv_step > 0 {
+                        let edge = (self.cv + a + 1) << shift;
+                        (edge - self.v + self.dv_step - 1) / self.dv_step
+                    } else {
+                        let edge = (self.cv - a) << shift;
+                        (self.v - edge) / -self.dv_step + 1
+                    };
+                    s = s.min(inside.clamp(0, i64::from(u32::MAX)) as u32);
+                }
+            }
+            if s == 0 {
+                break;
+            }
+            // The ray's lowest point over the voxels 0..s.
+            let low = if rise >= 0 {
+                ray
+            } else {
+                ray + i64::from(s - 1) * rise
+            };
+            let (x, y) = match self.axis {
+                Axis::X => (bu, bv),
+                Axis::Y => (bv, bu),
+            };
+            let top = max
+                .get(y as usize * level.width() as usize + x as usize)
+                .copied()
+                .unwrap_or(u16::MAX);
+            if i64::from(top) << 24 > low {
+                break;
+            }
+            best = s;
+            if s == self.run {
+                break;
+            }
+            k += 1;
+        }
+        if best == 0 {
+            return 0;
+        }
+        // All but the last step inside the block (no mirror edge across: allow ≤ cross_left),
+        // then the last one as any step.
+        let inner = best - 1;
+        if inner > 0 {
+            let v = self.v + self.dv_step * i64::from(inner);
+            let cv = v >> shift;
+            let crossed = (cv - self.cv).unsigned_abs() as u32;
+            self.idx = self
+                .idx
+                .wrapping_add_signed(self.du * inner as isize + self.dcross * crossed as isize);
+            if crossed > 0 {
+                self.off_v = self
+                    .off_v
+                    .wrapping_add_signed(self.dcross * crossed as isize);
+                self.cross_left -= crossed;
+                if self.dv_step > 0 {
+                    self.pv += crossed;
+                } else {
+                    self.pv -= crossed;
+                }
+                self.cv = cv;
+            }
+            self.v = v;
+            self.commit(inner);
+        }
+        self.advance();
+        *h = Height::from_bits(ray + i64::from(best) * rise);
+        best
     }
 
     /// The current cell index along the major axis, in map coordinates.

@@ -18,6 +18,12 @@
 //!
 //! Odd sides round up, and the missing neighbour is the mirrored one (the edge voxel itself).
 //! Every value is an average or maximum of the level below, so no level rises above level 0.
+//!
+//! Beside the heights a ray samples, a level may hold a **conservative maximum**
+//! ([`Level::build_next_max`]): the true 2×2 maximum of the maximum below, so that no level-0
+//! height under a coarse voxel exceeds it. Neither height filter is conservative (the
+//! silhouette averages across the ray), so the walk never samples it: it only tells the walk
+//! where a ray passes above a whole block and can cross it in one step.
 
 use crate::camera::Axis;
 use crate::color::Rgb;
@@ -100,5 +106,38 @@ impl<'a> Level<'a> {
             }
         }
         Level::directional(w, h, along_x, along_y, colors)
+    }
+}
+
+impl Level<'_> {
+    /// Builds the next level's conservative maximum grid into `max` (exactly the cells of
+    /// [`next_size`]): the largest of each 2×2 block of this level's maximum grid, the missing
+    /// neighbour of an odd side being the edge voxel itself, as for the heights.
+    ///
+    /// Errors: `max` of the wrong length, this level without a maximum grid
+    /// ([`Level::with_max`]), or this level already 1×1.
+    pub fn build_next_max(&self, max: &mut [u16]) -> Result<(), Error> {
+        let (w, h) = next_size(self.width(), self.height()).ok_or(Error::TooManyLevels)?;
+        check_len("max heights", w as usize * h as usize, max.len())?;
+        let below = self.max_heights().ok_or(Error::SliceLength {
+            what: "max heights below",
+            expected: self.cells(),
+            actual: 0,
+        })?;
+        for y in 0..h {
+            let (y0, y1) = (2 * y, (2 * y + 1).min(self.height() - 1));
+            for x in 0..w {
+                let (x0, x1) = (2 * x, (2 * x + 1).min(self.width() - 1));
+                let top = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
+                    .map(|(x, y)| below.get(self.index(x, y)).copied().unwrap_or(u16::MAX))
+                    .into_iter()
+                    .max()
+                    .unwrap_or(u16::MAX);
+                if let Some(out) = max.get_mut(y as usize * w as usize + x as usize) {
+                    *out = top;
+                }
+            }
+        }
+        Ok(())
     }
 }

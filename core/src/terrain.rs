@@ -29,6 +29,9 @@ pub struct Level<'a> {
     /// The heights that rays stepping along y see ([`Axis::Y`]).
     along_y: &'a [u16],
     colors: &'a [Rgb],
+    /// The conservative maximum: no level-0 height under a voxel exceeds it (the map's own
+    /// heights at level 0). Used only to skip empty air ([`crate::march::March::skip`]).
+    max: Option<&'a [u16]>,
     width: u32,
     height: u32,
 }
@@ -101,6 +104,7 @@ impl<'a> Level<'a> {
             along_x: heights,
             along_y: heights,
             colors,
+            max: Some(heights),
             width,
             height,
         })
@@ -127,9 +131,34 @@ impl<'a> Level<'a> {
             along_x,
             along_y,
             colors,
+            max: None,
             width,
             height,
         })
+    }
+
+    /// This level with its conservative maximum grid `max` (row-major, built by
+    /// [`Level::build_next_max`]): every value at least the highest level-0 height under the
+    /// voxel. A walk skips empty air only through levels that have one.
+    ///
+    /// Errors: a slice of the wrong length.
+    pub fn with_max(self, max: &'a [u16]) -> Result<Self, Error> {
+        check_len("max heights", self.cells(), max.len())?;
+        Ok(Self {
+            max: Some(max),
+            ..self
+        })
+    }
+
+    /// The conservative maximum grid, if the level has one.
+    #[inline(always)]
+    pub fn max_heights(&self) -> Option<&'a [u16]> {
+        self.max
+    }
+
+    /// The number of voxels.
+    pub fn cells(&self) -> usize {
+        self.width as usize * self.height as usize
     }
 
     /// Width in voxels.

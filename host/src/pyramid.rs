@@ -14,6 +14,8 @@ struct Owned {
     along_x: Vec<u16>,
     along_y: Vec<u16>,
     colors: Vec<Rgb>,
+    /// The conservative maximum, for skipping empty air.
+    max: Vec<u16>,
 }
 
 impl Owned {
@@ -24,7 +26,8 @@ impl Owned {
             &self.along_x,
             &self.along_y,
             &self.colors,
-        )?)
+        )?
+        .with_max(&self.max)?)
     }
 }
 
@@ -58,7 +61,9 @@ impl Pyramid {
                 along_x: vec![0; cells],
                 along_y: vec![0; cells],
                 colors: vec![Rgb::default(); cells],
+                max: vec![0; cells],
             };
+            below.build_next_max(&mut next.max)?;
             below.build_next(
                 filter,
                 &mut next.along_x,

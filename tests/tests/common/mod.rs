@@ -58,12 +58,15 @@ pub struct Owned {
     /// The heights rays along y see (the same as `heights` at level 0).
     pub along_y: Vec<u16>,
     pub colors: Vec<Rgb>,
+    /// The conservative maximum grid (the map's heights at level 0).
+    pub max: Vec<u16>,
 }
 
 impl Owned {
     /// The level as the core sees it.
     pub fn level(&self) -> Level<'_> {
         Level::directional(self.w, self.h, &self.heights, &self.along_y, &self.colors)
+            .and_then(|l| l.with_max(&self.max))
             .expect("valid level")
     }
 }
@@ -102,6 +105,7 @@ impl Map {
         let mut levels = vec![Owned {
             w,
             h,
+            max: heights.clone(),
             along_y: heights.clone(),
             heights,
             colors,
@@ -114,16 +118,22 @@ impl Map {
             let cells = (nw * nh) as usize;
             let (mut hx, mut hy) = (vec![0u16; cells], vec![0u16; cells]);
             let mut cs = vec![Rgb::default(); cells];
+            let mut max = vec![0u16; cells];
             below
                 .level()
                 .build_next(filter, &mut hx, &mut hy, &mut cs)
                 .expect("valid next level");
+            below
+                .level()
+                .build_next_max(&mut max)
+                .expect("valid next maximum");
             levels.push(Owned {
                 w: nw,
                 h: nh,
                 heights: hx,
                 along_y: hy,
                 colors: cs,
+                max,
             });
         }
         Self { name, levels }
