@@ -68,6 +68,7 @@ pub fn walk<S: Sampler, C: Cost>(
     let mut ray;
     (ray, upper) = begin(i, upper, &march, sampler, cost);
     let mut in_footprint = false;
+    let skips = march.can_skip();
 
     if march.n() <= column.n_far {
         loop {
@@ -75,7 +76,7 @@ pub fn walk<S: Sampler, C: Cost>(
             let rise = Height::from_bits(ray.slope.to_bits() * march.step());
             // Before the column's first hit, cross empty air a block at a time; the ride then
             // takes one step between attempts.
-            let limit = if in_footprint {
+            let limit = if in_footprint || !skips {
                 u32::MAX
             } else if march.skip(&mut ray.h, rise) > 0 {
                 cost.step(false);

@@ -343,6 +343,15 @@ impl<'a, 't> March<'a, 't> {
         }
     }
 
+    /// Whether the terrain has the conservative maximum above level 0 that
+    /// [`March::skip`] needs (a walk without it steps through empty air voxel by voxel).
+    pub fn can_skip(&self) -> bool {
+        self.terrain
+            .levels()
+            .get(1)
+            .is_some_and(|l| l.max_heights().is_some())
+    }
+
     /// Crosses empty air (Sect. 3's traversal, accelerated by the conservative maximum of
     /// [`crate::pyramid`]): finds the coarsest block of the maximum pyramid that holds the
     /// current voxel and the next ones of the run, and whose highest level-0 height is at or

@@ -50,8 +50,9 @@ pub fn count_visible(frame: &Frame<'_>, terrain: &Terrain<'_>, counts: &mut Coun
 }
 
 /// The terrain over `level0` and the levels above it, which `Level::build_next` builds on
-/// the chip (the default height filter, the host's) into `heights` (two grids per level) and
-/// `colors`; they must hold every level's cells.
+/// the chip (the default height filter, the host's) into `heights` (three grids per level:
+/// the heights along x and along y, and the conservative maximum that lets the walk skip
+/// empty air, `Level::build_next_max`) and `colors`; they must hold every level's cells.
 #[inline(never)]
 pub fn build_terrain(
     level0: Level<'static>,
@@ -66,9 +67,13 @@ pub fn build_terrain(
         let cells = w as usize * h as usize;
         let (hx, rest_h) = core::mem::take(&mut heights).split_at_mut(cells);
         let (hy, rest_h) = rest_h.split_at_mut(cells);
+        let (mx, rest_h) = rest_h.split_at_mut(cells);
         let (cs, rest_c) = core::mem::take(&mut colors).split_at_mut(cells);
         (heights, colors) = (rest_h, rest_c);
-        let level = below.build_next(HeightFilter::default(), hx, hy, cs)?;
+        below.build_next_max(mx)?;
+        let level = below
+            .build_next(HeightFilter::default(), hx, hy, cs)?
+            .with_max(mx)?;
         terrain.push_level(level)?;
         below = level;
     }

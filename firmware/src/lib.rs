@@ -171,9 +171,9 @@ pub mod stack {
 
 /// Every buffer the core borrows, in `.bss`: the firmware's whole RAM apart from the stack.
 pub struct Buffers {
-    /// Heights of pyramid levels 1 and up, built on the chip: two grids per level (for rays
-    /// along x and along y).
-    pub pyramid_heights: &'static mut [u16; 2 * PYRAMID_CELLS],
+    /// Heights of pyramid levels 1 and up, built on the chip: three grids per level (for rays
+    /// along x and along y, and the conservative maximum for skipping empty air).
+    pub pyramid_heights: &'static mut [u16; 3 * PYRAMID_CELLS],
     /// Colours of pyramid levels 1 and up.
     pub pyramid_colors: &'static mut [Rgb; PYRAMID_CELLS],
     /// The frame's row table, `H + 1` slopes.
@@ -194,7 +194,7 @@ impl Buffers {
     pub fn take() -> Option<Self> {
         Some(Self {
             pyramid_heights: cortex_m::singleton!(
-                PYRAMID_HEIGHTS: [u16; 2 * PYRAMID_CELLS] = [0; 2 * PYRAMID_CELLS]
+                PYRAMID_HEIGHTS: [u16; 3 * PYRAMID_CELLS] = [0; 3 * PYRAMID_CELLS]
             )?,
             pyramid_colors: cortex_m::singleton!(
                 PYRAMID_COLORS: [Rgb; PYRAMID_CELLS] = [Rgb::new(0, 0, 0); PYRAMID_CELLS]
