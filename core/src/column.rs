@@ -71,6 +71,9 @@ pub fn walk<S: Sampler, C: Cost>(
     let skips = march.can_skip();
 
     if march.n() <= column.n_far {
+        // Whether the current voxel is done with (sampled, or the ray is above it), so that
+        // the next ride begins with a step.
+        let mut step_first = false;
         loop {
             // Ride the run while the voxels stay at or below the ray (the inner loop).
             let rise = Height::from_bits(ray.slope.to_bits() * march.step());
@@ -89,42 +92,49 @@ pub fn walk<S: Sampler, C: Cost>(
             };
             let mut steps = 0;
             let hit = if ray.slope >= 0 {
-                march.ride::<true>(&mut ray.h, rise, max_h, limit, &mut steps)
+                march.ride::<true>(&mut ray.h, rise, max_h, limit, step_first, &mut steps)
             } else {
-                march.ride::<false>(&mut ray.h, rise, max_h, limit, &mut steps)
+                march.ride::<false>(&mut ray.h, rise, max_h, limit, step_first, &mut steps)
             };
             cost.steps(steps, in_footprint);
-            // The hits on this voxel: each sampler call may raise the ray or begin the next
-            // pixel, and the same voxel is tested again until the ray passes above it.
-            let mut hit = hit;
-            while let Some(top) = hit {
-                hit = None;
-                match sampler.hit(&march, top, &mut ray, cost) {
-                    Hit::Sampled => {
-                        cost.hit();
-                        in_footprint = true;
-                        hit = (top > ray.h).then_some(top);
-                    }
-                    Hit::Next => {
-                        cost.hit();
-                        in_footprint = true;
-                    }
-                    Hit::Done(color) => {
-                        cost.hit();
-                        cost.terrain_pixel();
-                        in_footprint = true;
-                        out[i - first] = color;
-                        i += 1;
-                        if i == end {
-                            cost.end_column();
-                            return;
+            if let Some(top) = hit {
+                // The hits on this voxel: each sampler call may raise the ray or begin the
+                // next pixel, and the same voxel is tested again until the ray passes above
+                // it; then the next ride steps on.
+                let mut again = Some(top);
+                while let Some(top) = again {
+                    again = None;
+                    match sampler.hit(&march, top, &mut ray, cost) {
+                        Hit::Sampled => {
+                            cost.hit();
+                            in_footprint = true;
+                            again = (top > ray.h).then_some(top);
                         }
-                        (ray, upper) = begin(i, upper, &march, sampler, cost);
-                        hit = (top > ray.h).then_some(top);
+                        Hit::Next => {
+                            cost.hit();
+                            in_footprint = true;
+                        }
+                        Hit::Done(color) => {
+                            cost.hit();
+                            cost.terrain_pixel();
+                            in_footprint = true;
+                            out[i - first] = color;
+                            i += 1;
+                            if i == end {
+                                cost.end_column();
+                                return;
+                            }
+                            (ray, upper) = begin(i, upper, &march, sampler, cost);
+                            again = (top > ray.h).then_some(top);
+                        }
+                        Hit::Rejected => {}
                     }
-                    Hit::Rejected => {}
                 }
+                step_first = true;
+                continue;
             }
+            // The run ended (or the ray rose above everything): the step out of it.
+            step_first = false;
             if ray.slope >= 0 && ray.h > max_h {
                 break;
             }

@@ -88,8 +88,11 @@ pub struct March<'a, 't> {
     idx: usize,
     /// What a step inside the current run adds to `idx` (`±stride_u`).
     du: isize,
-    /// Steps left in the current run (see the module documentation).
+    /// Steps left in the current run (see the module documentation), and the run's length
+    /// when it was planned: `j`, `n`, `pu` and `k` hold their values at the run's start, and
+    /// the current ones are derived from the `planned − run` steps taken since.
     run: u32,
+    planned: u32,
     /// The last `n` within the far distance.
     n_far: i64,
 }
@@ -133,6 +136,7 @@ impl<'a, 't> March<'a, 't> {
             idx: 0,
             du: 0,
             run: 0,
+            planned: 0,
             n_far: column.n_far,
         };
         m.enter_level();
@@ -201,6 +205,40 @@ impl<'a, 't> March<'a, 't> {
             0
         };
         self.run = run.min(to_far).clamp(0, i64::from(u32::MAX)) as u32;
+        self.planned = self.run;
+    }
+
+    /// Steps taken since the run began.
+    #[inline(always)]
+    fn taken(&self) -> u32 {
+        self.planned - self.run
+    }
+
+    /// The current cell index along `n` at level `l`.
+    #[inline(always)]
+    fn j_now(&self) -> i64 {
+        self.j + i64::from(self.taken())
+    }
+
+    /// The current position in the mirrored period of the major axis.
+    #[inline(always)]
+    fn pu_now(&self) -> u32 {
+        // Inside a run the period position does not wrap (the run ends at the edge).
+        if self.forward {
+            self.pu + self.taken()
+        } else {
+            self.pu - self.taken()
+        }
+    }
+
+    /// Makes `j`, `n`, `pu` and `k` current, as a new run's start.
+    fn settle(&mut self) {
+        let taken = self.taken();
+        self.j += i64::from(taken);
+        self.n += i64::from(taken) * self.dn;
+        self.pu = self.pu_now();
+        self.k = self.k.saturating_add(taken);
+        self.planned = self.run;
     }
 
     /// Counts the crossings into the next cell across the ray that keep the cross fold moving
@@ -245,17 +283,7 @@ impl<'a, 't> March<'a, 't> {
     /// coordinate, which the caller has already moved.
     #[inline(always)]
     fn commit(&mut self, steps: u32) {
-        let s = i64::from(steps);
         self.run -= steps;
-        self.k = self.k.saturating_add(steps);
-        self.j += s;
-        self.n += s * self.dn;
-        // Inside a run the period position does not wrap (the run ends at the edge).
-        if self.forward {
-            self.pu += steps;
-        } else {
-            self.pu -= steps;
-        }
     }
 
     /// The walk's inner loop: from the current voxel, steps along the run while the voxel's
@@ -263,9 +291,11 @@ impl<'a, 't> March<'a, 't> {
     /// step. Returns the top of the first voxel above the ray (the cursor is on it), or `None`
     /// when the run ends first (the cursor is on the run's last voxel, which the ray passes
     /// above; [`March::advance`] takes the step out of the run). `*h` follows the ray, and
-    /// `*steps` counts the steps taken, at most `limit`. With `ASCENDING` (a ray that does not descend) the ride
-    /// also stops, returning `None`, on the first voxel where the ray is above `ceiling` (the
-    /// highest point of the terrain: nothing further can be hit).
+    /// `*steps` counts the steps taken, at most `limit`. With `step_first` the current voxel
+    /// is not tested (a sampler has already dealt with it): the ride begins with a step. With
+    /// `ASCENDING` (a ray that does not descend) the ride also stops, returning `None`, on the
+    /// first voxel where the ray is above `ceiling` (the highest point of the terrain: nothing
+    /// further can be hit).
     #[inline(always)]
     pub fn ride<const ASCENDING: bool>(
         &mut self,
@@ -273,6 +303,7 @@ impl<'a, 't> March<'a, 't> {
         rise: Height,
         ceiling: Height,
         limit: u32,
+        step_first: bool,
         steps: &mut u32,
     ) -> Option<Height> {
         let ceiling = ceiling.to_bits();
@@ -280,6 +311,7 @@ impl<'a, 't> March<'a, 't> {
         let (du, dv_step, shift) = (self.du, self.dv_step, 32 + self.l);
         let rise = rise.to_bits();
         let mut ray = h.to_bits();
+        let mut test = !step_first;
         enum Stop {
             Hit(i64),
             End,
@@ -293,9 +325,10 @@ impl<'a, 't> March<'a, 't> {
             // edge across the ray.
             let found = loop {
                 let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
-                if top > ray {
+                if test && top > ray {
                     break Stop::Hit(top);
                 }
+                test = true;
                 if left == 0 || (ASCENDING && ray > ceiling) {
                     break Stop::End;
                 }
@@ -364,7 +397,7 @@ impl<'a, 't> March<'a, 't> {
             return 0;
         }
         let levels = self.terrain.levels();
-        let (fu, fv) = (fold(self.pu, self.len_u), fold(self.pv, self.len_v));
+        let (fu, fv) = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
         let (ray, rise) = (h.to_bits(), rise.to_bits());
         let shift = 32 + self.l;
         let mut best = 0;
@@ -468,9 +501,9 @@ impl<'a, 't> March<'a, 't> {
     #[inline(always)]
     fn u_cell(&self) -> i64 {
         if self.forward {
-            self.j
+            self.j_now()
         } else {
-            -self.j - 1
+            -self.j_now() - 1
         }
     }
 
@@ -490,6 +523,7 @@ impl<'a, 't> March<'a, 't> {
     /// Plans the next run.
     #[inline(never)]
     fn step_out_of_run(&mut self) -> i64 {
+        self.settle();
         self.k = self.k.saturating_add(1);
         if self.n >= self.climb_at && self.j & 1 == 1 {
             // The next level-l voxel begins a level-(l+1) voxel: climb (Sect. 3).
@@ -525,7 +559,7 @@ impl<'a, 't> March<'a, 't> {
     /// The current voxel's centre, half-voxels along the ray.
     #[inline(always)]
     pub fn n(&self) -> i64 {
-        self.n
+        self.n + i64::from(self.taken()) * self.dn
     }
 
     /// The current pyramid level.
@@ -537,13 +571,13 @@ impl<'a, 't> March<'a, 't> {
     /// The number of steps taken: the index of the current voxel in the sequence.
     #[inline(always)]
     pub fn step_index(&self) -> u32 {
-        self.k
+        self.k.saturating_add(self.taken())
     }
 
     /// The array offset of the current voxel's major-axis coordinate.
     #[inline(always)]
     fn offset_u(&self) -> usize {
-        fold(self.pu, self.len_u) as usize * self.stride_u
+        fold(self.pu_now(), self.len_u) as usize * self.stride_u
     }
 
     /// The array offset of cross-axis period position `pv`.
@@ -573,7 +607,7 @@ impl<'a, 't> March<'a, 't> {
 
     /// The current voxel's `(x, y)` at its level, after mirroring.
     pub fn cell(&self) -> (u32, u32) {
-        let (u, v) = (fold(self.pu, self.len_u), fold(self.pv, self.len_v));
+        let (u, v) = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
         match self.axis {
             Axis::X => (u, v),
             Axis::Y => (v, u),

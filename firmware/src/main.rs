@@ -37,7 +37,7 @@ use footprint_core::cost::{Counts, NoCost, Tally};
 use footprint_core::num::Coord;
 use footprint_core::pyramid::HeightFilter;
 use footprint_core::raster::Target;
-use footprint_core::sampler::{Area, Point, Sampler, Super};
+use footprint_core::sampler::{Area, ParallelArea, Point, Sampler, Super};
 use footprint_core::specular::{Light, Material, Normal, Phong};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
@@ -339,16 +339,43 @@ fn run() -> Result<bool, Error> {
         scratch,
         image,
     )?;
-    let area = run_mode("as", &Area::new(), &frame, &terrain, tables, scratch, image)?;
-    match (ps, ss8, area) {
-        (Some(ps), Some(_), Some(area)) => hprintln!(
-            "# icount as/ps: {} (render instructions)",
-            Ratio {
-                num: area,
-                den: ps,
-                places: 2
-            }
-        ),
+    let area = run_mode(
+        "as-exact",
+        &Area::new(),
+        &frame,
+        &terrain,
+        tables,
+        scratch,
+        image,
+    )?;
+    let paper = run_mode(
+        "as",
+        &ParallelArea::new(),
+        &frame,
+        &terrain,
+        tables,
+        scratch,
+        image,
+    )?;
+    match (ps, ss8, area, paper) {
+        (Some(ps), Some(_), Some(area), Some(paper)) => {
+            hprintln!(
+                "# icount as-exact/ps: {} (render instructions)",
+                Ratio {
+                    num: area,
+                    den: ps,
+                    places: 2
+                }
+            );
+            hprintln!(
+                "# icount as/ps: {} (render instructions)",
+                Ratio {
+                    num: paper,
+                    den: ps,
+                    places: 2
+                }
+            );
+        }
         _ => ok = false,
     }
     run_plate(plate_buffers)?;

@@ -62,13 +62,13 @@ fn render_counts_json_has_the_documented_fields() {
         "--pitch",
         "20",
         "--mode",
-        "as",
+        "as-exact",
         "--counts",
         "--json",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
-    assert_eq!(v["mode"], "as");
+    assert_eq!(v["mode"], "as-exact");
     assert_eq!(v["width"], 64);
     assert_eq!(v["height"], 48);
     for k in [
@@ -91,7 +91,7 @@ fn render_counts_json_has_the_documented_fields() {
     assert_eq!(
         v["coverage"].as_f64().unwrap(),
         1.0,
-        "AS samples every visible voxel"
+        "the perspective-exact AS samples every visible voxel"
     );
     assert!(v["counts"]["V"].as_u64().unwrap() > 0);
 }

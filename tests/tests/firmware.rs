@@ -173,7 +173,7 @@ fn firmware_output_equals_the_host_reference() {
     // The chip-only lines are there too: one instruction count per mode, calibrated.
     let text = String::from_utf8_lossy(&out);
     let plate_mode = plate_mode_name();
-    for mode in ["ps", "ss8", "as", plate_mode.as_str()] {
+    for mode in ["ps", "ss8", "as-exact", "as", plate_mode.as_str()] {
         assert!(
             text.contains(&format!("# icount {mode}: render ")),
             "no instruction count for {mode}:\n{text}"
@@ -186,7 +186,7 @@ fn firmware_output_equals_the_host_reference() {
     let first = minimal.lines().next().unwrap_or_default().to_owned();
     let area = expected
         .lines()
-        .find(|l| l.starts_with("frame as "))
+        .find(|l| l.starts_with("frame as-exact "))
         .expect("an AS frame line");
     assert!(
         area.starts_with(&(first.clone() + " ")),
@@ -218,13 +218,20 @@ fn the_reference_is_consistent() {
             .unwrap()
     };
     let frames: Vec<&String> = lines.iter().filter(|l| l.starts_with("frame ")).collect();
-    assert_eq!(frames.len(), 4, "{lines:#?}");
-    let (ps, ss8, area) = (frames[0], frames[1], frames[2]);
+    assert_eq!(frames.len(), 5, "{lines:#?}");
+    let (ps, ss8, area, paper) = (frames[0], frames[1], frames[2], frames[3]);
+    assert!(paper.starts_with("frame as 160x120 "), "{paper}");
+    assert_eq!(
+        field(paper, "top_div"),
+        0,
+        "the paper's AS divides once per pixel"
+    );
+    assert_eq!(field(paper, "div"), 3 * field(paper, "P"));
     assert!(ps.starts_with("frame ps 160x120 "), "{ps}");
     assert_eq!(field(ps, "hits"), field(ps, "P"));
     assert!(ss8.starts_with("frame ss8 160x120 "), "{ss8}");
     assert_eq!(field(ss8, "hits"), 8 * field(ss8, "P"));
-    assert!(area.starts_with("frame as 160x120 "), "{area}");
+    assert!(area.starts_with("frame as-exact 160x120 "), "{area}");
     assert_eq!(
         field(area, "M"),
         field(area, "V"),
@@ -238,7 +245,7 @@ fn the_reference_is_consistent() {
     // The specular plate, after the terrain frames (`plate_reference_line` has already checked
     // it against `footprint specular`'s own render of the same plate): one shade per fragment
     // (clamping), the cylinders alias at 64×64, and every flagged pixel was drawn.
-    let specular = frames[3];
+    let specular = frames[4];
     assert!(
         specular.starts_with(&format!(
             "frame {} {PLATE_SIZE}x{PLATE_SIZE} ",
@@ -254,5 +261,5 @@ fn the_reference_is_consistent() {
     assert!(baked.triangles.len() > 1000 && baked.vertices.len() < baked.triangles.len() * 3);
     let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
     assert_eq!(errors, 10, "{lines:#?}");
-    assert_eq!(lines.len(), 14);
+    assert_eq!(lines.len(), 15);
 }

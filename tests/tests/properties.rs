@@ -23,7 +23,7 @@ use footprint_core::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::march::{Color16, March};
 use footprint_core::num::{Coord, Weight};
 use footprint_core::pyramid::HeightFilter;
-use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::{Scale, Terrain};
 use footprint_core::visibility::count_visible;
 use footprint_core::Rgb;
@@ -338,6 +338,66 @@ fn check_area(t: &Tally, cols: &[Tally], width: u64) -> Result<(), TestCaseError
     Ok(())
 }
 
+/// The paper's AS (Fig. 12): every hit samples and weighs; no division per hit; hits between
+/// `M′` and `M′ + P − 1` per column (a voxel is hit once, and again at most once per pixel
+/// transition).
+fn check_parallel_area(t: &Tally, cols: &[Tally]) -> Result<(), TestCaseError> {
+    prop_assert_eq!(t.c, t.hits, "AS (paper): every hit samples: {:?}", t);
+    prop_assert_eq!(
+        t.top_divisions,
+        0,
+        "AS (paper): no division per hit: {:?}",
+        t
+    );
+    prop_assert!(t.d_prime >= t.hits, "AS (paper): d′: {:?}", t);
+    for (c, ct) in cols.iter().enumerate() {
+        if ct.p == 0 {
+            prop_assert_eq!((ct.hits, ct.m), (0, 0), "AS (paper) column {}: {:?}", c, ct);
+        } else {
+            prop_assert!(
+                ct.m <= ct.hits && ct.hits < ct.m + ct.p,
+                "AS (paper) column {}: M′ ≤ hits ≤ M′ + P − 1: {:?}",
+                c,
+                ct
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Per pixel, the `n` of its first sample and the sum of its weights (samples and sky).
+#[derive(Default)]
+struct Spans {
+    col: usize,
+    row: usize,
+    /// `(column, row, first n, Σ weight bits)`.
+    pixels: Vec<(usize, usize, i64, i64)>,
+}
+
+impl Cost for Spans {
+    fn begin_column(&mut self, column: usize) {
+        self.col = column;
+    }
+    fn begin_pixel(&mut self, row: usize) {
+        self.row = row;
+    }
+    fn sample(&mut self, march: &March<'_, '_>, _: Color16, w: Weight) {
+        match self.pixels.last_mut() {
+            Some(p) if (p.0, p.1) == (self.col, self.row) => p.3 += w.to_bits(),
+            _ => self
+                .pixels
+                .push((self.col, self.row, march.n(), w.to_bits())),
+        }
+    }
+    fn sky_sample(&mut self, _: Color16, w: Weight) {
+        if let Some(p) = self.pixels.last_mut() {
+            if (p.0, p.1) == (self.col, self.row) {
+                p.3 += w.to_bits();
+            }
+        }
+    }
+}
+
 /// The whole image, row-major from the top, through `column::render` with `NoCost`.
 fn image<S: Sampler + Clone>(frame: &Frame<'_>, terrain: &Terrain<'_>, sampler: &S) -> Vec<u8> {
     let (w, h) = (frame.width(), frame.height());
@@ -372,7 +432,7 @@ fn config() -> Config {
 proptest! {
     #![proptest_config(config())]
 
-    /// AS and LI pixels lie within the range of the colours they sampled.
+    /// AS (both) and LI pixels lie within the range of the colours they sampled.
     #[test]
     fn as_and_li_pixels_lie_within_their_samples(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
@@ -380,6 +440,9 @@ proptest! {
             let mut r = Ranges::new(w, h);
             let img = columns(frame, terrain, &Area::new(), &mut r);
             r.check(&img, "AS")?;
+            let mut r = Ranges::new(w, h);
+            let img = columns(frame, terrain, &ParallelArea::new(), &mut r);
+            r.check(&img, "AS (paper)")?;
             let mut r = Ranges::new(w, h);
             let img = columns(frame, terrain, &Linear, &mut r);
             r.check(&img, "LI")
@@ -402,6 +465,27 @@ proptest! {
         .unwrap_or(Ok(()))?;
     }
 
+    /// The paper's AS: a pixel's weights sum to its height span under the parallel-ray
+    /// assumption, `H(R_{i+1}) − H(R_i)` at the voxel of its first sample, quantized to its top
+    /// 16 bits as the sampler documents.
+    #[test]
+    fn parallel_area_weights_sum_to_the_pixel_span(case in case()) {
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            let mut spans = Spans::default();
+            columns(frame, terrain, &ParallelArea::new(), &mut spans);
+            for &(c, i, n, sum) in &spans.pixels {
+                let column = frame.column(c);
+                let span = (frame.ray(column, i + 1).at(n) - frame.ray(column, i).at(n))
+                    .to_bits()
+                    .max(1);
+                let shift = (64 - span.leading_zeros()).saturating_sub(16);
+                prop_assert_eq!(sum, span >> shift, "column {} row {} at n = {}", c, i, n);
+            }
+            Ok(())
+        })
+        .unwrap_or(Ok(()))?;
+    }
+
     /// The counters satisfy the identities of the cost model, in every mode.
     #[test]
     fn hits_satisfy_the_identities(case in case()) {
@@ -415,6 +499,8 @@ proptest! {
             check_super(&t, &cols, 2, "SS2")?;
             let (t, cols, _) = tallies(frame, terrain, &Super::<16>::new());
             check_super(&t, &cols, 16, "SS16")?;
+            let (t, cols, _) = tallies(frame, terrain, &ParallelArea::new());
+            check_parallel_area(&t, &cols)?;
             let (t, cols, _) = tallies(frame, terrain, &Area::new());
             check_area(&t, &cols, w)
         })
@@ -526,6 +612,7 @@ fn every_mode_draws_the_pinned_images_on_random_terrains() {
                 pin("ss2", tallies(frame, terrain, &Super::<2>::new())),
                 pin("ss16", tallies(frame, terrain, &Super::<16>::new())),
                 pin("as", tallies(frame, terrain, &Area::new())),
+                pin("as-paper", tallies(frame, terrain, &ParallelArea::new())),
             ]
         });
         match frames {

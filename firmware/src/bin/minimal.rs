@@ -1,7 +1,7 @@
 //! The smallest embedding of `footprint-core`: the firmware scene in exact area sampling only,
 //! without cost counting, from statics. It exists to measure what an embedder pays in flash
 //! and RAM for one mode (`sizes.sh` reports it beside the full firmware), and it prints the
-//! image's checksum, which must equal the full firmware's `frame as` checksum.
+//! image's checksum, which must equal the full firmware's `frame as-exact` checksum.
 
 #![no_std]
 #![deny(unsafe_code)]
@@ -70,9 +70,9 @@ fn main() -> ! {
     clock::start(&mut peripherals.SYST);
     let code = match run() {
         Ok((hash, render)) => {
-            hprintln!("frame as {}x{} fnv1a={:016x}", WIDTH, HEIGHT, hash);
+            hprintln!("frame as-exact {}x{} fnv1a={:016x}", WIDTH, HEIGHT, hash);
             hprintln!(
-                "# icount as: render {} instructions, {} per pixel (instructions, not cycles)",
+                "# icount as-exact: render {} instructions, {} per pixel (instructions, not cycles)",
                 render,
                 Ratio::tenths(render, (WIDTH * HEIGHT) as u64)
             );

@@ -20,7 +20,11 @@ pub struct RenderArgs {
     #[command(flatten)]
     /// The camera.
     pub camera: CameraArgs,
-    /// Sampling mode: ps, li, ss2, ss4, …, ss256, or as.
+    /// Sampling mode: ps, li, ss2, ss4, …, ss256, as (area sampling as the paper's Fig. 12
+    /// writes it: parallel rays within a pixel, one division per pixel), or as-exact (area
+    /// sampling with the exact ray through each voxel's top: every visible voxel, only those).
+    /// The default is `as`: on the paper's three views it has the same error against the ground
+    /// truth as as-exact and is about a quarter faster (README, "Measured").
     #[arg(long, default_value = "as")]
     pub mode: Mode,
     /// Output PNG.

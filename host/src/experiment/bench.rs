@@ -13,9 +13,9 @@ use crate::view::{resolve_camera, CameraArgs, Size, Switch};
 /// The paper's three pitches (Table 1).
 pub const PAPER_PITCHES: [f64; 3] = [40.0, 20.0, 5.0];
 
-/// The modes of Tables 2–4, plus LI.
+/// The modes of Tables 2–4 (AS both as the paper costs it and perspective-exact), plus LI.
 pub fn paper_modes() -> Vec<Mode> {
-    let mut m = vec![Mode::As, Mode::Ps, Mode::Li];
+    let mut m = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Li];
     m.extend([2, 4, 8, 16, 32].map(Mode::Ss));
     m
 }

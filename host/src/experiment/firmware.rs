@@ -66,7 +66,7 @@ pub const SIZE: Size = Size {
 pub const PITCH_DEG: f64 = 20.0;
 
 /// The modes the firmware renders, in the order it prints them.
-pub const MODES: [Mode; 3] = [Mode::Ps, Mode::Ss(8), Mode::As];
+pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(8), Mode::AsExact, Mode::As];
 
 /// The firmware's terrain scene: the map and the camera, with the eye height fitted.
 pub struct Scene {

@@ -104,7 +104,7 @@ fn variant(
     for shift in SHIFTS_PX {
         let mut p = *camera.params();
         p.pitch_deg += shift * pixel_deg;
-        let image = render(&Camera::new(p)?, Mode::As)?;
+        let image = render(&Camera::new(p)?, Mode::AsExact)?;
         upper_rmse.push((shift, rmse(&image[..upper], &truth[..upper])));
     }
     let at_zero = upper_rmse

@@ -24,7 +24,7 @@ pub fn reference(camera: &Camera, pyramid: &Pyramid, sky: Rgb) -> Result<Vec<Rgb
     };
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
-    let wide = render_parallel(&frame, &terrain, Mode::As)?;
+    let wide = render_parallel(&frame, &terrain, Mode::AsExact)?;
     let k = REFERENCE_COLUMNS as usize;
     let (w, h) = (camera.width(), camera.height());
     let mut out = Vec::with_capacity(w * h);
