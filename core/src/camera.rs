@@ -218,6 +218,20 @@ impl Column {
     pub fn n_far(&self) -> i64 {
         self.n_far
     }
+
+    /// +1 when the column's rays move towards increasing major coordinate, −1 otherwise.
+    pub fn sign(&self) -> i8 {
+        self.sign
+    }
+
+    /// The level-0 cell across the column at `n` half-voxels along it: `⌊v_base + n·dv⌋`, the
+    /// same arithmetic as the walk's cross coordinate.
+    pub fn cross_at(&self, n: i64) -> i64 {
+        self.v_base
+            .to_bits()
+            .saturating_add(self.dv.to_bits().saturating_mul(n))
+            >> 32
+    }
 }
 
 /// One frame's tables: the rows' slopes and the columns' constants, over borrowed buffers.
@@ -375,6 +389,11 @@ impl<'t> Frame<'t> {
     /// Column `c`'s constants.
     pub fn column(&self, c: usize) -> &Column {
         &self.columns[c]
+    }
+
+    /// Every column's constants.
+    pub fn columns(&self) -> &[Column] {
+        self.columns
     }
 
     /// The eye height in height units.

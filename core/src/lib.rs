@@ -43,6 +43,7 @@
 extern crate std;
 
 pub mod camera;
+pub mod classic;
 pub mod color;
 pub mod column;
 pub mod cost;

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use anyhow::{bail, Result};
 use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::classic;
 use footprint_core::column::{render, walk};
 use footprint_core::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::num::Coord;
@@ -30,6 +31,9 @@ pub enum Mode {
     /// Perspective-exact area sampling: weights in visible angle, the next ray through each
     /// voxel's top from the eye (a division per hit); samples exactly the visible voxels.
     AsExact,
+    /// The classic voxel-space renderer (y-buffer, growing steps, level 0, no coherence): the
+    /// baseline, not a mode of the paper (`footprint_core::classic`).
+    Classic,
 }
 
 /// The supersampling rates the renderer is compiled for.
@@ -43,10 +47,11 @@ impl FromStr for Mode {
             "li" => Ok(Mode::Li),
             "as" => Ok(Mode::As),
             "as-exact" => Ok(Mode::AsExact),
+            "classic" => Ok(Mode::Classic),
             other => match other.strip_prefix("ss").map(str::parse::<u32>) {
                 Some(Ok(n)) if SS_RATES.contains(&n) => Ok(Mode::Ss(n)),
                 _ => Err(format!(
-                    "unknown mode {s:?}: expected ps, li, as, as-exact, or ss2, ss4, …, ss256"
+                    "unknown mode {s:?}: expected ps, li, as, as-exact, classic, or ss2, ss4, …, ss256"
                 )),
             },
         }
@@ -61,15 +66,18 @@ impl fmt::Display for Mode {
             Mode::Ss(n) => write!(f, "ss{n}"),
             Mode::As => write!(f, "as"),
             Mode::AsExact => write!(f, "as-exact"),
+            Mode::Classic => write!(f, "classic"),
         }
     }
 }
 
 /// Runs `$body` with `$s` bound to a fresh sampler of `$mode`'s type: the one place where a
-/// run-time mode becomes a monomorphized `Sampler`.
+/// run-time mode becomes a monomorphized `Sampler`; `classic`, which is not a sampler of the
+/// walk, runs `$classic`.
 macro_rules! with_sampler {
-    ($mode:expr, $s:ident => $body:expr) => {
+    ($mode:expr, $s:ident => $body:expr, classic => $classic:expr) => {
         match $mode {
+            Mode::Classic => $classic,
             Mode::Ps => {
                 let $s = Point;
                 $body
@@ -175,7 +183,8 @@ pub fn render_with<C: Cost>(
     let (w, h) = (frame.width(), frame.height());
     let mut image = vec![Rgb::default(); w * h];
     let mut scratch = vec![Rgb::default(); h];
-    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut scratch, &mut image))?;
+    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut scratch, &mut image),
+        classic => classic::render(frame, terrain, cost, &mut scratch, &mut image))?;
     Ok(Rendered {
         image,
         size: (w as u32, h as u32),
@@ -194,7 +203,7 @@ pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> 
             with_sampler!(mode, s => {
                 let mut s = s;
                 walk(frame, terrain, x, 0..h, &mut s, &mut NoCost, &mut out)
-            });
+            }, classic => classic::walk(frame, terrain, x, &mut NoCost, &mut out));
             out
         })
         .collect();
@@ -217,7 +226,7 @@ pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: us
     with_sampler!(mode, s => {
         let mut s = s;
         walk(frame, terrain, x, 0..h, &mut s, &mut NoCost, &mut out)
-    });
+    }, classic => classic::walk(frame, terrain, x, &mut NoCost, &mut out));
     out
 }
 
