@@ -15,13 +15,18 @@ use footprint_host::commands::{
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Threads that render columns and frames in parallel (default: every core). Images are
+    /// the same for any number.
+    #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    threads: Option<u16>,
 }
 
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Render one frame to PNG, and optionally print its cost counters.
     Render(Box<RenderArgs>),
-    /// Time the paper's three cases in every mode, one thread, and print the ratio to PS.
+    /// Time every mode in the paper's three views and the classic renderer's view, interleaved:
+    /// ms per frame on one thread and on all, ratios to classic and to PS, steps per frame.
     Bench(Box<BenchArgs>),
     /// The paper's Tables 1–5 (coverage, hits, time, error against the ground truth) on any map.
     Table(Box<TableArgs>),
@@ -62,6 +67,15 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some(n) = cli.threads {
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(usize::from(n))
+            .build_global()
+        {
+            eprintln!("error: --threads {n}: {e}");
+            return ExitCode::from(2);
+        }
+    }
     let result = match &cli.command {
         Command::Render(args) => commands::render(args),
         Command::Bench(args) => commands::bench(args),

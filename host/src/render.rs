@@ -12,7 +12,7 @@ use footprint_core::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::num::Coord;
 use footprint_core::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
 use footprint_core::terrain::Terrain;
-use footprint_core::visibility::count_visible;
+use footprint_core::visibility::visible_voxels;
 use footprint_core::Rgb;
 
 /// A sampling mode of the paper: PS, LI, SS_N (N = 2, 4, …, 256), AS as the paper costs it,
@@ -249,6 +249,25 @@ pub fn render_timed(
     Ok((out.expect("at least one run"), best))
 }
 
+/// [`render_timed`] with the columns spread over the rayon pool (`--threads`): the same
+/// image, and the best wall time of `repeats` frames.
+pub fn render_timed_parallel(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+    repeats: usize,
+) -> Result<(Rendered, f64)> {
+    let mut best = f64::INFINITY;
+    let mut out = None;
+    for _ in 0..repeats.max(1) {
+        let t = Instant::now();
+        let r = render_parallel(frame, terrain, mode)?;
+        best = best.min(t.elapsed().as_secs_f64() * 1e3);
+        out = Some(r);
+    }
+    Ok((out.expect("at least one run"), best))
+}
+
 /// The counts of one frame: totals with `V` filled by the exact visibility pass, and one
 /// tally per column.
 pub struct Measured {
@@ -258,13 +277,40 @@ pub struct Measured {
     pub columns: Vec<Tally>,
 }
 
-/// Renders with every counter on, then counts the visible voxels `V` independently.
+/// Renders with every counter on, then counts the visible voxels `V` independently; the
+/// columns are counted in parallel (rayon), each with its own counters, and summed, so the
+/// result is the same for any number of threads.
 pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Rendered, Measured)> {
-    let mut columns = vec![Tally::default(); frame.width()];
-    let mut counts = Counts::new(&mut columns);
-    let rendered = render_with(frame, terrain, mode, &mut counts)?;
-    count_visible(frame, terrain, &mut counts);
-    let total = counts.total;
+    use rayon::prelude::*;
+    let (w, h) = (frame.width(), frame.height());
+    let per_column: Vec<(Vec<Rgb>, Tally)> = (0..w)
+        .into_par_iter()
+        .map(|x| {
+            let mut out = vec![Rgb::default(); h];
+            let mut counts = Counts::new(&mut []);
+            with_sampler!(mode, s => {
+                let mut s = s;
+                walk(frame, terrain, x, 0..h, &mut s, &mut counts, &mut out)
+            }, classic => classic::walk(frame, terrain, x, &mut counts, &mut out));
+            let mut tally = counts.total;
+            tally.v = visible_voxels(frame, terrain, x);
+            (out, tally)
+        })
+        .collect();
+    let mut image = vec![Rgb::default(); w * h];
+    let mut total = Tally::default();
+    let mut columns = Vec::with_capacity(w);
+    for (x, (col, tally)) in per_column.into_iter().enumerate() {
+        for (i, px) in col.iter().enumerate() {
+            image[(h - 1 - i) * w + x] = *px;
+        }
+        total.add(&tally);
+        columns.push(tally);
+    }
+    let rendered = Rendered {
+        image,
+        size: (w as u32, h as u32),
+    };
     Ok((rendered, Measured { total, columns }))
 }
 

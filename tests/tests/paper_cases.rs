@@ -162,3 +162,60 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
     }
     common::check_pins("paper_cases", &lines);
 }
+
+/// Multi-threaded images (and counts) equal single-threaded ones, byte for byte: columns are
+/// independent, and each column is walked by one thread.
+#[test]
+fn images_and_counts_are_the_same_for_any_number_of_threads() {
+    use footprint_core::cost::NoCost;
+    use footprint_host::render::{render_parallel, render_with};
+    let map = procedural(3, 256);
+    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let terrain = pyramid.terrain(true).unwrap();
+    let size = Size {
+        width: 96,
+        height: 64,
+    };
+    for pitch in PAPER_PITCHES {
+        let camera = paper_camera(&map, &pyramid, pitch, size, true).expect("paper camera");
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
+        for mode in [
+            Mode::Ps,
+            Mode::Ss(8),
+            Mode::As,
+            Mode::AsExact,
+            Mode::Classic,
+        ] {
+            let serial = render_with(&frame, &terrain, mode, &mut NoCost)
+                .unwrap()
+                .image;
+            for threads in [1, 2, 5] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let (image, (counted, measured)) = pool.install(|| {
+                    (
+                        render_parallel(&frame, &terrain, mode).unwrap().image,
+                        count(&frame, &terrain, mode).unwrap(),
+                    )
+                });
+                assert!(image == serial, "{mode} at {pitch}° on {threads} threads");
+                assert!(
+                    counted.image == serial,
+                    "{mode} counted on {threads} threads"
+                );
+                let one = rayon::ThreadPoolBuilder::new()
+                    .num_threads(1)
+                    .build()
+                    .unwrap()
+                    .install(|| count(&frame, &terrain, mode).unwrap().1);
+                assert_eq!(
+                    measured.total, one.total,
+                    "{mode} counts on {threads} threads"
+                );
+            }
+        }
+    }
+}

@@ -1,4 +1,5 @@
-//! `footprint bench`: the paper's three cases in every mode, timed.
+//! `footprint bench`: the paper's three cases and the classic view in every mode, timed in one
+//! interleaved run.
 
 use std::time::Instant;
 
@@ -19,15 +20,16 @@ pub struct BenchArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "ps,li,as,ss2,ss4,ss8,ss16,ss32"
+        default_value = "classic,ps,li,ss8,ss16,as,as-exact"
     )]
     pub modes: Vec<Mode>,
     /// Image size.
     #[arg(long, default_value = "400x400")]
     pub size: Size,
-    /// Frames per mode and case; the best is reported.
-    #[arg(long, default_value_t = 5)]
-    pub repeats: usize,
+    /// Rounds of the interleaved run (every view in every mode, once per round); the fastest
+    /// and the median frame are reported.
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    pub repeats: u64,
     /// Multiresolution traversal.
     #[arg(long, value_enum, default_value_t = Switch::On)]
     pub lod: Switch,
@@ -42,10 +44,12 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
     let mut modes = args.modes.clone();
-    if !modes.contains(&Mode::Ps) {
-        modes.insert(0, Mode::Ps);
+    for base in [Mode::Ps, Mode::Classic] {
+        if !modes.contains(&base) {
+            modes.insert(0, base);
+        }
     }
-    let total = (modes.len() * bench::PAPER_PITCHES.len()) as u64;
+    let total = modes.len() as u64 * (bench::PAPER_PITCHES.len() as u64 + 1) * args.repeats;
     let bar = indicatif::ProgressBar::new(total).with_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} frames·modes {elapsed}")
             .expect("a valid template"),
@@ -59,7 +63,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         &modes,
         args.size,
         args.lod == Switch::On,
-        args.repeats,
+        args.repeats as usize,
         || bar.inc(1),
     )?;
     bar.finish_and_clear();
@@ -71,13 +75,34 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         return Ok(());
     }
     println!(
-        "{} · {}x{} · FOV 10° · fit-first-hit · one thread · best of {}",
-        map.source, args.size.width, args.size.height, args.repeats
+        "{} · {}x{} · FOV 10° · {} interleaved rounds · ms per frame, fastest (median) on one thread, fastest on {} threads",
+        map.source,
+        args.size.width,
+        args.size.height,
+        args.repeats,
+        rayon::current_num_threads()
     );
     for case in &cases {
-        println!("pitch {:>2}°  height {:7.1} m", case.pitch, case.height);
+        println!(
+            "{} view, pitch {}°, eye {:.1} m, far {:.0} voxels",
+            case.view, case.pitch, case.height, case.far_voxels
+        );
+        println!(
+            "  {:>8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}",
+            "mode", "1 thread ms", "all ms", "speedup", "×classic", "×PS", "steps"
+        );
         for m in &case.modes {
-            println!("  {:>6}  {:8.2} ms  ×{:.2} PS", m.mode, m.ms, m.ratio_to_ps);
+            println!(
+                "  {:>8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}",
+                m.mode,
+                m.ms,
+                m.ms_median,
+                m.ms_threads,
+                m.speedup,
+                m.ratio_to_classic,
+                m.ratio_to_ps,
+                m.steps
+            );
         }
     }
     eprintln!("({:.1} s)", started.elapsed().as_secs_f64());

@@ -7,7 +7,7 @@ use clap::Args;
 use footprint_core::cost::Tally;
 use serde::Serialize;
 
-use crate::render::{count, render_timed, Mode, Tables};
+use crate::render::{count, render_timed, render_timed_parallel, Mode, Tables};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, View};
 
@@ -100,6 +100,8 @@ struct RenderJson {
     column_average: ColumnAverage,
     coverage: f64,
     ms: f64,
+    ms_threads: f64,
+    threads: usize,
     lod: bool,
     camera: CameraJson,
     map: String,
@@ -124,7 +126,8 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let terrain = view.pyramid.terrain(view.options.lod)?;
     let mut tables = Tables::new(&view.camera);
     let frame = tables.frame(&view.camera, &terrain, view.options)?;
-    let (rendered, ms) = render_timed(&frame, &terrain, args.mode, 3)?;
+    let (_, ms) = render_timed(&frame, &terrain, args.mode, 3)?;
+    let (rendered, ms_threads) = render_timed_parallel(&frame, &terrain, args.mode, 3)?;
     if let Some(out) = &args.out {
         let (w, h) = rendered.size;
         write_png(out, w, h, &rendered.image)?;
@@ -149,6 +152,8 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 },
                 coverage: t.coverage(),
                 ms,
+                ms_threads,
+                threads: rayon::current_num_threads(),
                 lod: view.options.lod,
                 camera: CameraJson {
                     x: p.x_m,
@@ -188,7 +193,10 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 "frame: a {}  b {}  c {}  d {}  d' {}  top divisions {}  shifts {}  divisions {}",
                 t.a, t.b, t.c, t.d, t.d_prime, t.top_divisions, t.shifts, t.divisions
             );
-            println!("render {ms:.2} ms (best of 3, no counting, one thread)");
+            println!(
+                "render {ms:.2} ms (best of 3, no counting, one thread); {ms_threads:.2} ms on {} threads",
+                rayon::current_num_threads()
+            );
         }
     } else if args.out.is_none() {
         eprintln!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");

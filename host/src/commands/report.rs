@@ -309,7 +309,7 @@ pub fn claims(t: &Tables15, f: &fly::Fly) -> Vec<(String, bool, String)> {
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|b| b.0.clone());
     out.push((
-        "AS (`as` or `as-exact`) has the lowest RMSE against the ground truth at pitch 5°".into(),
+        "AS has the lowest RMSE against the ground truth at pitch 5° (`as` or `as-exact`)".into(),
         matches!(best.as_deref(), Some("as" | "as-exact")),
         rmse.iter()
             .map(|(m, e)| format!("{m} {e:.2}"))

@@ -1,13 +1,17 @@
 //! `footprint bench`: the three paper cases (pitch 40°, 20°, 5°; 400×400; FOV 10°;
-//! fit-first-hit) in every mode, one thread, ms per frame and the ratio to PS.
+//! fit-first-hit) and the classic renderer's own setting, in every mode: ms per frame on one
+//! thread and on all, the ratios to `classic` and to PS, and the traversal steps.
+
+use std::time::Instant;
 
 use anyhow::Result;
-use footprint_core::camera::Camera;
+use footprint_core::camera::{Camera, CameraParams};
+use footprint_core::cost::NoCost;
 use serde::Serialize;
 
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{render_timed, Mode, Tables};
+use crate::render::{count, render_parallel, render_with, Mode, Tables};
 use crate::view::{resolve_camera, CameraArgs, Size, Switch};
 
 /// The paper's three pitches (Table 1).
@@ -20,24 +24,38 @@ pub fn paper_modes() -> Vec<Mode> {
     m
 }
 
-/// One mode's timing in one case.
+/// One mode's timing in one view.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModeTime {
     /// The mode.
     pub mode: String,
-    /// Best-of-N wall time of one frame, milliseconds, one thread, no counting.
+    /// Fastest frame, milliseconds, one thread, no counting.
     pub ms: f64,
-    /// `ms / ms(PS)`.
+    /// Median frame, milliseconds, one thread.
+    pub ms_median: f64,
+    /// Fastest frame with the columns spread over every thread of the pool (`--threads`).
+    pub ms_threads: f64,
+    /// `ms / ms_threads`: what the other cores add.
+    pub speedup: f64,
+    /// `ms / ms(PS)`, fastest against fastest.
     pub ratio_to_ps: f64,
+    /// `ms / ms(classic)`, fastest against fastest.
+    pub ratio_to_classic: f64,
+    /// Traversal steps per frame (term `a`, from a counted render of the same frame).
+    pub steps: u64,
 }
 
-/// One paper case.
+/// One view.
 #[derive(Clone, Debug, Serialize)]
 pub struct CaseTime {
+    /// What the view is: `paper` (a paper case) or `classic` (the classic renderer's setting).
+    pub view: String,
     /// Pitch, degrees.
     pub pitch: f64,
-    /// Eye height from the fit-first-hit rule, metres above sea level.
+    /// Eye height, metres above sea level.
     pub height: f64,
+    /// Far distance, voxels.
+    pub far_voxels: f64,
     /// Every mode.
     pub modes: Vec<ModeTime>,
 }
@@ -69,7 +87,31 @@ pub fn paper_camera(
     resolve_camera(map, pyramid, &args, options)
 }
 
-/// Times every mode in every paper case: best of `repeats` frames each.
+/// The far distance of the classic view, in voxels: what the classic renderer usually draws.
+pub const CLASSIC_FAR_VOXELS: f64 = 1000.0;
+
+/// The classic renderer's usual setting on `map`: from the map's centre, 20 voxel widths above
+/// the highest point of the map, looking north with the horizon in view (pitch 5°, FOV 10°),
+/// far distance [`CLASSIC_FAR_VOXELS`].
+pub fn classic_camera(map: &Map, size: Size) -> Result<Camera> {
+    let top_m = f64::from(map.height_range().1) * map.height_scale_m;
+    Ok(Camera::new(CameraParams {
+        x_m: f64::from(map.width) * map.spacing_m / 2.0,
+        y_m: f64::from(map.height) * map.spacing_m / 2.0,
+        eye_m: top_m + 20.0 * map.spacing_m,
+        heading_deg: 0.0,
+        pitch_deg: 5.0,
+        fov_deg: 10.0,
+        width: size.width,
+        height: size.height,
+        far_m: CLASSIC_FAR_VOXELS * map.spacing_m,
+    })?)
+}
+
+/// Times every mode in the paper's three views and the classic view. The run is interleaved:
+/// each of the `repeats` rounds renders every view in every mode once on one thread and once
+/// on every thread of the pool, so that a slow moment of a shared machine touches all modes
+/// alike; the fastest and the median frame are reported.
 pub fn run(
     map: &Map,
     pyramid: &Pyramid,
@@ -84,33 +126,69 @@ pub fn run(
         ..Default::default()
     };
     let terrain = pyramid.terrain(lod)?;
-    let mut cases = Vec::new();
+    let mut views = Vec::new();
     for pitch in PAPER_PITCHES {
-        let camera = paper_camera(map, pyramid, pitch, size, lod)?;
-        let mut tables = Tables::new(&camera);
-        let frame = tables.frame(&camera, &terrain, options)?;
-        let mut times = Vec::new();
-        for &mode in modes {
-            let (_, ms) = render_timed(&frame, &terrain, mode, repeats)?;
-            times.push((mode, ms));
-            progress();
+        views.push(("paper", paper_camera(map, pyramid, pitch, size, lod)?));
+    }
+    views.push(("classic", classic_camera(map, size)?));
+    let mut tables: Vec<Tables> = views.iter().map(|(_, c)| Tables::new(c)).collect();
+    let frames = views
+        .iter()
+        .zip(tables.iter_mut())
+        .map(|((_, c), t)| t.frame(c, &terrain, options))
+        .collect::<Result<Vec<_>>>()?;
+    // [view][mode] → (one-thread samples, all-thread samples)
+    let mut samples = vec![vec![(Vec::new(), Vec::new()); modes.len()]; views.len()];
+    for _ in 0..repeats.max(1) {
+        for (v, frame) in frames.iter().enumerate() {
+            for (m, &mode) in modes.iter().enumerate() {
+                let t = Instant::now();
+                render_with(frame, &terrain, mode, &mut NoCost)?;
+                samples[v][m].0.push(t.elapsed().as_secs_f64() * 1e3);
+                let t = Instant::now();
+                render_parallel(frame, &terrain, mode)?;
+                samples[v][m].1.push(t.elapsed().as_secs_f64() * 1e3);
+                progress();
+            }
         }
-        let ps = times
-            .iter()
-            .find(|(m, _)| *m == Mode::Ps)
-            .map(|t| t.1)
-            .unwrap_or(f64::NAN);
+    }
+    let min = |x: &[f64]| x.iter().copied().fold(f64::INFINITY, f64::min);
+    let median = |x: &[f64]| {
+        let mut x = x.to_vec();
+        x.sort_by(f64::total_cmp);
+        x[x.len() / 2]
+    };
+    let mut cases = Vec::new();
+    for (v, ((view, camera), frame)) in views.iter().zip(&frames).enumerate() {
+        let best = |mode: Mode| {
+            modes
+                .iter()
+                .position(|&m| m == mode)
+                .map_or(f64::NAN, |i| min(&samples[v][i].0))
+        };
+        let (ps, classic) = (best(Mode::Ps), best(Mode::Classic));
+        let mut times = Vec::new();
+        for (m, &mode) in modes.iter().enumerate() {
+            let (one, all) = &samples[v][m];
+            let (_, measured) = count(frame, &terrain, mode)?;
+            times.push(ModeTime {
+                mode: mode.to_string(),
+                ms: min(one),
+                ms_median: median(one),
+                ms_threads: min(all),
+                speedup: min(one) / min(all),
+                ratio_to_ps: min(one) / ps,
+                ratio_to_classic: min(one) / classic,
+                steps: measured.total.a,
+            });
+        }
+        let p = camera.params();
         cases.push(CaseTime {
-            pitch,
-            height: camera.params().eye_m + map.base_m,
-            modes: times
-                .into_iter()
-                .map(|(m, ms)| ModeTime {
-                    mode: m.to_string(),
-                    ms,
-                    ratio_to_ps: ms / ps,
-                })
-                .collect(),
+            view: view.to_string(),
+            pitch: p.pitch_deg,
+            height: p.eye_m + map.base_m,
+            far_voxels: p.far_m / map.spacing_m,
+            modes: times,
         });
     }
     Ok(cases)
