@@ -2,13 +2,13 @@
 # Instructions per traversal step and per pixel of the walk, counted by valgrind's callgrind
 # (instructions, not seconds: the same binary and inputs give the same count on a busy machine).
 #
-# For each mode, `footprint bench` renders the paper's three frames (pitch 40°, 20°, 5°; 400×400;
-# FOV 10°; fit-first-hit; built-in terrain; one thread, no counting) once under callgrind, which
-# collects only inside `footprint_core::column::render`. `footprint render --counts` gives the
-# same frames' traversal steps `a` and pixels, so the script prints instructions per frame, per
-# step and per pixel, summed over the three frames.
+# For each mode and each of the paper's three views (pitch 40°, 20°, 5°; 400×400; FOV 10°;
+# fit-first-hit; built-in terrain), `footprint render` runs under callgrind, which collects only
+# inside the one-thread frame renders (`footprint_host::render::render_with`). `footprint render --counts` gives the same frames'
+# traversal steps `a`, so the script prints instructions per frame (the three views together),
+# per traversal step and per pixel (3 × 400 × 400 pixels).
 #
-# Usage: scripts/instructions.sh [MODE …]   (default: ps li ss8 ss16 as)
+# Usage: scripts/instructions.sh [MODE …]   (default: classic ps li ss8 ss16 as as-exact)
 # Needs valgrind (apt-get install -y valgrind). Extra arguments for both commands (a --dem, a
 # --seed) can be passed in FOOTPRINT_ARGS.
 set -euo pipefail
@@ -17,24 +17,28 @@ command -v valgrind >/dev/null || { echo "instructions.sh: valgrind not found (a
 cargo build --release --quiet
 bin=target/release/footprint
 modes=("$@")
-[ ${#modes[@]} -gt 0 ] || modes=(ps li ss8 ss16 as)
+[ ${#modes[@]} -gt 0 ] || modes=(classic ps li ss8 ss16 as as-exact)
 args=(${FOOTPRINT_ARGS:-})
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-printf '%-6s %14s %12s %10s %12s %10s\n' mode "instr/3 frames" steps "instr/step" pixels "instr/px"
+printf '%-9s %15s %12s %10s %10s\n' mode "instr/3 frames" steps instr/step instr/px
 for m in "${modes[@]}"; do
-  valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
-    --toggle-collect='footprint_core::column::render*' \
-    "$bin" bench "${args[@]}" --modes "$m" --repeats 1 >/dev/null 2>"$tmp/cg.err"
-  instr=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err")
+  instr=0
   steps=0
-  pixels=0
   for p in 40 20 5; do
+    # `render` draws the frame three times on one thread (`render_with`: the image buffers and
+    # `column::render` or `classic::render`), which callgrind counts; everything else (the map, the pyramid, the
+    # fit-first-hit probe, the parallel render) is not collected.
+    valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
+      --toggle-collect='footprint_host::render::render_with*' \
+      "$bin" render "${args[@]}" --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
+      >/dev/null 2>"$tmp/cg.err"
+    i=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err")
+    instr=$((instr + i / 3))
     json=$("$bin" render "${args[@]}" --pitch "$p" --mode "$m" --counts --json --out "$tmp/x.png")
     a=$(printf '%s' "$json" | python3 -c 'import json,sys; print(json.load(sys.stdin)["counts"]["a"])')
     steps=$((steps + a))
-    pixels=$((pixels + 160000))
   done
-  python3 -c "i,s,p=$instr,$steps,$pixels; print(f'{\"$m\":<6} {i:>14,} {s:>12,} {i/s:>10.1f} {p:>12,} {i/p:>10.1f}')"
+  python3 -c "i,s=$instr,$steps; print(f'{\"$m\":<9} {i:>15,} {s:>12,} {i/s:>10.1f} {i/480000:>10.1f}')"
 done

@@ -34,7 +34,7 @@ pub struct FlyArgs {
     #[arg(long)]
     pub column: Option<usize>,
     /// Modes (comma-separated).
-    #[arg(long, value_delimiter = ',', default_value = "as,ps,ss8,ss16")]
+    #[arg(long, value_delimiter = ',', default_value = "as,as-exact,ps,ss8,ss16")]
     pub modes: Vec<Mode>,
     /// Image size.
     #[arg(long, default_value = "400x400")]

@@ -37,7 +37,7 @@ pub struct TableArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "as,ps,ss2,ss4,ss8,ss16,ss32"
+        default_value = "as,as-exact,ps,ss2,ss4,ss8,ss16,ss32"
     )]
     pub modes: Vec<Mode>,
     /// Image size (the paper's is 400x400).
