@@ -9,10 +9,12 @@ use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::classic;
 use footprint_core::column::{render, walk};
 use footprint_core::cost::{Cost, Counts, NoCost, Tally};
+use footprint_core::march::{Color16, March};
 use footprint_core::num::Coord;
+use footprint_core::num::Weight;
 use footprint_core::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
 use footprint_core::terrain::Terrain;
-use footprint_core::visibility::visible_voxels;
+use footprint_core::visibility::{visible_voxels, visit};
 use footprint_core::Rgb;
 
 /// A sampling mode of the paper: PS, LI, SS_N (N = 2, 4, …, 256), AS as the paper costs it,
@@ -312,6 +314,57 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
         size: (w as u32, h as u32),
     };
     Ok((rendered, Measured { total, columns }))
+}
+
+/// Records the step index of every voxel a sampler samples (for [`hidden_and_missed`]).
+#[derive(Default)]
+struct Sampled(Vec<u32>);
+
+impl Cost for Sampled {
+    fn sample(&mut self, march: &March<'_, '_>, _: Color16, _: Weight) {
+        let k = march.step_index();
+        if self.0.last() != Some(&k) {
+            self.0.push(k);
+        }
+    }
+}
+
+/// What coverage `M/V` does not tell: the voxels `mode` samples that the exact visibility pass
+/// finds hidden, and the visible voxels it does not sample, summed over the frame's columns.
+/// Both are 0 for `as-exact` (`M′ = V` voxel for voxel); the paper's parallel-ray `as` can
+/// sample a hidden voxel or miss a visible one. `classic` samples no voxel set: all missed.
+pub fn hidden_and_missed(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> (u64, u64) {
+    use rayon::prelude::*;
+    let h = frame.height();
+    (0..frame.width())
+        .into_par_iter()
+        .map(|x| {
+            let mut out = vec![Rgb::default(); h];
+            let mut sampled = Sampled::default();
+            with_sampler!(mode, s => {
+                let mut s = s;
+                walk(frame, terrain, x, 0..h, &mut s, &mut sampled, &mut out)
+            }, classic => classic::walk(frame, terrain, x, &mut sampled, &mut out));
+            let mut visible = Vec::new();
+            visit(frame, terrain, x, |march, seen| {
+                if seen {
+                    visible.push(march.step_index());
+                }
+            });
+            // Both lists are increasing: the walk and the pass step through one sequence.
+            let (mut i, mut j, mut hidden, mut missed) = (0, 0, 0u64, 0u64);
+            let (s, v) = (&sampled.0, &visible);
+            while i < s.len() || j < v.len() {
+                match (s.get(i), v.get(j)) {
+                    (Some(a), Some(b)) if a == b => (i, j) = (i + 1, j + 1),
+                    (Some(a), Some(b)) if a < b => (i, hidden) = (i + 1, hidden + 1),
+                    (Some(_), None) => (i, hidden) = (i + 1, hidden + 1),
+                    _ => (j, missed) = (j + 1, missed + 1),
+                }
+            }
+            (hidden, missed)
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
 }
 
 /// The horizontal distance, in voxels, at which the lowest ray of the middle column first

@@ -9,7 +9,7 @@ use footprint_core::pyramid::HeightFilter;
 use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{count, first_hit_distance, Mode, Tables};
+use footprint_host::render::{count, first_hit_distance, hidden_and_missed, Mode, Tables};
 use footprint_host::view::Size;
 
 const SIZE: Size = Size {
@@ -39,6 +39,20 @@ fn area_sampling_coverage_is_exactly_one_in_every_paper_case() {
         assert_eq!(
             t.m, t.v,
             "pitch {pitch}: AS must sample every visible voxel, once"
+        );
+        // Voxel for voxel, not only in number: nothing hidden sampled, nothing visible missed.
+        let camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
+        let terrain = pyramid.terrain(true).unwrap();
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
+        assert_eq!(hidden_and_missed(&frame, &terrain, Mode::AsExact), (0, 0));
+        // The paper's parallel-ray AS samples a few hidden voxels and misses a few visible
+        // ones (README); point sampling misses most of them.
+        let (_, missed) = hidden_and_missed(&frame, &terrain, Mode::Ps);
+        assert!(
+            missed > t.v / 2,
+            "pitch {pitch}: PS missed {missed} of {}",
+            t.v
         );
     }
 }

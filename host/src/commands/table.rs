@@ -130,6 +130,8 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
         s += &row("M", &|m| format!("{:.1}", m.M));
         s += &row("hits (NP, M′+P)", &|m| format!("{:.1}", m.hits));
         s += &row("M/V", &|m| format!("{:.3}", m.coverage));
+        s += &row("hidden sampled", &|m| format!("{:.2}", m.hidden));
+        s += &row("visible missed", &|m| format!("{:.2}", m.missed));
         s += &row("ms / frame", &|m| format!("{:.2}", m.ms));
         s += &row("RMSE", &|m| format!("{:.2}", m.rmse));
         s += &row("PSNR, dB", &|m| {
@@ -162,12 +164,12 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
 /// Tables 1–5 as CSV: a `table` column says which table a row belongs to.
 pub fn csv(t: &Tables15) -> String {
     let mut s = String::from(
-        "table,pitch,height,P,L,V,mode,M,hits,coverage,ms,rmse,psnr,target_coverage,rate\n",
+        "table,pitch,height,P,L,V,mode,M,hits,coverage,ms,rmse,psnr,target_coverage,rate,hidden,missed\n",
     );
     for c in &t.cases {
         for m in &c.modes {
             s += &format!(
-                "1-4,{},{:.3},{:.3},{:.3},{:.3},{},{:.3},{:.3},{:.6},{:.4},{:.4},{},,\n",
+                "1-4,{},{:.3},{:.3},{:.3},{:.3},{},{:.3},{:.3},{:.6},{:.4},{:.4},{},,,{:.3},{:.3}\n",
                 c.pitch,
                 c.height,
                 c.P,
@@ -179,12 +181,14 @@ pub fn csv(t: &Tables15) -> String {
                 m.coverage,
                 m.ms,
                 m.rmse,
-                m.psnr.map_or(String::new(), |p| format!("{p:.3}"))
+                m.psnr.map_or(String::new(), |p| format!("{p:.3}")),
+                m.hidden,
+                m.missed
             );
         }
     }
     for e in &t.table5 {
-        s += &format!("5,{},,,,,,,,,,,,{},{}\n", e.pitch, e.coverage, e.rate);
+        s += &format!("5,{},,,,,,,,,,,,{},{},,\n", e.pitch, e.coverage, e.rate);
     }
     s
 }

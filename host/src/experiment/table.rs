@@ -12,7 +12,7 @@ use super::bench::paper_camera;
 use super::reference::{psnr, reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{count, render_timed, Mode, Tables, SS_RATES};
+use crate::render::{count, hidden_and_missed, render_timed, Mode, Tables, SS_RATES};
 use crate::view::Size;
 
 /// The coverage ratios of Table 5.
@@ -30,6 +30,10 @@ pub struct ModeRow {
     pub hits: f64,
     /// `M/V`.
     pub coverage: f64,
+    /// Sampled voxels that are hidden from the eye, per column (0 for `as-exact`).
+    pub hidden: f64,
+    /// Visible voxels not sampled, per column (`V − M` when nothing hidden is sampled).
+    pub missed: f64,
     /// Wall time of one frame, ms (best of 3, one thread, no counting).
     pub ms: f64,
     /// RMSE against the ground truth, 8-bit levels.
@@ -137,11 +141,14 @@ pub fn run(
             let (_, ms) = render_timed(&frame, &terrain, mode, 3)?;
             let t = measured.total;
             let e = rmse(&image.image, &truth);
+            let (hidden, missed) = hidden_and_missed(&frame, &terrain, mode);
             rows.push(ModeRow {
                 mode: mode.to_string(),
                 M: per(t.m),
                 hits: per(t.hits),
                 coverage: t.coverage(),
+                hidden: per(hidden),
+                missed: per(missed),
                 ms,
                 rmse: e,
                 psnr: psnr(e),
