@@ -64,31 +64,36 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     let Ok(scale) = Scale::new(input.spacing, input.height_scale) else {
         return;
     };
-    // The pyramid, each level in its own buffers: (width, height, along x, along y, colours).
+    // The pyramid, each level in its own buffers: (width, height, along x, along y, colours,
+    // conservative maximum).
     let filter = if input.mean_heights {
         HeightFilter::Mean
     } else {
         HeightFilter::Silhouette
     };
-    type Owned = (u32, u32, Vec<u16>, Vec<u16>, Vec<Rgb>);
+    type Owned = (u32, u32, Vec<u16>, Vec<u16>, Vec<Rgb>, Vec<u16>);
+    fn level(o: &Owned) -> Level<'_> {
+        Level::directional(o.0, o.1, &o.2, &o.3, &o.4)
+            .and_then(|l| l.with_max(&o.5))
+            .expect("built above")
+    }
     let mut levels: Vec<Owned> = Vec::new();
     let mut below = level0;
     while let Some((nw, nh)) = next_size(below.width(), below.height()) {
         let n = (nw * nh) as usize;
         let (mut hx, mut hy, mut cs) = (vec![0u16; n], vec![0u16; n], vec![Rgb::default(); n]);
+        let mut max = vec![0u16; n];
         below
             .build_next(filter, &mut hx, &mut hy, &mut cs)
             .expect("sized by next_size");
-        levels.push((nw, nh, hx, hy, cs));
-        let (lw, lh, hx, hy, cs) = levels.last().expect("just pushed");
-        below = Level::directional(*lw, *lh, hx, hy, cs).expect("built above");
+        below.build_next_max(&mut max).expect("sized by next_size");
+        levels.push((nw, nh, hx, hy, cs, max));
+        below = level(levels.last().expect("just pushed"));
     }
     let mut terrain = Terrain::new(level0, scale);
     if input.lod {
-        for (lw, lh, hx, hy, cs) in &levels {
-            terrain
-                .push_level(Level::directional(*lw, *lh, hx, hy, cs).expect("built"))
-                .expect("in order");
+        for owned in &levels {
+            terrain.push_level(level(owned)).expect("in order");
         }
     }
     let Ok(camera) = Camera::new(CameraParams {
