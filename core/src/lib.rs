@@ -8,8 +8,10 @@
 //! * D. Cohen-Or, *Exact antialiasing of textured terrain models*: a height field ray-cast
 //!   column by column, bottom to top, with vertical coherence and a multiresolution pyramid,
 //!   in four sampling modes — point sampling ([`sampler::Point`]), linear interpolation
-//!   ([`sampler::Linear`]), supersampling ([`sampler::Super`]) and exact area sampling
-//!   ([`sampler::Area`]) — and the paper's cost model ([`cost`]).
+//!   ([`sampler::Linear`]), supersampling ([`sampler::Super`]) and area sampling, both as the
+//!   paper's Fig. 12 writes it ([`sampler::ParallelArea`]) and with the exact ray through each
+//!   voxel's top ([`sampler::Area`]) — and the paper's cost model ([`cost`]). The classic
+//!   voxel-space renderer ([`classic`]) is the baseline they are measured against.
 //! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*: the
 //!   tables, Phong highlight, detection and clamping of [`specular`], drawn by the z-buffer
 //!   tiler [`raster`].

@@ -27,7 +27,13 @@
 //! next one), so a step inside a run is an add to the index, the ray and the cross coordinate,
 //! one load and one compare ([`March::ride`]); the climb test, the mirror folds and the far test
 //! are paid once per run. Crossing a cell boundary across the ray (at most once per step,
-//! because `|dv| ≤ ½`) moves the index by one row.
+//! because `|dv| ≤ ½`) moves the index by one row. The cursor's `j`, `n`, period position and
+//! step index are kept as of the run's start and derived from the steps taken when asked.
+//!
+//! **Empty air.** Before a column's first hit, [`March::skip`] crosses in one step every voxel
+//! of the run that lies in the largest block of the conservative maximum pyramid whose highest
+//! level-0 height is at or below the ray: the voxels it passes over are exactly those the walk
+//! would have found below the ray, so the samplers see the same sequence of voxels.
 
 use crate::camera::{Axis, Column, Frame};
 use crate::color::Rgb;
