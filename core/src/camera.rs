@@ -120,6 +120,12 @@ impl Camera {
     }
 }
 
+/// A 128-bit value saturated to 64 bits.
+#[inline(always)]
+fn saturate(x: i128) -> i64 {
+    x.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+}
+
 /// `⌊x⌋` as an `i64` (saturating), without `f64::floor`, which `core` lacks.
 fn floor_i64(x: f64) -> i64 {
     let t = x as i64;
@@ -413,13 +419,21 @@ impl<'t> Frame<'t> {
 
     /// Ray `R_i` of `column` (the lower edge of row `i`, `0..=H`): Eqs. 2 and 3 as a
     /// [`Line`] `H(n) = base + n·slope` with `base = eye − n_eye·slope`.
+    ///
+    /// The arithmetic is `fixed`'s saturating multiplication written out (a 64×64→128-bit
+    /// product, floored, saturated to 64 bits), which the walk pays once per pixel.
     #[inline]
     pub fn ray(&self, column: &Column, i: usize) -> Line {
-        let slope: Slope = Slope::saturating_from_num(self.rows[i].saturating_mul(column.kc))
-            .clamp(-Slope::from_num(MAX_SLOPE), Slope::from_num(MAX_SLOPE));
+        let row = self.rows.get(i).map_or(0, |r| r.to_bits());
+        // I32F32 × I32F32 → I32F32 (floor, saturating), then to I40F24 (floor), clamped.
+        let q32 = saturate((i128::from(row) * i128::from(column.kc.to_bits())) >> 32);
+        let limit = (MAX_SLOPE as i64) << 24;
+        let slope = (q32 >> 8).clamp(-limit, limit);
+        // I40F24 × I40F24 → I40F24 (floor, saturating).
+        let m = saturate((i128::from(column.n_eye.to_bits()) * i128::from(slope)) >> 24);
         Line {
-            base: self.eye.saturating_sub(column.n_eye.saturating_mul(slope)),
-            slope,
+            base: Height::from_bits(self.eye.to_bits().saturating_sub(m)),
+            slope: Slope::from_bits(slope),
         }
     }
 }
