@@ -101,6 +101,8 @@ pub struct March<'a, 't> {
     planned: u32,
     /// The last `n` within the far distance.
     n_far: i64,
+    /// The maximum-pyramid level of the last successful skip, where the next one starts.
+    skip_level: u32,
 }
 
 impl<'a, 't> March<'a, 't> {
@@ -144,6 +146,7 @@ impl<'a, 't> March<'a, 't> {
             run: 0,
             planned: 0,
             n_far: column.n_far,
+            skip_level: 0,
         };
         m.enter_level();
         m
@@ -391,6 +394,66 @@ impl<'a, 't> March<'a, 't> {
             .is_some_and(|l| l.max_heights().is_some())
     }
 
+    /// If the level-`k` block of the maximum pyramid that holds the current voxel is at or
+    /// below the ray (at `ray` here, rising by `rise` per step, raw) over every voxel of the run
+    /// that lies in it, the number of those voxels; `None` if it reaches the ray, or if level
+    /// `k` has no maximum grid.
+    fn clear_block(&self, k: u32, ray: i64, rise: i64) -> Option<u32> {
+        let level = self.terrain.levels().get(k as usize)?;
+        let max = level.max_heights()?;
+        let (fu, fv) = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
+        let d = k - self.l;
+        // The block's extent in this level's (folded) cells, along and across the ray.
+        let extent = |f: u32, len: u32| {
+            let b = f >> d;
+            (b, b << d, ((b + 1) << d).min(len) - 1)
+        };
+        let (bu, lo_u, hi_u) = extent(fu, self.len_u);
+        let (bv, lo_v, hi_v) = extent(fv, self.len_v);
+        // Voxels from here to the block's edge along the ray, within the run.
+        let along = if self.du > 0 { hi_u - fu } else { fu - lo_u };
+        let mut s = (along + 1).min(self.run);
+        if self.dv_step != 0 {
+            // Crossings into the next cell across that stay in the block: with at most one
+            // per step, the first `allow + 1` voxels are inside; beyond, count them.
+            let allow = if self.dcross > 0 {
+                hi_v - fv
+            } else {
+                fv - lo_v
+            }
+            .min(self.cross_left);
+            if allow.saturating_add(1) < s {
+                let (a, shift) = (i64::from(allow), 32 + self.l);
+                let inside = if self.dv_step > 0 {
+                    let edge = (self.cv + a + 1) << shift;
+                    (edge - self.v + self.dv_step - 1) / self.dv_step
+                } else {
+                    let edge = (self.cv - a) << shift;
+                    (self.v - edge) / -self.dv_step + 1
+                };
+                s = s.min(inside.clamp(0, i64::from(u32::MAX)) as u32);
+            }
+        }
+        if s == 0 {
+            return None;
+        }
+        // The ray's lowest point over the voxels 0..s.
+        let low = if rise >= 0 {
+            ray
+        } else {
+            ray + i64::from(s - 1) * rise
+        };
+        let (x, y) = match self.axis {
+            Axis::X => (bu, bv),
+            Axis::Y => (bv, bu),
+        };
+        let top = max
+            .get(y as usize * level.width() as usize + x as usize)
+            .copied()
+            .unwrap_or(u16::MAX);
+        (i64::from(top) << 24 <= low).then_some(s)
+    }
+
     /// Crosses empty air (Sect. 3's traversal, accelerated by the conservative maximum of
     /// [`crate::pyramid`]): finds the coarsest block of the maximum pyramid that holds the
     /// current voxel and the next ones of the run, and whose highest level-0 height is at or
@@ -402,73 +465,38 @@ impl<'a, 't> March<'a, 't> {
         if self.run == 0 {
             return 0;
         }
-        let levels = self.terrain.levels();
-        let (fu, fv) = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
-        let (ray, rise) = (h.to_bits(), rise.to_bits());
+        let (ray, rise_bits) = (h.to_bits(), rise.to_bits());
         let shift = 32 + self.l;
+        // Start at the level that last succeeded: climb while the blocks stay clear, or
+        // descend to the first clear one. (Blocks grow with the level, so the voxels a clear
+        // block covers never shrink going up.)
+        let top = self.terrain.levels().len() as u32 - 1;
+        if top <= self.l {
+            return 0;
+        }
+        let first = self.skip_level.clamp(self.l + 1, top);
         let mut best = 0;
-        let mut k = self.l + 1;
-        while let Some(level) = levels.get(k as usize) {
-            let Some(max) = level.max_heights() else {
-                break;
-            };
-            let d = k - self.l;
-            // The block's extent in this level's (folded) cells, along and across the ray.
-            let extent = |f: u32, len: u32| {
-                let b = f >> d;
-                (b, b << d, ((b + 1) << d).min(len) - 1)
-            };
-            let (bu, lo_u, hi_u) = extent(fu, self.len_u);
-            let (bv, lo_v, hi_v) = extent(fv, self.len_v);
-            // Voxels from here to the block's edge along the ray, within the run.
-            let along = if self.du > 0 { hi_u - fu } else { fu - lo_u };
-            let mut s = (along + 1).min(self.run);
-            if self.dv_step != 0 {
-                // Crossings into the next cell across that stay in the block: with at most
-                // one per step, the first `allow + 1` voxels are inside; beyond, count them.
-                let allow = if self.dcross > 0 {
-                    hi_v - fv
-                } else {
-                    fv - lo_v
-                }
-                .min(self.cross_left);
-                if allow.saturating_add(1) < s {
-                    let a = i64::from(allow);
-                    let inside = if self.dv_step > 0 {
-                        let edge = (self.cv + a + 1) << shift;
-                        (edge - self.v + self.dv_step - 1) / self.dv_step
-                    } else {
-                        let edge = (self.cv - a) << shift;
-                        (self.v - edge) / -self.dv_step + 1
-                    };
-                    s = s.min(inside.clamp(0, i64::from(u32::MAX)) as u32);
-                }
-            }
-            if s == 0 {
-                break;
-            }
-            // The ray's lowest point over the voxels 0..s.
-            let low = if rise >= 0 {
-                ray
-            } else {
-                ray + i64::from(s - 1) * rise
-            };
-            let (x, y) = match self.axis {
-                Axis::X => (bu, bv),
-                Axis::Y => (bv, bu),
-            };
-            let top = max
-                .get(y as usize * level.width() as usize + x as usize)
-                .copied()
-                .unwrap_or(u16::MAX);
-            if i64::from(top) << 24 > low {
-                break;
-            }
+        if let Some(s) = self.clear_block(first, ray, rise_bits) {
             best = s;
-            if s == self.run {
-                break;
+            self.skip_level = first;
+            let mut k = first + 1;
+            while best < self.run && k <= top {
+                match self.clear_block(k, ray, rise_bits) {
+                    Some(s) => (best, self.skip_level) = (s, k),
+                    None => break,
+                }
+                k += 1;
             }
-            k += 1;
+        } else {
+            let mut k = first;
+            while k > self.l + 1 {
+                k -= 1;
+                if let Some(s) = self.clear_block(k, ray, rise_bits) {
+                    best = s;
+                    break;
+                }
+            }
+            self.skip_level = k;
         }
         if best == 0 {
             return 0;
@@ -499,7 +527,7 @@ impl<'a, 't> March<'a, 't> {
             self.commit(inner);
         }
         self.advance();
-        *h = Height::from_bits(ray + i64::from(best) * rise);
+        *h = Height::from_bits(ray + i64::from(best) * rise_bits);
         best
     }
 
