@@ -42,12 +42,7 @@ fn main() {
     let map = &scene.map;
     let p = &scene.params;
     let cells = map.heights.len();
-    let mut pyramid_cells = 0usize;
-    let (mut w, mut h) = (map.width, map.height);
-    while let Some((nw, nh)) = footprint_core::terrain::next_size(w, h) {
-        pyramid_cells += nw as usize * nh as usize;
-        (w, h) = (nw, nh);
-    }
+    let pyramid_cells = footprint_core::pyramid::cells(map.width, map.height);
     let modes: Vec<String> = MODES.iter().map(|m| format!("{m:?}")).collect();
 
     let mut s = String::new();

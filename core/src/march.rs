@@ -191,6 +191,8 @@ impl<'a, 't> March<'a, 't> {
         // Along the major axis the fold moves by ±1 until the step that crosses an edge of
         // the map (where the mirrored index repeats).
         let (du, to_edge) = match (self.forward, pu < len) {
+            // One cell wide: every step reads the same cell, and no edge ends the run.
+            _ if len == 1 => (0, u32::MAX),
             (true, true) => (stride, len - 1 - pu),
             (true, false) => (-stride, 2 * len - 1 - pu),
             (false, true) => (-stride, pu),
@@ -232,6 +234,10 @@ impl<'a, 't> March<'a, 't> {
     /// The current position in the mirrored period of the major axis.
     #[inline(always)]
     fn pu_now(&self) -> u32 {
+        if self.len_u == 1 {
+            // One cell wide, the run crosses the edges: the period is 2.
+            return self.pu ^ (self.taken() & 1);
+        }
         // Inside a run the period position does not wrap (the run ends at the edge).
         if self.forward {
             self.pu + self.taken()
@@ -255,11 +261,25 @@ impl<'a, 't> March<'a, 't> {
     fn plan_cross(&mut self) {
         let (len, pv, stride) = (self.len_v, self.pv, self.stride_v as isize);
         (self.dcross, self.cross_left) = match (self.dv_step > 0, pv < len) {
+            _ if len == 1 => (0, u32::MAX),
             (true, true) => (stride, len - 1 - pv),
             (true, false) => (-stride, 2 * len - 1 - pv),
             (false, true) => (-stride, pv),
             (false, false) => (stride, pv - len),
         };
+    }
+
+    /// Moves the cross-axis period position by `crossed` crossings in the direction of `dv`,
+    /// none of them over a mirror edge (a one-cell-wide axis, whose period is 2, excepted).
+    #[inline(always)]
+    fn move_pv(&mut self, crossed: u32) {
+        if self.len_v == 1 {
+            self.pv ^= crossed & 1;
+        } else if self.dv_step > 0 {
+            self.pv += crossed;
+        } else {
+            self.pv -= crossed;
+        }
     }
 
     /// Moves the cross coordinate to `v` and, if it entered another cell, the index with it.
@@ -361,11 +381,7 @@ impl<'a, 't> March<'a, 't> {
                 self.cv = cv;
                 self.cross_left = cross_left;
                 self.off_v = self.off_v.wrapping_add_signed(dcross * crossed as isize);
-                if self.dv_step > 0 {
-                    self.pv += crossed;
-                } else {
-                    self.pv -= crossed;
-                }
+                self.move_pv(crossed);
             }
             let taken = start - left;
             self.idx = idx;
@@ -516,11 +532,7 @@ impl<'a, 't> March<'a, 't> {
                     .off_v
                     .wrapping_add_signed(self.dcross * crossed as isize);
                 self.cross_left -= crossed;
-                if self.dv_step > 0 {
-                    self.pv += crossed;
-                } else {
-                    self.pv -= crossed;
-                }
+                self.move_pv(crossed);
                 self.cv = cv;
             }
             self.v = v;

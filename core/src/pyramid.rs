@@ -28,7 +28,7 @@
 use crate::camera::Axis;
 use crate::color::Rgb;
 use crate::error::Error;
-use crate::terrain::{check_len, next_size, Level};
+use crate::terrain::{check_len, next_size, Level, Scale, Terrain, MAX_LEVELS};
 
 /// How a coarse voxel's height is made from the 2×2 voxels below it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -140,4 +140,95 @@ impl Level<'_> {
         }
         Ok(())
     }
+}
+
+/// The cells of every level above level 0 of a `width × height` map, summed down to 1×1: what
+/// the colour buffer of [`build`] holds (its height buffer holds three times as many: the
+/// heights along x, along y, and the conservative maximum).
+pub fn cells(width: u32, height: u32) -> usize {
+    let (mut w, mut h, mut total) = (width, height, 0);
+    while let Some((nw, nh)) = next_size(w, h) {
+        total += nw as usize * nh as usize;
+        (w, h) = (nw, nh);
+    }
+    total
+}
+
+/// The number of levels of the whole pyramid of a `width × height` map, level 0 included.
+pub fn levels(width: u32, height: u32) -> usize {
+    let (mut w, mut h, mut n) = (width, height, 1);
+    while let Some(next) = next_size(w, h) {
+        (w, h) = next;
+        n += 1;
+    }
+    n
+}
+
+/// Builds every level above `level0`, down to 1×1, into the caller's buffers: `heights` holds
+/// [`cells`]`·3` values (per level, in order: the heights along x, along y, and the
+/// conservative maximum), `colors` holds [`cells`] colours. [`assemble`] then lends them to a
+/// [`Terrain`]. The one pyramid builder of the project: the host, the firmware and the tests
+/// all call it.
+///
+/// Errors: buffers of the wrong length, or a map whose pyramid has more than [`MAX_LEVELS`].
+pub fn build(
+    level0: &Level<'_>,
+    filter: HeightFilter,
+    heights: &mut [u16],
+    colors: &mut [Rgb],
+) -> Result<(), Error> {
+    let (w, h) = (level0.width(), level0.height());
+    let total = cells(w, h);
+    check_len("pyramid heights", 3 * total, heights.len())?;
+    check_len("pyramid colors", total, colors.len())?;
+    if levels(w, h) > MAX_LEVELS {
+        return Err(Error::TooManyLevels);
+    }
+    let (mut heights, mut colors) = (heights, colors);
+    let mut below = *level0;
+    while let Some((nw, nh)) = next_size(below.width(), below.height()) {
+        let n = nw as usize * nh as usize;
+        let (level, rest) = core::mem::take(&mut heights).split_at_mut(3 * n);
+        let (cs, rest_c) = core::mem::take(&mut colors).split_at_mut(n);
+        (heights, colors) = (rest, rest_c);
+        let (hx, level) = level.split_at_mut(n);
+        let (hy, mx) = level.split_at_mut(n);
+        below.build_next_max(mx)?;
+        below = below.build_next(filter, hx, hy, cs)?.with_max(mx)?;
+    }
+    Ok(())
+}
+
+/// The terrain over `level0` and the levels [`build`] made in `heights` and `colors`; only
+/// level 0 when `lod` is false (the walk then steps voxel by voxel).
+///
+/// Errors: buffers of the wrong length.
+pub fn assemble<'a>(
+    level0: Level<'a>,
+    scale: Scale,
+    heights: &'a [u16],
+    colors: &'a [Rgb],
+    lod: bool,
+) -> Result<Terrain<'a>, Error> {
+    let (w, h) = (level0.width(), level0.height());
+    let total = cells(w, h);
+    check_len("pyramid heights", 3 * total, heights.len())?;
+    check_len("pyramid colors", total, colors.len())?;
+    let mut terrain = Terrain::new(level0, scale);
+    if !lod {
+        return Ok(terrain);
+    }
+    let (mut heights, mut colors) = (heights, colors);
+    let (mut lw, mut lh) = (w, h);
+    while let Some((nw, nh)) = next_size(lw, lh) {
+        let n = nw as usize * nh as usize;
+        let (level, rest) = heights.split_at(3 * n);
+        let (cs, rest_c) = colors.split_at(n);
+        (heights, colors) = (rest, rest_c);
+        let (hx, level) = level.split_at(n);
+        let (hy, mx) = level.split_at(n);
+        terrain.push_level(Level::directional(nw, nh, hx, hy, cs)?.with_max(mx)?)?;
+        (lw, lh) = (nw, nh);
+    }
+    Ok(terrain)
 }

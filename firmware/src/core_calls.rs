@@ -8,11 +8,11 @@ use footprint_core::camera::{Camera, Column, Frame, Options};
 use footprint_core::column;
 use footprint_core::cost::{Cost, Counts};
 use footprint_core::num::Coord;
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::pyramid::{self, HeightFilter};
 use footprint_core::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::sampler::Sampler;
 use footprint_core::specular::{self, Light, Material, Method, Normal};
-use footprint_core::terrain::{next_size, Level, Scale, Terrain};
+use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::visibility;
 use footprint_core::{Error, Rgb};
 
@@ -49,10 +49,10 @@ pub fn count_visible(frame: &Frame<'_>, terrain: &Terrain<'_>, counts: &mut Coun
     visibility::count_visible(frame, terrain, counts);
 }
 
-/// The terrain over `level0` and the levels above it, which `Level::build_next` builds on
-/// the chip (the default height filter, the host's) into `heights` (three grids per level:
-/// the heights along x and along y, and the conservative maximum that lets the walk skip
-/// empty air, `Level::build_next_max`) and `colors`; they must hold every level's cells.
+/// The terrain over `level0` and the levels above it, which the core's pyramid builder
+/// (`pyramid::build`, the host's default height filter) builds on the chip into `heights`
+/// (three grids per level: the heights along x and along y, and the conservative maximum that
+/// lets the walk skip empty air) and `colors`, sized by `pyramid::cells`.
 #[inline(never)]
 pub fn build_terrain(
     level0: Level<'static>,
@@ -60,24 +60,9 @@ pub fn build_terrain(
     heights: &'static mut [u16],
     colors: &'static mut [Rgb],
 ) -> Result<Terrain<'static>, Error> {
-    let mut terrain = Terrain::new(level0, scale);
-    let (mut heights, mut colors) = (heights, colors);
-    let mut below = level0;
-    while let Some((w, h)) = next_size(below.width(), below.height()) {
-        let cells = w as usize * h as usize;
-        let (hx, rest_h) = core::mem::take(&mut heights).split_at_mut(cells);
-        let (hy, rest_h) = rest_h.split_at_mut(cells);
-        let (mx, rest_h) = rest_h.split_at_mut(cells);
-        let (cs, rest_c) = core::mem::take(&mut colors).split_at_mut(cells);
-        (heights, colors) = (rest_h, rest_c);
-        below.build_next_max(mx)?;
-        let level = below
-            .build_next(HeightFilter::default(), hx, hy, cs)?
-            .with_max(mx)?;
-        terrain.push_level(level)?;
-        below = level;
-    }
-    Ok(terrain)
+    pyramid::build(&level0, HeightFilter::default(), heights, colors)?;
+    let (heights, colors): (&'static [u16], &'static [Rgb]) = (heights, colors);
+    pyramid::assemble(level0, scale, heights, colors, true)
 }
 
 /// One baked plate vertex in the core's form: `Vertex::new` and `Normal::new` (soft double)

@@ -309,7 +309,7 @@ fn run() -> Result<bool, Error> {
         instructions(|| core_calls::build_terrain(level0, scale, pyramid_heights, pyramid_colors));
     let terrain = terrain?;
     hprintln!(
-        "# icount pyramid: {} levels built on the chip (Level::build_next) in {} instructions",
+        "# icount pyramid: {} levels built on the chip (pyramid::build) in {} instructions",
         terrain.levels().len(),
         pyramid
     );

@@ -6,12 +6,13 @@
 
 use arbitrary::Arbitrary;
 use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::classic;
 use footprint_core::column::render;
 use footprint_core::cost::{Counts, Tally};
 use footprint_core::num::Coord;
-use footprint_core::pyramid::HeightFilter;
-use footprint_core::sampler::{Area, Linear, Point, Super};
-use footprint_core::terrain::{next_size, Level, Scale, Terrain};
+use footprint_core::pyramid::{self, HeightFilter};
+use footprint_core::sampler::{Area, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::{Level, Scale};
 use footprint_core::visibility::count_visible;
 use footprint_core::Rgb;
 
@@ -64,38 +65,17 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     let Ok(scale) = Scale::new(input.spacing, input.height_scale) else {
         return;
     };
-    // The pyramid, each level in its own buffers: (width, height, along x, along y, colours,
-    // conservative maximum).
+    // The pyramid, by the core's one builder.
     let filter = if input.mean_heights {
         HeightFilter::Mean
     } else {
         HeightFilter::Silhouette
     };
-    type Owned = (u32, u32, Vec<u16>, Vec<u16>, Vec<Rgb>, Vec<u16>);
-    fn level(o: &Owned) -> Level<'_> {
-        Level::directional(o.0, o.1, &o.2, &o.3, &o.4)
-            .and_then(|l| l.with_max(&o.5))
-            .expect("built above")
-    }
-    let mut levels: Vec<Owned> = Vec::new();
-    let mut below = level0;
-    while let Some((nw, nh)) = next_size(below.width(), below.height()) {
-        let n = (nw * nh) as usize;
-        let (mut hx, mut hy, mut cs) = (vec![0u16; n], vec![0u16; n], vec![Rgb::default(); n]);
-        let mut max = vec![0u16; n];
-        below
-            .build_next(filter, &mut hx, &mut hy, &mut cs)
-            .expect("sized by next_size");
-        below.build_next_max(&mut max).expect("sized by next_size");
-        levels.push((nw, nh, hx, hy, cs, max));
-        below = level(levels.last().expect("just pushed"));
-    }
-    let mut terrain = Terrain::new(level0, scale);
-    if input.lod {
-        for owned in &levels {
-            terrain.push_level(level(owned)).expect("in order");
-        }
-    }
+    let cells = pyramid::cells(w, h);
+    let (mut grid, mut palette) = (vec![0u16; 3 * cells], vec![Rgb::default(); cells]);
+    pyramid::build(&level0, filter, &mut grid, &mut palette).expect("sized by pyramid::cells");
+    let terrain =
+        pyramid::assemble(level0, scale, &grid, &palette, input.lod).expect("built above");
     let Ok(camera) = Camera::new(CameraParams {
         x_m: input.x,
         y_m: input.y,
@@ -122,7 +102,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     let mut tallies = vec![Tally::default(); cw];
     let mut counts = Counts::new(&mut tallies);
     let (mut scratch, mut image) = (vec![Rgb::default(); ch], vec![Rgb::default(); cw * ch]);
-    let done = match input.mode % 6 {
+    let done = match input.mode % 8 {
         0 => render(
             &frame,
             &terrain,
@@ -163,7 +143,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             &mut scratch,
             &mut image,
         ),
-        _ => render(
+        5 => render(
             &frame,
             &terrain,
             &Area::new(),
@@ -171,10 +151,19 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             &mut scratch,
             &mut image,
         ),
+        6 => render(
+            &frame,
+            &terrain,
+            &ParallelArea::new(),
+            &mut counts,
+            &mut scratch,
+            &mut image,
+        ),
+        _ => classic::render(&frame, &terrain, &mut counts, &mut scratch, &mut image),
     };
     assert!(done.is_ok(), "buffers were sized from the camera");
     count_visible(&frame, &terrain, &mut counts);
-    if input.mode % 6 == 5 {
+    if input.mode % 8 == 5 {
         assert_eq!(
             counts.total.m, counts.total.v,
             "area sampling covers every visible voxel"

@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
-use footprint_core::terrain::{next_size, MAX_LEVELS};
 use serde::Serialize;
 
 use crate::map::{self, describe, Format, LoadOptions, Loaded};
@@ -109,20 +108,10 @@ struct InfoJson {
     pyramid_levels: usize,
 }
 
-/// The number of pyramid levels of a `width`×`height` map (level 0 down to 1×1, at most
-/// `MAX_LEVELS`), as `Pyramid::build` makes them.
+/// The number of pyramid levels of a `width`×`height` map (level 0 down to 1×1), as the
+/// core's pyramid builder makes them.
 pub fn pyramid_levels(width: u32, height: u32) -> usize {
-    let (mut w, mut h, mut n) = (width, height, 1);
-    while n < MAX_LEVELS {
-        match next_size(w, h) {
-            Some((nw, nh)) => {
-                (w, h) = (nw, nh);
-                n += 1;
-            }
-            None => break,
-        }
-    }
-    n
+    footprint_core::pyramid::levels(width, height)
 }
 
 /// Runs `footprint map …`.

@@ -11,7 +11,7 @@ use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::column;
 use footprint_core::cost::Cost;
 use footprint_core::num::Coord;
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::pyramid::{self, HeightFilter};
 use footprint_core::sampler::Sampler;
 use footprint_core::terrain::{next_size, Level, Scale, Terrain};
 use footprint_core::Rgb;
@@ -80,7 +80,7 @@ pub struct Map {
 
 impl Map {
     /// A `w × h` map whose voxel `(x, y)` is `f(x, y) = (height, colour)`, with its pyramid
-    /// built by the core's [`Level::build_next`].
+    /// built by the core's [`pyramid::build`].
     pub fn from_fn(name: &'static str, w: u32, h: u32, f: impl Fn(i64, i64) -> (u16, Rgb)) -> Self {
         Self::with_filter(name, w, h, HeightFilter::default(), f)
     }
@@ -102,6 +102,11 @@ impl Map {
                 colors.push(c);
             }
         }
+        // The core's one pyramid builder, then each level copied out of its layout.
+        let cells = pyramid::cells(w, h);
+        let (mut grid, mut palette) = (vec![0u16; 3 * cells], vec![Rgb::default(); cells]);
+        let level0 = Level::new(w, h, &heights, &colors).expect("valid level 0");
+        pyramid::build(&level0, filter, &mut grid, &mut palette).expect("the pyramid");
         let mut levels = vec![Owned {
             w,
             h,
@@ -110,31 +115,19 @@ impl Map {
             heights,
             colors,
         }];
-        loop {
-            let below = levels.last().expect("level 0");
-            let Some((nw, nh)) = next_size(below.w, below.h) else {
-                break;
-            };
-            let cells = (nw * nh) as usize;
-            let (mut hx, mut hy) = (vec![0u16; cells], vec![0u16; cells]);
-            let mut cs = vec![Rgb::default(); cells];
-            let mut max = vec![0u16; cells];
-            below
-                .level()
-                .build_next(filter, &mut hx, &mut hy, &mut cs)
-                .expect("valid next level");
-            below
-                .level()
-                .build_next_max(&mut max)
-                .expect("valid next maximum");
+        let (mut at, mut at_c) = (0, 0);
+        while let Some((nw, nh)) = next_size(levels[levels.len() - 1].w, levels[levels.len() - 1].h)
+        {
+            let n = (nw * nh) as usize;
             levels.push(Owned {
                 w: nw,
                 h: nh,
-                heights: hx,
-                along_y: hy,
-                colors: cs,
-                max,
+                heights: grid[at..at + n].to_vec(),
+                along_y: grid[at + n..at + 2 * n].to_vec(),
+                max: grid[at + 2 * n..at + 3 * n].to_vec(),
+                colors: palette[at_c..at_c + n].to_vec(),
             });
+            (at, at_c) = (at + 3 * n, at_c + n);
         }
         Self { name, levels }
     }
