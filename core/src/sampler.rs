@@ -114,7 +114,7 @@ impl Sampler for Linear {
 /// hits, which is the same voxel whether `R_i` resumed where the pixel below finished or
 /// started from the eye. (Fig. 8 computes Δ where the walk resumes; that voxel depends on the
 /// pixel below, and would make the image depend on where the walk began.)
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub struct Super<const N: u32> {
     sum: [u32; 3],
     j: u32,
@@ -124,18 +124,32 @@ pub struct Super<const N: u32> {
 }
 
 impl<const N: u32> Super<N> {
-    const LOG2: u32 = {
-        assert!(
-            N.is_power_of_two() && N >= 2 && N <= 256,
-            "SS_N needs N = 2, 4, …, 256"
-        );
-        N.trailing_zeros()
-    };
+    /// `log2 N`.
+    const LOG2: u32 = N.trailing_zeros();
 
-    /// A fresh supersampler.
+    /// A fresh supersampler. `N` is checked when the program is compiled: a rate that is not
+    /// a power of two in `2..=256` does not build.
+    ///
+    /// ```compile_fail
+    /// let _ = footprint_core::sampler::Super::<3>::new();
+    /// ```
+    /// ```
+    /// let _ = footprint_core::sampler::Super::<4>::new();
+    /// ```
     pub fn new() -> Self {
-        let _ = Self::LOG2;
-        Self::default()
+        const {
+            assert!(
+                N.is_power_of_two() && N >= 2 && N <= 256,
+                "SS_N needs N = 2, 4, …, 256"
+            )
+        };
+        Self {
+            sum: [0; 3],
+            j: 0,
+            delta: Height::ZERO,
+            lower: Line::default(),
+            upper: Line::default(),
+        }
     }
 
     #[inline(always)]
@@ -147,6 +161,12 @@ impl<const N: u32> Super<N> {
             (s[1] >> Self::LOG2) as u16,
             (s[2] >> Self::LOG2) as u16,
         ])
+    }
+}
+
+impl<const N: u32> Default for Super<N> {
+    fn default() -> Self {
+        Self::new()
     }
 }
 

@@ -26,7 +26,7 @@ pub enum Mode {
     /// Linear interpolation (Eq. 4).
     Li,
     /// Supersampling at rate N (Fig. 8).
-    Ss(u32),
+    Ss(Rate),
     /// Area sampling as the paper writes and costs it (Fig. 12: parallel rays within a pixel,
     /// weights in visible height, one division per pixel).
     As,
@@ -38,8 +38,55 @@ pub enum Mode {
     Classic,
 }
 
+/// A supersampling rate `N`: a power of two from 2 to 256, the rates `Super<N>` is compiled
+/// for. A rate that is not one of them (3, say) cannot be constructed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[repr(u32)]
+pub enum Rate {
+    /// N = 2.
+    N2 = 2,
+    /// N = 4.
+    N4 = 4,
+    /// N = 8.
+    N8 = 8,
+    /// N = 16.
+    N16 = 16,
+    /// N = 32.
+    N32 = 32,
+    /// N = 64.
+    N64 = 64,
+    /// N = 128.
+    N128 = 128,
+    /// N = 256.
+    N256 = 256,
+}
+
+impl Rate {
+    /// Every rate, smallest first.
+    pub const ALL: [Rate; 8] = [
+        Rate::N2,
+        Rate::N4,
+        Rate::N8,
+        Rate::N16,
+        Rate::N32,
+        Rate::N64,
+        Rate::N128,
+        Rate::N256,
+    ];
+
+    /// `N`.
+    pub const fn n(self) -> u32 {
+        self as u32
+    }
+
+    /// The rate `n`, if the renderer has it.
+    pub fn new(n: u32) -> Option<Rate> {
+        Rate::ALL.into_iter().find(|r| r.n() == n)
+    }
+}
+
 /// The supersampling rates the renderer is compiled for.
-pub const SS_RATES: [u32; 8] = [2, 4, 8, 16, 32, 64, 128, 256];
+pub const SS_RATES: [Rate; 8] = Rate::ALL;
 
 impl FromStr for Mode {
     type Err = String;
@@ -50,9 +97,13 @@ impl FromStr for Mode {
             "as" => Ok(Mode::As),
             "as-exact" => Ok(Mode::AsExact),
             "classic" => Ok(Mode::Classic),
-            other => match other.strip_prefix("ss").map(str::parse::<u32>) {
-                Some(Ok(n)) if SS_RATES.contains(&n) => Ok(Mode::Ss(n)),
-                _ => Err(format!(
+            other => match other
+                .strip_prefix("ss")
+                .and_then(|n| n.parse::<u32>().ok())
+                .and_then(Rate::new)
+            {
+                Some(rate) => Ok(Mode::Ss(rate)),
+                None => Err(format!(
                     "unknown mode {s:?}: expected ps, li, as, as-exact, classic, or ss2, ss4, …, ss256"
                 )),
             },
@@ -65,7 +116,7 @@ impl fmt::Display for Mode {
         match self {
             Mode::Ps => write!(f, "ps"),
             Mode::Li => write!(f, "li"),
-            Mode::Ss(n) => write!(f, "ss{n}"),
+            Mode::Ss(r) => write!(f, "ss{}", r.n()),
             Mode::As => write!(f, "as"),
             Mode::AsExact => write!(f, "as-exact"),
             Mode::Classic => write!(f, "classic"),
@@ -96,39 +147,38 @@ macro_rules! with_sampler {
                 let $s = Area::new();
                 $body
             }
-            Mode::Ss(2) => {
+            Mode::Ss(Rate::N2) => {
                 let $s = Super::<2>::new();
                 $body
             }
-            Mode::Ss(4) => {
+            Mode::Ss(Rate::N4) => {
                 let $s = Super::<4>::new();
                 $body
             }
-            Mode::Ss(8) => {
+            Mode::Ss(Rate::N8) => {
                 let $s = Super::<8>::new();
                 $body
             }
-            Mode::Ss(16) => {
+            Mode::Ss(Rate::N16) => {
                 let $s = Super::<16>::new();
                 $body
             }
-            Mode::Ss(32) => {
+            Mode::Ss(Rate::N32) => {
                 let $s = Super::<32>::new();
                 $body
             }
-            Mode::Ss(64) => {
+            Mode::Ss(Rate::N64) => {
                 let $s = Super::<64>::new();
                 $body
             }
-            Mode::Ss(128) => {
+            Mode::Ss(Rate::N128) => {
                 let $s = Super::<128>::new();
                 $body
             }
-            Mode::Ss(256) => {
+            Mode::Ss(Rate::N256) => {
                 let $s = Super::<256>::new();
                 $body
             }
-            Mode::Ss(n) => unreachable!("SS rate {n} is rejected when the mode is parsed"),
         }
     };
 }

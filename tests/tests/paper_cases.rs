@@ -9,7 +9,7 @@ use footprint_core::pyramid::HeightFilter;
 use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{count, first_hit_distance, hidden_and_missed, Mode, Tables};
+use footprint_host::render::{count, first_hit_distance, hidden_and_missed, Mode, Rate, Tables};
 use footprint_host::view::Size;
 
 const SIZE: Size = Size {
@@ -157,11 +157,11 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
         for mode in [
             Mode::Ps,
             Mode::Li,
-            Mode::Ss(2),
-            Mode::Ss(4),
-            Mode::Ss(8),
-            Mode::Ss(16),
-            Mode::Ss(32),
+            Mode::Ss(Rate::N2),
+            Mode::Ss(Rate::N4),
+            Mode::Ss(Rate::N8),
+            Mode::Ss(Rate::N16),
+            Mode::Ss(Rate::N32),
             Mode::AsExact,
             Mode::As,
         ] {
@@ -196,7 +196,7 @@ fn images_and_counts_are_the_same_for_any_number_of_threads() {
         let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
         for mode in [
             Mode::Ps,
-            Mode::Ss(8),
+            Mode::Ss(Rate::N8),
             Mode::As,
             Mode::AsExact,
             Mode::Classic,

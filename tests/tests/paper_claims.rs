@@ -12,7 +12,7 @@ use footprint_host::experiment::heights;
 use footprint_host::experiment::table::{self, Tables15};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::Mode;
+use footprint_host::render::{Mode, Rate};
 use footprint_host::view::Size;
 
 const SIZE: Size = Size {
@@ -28,14 +28,20 @@ fn results() -> &'static (Tables15, Fly) {
         let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
         let modes: Vec<Mode> = [Mode::As, Mode::AsExact, Mode::Ps, Mode::Li]
             .into_iter()
-            .chain([2, 4, 8, 16, 32].map(Mode::Ss))
+            .chain([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss))
             .collect();
         let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, |_| {}).unwrap();
         let spec = FlySpec {
             frames: 400,
             step_m: 0.5,
             column: None,
-            modes: vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Ss(8), Mode::Ss(16)],
+            modes: vec![
+                Mode::As,
+                Mode::AsExact,
+                Mode::Ps,
+                Mode::Ss(Rate::N8),
+                Mode::Ss(Rate::N16),
+            ],
             size: SIZE,
             all_columns: false,
         };

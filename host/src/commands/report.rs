@@ -13,7 +13,7 @@ use crate::experiment::fly::{self, FlySpec, BINS};
 use crate::experiment::heights::{self, Variant};
 use crate::experiment::inspect;
 use crate::experiment::table::{self, Tables15};
-use crate::render::{render_parallel, Mode, Tables};
+use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{html, plot, png::write_png, write_atomic};
 use crate::view::{MapArgs, Size};
 
@@ -66,7 +66,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     };
     let modes: Vec<Mode> = [Mode::As, Mode::AsExact, Mode::Ps, Mode::Li]
         .into_iter()
-        .chain([2, 4, 8, 16, 32].map(Mode::Ss))
+        .chain([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss))
         .collect();
     let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
     let bar = indicatif::ProgressBar::new(steps).with_style(
@@ -108,7 +108,13 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
     // Table 6 and Fig. 14.
     bar.set_message("flight");
-    let fly_modes = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Ss(8), Mode::Ss(16)];
+    let fly_modes = vec![
+        Mode::As,
+        Mode::AsExact,
+        Mode::Ps,
+        Mode::Ss(Rate::N8),
+        Mode::Ss(Rate::N16),
+    ];
     let flight = fly::run(
         &map,
         &pyramid,
@@ -155,7 +161,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let camera5 = footprint_core::camera::Camera::new(five)?;
     let (px_row, px_col) = (size.height as usize * 3 / 10, size.width as usize / 2);
     let mut pixel_json = Vec::new();
-    for mode in [Mode::Ss(4), Mode::As] {
+    for mode in [Mode::Ss(Rate::N4), Mode::As] {
         let (samples, color, pic) =
             inspect::pixel(&camera5, &pyramid, mode, px_row, px_col, (64, 256))?;
         write_png(
@@ -174,7 +180,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let small = paper_camera(&map, &pyramid, 20.0, window, true)?;
     let small = footprint_core::camera::Camera::new(CameraParams { ..*small.params() })?;
     let mut fp_json = Vec::new();
-    for mode in [Mode::Ss(4), Mode::As] {
+    for mode in [Mode::Ss(Rate::N4), Mode::As] {
         let (counts, pic) = inspect::footprint(&small, &pyramid, mode, 600)?;
         write_png(
             &file(&format!("footprint_{mode}.png")),

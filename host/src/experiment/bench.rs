@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{count, render_parallel, render_with, Mode, Tables};
+use crate::render::{count, render_parallel, render_with, Mode, Rate, Tables};
 use crate::view::{resolve_camera, CameraArgs, Size, Switch};
 
 /// The paper's three pitches (Table 1).
@@ -20,7 +20,7 @@ pub const PAPER_PITCHES: [f64; 3] = [40.0, 20.0, 5.0];
 /// The modes of Tables 2–4 (AS both as the paper costs it and perspective-exact), plus LI.
 pub fn paper_modes() -> Vec<Mode> {
     let mut m = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Li];
-    m.extend([2, 4, 8, 16, 32].map(Mode::Ss));
+    m.extend([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss));
     m
 }
 

@@ -46,7 +46,7 @@ use footprint_core::specular::{self, Light, Material, Normal, Phong};
 use crate::experiment::bench::paper_camera;
 use crate::map::{procedural, Map};
 use crate::pyramid::Pyramid;
-use crate::render::{count, Mode, Tables};
+use crate::render::{count, Mode, Rate, Tables};
 use crate::scene::{Mode as SpecularMode, Scene as PlateScene, SceneName};
 use crate::view::Size;
 
@@ -66,7 +66,7 @@ pub const SIZE: Size = Size {
 pub const PITCH_DEG: f64 = 20.0;
 
 /// The modes the firmware renders, in the order it prints them.
-pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(8), Mode::AsExact, Mode::As];
+pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(Rate::N8), Mode::AsExact, Mode::As];
 
 /// The firmware's terrain scene: the map and the camera, with the eye height fitted.
 pub struct Scene {

@@ -156,15 +156,16 @@ pub fn run(
         }
 
         let mut coverage_by_rate = vec![(1, base.total.coverage())];
-        for n in SS_RATES {
+        for rate in SS_RATES {
+            let n = rate.n();
             progress(&format!("pitch {pitch}°: coverage of ss{n}"));
             let known = rows
                 .iter()
-                .find(|r| r.mode == Mode::Ss(n).to_string())
+                .find(|r| r.mode == Mode::Ss(rate).to_string())
                 .map(|r| r.coverage);
             let c = match known {
                 Some(c) => c,
-                None => count(&frame, &terrain, Mode::Ss(n))?.1.total.coverage(),
+                None => count(&frame, &terrain, Mode::Ss(rate))?.1.total.coverage(),
             };
             coverage_by_rate.push((n, c));
         }
