@@ -42,7 +42,7 @@ fn main() {
     let map = &scene.map;
     let p = &scene.params;
     let cells = map.heights.len();
-    let pyramid_cells = footprint_core::pyramid::cells(map.width, map.height);
+    let pyramid_cells = footprint_core::terrain::pyramid::cells(map.width, map.height);
     let modes: Vec<String> = MODES.iter().map(|m| format!("{m:?}")).collect();
 
     let mut s = String::new();
@@ -115,7 +115,7 @@ fn main() {
     )
     .unwrap();
     assert!(
-        scene.options == footprint_core::camera::Options::default(),
+        scene.options == footprint_core::terrain::camera::Options::default(),
         "the firmware renders with Options::default()"
     );
 

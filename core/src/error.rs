@@ -5,12 +5,14 @@ use core::fmt;
 /// Why a constructor refused its input. Each variant names the parameter that is wrong.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Error {
-    /// A map side is zero or exceeds [`crate::terrain::MAX_SIDE`].
+    /// A map side is zero or exceeds `max` (the terrain room's `MAX_SIDE`).
     MapSize {
         /// The width that was given.
         width: u32,
         /// The height that was given.
         height: u32,
+        /// The largest side allowed.
+        max: u32,
     },
     /// A slice does not hold `width × height` elements.
     SliceLength {
@@ -26,7 +28,8 @@ pub enum Error {
         /// The level's index in the pyramid.
         level: usize,
     },
-    /// The pyramid already holds [`crate::terrain::MAX_LEVELS`] levels, or the level below is 1×1.
+    /// The pyramid already holds all the levels it can (the terrain room's `MAX_LEVELS`), or
+    /// the level below is 1×1.
     TooManyLevels,
     /// A numeric parameter is not finite or lies outside its documented range.
     OutOfRange {
@@ -42,14 +45,16 @@ pub enum Error {
         /// `" voxels"` when a length in metres was converted to map units.
         unit: &'static str,
     },
-    /// An image size is zero or exceeds [`crate::camera::MAX_IMAGE_SIDE`].
+    /// An image size is zero or exceeds `max` (the camera's `MAX_IMAGE_SIDE`).
     ImageSize {
         /// The width that was given.
         width: u32,
         /// The height that was given.
         height: u32,
+        /// The largest side allowed.
+        max: u32,
     },
-    /// A normal vector is zero, or a component is not finite ([`crate::specular::Normal::new`]).
+    /// A normal vector is zero, or a component is not finite (the specular room's `Normal::new`).
     BadNormal {
         /// The x component given.
         x: f64,
@@ -63,11 +68,9 @@ pub enum Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Error::MapSize { width, height } => write!(
-                f,
-                "map size {width}x{height}: each side must be 1..={}",
-                crate::terrain::MAX_SIDE
-            ),
+            Error::MapSize { width, height, max } => {
+                write!(f, "map size {width}x{height}: each side must be 1..={max}")
+            }
             Error::SliceLength {
                 what,
                 expected,
@@ -87,10 +90,9 @@ impl fmt::Display for Error {
                 f,
                 "{what} = {value}{unit} is outside {min}..{max}{unit} or not finite"
             ),
-            Error::ImageSize { width, height } => write!(
+            Error::ImageSize { width, height, max } => write!(
                 f,
-                "image size {width}x{height}: each side must be 1..={}",
-                crate::camera::MAX_IMAGE_SIDE
+                "image size {width}x{height}: each side must be 1..={max}"
             ),
             Error::BadNormal { x, y, z } => {
                 write!(f, "normal ({x}, {y}, {z}) is zero or not finite")

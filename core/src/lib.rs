@@ -5,26 +5,33 @@
 //!
 //! Exact antialiasing for fixed-point renderers, after two papers:
 //!
-//! * D. Cohen-Or, *Exact antialiasing of textured terrain models*: a height field ray-cast
-//!   column by column, bottom to top, with vertical coherence and a multiresolution pyramid,
-//!   in four sampling modes — point sampling ([`sampler::Point`]), linear interpolation
-//!   ([`sampler::Linear`]), supersampling ([`sampler::Super`]) and area sampling, both as the
-//!   paper's Fig. 12 writes it ([`sampler::ParallelArea`]) and with the exact ray through each
-//!   voxel's top ([`sampler::Area`]) — and the paper's cost model ([`cost`]). The classic
-//!   voxel-space renderer ([`classic`]) is the baseline they are measured against.
-//! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*: the
-//!   tables, Phong highlight, detection and clamping of [`specular`], drawn by the z-buffer
-//!   tiler [`raster`].
+//! * D. Cohen-Or, *Exact antialiasing of textured terrain models* ([`terrain`]): a height
+//!   field ray-cast column by column, bottom to top, with vertical coherence and a
+//!   multiresolution pyramid, in four sampling modes — point sampling
+//!   ([`terrain::sampler::Point`]), linear interpolation ([`terrain::sampler::Linear`]),
+//!   supersampling ([`terrain::sampler::Super`]) and area sampling, both as the paper's Fig. 12
+//!   writes it ([`terrain::sampler::ParallelArea`]) and with the exact ray through each voxel's
+//!   top ([`terrain::sampler::Area`]) — and the paper's cost model ([`terrain::cost`]). The
+//!   classic voxel-space renderer ([`terrain::classic`]) is the baseline they are measured
+//!   against.
+//! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*
+//!   ([`specular`]): the tables, Phong highlight, detection and clamping, drawn by the z-buffer
+//!   tiler [`specular::raster`].
 //!
 //! The crate is `no_std`, allocates nothing, and uses only integer fixed-point arithmetic per
 //! pixel, so it links into firmware. The caller lends every buffer.
 //!
-//! Data flows one way: map ([`terrain::Level`]) → pyramid ([`terrain::Terrain`]) → camera
-//! tables ([`camera::Frame`]) → column walk ([`column::walk`]) → per-hit sampler
-//! ([`sampler::Sampler`]) → pixel. The fixed-point ranges are in [`num`].
+//! **The house.** Two rooms, one per paper, over a shared floor: [`num`] (the fixed-point types
+//! and their proved ranges), [`color`] (the 8-bit and 8.8 colours), [`trig`] (once-per-frame
+//! trigonometry) and [`error`] (every variant carries the limit it names). The rooms import the
+//! floor and never each other. In the terrain room data flows one way: map
+//! ([`terrain::Level`]) → pyramid ([`terrain::pyramid`], [`terrain::Terrain`]) → camera tables
+//! ([`terrain::camera::Frame`]) → column walk ([`terrain::column::walk()`]) → per-hit sampler
+//! ([`terrain::sampler::Sampler`]) → pixel.
 //!
 //! ```
-//! use footprint_core::{camera::*, column, cost::NoCost, num::Coord, sampler::Area, terrain::*, Rgb};
+//! use footprint_core::terrain::{camera::*, column, cost::NoCost, sampler::Area, *};
+//! use footprint_core::{num::Coord, Rgb};
 //! let heights = [10u16; 16 * 16];
 //! let colors = [Rgb::new(40, 120, 40); 16 * 16];
 //! let level0 = Level::new(16, 16, &heights, &colors)?;
@@ -44,21 +51,15 @@
 #[cfg(test)]
 extern crate std;
 
-pub mod camera;
-pub mod classic;
+// The shared floor, below both rooms.
 pub mod color;
-pub mod column;
-pub mod cost;
 pub mod error;
-pub mod march;
 pub mod num;
-pub mod pyramid;
-pub mod raster;
-pub mod sampler;
+pub mod trig;
+
+// The two rooms: one per paper.
 pub mod specular;
 pub mod terrain;
-pub mod trig;
-pub mod visibility;
 
 pub use color::Rgb;
 pub use error::Error;

@@ -4,16 +4,16 @@
 //! With them, the core's code is in symbols named `footprint_core::…` or
 //! `footprint_firmware::core_calls::…`, which `sizes.sh` counts as the core's.
 
-use footprint_core::camera::{Camera, Column, Frame, Options};
-use footprint_core::column;
-use footprint_core::cost::{Cost, Counts};
 use footprint_core::num::Coord;
-use footprint_core::pyramid::{self, HeightFilter};
-use footprint_core::raster::{self, Fragment, Target, Triangle, Vertex};
-use footprint_core::sampler::Sampler;
+use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
+use footprint_core::terrain::camera::{Camera, Column, Frame, Options};
+use footprint_core::terrain::column;
+use footprint_core::terrain::cost::{Cost, Counts};
+use footprint_core::terrain::pyramid::{self, HeightFilter};
+use footprint_core::terrain::sampler::Sampler;
+use footprint_core::terrain::visibility;
 use footprint_core::terrain::{Level, Scale, Terrain};
-use footprint_core::visibility;
 use footprint_core::{Error, Rgb};
 
 use crate::PlateVertex;

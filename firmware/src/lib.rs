@@ -17,11 +17,11 @@
 
 use core::fmt;
 
-use footprint_core::camera::Column;
 use footprint_core::num::Coord;
+use footprint_core::terrain::camera::Column;
 use footprint_core::Rgb;
 
-use footprint_core::raster::Vertex;
+use footprint_core::specular::raster::Vertex;
 use scene::{HEIGHT, PLATE_PIXELS, PLATE_VERTEX_COUNT, PYRAMID_CELLS, WIDTH};
 
 pub mod core_calls;
@@ -31,10 +31,10 @@ pub mod core_calls;
 #[allow(clippy::unreadable_literal, clippy::large_const_arrays, unsafe_code)]
 pub mod scene {
     use crate::PlateVertex;
-    use footprint_core::camera::CameraParams;
     #[allow(unused_imports)] // used when the plate's mode is an aggressive clamp
     use footprint_core::specular::Power;
     use footprint_core::specular::{Clamp, Method};
+    use footprint_core::terrain::camera::CameraParams;
     use footprint_core::Rgb;
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }

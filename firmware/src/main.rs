@@ -32,13 +32,13 @@ use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
-use footprint_core::cost::{Counts, NoCost, Tally};
 use footprint_core::num::Coord;
-use footprint_core::pyramid::HeightFilter;
-use footprint_core::raster::Target;
-use footprint_core::sampler::{Area, ParallelArea, Point, Sampler, Super};
+use footprint_core::specular::raster::Target;
 use footprint_core::specular::{Light, Material, Normal, Phong};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::cost::{Counts, NoCost, Tally};
+use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};

@@ -5,15 +5,15 @@
 #![no_main]
 
 use arbitrary::Arbitrary;
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
-use footprint_core::classic;
-use footprint_core::column::render;
-use footprint_core::cost::{Counts, Tally};
 use footprint_core::num::Coord;
-use footprint_core::pyramid::{self, HeightFilter};
-use footprint_core::sampler::{Area, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::classic;
+use footprint_core::terrain::column::render;
+use footprint_core::terrain::cost::{Counts, Tally};
+use footprint_core::terrain::pyramid::{self, HeightFilter};
+use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale};
-use footprint_core::visibility::count_visible;
 use footprint_core::Rgb;
 
 #[derive(Arbitrary, Debug)]

@@ -5,9 +5,9 @@
 //! with the ratio of each mode to PS.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use footprint_core::camera::Options;
-use footprint_core::cost::NoCost;
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::terrain::camera::Options;
+use footprint_core::terrain::cost::NoCost;
+use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::experiment::bench::{paper_camera, paper_modes, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;

@@ -1,8 +1,8 @@
 //! The owned multiresolution pyramid that the host lends to `footprint_core::Terrain`, built
-//! by the core's one pyramid builder (`footprint_core::pyramid::build`).
+//! by the core's one pyramid builder (`footprint_core::terrain::pyramid::build`).
 
 use anyhow::{Context, Result};
-use footprint_core::pyramid::{self, HeightFilter};
+use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::Rgb;
 
@@ -19,7 +19,7 @@ pub struct Pyramid {
 
 impl Pyramid {
     /// Builds all levels of `map` down to 1×1 with `filter` (colours are 2×2 box averages;
-    /// see `footprint_core::pyramid`).
+    /// see `footprint_core::terrain::pyramid`).
     pub fn build(map: &Map, filter: HeightFilter) -> Result<Self> {
         let scale = Scale::new(map.spacing_m, map.height_scale_m)
             .with_context(|| format!("map {}", map.source))?;

@@ -5,16 +5,17 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use anyhow::{bail, Result};
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
-use footprint_core::classic;
-use footprint_core::column::{render, walk};
-use footprint_core::cost::{Cost, Counts, NoCost, Tally};
-use footprint_core::march::{Color16, March};
+use footprint_core::color::Color16;
 use footprint_core::num::Coord;
 use footprint_core::num::Weight;
-use footprint_core::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::classic;
+use footprint_core::terrain::column::{render, walk};
+use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
+use footprint_core::terrain::march::March;
+use footprint_core::terrain::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::visibility::{visible_voxels, visit};
 use footprint_core::terrain::Terrain;
-use footprint_core::visibility::{visible_voxels, visit};
 use footprint_core::Rgb;
 
 /// A sampling mode of the paper: PS, LI, SS_N (N = 2, 4, …, 256), AS as the paper costs it,
@@ -34,7 +35,7 @@ pub enum Mode {
     /// voxel's top from the eye (a division per hit); samples exactly the visible voxels.
     AsExact,
     /// The classic voxel-space renderer (y-buffer, growing steps, level 0, no coherence): the
-    /// baseline, not a mode of the paper (`footprint_core::classic`).
+    /// baseline, not a mode of the paper (`footprint_core::terrain::classic`).
     Classic,
 }
 

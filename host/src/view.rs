@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use footprint_core::camera::{Camera, CameraParams, Options};
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::pyramid::HeightFilter;
 
 use crate::map::{self, Map};
 use crate::pyramid::Pyramid;
@@ -45,7 +45,7 @@ pub enum Switch {
     Off,
 }
 
-/// How the pyramid's coarse heights are made (`footprint_core::pyramid::HeightFilter`).
+/// How the pyramid's coarse heights are made (`footprint_core::terrain::pyramid::HeightFilter`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum HeightFilterArg {
     /// The 2×2 block's silhouette along the ray: the maximum along its major axis, the mean

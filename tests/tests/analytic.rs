@@ -9,15 +9,19 @@
 mod common;
 
 use common::*;
-use footprint_core::camera::{Axis, Camera, CameraParams, Column, Frame, Options};
-use footprint_core::column;
-use footprint_core::cost::{Counts, NoCost, Tally};
-use footprint_core::march::{to_rgb, March};
+use footprint_core::color::to_rgb;
 use footprint_core::num::{Coord, Height};
-use footprint_core::pyramid::HeightFilter;
-use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::camera::{
+    Camera, CameraParams, Column, Frame, Options, MAX_IMAGE_SIDE,
+};
+use footprint_core::terrain::column;
+use footprint_core::terrain::cost::{Counts, NoCost, Tally};
+use footprint_core::terrain::march::March;
+use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::terrain::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::visibility;
+use footprint_core::terrain::Axis;
 use footprint_core::terrain::{mirror, next_size, Level, Scale, Terrain, MAX_SIDE};
-use footprint_core::visibility;
 use footprint_core::{Error, Rgb};
 
 const PITCHES: [f64; 3] = [5.0, 20.0, 40.0];
@@ -1061,6 +1065,7 @@ fn constructor_errors() {
         Error::MapSize {
             width: 0,
             height: 4,
+            max: MAX_SIDE,
         },
     );
     expect(
@@ -1068,6 +1073,7 @@ fn constructor_errors() {
         Error::MapSize {
             width: 4,
             height: 0,
+            max: MAX_SIDE,
         },
     );
     expect(
@@ -1075,6 +1081,7 @@ fn constructor_errors() {
         Error::MapSize {
             width: MAX_SIDE + 1,
             height: 1,
+            max: MAX_SIDE,
         },
     );
     expect(
@@ -1222,6 +1229,7 @@ fn constructor_errors() {
         Error::ImageSize {
             width: 0,
             height: 4,
+            max: MAX_IMAGE_SIDE,
         },
     );
     expect(
@@ -1232,6 +1240,7 @@ fn constructor_errors() {
         Error::ImageSize {
             width: 4,
             height: 0,
+            max: MAX_IMAGE_SIDE,
         },
     );
     expect(
@@ -1242,6 +1251,7 @@ fn constructor_errors() {
         Error::ImageSize {
             width: 16_385,
             height: 4,
+            max: MAX_IMAGE_SIDE,
         },
     );
 
@@ -1608,7 +1618,7 @@ fn extreme_valid_inputs_do_not_panic() {
 
 #[test]
 fn analytic_scenes_look_as_designed() {
-    use footprint_core::sampler::FirstHit;
+    use footprint_core::terrain::sampler::FirstHit;
     let is_sky = |p: &Rgb| *p == SKY;
     // Flat plane: no sky at 40° (the top row looks 25° down); at 5° the top rows are sky, and
     // in every column the sky, once reached, continues to the top.

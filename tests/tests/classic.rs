@@ -1,4 +1,4 @@
-//! The classic voxel-space baseline (`footprint_core::classic`) against a straightforward
+//! The classic voxel-space baseline (`footprint_core::terrain::classic`) against a straightforward
 //! float implementation of the same algorithm, written from the public description: per
 //! column, sample points at distances that grow by one voxel, then 1.2, 1.4, …; project each
 //! sample's height with floating-point arithmetic and fill the rows above the y-buffer.
@@ -14,9 +14,9 @@
 mod common;
 
 use common::{camera, pose_for, with_frame, Map, HEIGHT_SCALE_M, SKY, SPACING_M};
-use footprint_core::camera::Camera;
-use footprint_core::classic;
-use footprint_core::cost::{Counts, Tally};
+use footprint_core::terrain::camera::Camera;
+use footprint_core::terrain::classic;
+use footprint_core::terrain::cost::{Counts, Tally};
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 
@@ -68,9 +68,9 @@ fn float_reference(
                 let v = (v_eye + (n_int - n_eye) / 2.0 * ratio).floor();
                 let (x, y) = if x_major { (u, v) } else { (v, u) };
                 let axis = if x_major {
-                    footprint_core::camera::Axis::X
+                    footprint_core::terrain::Axis::X
                 } else {
-                    footprint_core::camera::Axis::Y
+                    footprint_core::terrain::Axis::Y
                 };
                 let top_m = f64::from(map.height_at(axis, x as i64, y as i64)) * HEIGHT_SCALE_M;
                 let t_m = (n_int - n_eye) / 2.0 * sec * SPACING_M;
@@ -112,7 +112,7 @@ fn classic_matches_a_float_reference_of_the_classic_algorithm() {
                     frame,
                     &terrain,
                     c,
-                    &mut footprint_core::cost::NoCost,
+                    &mut footprint_core::terrain::cost::NoCost,
                     &mut got,
                 );
                 total += got.len();

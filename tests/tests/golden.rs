@@ -14,9 +14,9 @@
 
 use std::path::{Path, PathBuf};
 
-use footprint_core::camera::Options;
-use footprint_core::cost::NoCost;
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::terrain::camera::Options;
+use footprint_core::terrain::cost::NoCost;
+use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::Rgb;
 use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::procedural;

@@ -3,13 +3,13 @@
 //! pitch ±89.9°, FOV 0.01° and 179°. Every mode renders, nothing panics or overflows (the
 //! tests run with overflow checks on), and what can be predicted is checked.
 
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
-use footprint_core::column::render;
-use footprint_core::cost::{Counts, Tally};
 use footprint_core::num::Coord;
-use footprint_core::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::column::render;
+use footprint_core::terrain::cost::{Counts, Tally};
+use footprint_core::terrain::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale, Terrain, MAX_SIDE};
-use footprint_core::visibility::count_visible;
 use footprint_core::Rgb;
 
 const SKY: Rgb = Rgb::new(1, 2, 3);

@@ -3,9 +3,9 @@
 
 mod common;
 
-use footprint_core::camera::Options;
-use footprint_core::cost::Tally;
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::terrain::camera::Options;
+use footprint_core::terrain::cost::Tally;
+use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
@@ -98,7 +98,7 @@ fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
     // each column's first hit are skipped through the maximum pyramid, so the total `a` now
     // has almost no constant part to dilute the growth. (Measured: L grows ×5.8 voxel by
     // voxel and ×2.2 with the pyramid; the test before the skip used `a` and a bound of 1.6.)
-    use footprint_core::camera::{Camera, CameraParams};
+    use footprint_core::terrain::camera::{Camera, CameraParams};
     let map = procedural(7, 512);
     let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
     let top_m = f64::from(map.height_range().1) * map.height_scale_m;
@@ -181,7 +181,7 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
 /// independent, and each column is walked by one thread.
 #[test]
 fn images_and_counts_are_the_same_for_any_number_of_threads() {
-    use footprint_core::cost::NoCost;
+    use footprint_core::terrain::cost::NoCost;
     use footprint_host::render::{render_parallel, render_with};
     let map = procedural(3, 256);
     let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();

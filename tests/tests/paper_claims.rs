@@ -4,7 +4,7 @@
 
 use std::sync::OnceLock;
 
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::commands::report::claims;
 use footprint_host::experiment::bench::PAPER_PITCHES;
 use footprint_host::experiment::fly::{self, Fly, FlySpec};

@@ -17,15 +17,16 @@
 mod common;
 
 use common::SKY;
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
-use footprint_core::column;
-use footprint_core::cost::{Cost, Counts, NoCost, Tally};
-use footprint_core::march::{Color16, March};
+use footprint_core::color::Color16;
 use footprint_core::num::{Coord, Weight};
-use footprint_core::pyramid::HeightFilter;
-use footprint_core::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::column;
+use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
+use footprint_core::terrain::march::March;
+use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Scale, Terrain};
-use footprint_core::visibility::count_visible;
 use footprint_core::Rgb;
 use proptest::prelude::*;
 use proptest::test_runner::Config;

@@ -2,7 +2,7 @@
 //! computations, the paper's numbers, detection on curved and flat surfaces (corners, bump map,
 //! curvature), the clamp's guarantees, and the plates measured against the reference.
 
-use footprint_core::raster::{self, Fragment, Target, Triangle, Vertex};
+use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::*;
 use footprint_core::{Error, Rgb};
 use footprint_host::experiment::specular::{self as exp, MeasureConfig};

@@ -23,8 +23,8 @@
 
 use fixed::types::{I2F30, U16F16, U2F30};
 
-use super::clamp::Clamp;
 use super::normal::{isqrt, Normal, ONE};
+use super::policy::Clamp;
 use super::tables::{clamp_n, MIN_DOT, N_MAX};
 
 /// π in `U2F30` bits (rounded to nearest).

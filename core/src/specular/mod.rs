@@ -12,7 +12,7 @@
 //! * [`detect`] — `dot_ΔN` from the pixel's corner normals, a bump map's normals or the
 //!   curvature ([`Spread`]), the test `dot_ΔN < MinDot[n]` and the oversampling rate;
 //! * [`clamp`](mod@clamp) — the paper's code fragment: `n′` and `K′_spec` ([`clamp()`]);
-//! * [`shade`](mod@shade) — one pixel of the z-buffer tiler ([`crate::raster`]) by each method: none,
+//! * [`shade`](mod@shade) — one pixel of the z-buffer tiler ([`crate::specular::raster`]) by each method: none,
 //!   clamping, Crow's supersampling of detected pixels, or a fixed grid ([`Method`]).
 //!
 //! Everything per pixel is integer fixed point: normals and cosines in `I2F30`, weights in
@@ -23,6 +23,8 @@ pub mod clamp;
 pub mod detect;
 pub mod normal;
 pub mod phong;
+pub mod policy;
+pub mod raster;
 pub mod shade;
 pub mod tables;
 
@@ -30,10 +32,11 @@ pub mod tables;
 /// callers need not depend on `fixed` themselves.
 pub use fixed::types::{I2F30, U16F16, U1F31, U2F30};
 
-pub use clamp::{clamp, Clamp, Clamped};
+pub use clamp::{clamp, Clamped};
 pub use detect::{acos, Spread};
 pub use normal::{isqrt, Normal, Vector};
 pub use phong::{cos_pow, Light, Phong};
+pub use policy::Clamp;
 pub use shade::{shade, specular, Material, Method, Specular};
 pub use tables::{
     clamp_n, coefficient, coefficients, cutoff, maximum, maxn_allowed, min_dot, min_dot_p,

@@ -8,12 +8,13 @@
 
 use fixed::types::U2F30;
 
-use super::clamp::{clamp, Clamp};
+use super::clamp::clamp;
 use super::detect::Spread;
 use super::normal::ONE;
 use super::phong::{Light, Phong};
+use super::policy::Clamp;
 use crate::color::Rgb;
-use crate::raster::{Fragment, MAX_GRID};
+use crate::specular::raster::{Fragment, MAX_GRID};
 
 /// How the specular term of a pixel is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -11,9 +11,9 @@ use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 
-use footprint_core::camera::{Camera, Options};
-use footprint_core::cost::NoCost;
-use footprint_core::sampler::Area;
+use footprint_core::terrain::camera::{Camera, Options};
+use footprint_core::terrain::cost::NoCost;
+use footprint_core::terrain::sampler::Area;
 use footprint_core::terrain::{Level, Scale};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use footprint_core::cost::Tally;
+use footprint_core::terrain::cost::Tally;
 use serde::Serialize;
 
 use crate::render::{count, render_timed, render_timed_parallel, Mode, Tables};

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use footprint_core::camera::{CameraParams, Options};
+use footprint_core::terrain::camera::{CameraParams, Options};
 use serde_json::json;
 
 use crate::experiment::bench::{paper_camera, PAPER_PITCHES};
@@ -158,7 +158,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let five = *paper_camera(&map, &pyramid, 5.0, size, true)?.params();
     let zoom = inspect::zoom(&five, &pyramid, Mode::Li, 16.0, 48, 6)?;
     write_png(&file("zoom.png"), zoom.width, zoom.height, &zoom.pixels)?;
-    let camera5 = footprint_core::camera::Camera::new(five)?;
+    let camera5 = footprint_core::terrain::camera::Camera::new(five)?;
     let (px_row, px_col) = (size.height as usize * 3 / 10, size.width as usize / 2);
     let mut pixel_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
@@ -178,7 +178,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         height: 32,
     };
     let small = paper_camera(&map, &pyramid, 20.0, window, true)?;
-    let small = footprint_core::camera::Camera::new(CameraParams { ..*small.params() })?;
+    let small = footprint_core::terrain::camera::Camera::new(CameraParams { ..*small.params() })?;
     let mut fp_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
         let (counts, pic) = inspect::footprint(&small, &pyramid, mode, 600)?;

@@ -5,8 +5,8 @@
 use std::time::Instant;
 
 use anyhow::Result;
-use footprint_core::camera::{Camera, CameraParams};
-use footprint_core::cost::NoCost;
+use footprint_core::terrain::camera::{Camera, CameraParams};
+use footprint_core::terrain::cost::NoCost;
 use serde::Serialize;
 
 use crate::map::Map;
@@ -80,7 +80,7 @@ pub fn paper_camera(
         far: None,
         lod: if lod { Switch::On } else { Switch::Off },
     };
-    let options = footprint_core::camera::Options {
+    let options = footprint_core::terrain::camera::Options {
         lod,
         ..Default::default()
     };
@@ -121,7 +121,7 @@ pub fn run(
     repeats: usize,
     mut progress: impl FnMut(),
 ) -> Result<Vec<CaseTime>> {
-    let options = footprint_core::camera::Options {
+    let options = footprint_core::terrain::camera::Options {
         lod,
         ..Default::default()
     };

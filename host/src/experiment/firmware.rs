@@ -31,16 +31,16 @@
 //! ```
 
 use anyhow::{bail, Result};
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
-use footprint_core::column;
-use footprint_core::cost::{NoCost, Tally};
 use footprint_core::num::Coord;
-use footprint_core::pyramid::HeightFilter;
-use footprint_core::sampler::Point;
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::column;
+use footprint_core::terrain::cost::{NoCost, Tally};
+use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::terrain::sampler::Point;
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 
-use footprint_core::raster::{self, Target, Triangle, Vertex};
+use footprint_core::specular::raster::{self, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Normal, Phong};
 
 use crate::experiment::bench::paper_camera;

@@ -3,7 +3,7 @@
 //! draw one column over time (Fig. 14).
 
 use anyhow::{bail, Result};
-use footprint_core::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 use footprint_core::trig::sin_cos_deg;
 use footprint_core::Rgb;
 use rayon::prelude::*;
@@ -170,7 +170,13 @@ pub fn run_with_frames(
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;
         let whole = |mode: Mode| -> Result<Vec<Rgb>> {
-            Ok(render_with(&frame, &terrain, mode, &mut footprint_core::cost::NoCost)?.image)
+            Ok(render_with(
+                &frame,
+                &terrain,
+                mode,
+                &mut footprint_core::terrain::cost::NoCost,
+            )?
+            .image)
         };
         let mut panel_images: Vec<Option<Vec<Rgb>>> = vec![None; panels.len()];
         let mut measured = Vec::with_capacity(spec.modes.len());

@@ -10,8 +10,8 @@
 //! further down to match).
 
 use anyhow::Result;
-use footprint_core::camera::{Camera, Options};
-use footprint_core::pyramid::HeightFilter;
+use footprint_core::terrain::camera::{Camera, Options};
+use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::Rgb;
 use serde::Serialize;
 

@@ -5,11 +5,12 @@
 use std::collections::HashSet;
 
 use anyhow::{bail, Result};
-use footprint_core::camera::{Camera, CameraParams, Options};
-use footprint_core::cost::Cost;
-use footprint_core::march::{to_rgb, Color16, March};
+use footprint_core::color::{to_rgb, Color16};
 use footprint_core::num::Weight;
-use footprint_core::visibility::visit;
+use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::cost::Cost;
+use footprint_core::terrain::march::March;
+use footprint_core::terrain::visibility::visit;
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;
@@ -67,7 +68,12 @@ pub fn zoom(
     let (w, h) = (2 * s * k + gap, s * k);
     let mut pixels = vec![Rgb::new(255, 255, 255); w * h];
     for (side, m) in [Mode::Ps, mode].into_iter().enumerate() {
-        let img = render_with(&frame, &terrain, m, &mut footprint_core::cost::NoCost)?;
+        let img = render_with(
+            &frame,
+            &terrain,
+            m,
+            &mut footprint_core::terrain::cost::NoCost,
+        )?;
         let big = magnify(s, s, &img.image, k);
         for y in 0..h {
             let x0 = side * (s * k + gap);

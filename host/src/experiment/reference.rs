@@ -5,7 +5,7 @@
 //! columns per pixel make the naive horizontal sampling the paper leaves (Sect. 8) negligible.
 
 use anyhow::Result;
-use footprint_core::camera::{Camera, Options};
+use footprint_core::terrain::camera::{Camera, Options};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;

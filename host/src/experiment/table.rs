@@ -5,7 +5,7 @@
 //! pitch 40°, 20° or 5°. Counts are per-column averages, as in the paper.
 
 use anyhow::Result;
-use footprint_core::camera::Options;
+use footprint_core::terrain::camera::Options;
 use serde::Serialize;
 
 use super::bench::paper_camera;

@@ -1,6 +1,6 @@
 //! The scenes of Amanatides' plates: shiny cylinders and cones, tessellated into triangles with
 //! per-vertex normals, projected orthographically and handed to the core's z-buffer tiler
-//! ([`footprint_core::raster`]).
+//! ([`footprint_core::specular::raster`]).
 //!
 //! World coordinates: the image spans `x, y ∈ [−1, 1]` (x right, y up), `z` points at the
 //! viewer, and depth runs over `z ∈ [−2, 2]`. The eye looks down −z from infinity (`E = +z`),
@@ -24,7 +24,7 @@
 pub mod mesh;
 
 use anyhow::{Context, Result};
-use footprint_core::raster::{self, Target, Triangle, Vertex};
+use footprint_core::specular::raster::{self, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal, Phong};
 use footprint_core::Rgb;
 

@@ -7,12 +7,12 @@
 
 #![allow(dead_code)]
 
-use footprint_core::camera::{Camera, CameraParams, Column, Frame, Options};
-use footprint_core::column;
-use footprint_core::cost::Cost;
 use footprint_core::num::Coord;
-use footprint_core::pyramid::{self, HeightFilter};
-use footprint_core::sampler::Sampler;
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::column;
+use footprint_core::terrain::cost::Cost;
+use footprint_core::terrain::pyramid::{self, HeightFilter};
+use footprint_core::terrain::sampler::Sampler;
 use footprint_core::terrain::{next_size, Level, Scale, Terrain};
 use footprint_core::Rgb;
 
@@ -302,7 +302,7 @@ pub fn image_hash<'a>(pixels: impl IntoIterator<Item = &'a Rgb>) -> u64 {
 /// One pinned line per frame: the image's hash and the counters the samplers decide (`P`,
 /// `L`, `M`, hits, `c`, `b`, `V`). The traversal steps `a` are not pinned: skipping empty
 /// air changes how many steps reach a column's first hit, and nothing the samplers see.
-pub fn pin_line(name: &str, image_hash: u64, t: &footprint_core::cost::Tally) -> String {
+pub fn pin_line(name: &str, image_hash: u64, t: &footprint_core::terrain::cost::Tally) -> String {
     format!(
         "{name} {image_hash:016x} P={} L={} M={} hits={} c={} b={} V={}",
         t.p, t.l, t.m, t.hits, t.c, t.b, t.v

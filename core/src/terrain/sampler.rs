@@ -1,6 +1,6 @@
 //! The per-hit code of each sampling mode (Figs. 4, 8 and 12).
 //!
-//! The traversal ([`crate::column::walk`]) is written once. When the current ray `R` passes
+//! The traversal ([`crate::terrain::column::walk`]) is written once. When the current ray `R` passes
 //! below the current voxel's top — a hit, `H(V_k) > H(R)` — it calls [`Sampler::hit`], which
 //! samples, may raise `R` and says whether the pixel is finished. Each mode is a small type,
 //! and the walk is monomorphized for it.
@@ -10,9 +10,10 @@
 //! integrates the whole span.
 
 use crate::color::Rgb;
-use crate::cost::Cost;
-use crate::march::{to_color16, to_rgb, Color16, March};
+use crate::color::{to_color16, to_rgb, Color16};
 use crate::num::{Eye, Height, Line, Slope, Weight};
+use crate::terrain::cost::Cost;
+use crate::terrain::march::March;
 
 /// The ray being walked: its height at the current voxel and its slope per half-voxel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,10 +132,10 @@ impl<const N: u32> Super<N> {
     /// a power of two in `2..=256` does not build.
     ///
     /// ```compile_fail
-    /// let _ = footprint_core::sampler::Super::<3>::new();
+    /// let _ = footprint_core::terrain::sampler::Super::<3>::new();
     /// ```
     /// ```
-    /// let _ = footprint_core::sampler::Super::<4>::new();
+    /// let _ = footprint_core::terrain::sampler::Super::<4>::new();
     /// ```
     pub fn new() -> Self {
         const {

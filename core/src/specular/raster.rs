@@ -25,7 +25,7 @@
 
 use crate::color::Rgb;
 use crate::error::{check, Error};
-use crate::specular::{Normal, Vector};
+use crate::specular::normal::{Normal, Vector};
 
 /// Fractional bits of vertex coordinates.
 pub const SUB_BITS: u32 = 8;

@@ -27,7 +27,7 @@ use crate::error::{check, check_in, Error};
 use crate::num::{
     fixed_from_f64, Coord, Height, Line, Slope, MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE,
 };
-use crate::terrain::Terrain;
+use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
 
 /// The largest image side in pixels.
@@ -78,6 +78,7 @@ impl Camera {
             return Err(Error::ImageSize {
                 width: params.width,
                 height: params.height,
+                max: MAX_IMAGE_SIDE,
             });
         }
         Ok(Self { params })
@@ -159,16 +160,6 @@ impl Default for Options {
             columns_per_pixel: 1,
         }
     }
-}
-
-/// Which horizontal axis a column's rays step along (the paper's "x-major" ray).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Axis {
-    /// Steps along x; the cross axis is y.
-    #[default]
-    X,
-    /// Steps along y; the cross axis is x.
-    Y,
 }
 
 /// The per-column constants of the walk: fixed-point, built once per frame.

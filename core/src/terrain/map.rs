@@ -5,15 +5,24 @@
 //! reflected about its edges with period `2·len`.
 //!
 //! The multiresolution pyramid (Sect. 3) holds level 0 (the map) and levels `k+1` built from
-//! `k` by [`Level::build_next`] (see [`crate::pyramid`]). Every level holds one colour grid and
+//! `k` by [`Level::build_next`] (see [`crate::terrain::pyramid`]). Every level holds one colour grid and
 //! two height grids, one for rays that step along x and one for rays that step along y: a
 //! coarse voxel can look different from the two directions. At level 0 both are the map's
 //! heights. The caller owns every buffer; the core only reads the slices it is lent.
 
-use crate::camera::Axis;
 use crate::color::Rgb;
 use crate::error::{check, Error};
 use crate::num::{height, Height};
+
+/// Which horizontal axis a column's rays step along (the paper's "x-major" ray).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Axis {
+    /// Steps along x; the cross axis is y.
+    #[default]
+    X,
+    /// Steps along y; the cross axis is x.
+    Y,
+}
 
 /// The largest map side.
 pub const MAX_SIDE: u32 = 65_536;
@@ -30,7 +39,7 @@ pub struct Level<'a> {
     along_y: &'a [u16],
     colors: &'a [Rgb],
     /// The conservative maximum: no level-0 height under a voxel exceeds it (the map's own
-    /// heights at level 0). Used only to skip empty air ([`crate::march::March::skip`]).
+    /// heights at level 0). Used only to skip empty air ([`crate::terrain::march::March::skip`]).
     max: Option<&'a [u16]>,
     width: u32,
     height: u32,
@@ -57,7 +66,11 @@ pub(crate) fn fold(p: u32, len: u32) -> u32 {
 /// [`MAX_SIDE`].
 fn cells(width: u32, height: u32) -> Result<usize, Error> {
     if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
-        return Err(Error::MapSize { width, height });
+        return Err(Error::MapSize {
+            width,
+            height,
+            max: MAX_SIDE,
+        });
     }
     Ok(width as usize * height as usize)
 }
@@ -90,7 +103,7 @@ impl<'a> Level<'a> {
     ///
     /// Errors: a side of 0 or over [`MAX_SIDE`], or a slice of the wrong length.
     ///
-    /// [`HeightFilter::Mean`]: crate::pyramid::HeightFilter::Mean
+    /// [`HeightFilter::Mean`]: crate::terrain::pyramid::HeightFilter::Mean
     pub fn new(
         width: u32,
         height: u32,
@@ -115,7 +128,7 @@ impl<'a> Level<'a> {
     ///
     /// Errors: a side of 0 or over [`MAX_SIDE`], or a slice of the wrong length.
     ///
-    /// [`HeightFilter::Silhouette`]: crate::pyramid::HeightFilter::Silhouette
+    /// [`HeightFilter::Silhouette`]: crate::terrain::pyramid::HeightFilter::Silhouette
     pub fn directional(
         width: u32,
         height: u32,

@@ -8,10 +8,10 @@
 //! with a horizon through a top is exact (cross-multiplied in 128-bit integers), so the
 //! coverage `M/V` measures the sampler against the geometry, not against itself.
 
-use crate::camera::Frame;
-use crate::cost::Counts;
-use crate::march::March;
 use crate::num::{Eye, Height, Line};
+use crate::terrain::camera::Frame;
+use crate::terrain::cost::Counts;
+use crate::terrain::march::March;
 use crate::terrain::Terrain;
 
 /// What hides the rest of the footprint so far.

@@ -25,10 +25,10 @@
 //! silhouette averages across the ray), so the walk never samples it: it only tells the walk
 //! where a ray passes above a whole block and can cross it in one step.
 
-use crate::camera::Axis;
 use crate::color::Rgb;
 use crate::error::Error;
-use crate::terrain::{check_len, next_size, Level, Scale, Terrain, MAX_LEVELS};
+use crate::terrain::map::Axis;
+use crate::terrain::map::{check_len, next_size, Level, Scale, Terrain, MAX_LEVELS};
 
 /// How a coarse voxel's height is made from the 2×2 voxels below it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -18,11 +18,12 @@
 //! Counters: term `a` per sample, `b` per row whose ray is computed, a hit and `P` per pixel
 //! drawn. `M` is not counted: the classic algorithm has no notion of a sampled voxel set.
 
-use crate::camera::{Axis, Frame};
 use crate::color::Rgb;
-use crate::cost::Cost;
 use crate::error::Error;
 use crate::num::height;
+use crate::terrain::camera::Frame;
+use crate::terrain::cost::Cost;
+use crate::terrain::map::Axis;
 use crate::terrain::{mirror, Terrain};
 
 /// Positions are counted in fifths of a half-voxel, so that the description's steps (1 voxel,
@@ -99,7 +100,7 @@ pub fn walk<C: Cost>(
 }
 
 /// Renders the whole frame into `image`, row-major from the top, using `column` (at least `H`
-/// long) as scratch: the classic counterpart of [`crate::column::render`].
+/// long) as scratch: the classic counterpart of [`crate::terrain::column::render`].
 pub fn render<C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,

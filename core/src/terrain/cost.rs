@@ -9,8 +9,9 @@
 //! The hooks also carry what a sample was (its voxel, colour and weight), so that a host can
 //! draw the paper's diagnostic pictures (Figs. 9 and 13) from the renderer itself.
 
-use crate::march::{Color16, March};
+use crate::color::Color16;
 use crate::num::Weight;
+use crate::terrain::march::March;
 
 /// The per-event hooks of the walk. Every method defaults to doing nothing.
 pub trait Cost {
@@ -83,7 +84,7 @@ pub struct Tally {
     pub p: u64,
     /// `M` (or `M′` for area sampling): distinct voxels sampled.
     pub m: u64,
-    /// `V`: voxels visible in the footprint (filled by [`crate::visibility`]).
+    /// `V`: voxels visible in the footprint (filled by [`crate::terrain::visibility`]).
     pub v: u64,
     /// Ray–voxel hits.
     pub hits: u64,
@@ -164,7 +165,7 @@ impl<'a> Counts<'a> {
         self.columns
     }
 
-    /// Records the visible-voxel count `V` of a column (from [`crate::visibility`]).
+    /// Records the visible-voxel count `V` of a column (from [`crate::terrain::visibility`]).
     pub fn set_visible(&mut self, column: usize, v: u64) {
         self.total.v = self.total.v.saturating_add(v);
         if let Some(t) = self.columns.get_mut(column) {

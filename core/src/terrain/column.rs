@@ -11,13 +11,13 @@
 
 use core::ops::Range;
 
-use crate::camera::Frame;
 use crate::color::Rgb;
-use crate::cost::Cost;
 use crate::error::Error;
-use crate::march::March;
 use crate::num::{Eye, Height, Line};
-use crate::sampler::{Hit, Pixel, Ray, Sampler};
+use crate::terrain::camera::Frame;
+use crate::terrain::cost::Cost;
+use crate::terrain::march::March;
+use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
 /// Walks column `col` for the pixel rows `rows` (counted from the bottom) and writes pixel

@@ -14,7 +14,7 @@
 //! **Reading a height.** At a step the ray's cross-axis position `v` is fractional. The height
 //! is that of the voxel *containing* the point, `⌊v / 2^L⌋` on the cross axis: the stick the
 //! ray is over, from the level's height grid for the column's major axis (see
-//! [`crate::pyramid`]). Colours are read by [`March::sample_point`] (the same voxel) or by
+//! [`crate::terrain::pyramid`]). Colours are read by [`March::sample_point`] (the same voxel) or by
 //! [`March::sample_linear`] (Eq. 4).
 //!
 //! **Mirroring.** Cell indices are tracked modulo the mirrored period `2·len` by ±1 updates,
@@ -35,13 +35,11 @@
 //! level-0 height is at or below the ray: the voxels it passes over are exactly those the walk
 //! would have found below the ray, so the samplers see the same sequence of voxels.
 
-use crate::camera::{Axis, Column, Frame};
-use crate::color::Rgb;
+use crate::color::{to_color16, Color16};
 use crate::num::{height, Height};
-use crate::terrain::{fold, Level, Terrain};
-
-/// A colour with 8 fractional bits per channel (`255 << 8` is full), the result of Eq. 4.
-pub type Color16 = [u16; 3];
+use crate::terrain::camera::{Column, Frame};
+use crate::terrain::map::Axis;
+use crate::terrain::map::{fold, Level, Terrain};
 
 /// A cursor on the voxel sequence of one column.
 #[derive(Clone, Debug)]
@@ -471,7 +469,7 @@ impl<'a, 't> March<'a, 't> {
     }
 
     /// Crosses empty air (Sect. 3's traversal, accelerated by the conservative maximum of
-    /// [`crate::pyramid`]): finds the coarsest block of the maximum pyramid that holds the
+    /// [`crate::terrain::pyramid`]): finds the coarsest block of the maximum pyramid that holds the
     /// current voxel and the next ones of the run, and whose highest level-0 height is at or
     /// below the ray over all of them, and steps past them at once. The ray is at `*h` here and
     /// rises by `rise` per step. Returns the number of voxels stepped over, 0 if the next
@@ -716,17 +714,4 @@ impl<'a, 't> March<'a, 't> {
         let mix = |a: u8, b: u8| (u32::from(a) * (256 - f) + u32::from(b) * f) as u16;
         [mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b)]
     }
-}
-
-/// An 8-bit colour as an 8.8 colour (exact).
-#[inline]
-pub fn to_color16(c: Rgb) -> Color16 {
-    [c.r, c.g, c.b].map(|x| u16::from(x) << 8)
-}
-
-/// Rounds an 8.8 colour to 8 bits.
-#[inline]
-pub fn to_rgb(c: Color16) -> Rgb {
-    let r = |x: u16| ((u32::from(x) + 128) >> 8).min(255) as u8;
-    Rgb::new(r(c[0]), r(c[1]), r(c[2]))
 }

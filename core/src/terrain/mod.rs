@@ -1,0 +1,21 @@
+//! The Cohen-Or room: exact antialiasing of textured terrain (D. Cohen-Or, *Exact antialiasing
+//! of textured terrain models*).
+//!
+//! Data flows one way through it: the map and its levels ([`map`]) → the pyramid built above
+//! them ([`pyramid`]) → the camera's per-frame tables ([`camera`]) → the voxel sequence under
+//! a column ([`march`]) → the one column walk (Fig. 4, [`column`](mod@column)) → the per-hit sampler of
+//! each mode (Figs. 4, 8, 12, [`sampler`]) → the pixel. [`cost`] counts what the walk spends
+//! (Sect. 6), [`visibility`] counts what it should see (`V`), and [`classic`] is the voxel-space
+//! baseline the paper's walk is measured against.
+
+pub mod camera;
+pub mod classic;
+pub mod column;
+pub mod cost;
+pub mod map;
+pub mod march;
+pub mod pyramid;
+pub mod sampler;
+pub mod visibility;
+
+pub use map::{mirror, next_size, Axis, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
