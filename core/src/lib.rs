@@ -1,6 +1,12 @@
 #![no_std]
 #![forbid(unsafe_code)]
-#![deny(missing_docs)]
+#![deny(
+    missing_docs,
+    missing_debug_implementations,
+    trivial_casts,
+    trivial_numeric_casts,
+    unused_qualifications
+)]
 //! # footprint-core
 //!
 //! Exact antialiasing for fixed-point renderers, after two papers:
