@@ -4,10 +4,11 @@
 //! coherence, Fig. 3): its height is Eq. 3 evaluated at the current voxel, with no step back.
 //! While the ray passes above the current voxel the walk advances along the multiresolution
 //! sequence ([`March`]) and raises the ray by its slope times the step — a run of such steps
-//! at a time ([`March::ride`]) — and when the voxel's top is above the ray it hands the hit to
-//! the [`Sampler`]. A column ends when its pixels are done,
-//! when the next voxel lies beyond the far distance, or when the ray is above the highest
-//! point of the map and not descending; the rest of it is sky.
+//! at a time ([`March::ride`]), and before the column's first hit a block of empty air at a
+//! time ([`March::skip`]) — and when the voxel's top is above the ray it hands the hit to the
+//! [`Sampler`]. A column ends when its pixels are done, when the next voxel lies beyond the far
+//! distance, or when the ray is above the highest point of the map and not descending; the
+//! rest of it is sky.
 
 use core::ops::Range;
 
