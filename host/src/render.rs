@@ -284,22 +284,14 @@ pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: us
 }
 
 /// Renders without counting and returns the image and the wall time of the render alone, in
-/// milliseconds: the best of `repeats` runs (at least one).
+/// milliseconds: the best of `repeats` runs (at least one), on one thread.
 pub fn render_timed(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     mode: Mode,
     repeats: usize,
 ) -> Result<(Rendered, f64)> {
-    let mut best = f64::INFINITY;
-    let mut out = None;
-    for _ in 0..repeats.max(1) {
-        let t = Instant::now();
-        let r = render_with(frame, terrain, mode, &mut NoCost)?;
-        best = best.min(t.elapsed().as_secs_f64() * 1e3);
-        out = Some(r);
-    }
-    Ok((out.expect("at least one run"), best))
+    best_of(repeats, || render_with(frame, terrain, mode, &mut NoCost))
 }
 
 /// [`render_timed`] with the columns spread over the rayon pool (`--threads`): the same
@@ -310,11 +302,19 @@ pub fn render_timed_parallel(
     mode: Mode,
     repeats: usize,
 ) -> Result<(Rendered, f64)> {
+    best_of(repeats, || render_parallel(frame, terrain, mode))
+}
+
+/// The last of `repeats` renders (at least one) and the fastest one's wall time, ms.
+fn best_of(
+    repeats: usize,
+    mut render: impl FnMut() -> Result<Rendered>,
+) -> Result<(Rendered, f64)> {
     let mut best = f64::INFINITY;
     let mut out = None;
     for _ in 0..repeats.max(1) {
         let t = Instant::now();
-        let r = render_parallel(frame, terrain, mode)?;
+        let r = render()?;
         best = best.min(t.elapsed().as_secs_f64() * 1e3);
         out = Some(r);
     }

@@ -22,6 +22,7 @@ use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::height;
 use crate::terrain::camera::Frame;
+use crate::terrain::column::render_frame;
 use crate::terrain::cost::Cost;
 use crate::terrain::map::Axis;
 use crate::terrain::{mirror, Terrain};
@@ -108,28 +109,7 @@ pub fn render<C: Cost>(
     column: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<(), Error> {
-    let (w, h) = (frame.width(), frame.height());
-    if image.len() != w * h {
-        return Err(Error::SliceLength {
-            what: "image",
-            expected: w * h,
-            actual: image.len(),
-        });
-    }
-    if column.len() < h {
-        return Err(Error::SliceLength {
-            what: "column",
-            expected: h,
-            actual: column.len(),
-        });
-    }
-    for x in 0..w {
-        walk(frame, terrain, x, cost, column);
-        for (i, px) in column.iter().take(h).enumerate() {
-            if let Some(dst) = image.get_mut((h - 1 - i) * w + x) {
-                *dst = *px;
-            }
-        }
-    }
-    Ok(())
+    render_frame(frame, column, image, |x, out| {
+        walk(frame, terrain, x, cost, out)
+    })
 }

@@ -173,6 +173,22 @@ pub fn render<S: Sampler + Clone, C: Cost>(
     column: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<(), Error> {
+    let h = frame.height();
+    render_frame(frame, column, image, |x, out| {
+        let mut s = sampler.clone();
+        walk(frame, terrain, x, 0..h, &mut s, cost, out);
+    })
+}
+
+/// Runs `walk_column(x, scratch)` for every column `x` of `frame` (it writes the column's rows,
+/// bottom to top, into `scratch`) and copies each column into `image`, row-major from the top.
+/// Errors if `image` does not hold `W × H` pixels or `column` is shorter than `H`.
+pub fn render_frame(
+    frame: &Frame<'_>,
+    column: &mut [Rgb],
+    image: &mut [Rgb],
+    mut walk_column: impl FnMut(usize, &mut [Rgb]),
+) -> Result<(), Error> {
     let (w, h) = (frame.width(), frame.height());
     if image.len() != w * h {
         return Err(Error::SliceLength {
@@ -189,10 +205,11 @@ pub fn render<S: Sampler + Clone, C: Cost>(
         });
     }
     for x in 0..w {
-        let mut s = sampler.clone();
-        walk(frame, terrain, x, 0..h, &mut s, cost, column);
-        for (i, px) in column[..h].iter().enumerate() {
-            image[(h - 1 - i) * w + x] = *px;
+        walk_column(x, column);
+        for (i, px) in column.iter().take(h).enumerate() {
+            if let Some(dst) = image.get_mut((h - 1 - i) * w + x) {
+                *dst = *px;
+            }
         }
     }
     Ok(())
