@@ -244,6 +244,23 @@ pub fn render_with<C: Cost>(
     })
 }
 
+/// Walks column `x` of `frame` in `mode` (a fresh sampler, or the classic walk), counting with
+/// `cost`, into `out` (rows bottom to top).
+pub fn walk_mode<C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+    x: usize,
+    cost: &mut C,
+    out: &mut [Rgb],
+) {
+    let h = frame.height();
+    with_sampler!(mode, s => {
+        let mut s = s;
+        walk(frame, terrain, x, 0..h, &mut s, cost, out)
+    }, classic => classic::walk(frame, terrain, x, cost, out));
+}
+
 /// Renders without counting, one column per task on every core (rayon); the same pixels as
 /// [`render_with`], for runs where wall time is not measured.
 pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<Rendered> {
@@ -253,10 +270,7 @@ pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> 
         .into_par_iter()
         .map(|x| {
             let mut out = vec![Rgb::default(); h];
-            with_sampler!(mode, s => {
-                let mut s = s;
-                walk(frame, terrain, x, 0..h, &mut s, &mut NoCost, &mut out)
-            }, classic => classic::walk(frame, terrain, x, &mut NoCost, &mut out));
+            walk_mode(frame, terrain, mode, x, &mut NoCost, &mut out);
             out
         })
         .collect();
@@ -276,10 +290,7 @@ pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> 
 pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> Vec<Rgb> {
     let h = frame.height();
     let mut out = vec![Rgb::default(); h];
-    with_sampler!(mode, s => {
-        let mut s = s;
-        walk(frame, terrain, x, 0..h, &mut s, &mut NoCost, &mut out)
-    }, classic => classic::walk(frame, terrain, x, &mut NoCost, &mut out));
+    walk_mode(frame, terrain, mode, x, &mut NoCost, &mut out);
     out
 }
 
@@ -341,10 +352,7 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
         .map(|x| {
             let mut out = vec![Rgb::default(); h];
             let mut counts = Counts::new(&mut []);
-            with_sampler!(mode, s => {
-                let mut s = s;
-                walk(frame, terrain, x, 0..h, &mut s, &mut counts, &mut out)
-            }, classic => classic::walk(frame, terrain, x, &mut counts, &mut out));
+            walk_mode(frame, terrain, mode, x, &mut counts, &mut out);
             let mut tally = counts.total;
             tally.v = visible_voxels(frame, terrain, x);
             (out, tally)
@@ -392,10 +400,7 @@ pub fn hidden_and_missed(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -
         .map(|x| {
             let mut out = vec![Rgb::default(); h];
             let mut sampled = Sampled::default();
-            with_sampler!(mode, s => {
-                let mut s = s;
-                walk(frame, terrain, x, 0..h, &mut s, &mut sampled, &mut out)
-            }, classic => classic::walk(frame, terrain, x, &mut sampled, &mut out));
+            walk_mode(frame, terrain, mode, x, &mut sampled, &mut out);
             let mut visible = Vec::new();
             visit(frame, terrain, x, |march, seen| {
                 if seen {
