@@ -691,26 +691,38 @@ impl<'a, 't> March<'a, 't> {
     pub fn sample_linear(&self) -> Color16 {
         // Position in level cells, 32 fractional bits; centres sit at +½.
         let frac = ((self.v >> self.l) as u32) as u64; // the fraction of v / 2^l
-        let period_v = 2 * self.len_v;
-        let (p0, p1, f) = if frac >= 1 << 31 {
-            let p1 = if self.pv + 1 == period_v {
+        let (pv, len, stride) = (self.pv, self.len_v, self.stride_v as isize);
+        // The neighbour across is one row from the current voxel: the mirrored index moves by
+        // one cell, or stays at an edge of the map (where the mirror repeats the edge voxel).
+        let (near, f) = if frac >= 1 << 31 {
+            // The next cell, period position pv + 1.
+            let step = if pv + 1 == len || pv + 1 == 2 * len {
                 0
+            } else if pv < len {
+                stride
             } else {
-                self.pv + 1
+                -stride
             };
-            (self.pv, p1, ((frac - (1 << 31)) >> 24) as u32)
+            (step, ((frac - (1 << 31)) >> 24) as u32)
         } else {
-            let p0 = if self.pv == 0 {
-                period_v - 1
+            // The previous cell, period position pv − 1.
+            let step = if pv == 0 || pv == len {
+                0
+            } else if pv < len {
+                -stride
             } else {
-                self.pv - 1
+                stride
             };
-            (p0, self.pv, ((frac + (1 << 31)) >> 24) as u32)
+            (step, ((frac + (1 << 31)) >> 24) as u32)
         };
         let colors = self.level.colors();
-        let u = self.offset_u();
-        let c0 = colors[u + self.offset_v(p0)];
-        let c1 = colors[u + self.offset_v(p1)];
+        let at = |i: usize| colors.get(i).copied().unwrap_or_default();
+        let (here, there) = (at(self.idx), at(self.idx.wrapping_add_signed(near)));
+        let (c0, c1) = if frac >= 1 << 31 {
+            (here, there)
+        } else {
+            (there, here)
+        };
         let mix = |a: u8, b: u8| (u32::from(a) * (256 - f) + u32::from(b) * f) as u16;
         [mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b)]
     }
