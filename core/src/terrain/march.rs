@@ -82,15 +82,16 @@ pub struct March<'a, 't> {
     stride_v: usize,
     /// The array offset of the current cross-axis cell, `fold(pv)·stride_v`.
     off_v: usize,
-    /// What crossing into the next cell across the ray adds to `idx` (`±stride_v`), and how
-    /// many such crossings remain before a mirror edge across the ray.
+    /// What crossing into the next cell across the ray adds to `idx` (`±stride_v`, or 0 on a
+    /// one-cell-wide axis), and how many such crossings remain before a mirror edge across.
     dcross: isize,
     cross_left: u32,
     /// Steps taken so far; identifies the voxel for the distinct-sample count `M`.
     k: u32,
     /// The current voxel's index in the level's arrays, `fold(pu)·stride_u + off_v`.
     idx: usize,
-    /// What a step inside the current run adds to `idx` (`±stride_u`).
+    /// What a step inside the current run adds to `idx` (`±stride_u`, or 0 on a one-cell-wide
+    /// axis).
     du: isize,
     /// Steps left in the current run (see the module documentation), and the run's length
     /// when it was planned: `j`, `n`, `pu` and `k` hold their values at the run's start, and
