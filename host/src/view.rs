@@ -23,13 +23,14 @@ pub struct Size {
 impl std::str::FromStr for Size {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        let err = || format!("size {s:?}: expected WxH with W, H in 1..=16384, e.g. 400x400");
+        let max = footprint_core::terrain::camera::MAX_IMAGE_SIDE;
+        let err = || format!("size {s:?}: expected WxH with W, H in 1..={max}, e.g. 400x400");
         let (w, h) = s.split_once(['x', 'X']).ok_or_else(err)?;
         let (width, height) = (
             w.trim().parse::<u32>().map_err(|_| err())?,
             h.trim().parse::<u32>().map_err(|_| err())?,
         );
-        if width == 0 || height == 0 || width > 16_384 || height > 16_384 {
+        if width == 0 || height == 0 || width > max || height > max {
             return Err(err());
         }
         Ok(Size { width, height })

@@ -50,13 +50,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         }
     }
     let total = modes.len() as u64 * (bench::PAPER_PITCHES.len() as u64 + 1) * args.repeats;
-    let bar = indicatif::ProgressBar::new(total).with_style(
-        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} frames·modes {elapsed}")
-            .expect("a valid template"),
-    );
-    if args.json {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
+    let bar = super::progress(total, "frames·modes", args.json);
     let cases = bench::run(
         &map,
         &pyramid,

@@ -80,13 +80,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     }
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
-    let bar = indicatif::ProgressBar::new(args.frames as u64).with_style(
-        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} frames {elapsed} eta {eta}")
-            .expect("a valid template"),
-    );
-    if args.json {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
+    let bar = super::progress(args.frames as u64, "frames", args.json);
     let spec = FlySpec {
         frames: args.frames,
         step_m: args.step,

@@ -19,3 +19,17 @@ pub use render::{render, RenderArgs};
 pub use report::{report, ReportArgs};
 pub use specular::{specular, SpecularArgs};
 pub use table::{table, TableArgs};
+
+/// The one progress-bar style of every long run: a 30-cell bar, `pos/len unit`, the current
+/// message, the elapsed time and the estimate of what is left; drawn on stderr, and hidden
+/// when `hidden` (a run that prints JSON).
+pub fn progress(len: u64, unit: &str, hidden: bool) -> indicatif::ProgressBar {
+    let template = format!("{{bar:30}} {{pos}}/{{len}} {unit} {{msg}} {{elapsed}} eta {{eta}}");
+    let style = indicatif::ProgressStyle::with_template(&template)
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    let bar = indicatif::ProgressBar::new(len).with_style(style);
+    if hidden {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    bar
+}

@@ -69,10 +69,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         .chain([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss))
         .collect();
     let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
-    let bar = indicatif::ProgressBar::new(steps).with_style(
-        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} {elapsed}")
-            .expect("a valid template"),
-    );
+    let bar = super::progress(steps, "steps", false);
     let file = |name: &str| -> PathBuf { out.join(name) };
 
     // Tables 1–5.

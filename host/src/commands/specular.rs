@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 
 use crate::experiment::specular::{self as exp, MeasureConfig};
@@ -142,15 +142,11 @@ fn measure(args: &SpecularArgs) -> Result<()> {
         ..Default::default()
     };
     let scenes = SceneName::DISTINCT;
-    let bar = indicatif::ProgressBar::new(u64::from(cfg.frames) * scenes.len() as u64).with_style(
-        indicatif::ProgressStyle::with_template(
-            "{bar:30} {pos}/{len} frames (6 modes each) {elapsed} eta {eta}",
-        )
-        .context("progress template")?,
+    let bar = super::progress(
+        u64::from(cfg.frames) * scenes.len() as u64,
+        "frames (6 modes each)",
+        args.json,
     );
-    if args.json {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
     let records = exp::measure(&scenes, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
     if args.json {

@@ -74,11 +74,11 @@ pub fn table(args: &TableArgs) -> Result<()> {
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
     let pitches = args.case.pitches();
-    let bar = indicatif::ProgressBar::new(table::steps(pitches.len(), args.modes.len()))
-        .with_style(
-            indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} {elapsed}")
-                .expect("a valid template"),
-        );
+    let bar = super::progress(
+        table::steps(pitches.len(), args.modes.len()),
+        "steps",
+        false,
+    );
     let result = table::run(&map, &pyramid, &pitches, &args.modes, args.size, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);

@@ -30,7 +30,7 @@ pub use self::procedural::{procedural, DEFAULT_SIZE, MIN_SIZE};
 pub use self::tint::tint;
 
 /// The largest accepted width or height of a map, in voxels.
-pub const MAX_SIDE: u32 = 65_536;
+pub const MAX_SIDE: u32 = footprint_core::terrain::MAX_SIDE;
 
 /// An owned terrain map, ready to lend to `footprint_core::terrain::Level`.
 #[derive(Clone, PartialEq)]
