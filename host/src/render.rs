@@ -430,7 +430,8 @@ pub fn first_hit_distance(frame: &Frame<'_>, terrain: &Terrain<'_>) -> Option<f6
     let mut probe = FirstHit::default();
     let mut out = [Rgb::default()];
     walk(frame, terrain, col, 0..1, &mut probe, &mut NoCost, &mut out);
-    probe.n.map(|n| frame.column(col).distance(n))
+    let column = frame.column(col)?;
+    probe.n.map(|n| column.distance(n))
 }
 
 /// The paper's rule for Table 1: the eye height (metres) at which the pixel footprint at the

@@ -72,7 +72,7 @@ fn f(h: Height) -> f64 {
 /// inside `[s_i, s_{i+1}]`. What is left above the last voxel is sky. Returns, bottom to top,
 /// each pixel's colour as 8.8 per channel in f64 (before rounding to 8 bits).
 fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[f64; 3]> {
-    let column = frame.column(col);
+    let column = frame.column(col).expect("a column of the frame");
     let h = frame.height();
     let eye = f(frame.eye());
     let n_eye = f(column.n_eye());
@@ -131,7 +131,7 @@ fn ss_reference(
     n_rays: u32,
 ) -> (Vec<Rgb>, Vec<u32>) {
     let log2 = n_rays.trailing_zeros();
-    let column = frame.column(col);
+    let column = frame.column(col).expect("a column of the frame");
     let h = frame.height();
     let sky = frame.sky();
     let mut march = March::new(frame, terrain, column);
@@ -833,7 +833,7 @@ fn each_column_reads_the_height_grid_of_its_major_axis() {
         };
         let cam = camera_far(pose, 10.0, 8, 10_000.0);
         with_frame(&cam, &terrain, true, |frame| {
-            let column = frame.column(4);
+            let column = frame.column(4).expect("a column of the frame");
             assert_eq!(column.axis(), axis);
             let mut march = March::new(frame, &terrain, column);
             while march.level() == 0 {
@@ -1002,7 +1002,7 @@ fn far_cut_is_the_last_centre_within_far() {
                 let cam = camera_far(pose, 20.0, 16, far_m);
                 with_frame(&cam, &terrain, false, |frame| {
                     for c in 0..frame.width() {
-                        let col = frame.column(c);
+                        let col = frame.column(c).expect("a column of the frame");
                         let n = col.n_far();
                         // 1e-9 voxel: f64 rounding of the distance itself.
                         let last_ok = col.distance(n) <= far_m + 1e-9;
@@ -1664,7 +1664,7 @@ fn analytic_scenes_look_as_designed() {
     let cam = camera(pose_for(&s), 20.0, 32);
     with_frame(&cam, &t, false, |frame| {
         for c in [0, 16, 31] {
-            let column = frame.column(c);
+            let column = frame.column(c).expect("a column of the frame");
             let n_eye = column.n_eye().to_num::<f64>();
             let mut last = (0.0f64, 0u32);
             for i in 0..32 {

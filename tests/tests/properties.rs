@@ -475,7 +475,7 @@ proptest! {
             let mut spans = Spans::default();
             columns(frame, terrain, &ParallelArea::new(), &mut spans);
             for &(c, i, n, sum) in &spans.pixels {
-                let column = frame.column(c);
+                let column = frame.column(c).expect("a column of the frame");
                 let span = (frame.ray(column, i + 1).at(n) - frame.ray(column, i).at(n))
                     .to_bits()
                     .max(1);

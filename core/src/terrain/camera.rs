@@ -383,9 +383,9 @@ impl<'t> Frame<'t> {
         self.rows.len() - 1
     }
 
-    /// Column `c`'s constants.
-    pub fn column(&self, c: usize) -> &Column {
-        &self.columns[c]
+    /// Column `c`'s constants, or `None` beyond the frame's width.
+    pub fn column(&self, c: usize) -> Option<&Column> {
+        self.columns.get(c)
     }
 
     /// Every column's constants.

@@ -37,11 +37,13 @@ pub fn walk<S: Sampler, C: Cost>(
 ) {
     let first = rows.start;
     let end = rows.end.min(frame.height()).min(first + out.len());
-    if first >= end || col >= frame.width() {
+    let Some(column) = frame.column(col) else {
+        return;
+    };
+    if first >= end {
         return;
     }
     let out = &mut out[..end - first];
-    let column = frame.column(col);
     let eye = Eye {
         h: frame.eye(),
         n: column.n_eye,

@@ -40,10 +40,9 @@ pub fn visit(
     col: usize,
     mut f: impl FnMut(&March<'_, '_>, bool),
 ) {
-    if col >= frame.width() {
+    let Some(column) = frame.column(col) else {
         return;
-    }
-    let column = frame.column(col);
+    };
     let eye = Eye {
         h: frame.eye(),
         n: column.n_eye,
