@@ -112,6 +112,14 @@ impl FromStr for Mode {
     }
 }
 
+/// A mode serializes as its CLI name (`"ps"`, `"ss8"`, `"as-exact"`, …): JSON readers see the
+/// names the CLI takes.
+impl serde::Serialize for Mode {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 impl fmt::Display for Mode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

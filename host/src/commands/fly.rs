@@ -145,7 +145,7 @@ pub fn markdown(f: &fly::Fly) -> String {
     let table = |get: &dyn Fn(&fly::ModeFly) -> Option<fly::Histogram>| {
         let mut s = String::from("| Change |");
         for m in &f.modes {
-            s += &format!(" {} |", m.mode.to_uppercase());
+            s += &format!(" {} |", m.mode.to_string().to_uppercase());
         }
         s += "\n|---|";
         s += &"---|".repeat(f.modes.len());

@@ -131,14 +131,14 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         write_png(&file(&name), flight.frames as u32, size.height, &m.cut)?;
         cuts += &format!(
             "![{} over time](cut_{}.png) ",
-            m.mode.to_uppercase(),
+            m.mode.to_string().to_uppercase(),
             m.mode
         );
     }
     let bars: Vec<(String, Vec<u64>)> = flight
         .modes
         .iter()
-        .map(|m| (m.mode.to_uppercase(), m.histogram.0.to_vec()))
+        .map(|m| (m.mode.to_string().to_uppercase(), m.histogram.0.to_vec()))
         .collect();
     plot::grouped_bars_log(
         &file("table6.png"),
@@ -217,15 +217,15 @@ fn write_text(path: &Path, text: &str) -> Result<()> {
 /// The paper's claims, checked on these results: `(claim, holds, evidence)`.
 pub fn claims(t: &Tables15, f: &fly::Fly) -> Vec<(String, bool, String)> {
     let mut out = Vec::new();
-    let mode = |c: &table::Case, m: &str| c.modes.iter().find(|r| r.mode == m).cloned();
-    let coverage = |m: &str| -> Vec<f64> {
+    let mode = |c: &table::Case, m: Mode| c.modes.iter().find(|r| r.mode == m).cloned();
+    let coverage = |m: Mode| -> Vec<f64> {
         t.cases
             .iter()
             .filter_map(|c| mode(c, m))
             .map(|r| r.coverage)
             .collect()
     };
-    let (exact_cov, paper_cov) = (coverage("as-exact"), coverage("as"));
+    let (exact_cov, paper_cov) = (coverage(Mode::AsExact), coverage(Mode::As));
     out.push((
         "AS coverage is 1 in all three cases (perspective-exact AS, `as-exact`)".into(),
         exact_cov.iter().all(|&c| c == 1.0) && exact_cov.len() == t.cases.len(),
@@ -246,7 +246,7 @@ pub fn claims(t: &Tables15, f: &fly::Fly) -> Vec<(String, bool, String)> {
     let ps: Vec<(f64, f64)> = t
         .cases
         .iter()
-        .filter_map(|c| mode(c, "ps").map(|r| (c.pitch, r.coverage)))
+        .filter_map(|c| mode(c, Mode::Ps).map(|r| (c.pitch, r.coverage)))
         .collect();
     let mut by_pitch = ps.clone();
     by_pitch.sort_by(|a, b| b.0.total_cmp(&a.0));
@@ -264,7 +264,9 @@ pub fn claims(t: &Tables15, f: &fly::Fly) -> Vec<(String, bool, String)> {
         .iter()
         .all(|c| c.coverage_by_rate.windows(2).all(|w| w[1].1 >= w[0].1));
     let five = t.cases.iter().find(|c| c.pitch == 5.0);
-    let ss32_5 = five.and_then(|c| mode(c, "ss32")).map(|r| r.coverage);
+    let ss32_5 = five
+        .and_then(|c| mode(c, Mode::Ss(Rate::N32)))
+        .map(|r| r.coverage);
     out.push((
         "SS coverage never decreases as N grows, and stays below 1 at pitch 5° for N = 32".into(),
         mono && ss32_5.is_some_and(|c| c < 1.0),
@@ -274,8 +276,9 @@ pub fn claims(t: &Tables15, f: &fly::Fly) -> Vec<(String, bool, String)> {
         ),
     ));
     let (ss16, as5) = (
-        five.and_then(|c| mode(c, "ss16")).map(|r| r.hits),
-        five.and_then(|c| mode(c, "as")).map(|r| r.hits),
+        five.and_then(|c| mode(c, Mode::Ss(Rate::N16)))
+            .map(|r| r.hits),
+        five.and_then(|c| mode(c, Mode::As)).map(|r| r.hits),
     );
     out.push((
         "At pitch 5°, SS16 spends more hits than AS, or within 10 %".into(),
@@ -286,13 +289,13 @@ pub fn claims(t: &Tables15, f: &fly::Fly) -> Vec<(String, bool, String)> {
             as5.map_or("missing".into(), |h| format!("{h:.0}"))
         ),
     ));
-    let bin = |m: &str| {
+    let bin = |m: Mode| {
         f.modes
             .iter()
             .find(|x| x.mode == m)
             .map(|x| x.histogram.get("6-60"))
     };
-    let (a, s, p) = (bin("as"), bin("ss16"), bin("ps"));
+    let (a, s, p) = (bin(Mode::As), bin(Mode::Ss(Rate::N16)), bin(Mode::Ps));
     out.push((
         "In Table 6, AS has fewer 6–60 changes than SS16, and at least 10× fewer than PS".into(),
         matches!((a, s, p), (Some(a), Some(s), Some(p)) if a < s && a * 10 <= p),
@@ -304,16 +307,13 @@ pub fn claims(t: &Tables15, f: &fly::Fly) -> Vec<(String, bool, String)> {
             p.map_or("missing".into(), |v| v.to_string())
         ),
     ));
-    let rmse: Vec<(String, f64)> = five
-        .map(|c| c.modes.iter().map(|r| (r.mode.clone(), r.rmse)).collect())
+    let rmse: Vec<(Mode, f64)> = five
+        .map(|c| c.modes.iter().map(|r| (r.mode, r.rmse)).collect())
         .unwrap_or_default();
-    let best = rmse
-        .iter()
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|b| b.0.clone());
+    let best = rmse.iter().min_by(|a, b| a.1.total_cmp(&b.1)).map(|b| b.0);
     out.push((
         "AS has the lowest RMSE against the ground truth at pitch 5° (`as` or `as-exact`)".into(),
-        matches!(best.as_deref(), Some("as" | "as-exact")),
+        matches!(best, Some(Mode::As | Mode::AsExact)),
         rmse.iter()
             .map(|(m, e)| format!("{m} {e:.2}"))
             .collect::<Vec<_>>()
@@ -401,7 +401,7 @@ fn markdown(
     s += &f
         .modes
         .iter()
-        .map(|m| m.mode.to_uppercase())
+        .map(|m| m.mode.to_string().to_uppercase())
         .collect::<Vec<_>>()
         .join(", ");
     s += "):\n\n";
@@ -432,10 +432,15 @@ fn markdown(
     s += "- **Table 6** counts are smaller: 0.5 m per frame is 1/60 of our 30 m voxel, so most \
           pixels do not change at all between frames; the ordering of the modes is the paper's.\n";
     s += "- **Time.** AS costs more than the paper's \"marginal increase\" over PS (see the ms rows): \
-          each AS hit does Eq. 4's interpolation and one exact division for the ray through the \
-          voxel's top, and on a current CPU that is several traversal steps' worth of work.\n";
+          each AS hit leaves the walk's inner loop, does Eq. 4's interpolation and, in `as-exact`, \
+          one exact division for the ray through the voxel's top; the paper's `as` divides once \
+          per pixel.\n";
     if let Some(c) = t.cases.iter().find(|c| c.pitch == 5.0) {
-        let with: Vec<(String, f64)> = c.modes.iter().map(|r| (r.mode.clone(), r.rmse)).collect();
+        let with: Vec<(String, f64)> = c
+            .modes
+            .iter()
+            .map(|r| (r.mode.to_string(), r.rmse))
+            .collect();
         s += &format!(
             "- **Error against the ground truth** at 5° (RMSE, 8-bit levels): {}. The paper has \
              no such measure. Every LOD mode samples coarse pyramid voxels at a distance while \

@@ -115,7 +115,7 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
         s += &c
             .modes
             .iter()
-            .map(|m| m.mode.to_uppercase())
+            .map(|m| m.mode.to_string().to_uppercase())
             .collect::<Vec<_>>()
             .join(" | ");
         s += " |\n|---|";

@@ -28,7 +28,7 @@ pub fn paper_modes() -> Vec<Mode> {
 #[derive(Clone, Debug, Serialize)]
 pub struct ModeTime {
     /// The mode.
-    pub mode: String,
+    pub mode: Mode,
     /// Fastest frame, milliseconds, one thread, no counting.
     pub ms: f64,
     /// Median frame, milliseconds, one thread.
@@ -172,7 +172,7 @@ pub fn run(
             let (one, all) = &samples[v][m];
             let (_, measured) = count(frame, &terrain, mode)?;
             times.push(ModeTime {
-                mode: mode.to_string(),
+                mode,
                 ms: min(one),
                 ms_median: median(one),
                 ms_threads: min(all),

@@ -84,7 +84,7 @@ pub struct FlySpec {
 #[derive(Clone, Debug, Serialize)]
 pub struct ModeFly {
     /// The mode.
-    pub mode: String,
+    pub mode: Mode,
     /// Table 6: changes of the chosen column's pixels.
     pub histogram: Histogram,
     /// The same, summed over every column (when asked for).
@@ -246,8 +246,8 @@ pub fn run_with_frames(
             .modes
             .iter()
             .enumerate()
-            .map(|(m, mode)| ModeFly {
-                mode: mode.to_string(),
+            .map(|(m, &mode)| ModeFly {
+                mode,
                 histogram: column_hist[m],
                 all_columns: spec.all_columns.then_some(all_hist[m]),
                 cut: std::mem::take(&mut cuts[m]),

@@ -23,7 +23,7 @@ pub const TABLE5_COVERAGE: [f64; 4] = [0.3, 0.5, 0.7, 0.9];
 #[allow(non_snake_case)]
 pub struct ModeRow {
     /// `as`, `ps`, `li`, `ss2`, …
-    pub mode: String,
+    pub mode: Mode,
     /// Distinct voxels sampled per column (`M`, or `M′` for AS).
     pub M: f64,
     /// Ray–voxel hits per column (`NP` for SS_N, `M′ + P` for AS).
@@ -143,7 +143,7 @@ pub fn run(
             let e = rmse(&image.image, &truth);
             let (hidden, missed) = hidden_and_missed(&frame, &terrain, mode);
             rows.push(ModeRow {
-                mode: mode.to_string(),
+                mode,
                 M: per(t.m),
                 hits: per(t.hits),
                 coverage: t.coverage(),
@@ -161,7 +161,7 @@ pub fn run(
             progress(&format!("pitch {pitch}°: coverage of ss{n}"));
             let known = rows
                 .iter()
-                .find(|r| r.mode == Mode::Ss(rate).to_string())
+                .find(|r| r.mode == Mode::Ss(rate))
                 .map(|r| r.coverage);
             let c = match known {
                 Some(c) => c,
