@@ -26,10 +26,7 @@ fn results() -> &'static (Tables15, Fly) {
     RESULTS.get_or_init(|| {
         let map = procedural(1, DEFAULT_SIZE);
         let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
-        let modes: Vec<Mode> = [Mode::As, Mode::AsExact, Mode::Ps, Mode::Li]
-            .into_iter()
-            .chain([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss))
-            .collect();
+        let modes = footprint_host::experiment::bench::paper_modes();
         let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, |_| {}).unwrap();
         let spec = FlySpec {
             frames: 400,

@@ -64,10 +64,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         width: 400,
         height: 400,
     };
-    let modes: Vec<Mode> = [Mode::As, Mode::AsExact, Mode::Ps, Mode::Li]
-        .into_iter()
-        .chain([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss))
-        .collect();
+    let modes = crate::experiment::bench::paper_modes();
     let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
     let bar = super::progress(steps, "steps", false);
     let file = |name: &str| -> PathBuf { out.join(name) };
