@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use footprint_core::terrain::camera::Options;
 use footprint_core::terrain::cost::NoCost;
 use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_host::experiment::bench::{paper_camera, paper_modes, PAPER_PITCHES};
+use footprint_host::experiment::paper::{paper_camera, paper_modes, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::{render_with, Tables};

@@ -18,7 +18,7 @@ use footprint_core::terrain::camera::Options;
 use footprint_core::terrain::cost::NoCost;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::Rgb;
-use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
+use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::procedural;
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::{render_with, Mode, Tables, SS_RATES};

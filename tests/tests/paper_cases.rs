@@ -6,7 +6,7 @@ mod common;
 use footprint_core::terrain::camera::Options;
 use footprint_core::terrain::cost::Tally;
 use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_host::experiment::bench::{paper_camera, PAPER_PITCHES};
+use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::{count, first_hit_distance, hidden_and_missed, Mode, Rate, Tables};

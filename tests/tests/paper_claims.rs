@@ -6,9 +6,9 @@ use std::sync::OnceLock;
 
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::commands::report::claims;
-use footprint_host::experiment::bench::PAPER_PITCHES;
 use footprint_host::experiment::fly::{self, Fly, FlySpec};
 use footprint_host::experiment::heights;
+use footprint_host::experiment::paper::PAPER_PITCHES;
 use footprint_host::experiment::table::{self, Tables15};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
@@ -26,7 +26,7 @@ fn results() -> &'static (Tables15, Fly) {
     RESULTS.get_or_init(|| {
         let map = procedural(1, DEFAULT_SIZE);
         let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
-        let modes = footprint_host::experiment::bench::paper_modes();
+        let modes = footprint_host::experiment::paper::paper_modes();
         let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, |_| {}).unwrap();
         let spec = FlySpec {
             frames: 400,

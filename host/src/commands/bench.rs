@@ -49,7 +49,9 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
             modes.insert(0, base);
         }
     }
-    let total = modes.len() as u64 * (bench::PAPER_PITCHES.len() as u64 + 1) * args.repeats;
+    let total = modes.len() as u64
+        * (crate::experiment::paper::PAPER_PITCHES.len() as u64 + 1)
+        * args.repeats;
     let bar = super::progress(total, "frames·modes", args.json);
     let cases = bench::run(
         &map,

@@ -8,10 +8,10 @@ use clap::Args;
 use footprint_core::terrain::camera::{CameraParams, Options};
 use serde_json::json;
 
-use crate::experiment::bench::{paper_camera, PAPER_PITCHES};
 use crate::experiment::fly::{self, FlySpec, BINS};
 use crate::experiment::heights::{self, Variant};
 use crate::experiment::inspect;
+use crate::experiment::paper::{paper_camera, PAPER_PITCHES};
 use crate::experiment::table::{self, Tables15};
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{html, plot, png::write_png, write_atomic};
@@ -64,7 +64,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         width: 400,
         height: 400,
     };
-    let modes = crate::experiment::bench::paper_modes();
+    let modes = crate::experiment::paper::paper_modes();
     let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
     let bar = super::progress(steps, "steps", false);
     let file = |name: &str| -> PathBuf { out.join(name) };

@@ -3,7 +3,7 @@
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 
-use crate::experiment::bench::PAPER_PITCHES;
+use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table::{self, Tables15};
 use crate::render::Mode;
 use crate::view::{MapArgs, Size};

@@ -9,20 +9,11 @@ use footprint_core::terrain::camera::{Camera, CameraParams};
 use footprint_core::terrain::cost::NoCost;
 use serde::Serialize;
 
+use super::paper::{paper_camera, PAPER_PITCHES};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{count, render_parallel, render_with, Mode, Rate, Tables};
-use crate::view::{resolve_camera, CameraArgs, Size, Switch};
-
-/// The paper's three pitches (Table 1).
-pub const PAPER_PITCHES: [f64; 3] = [40.0, 20.0, 5.0];
-
-/// The modes of Tables 2–4 (AS both as the paper costs it and perspective-exact), plus LI.
-pub fn paper_modes() -> Vec<Mode> {
-    let mut m = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Li];
-    m.extend([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss));
-    m
-}
+use crate::render::{count, render_parallel, render_with, Mode, Tables};
+use crate::view::Size;
 
 /// One mode's timing in one view.
 #[derive(Clone, Debug, Serialize)]
@@ -58,33 +49,6 @@ pub struct CaseTime {
     pub far_voxels: f64,
     /// Every mode.
     pub modes: Vec<ModeTime>,
-}
-
-/// The camera of a paper case on `map`: FOV 10°, 400×400 (or `size`), fit-first-hit.
-pub fn paper_camera(
-    map: &Map,
-    pyramid: &Pyramid,
-    pitch: f64,
-    size: Size,
-    lod: bool,
-) -> Result<Camera> {
-    let args = CameraArgs {
-        x: None,
-        y: None,
-        height: None,
-        fit_first_hit: true,
-        heading: 0.0,
-        pitch,
-        fov: 10.0,
-        size,
-        far: None,
-        lod: if lod { Switch::On } else { Switch::Off },
-    };
-    let options = footprint_core::terrain::camera::Options {
-        lod,
-        ..Default::default()
-    };
-    resolve_camera(map, pyramid, &args, options)
 }
 
 /// The far distance of the classic view, in voxels: what the classic renderer usually draws.

@@ -43,7 +43,7 @@ use footprint_core::{Error, Rgb};
 use footprint_core::specular::raster::{self, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Normal, Phong};
 
-use crate::experiment::bench::paper_camera;
+use crate::experiment::paper::paper_camera;
 use crate::map::{procedural, Map};
 use crate::pyramid::Pyramid;
 use crate::render::{count, Mode, Rate, Tables};
@@ -79,7 +79,7 @@ pub struct Scene {
 }
 
 /// Builds the firmware's scene: `procedural(SEED, MAP_SIDE)` seen from its centre by the
-/// paper's camera (`experiment::bench::paper_camera`, the rule of Table 1).
+/// paper's camera (`experiment::paper::paper_camera`, the rule of Table 1).
 pub fn scene() -> Result<Scene> {
     let map = procedural(SEED, MAP_SIDE);
     let pyramid = Pyramid::build(&map, HeightFilter::default())?;

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 
-use super::bench::paper_camera;
+use super::paper::paper_camera;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column, render_with, Mode, Tables};

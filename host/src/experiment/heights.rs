@@ -15,7 +15,7 @@ use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::Rgb;
 use serde::Serialize;
 
-use super::bench::paper_camera;
+use super::paper::paper_camera;
 use super::reference::{reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;

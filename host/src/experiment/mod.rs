@@ -5,6 +5,7 @@ pub mod firmware;
 pub mod fly;
 pub mod heights;
 pub mod inspect;
+pub mod paper;
 pub mod reference;
 pub mod specular;
 pub mod table;

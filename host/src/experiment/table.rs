@@ -8,7 +8,7 @@ use anyhow::Result;
 use footprint_core::terrain::camera::Options;
 use serde::Serialize;
 
-use super::bench::paper_camera;
+use super::paper::paper_camera;
 use super::reference::{psnr, reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;

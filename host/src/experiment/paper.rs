@@ -1,0 +1,54 @@
+//! The paper's views and modes (Sect. 7, Table 1), shared by every experiment: FOV 10°,
+//! 400×400, the eye at the fit-first-hit height, at pitch 40°, 20° and 5°. A plain view spec,
+//! no CLI types.
+
+use anyhow::{Context, Result};
+use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+
+use crate::map::Map;
+use crate::pyramid::Pyramid;
+use crate::render::{fit_first_hit, Mode, Rate};
+use crate::view::{default_far_voxels, Size};
+
+/// The paper's three pitches (Table 1).
+pub const PAPER_PITCHES: [f64; 3] = [40.0, 20.0, 5.0];
+
+/// The modes of Tables 2–4 (AS both as the paper costs it and perspective-exact), plus LI.
+pub fn paper_modes() -> Vec<Mode> {
+    let mut m = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Li];
+    m.extend([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss));
+    m
+}
+
+/// The camera of a paper case on `map`: from the map's centre, heading north, FOV 10°,
+/// `size` pixels (the paper's is 400×400), the default far distance, and the eye at the height
+/// where the pixel footprint at the first hit is one voxel wide (the rule of Table 1), found
+/// on the pyramid with or without `lod`.
+pub fn paper_camera(
+    map: &Map,
+    pyramid: &Pyramid,
+    pitch: f64,
+    size: Size,
+    lod: bool,
+) -> Result<Camera> {
+    let mut params = CameraParams {
+        x_m: f64::from(map.width) * map.spacing_m / 2.0,
+        y_m: f64::from(map.height) * map.spacing_m / 2.0,
+        eye_m: 0.0,
+        heading_deg: 0.0,
+        pitch_deg: pitch,
+        fov_deg: 10.0,
+        width: size.width,
+        height: size.height,
+        far_m: 1.0,
+    };
+    let probe = Camera::new(params).context("camera")?;
+    params.far_m = default_far_voxels(map, probe.pixel_angle()) * map.spacing_m;
+    let options = Options {
+        lod,
+        ..Options::default()
+    };
+    let terrain = pyramid.terrain(lod)?;
+    params.eye_m = fit_first_hit(params, &terrain, options)?;
+    Camera::new(params).context("camera")
+}
