@@ -5,7 +5,7 @@
 use std::sync::OnceLock;
 
 use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_host::commands::report::claims;
+use footprint_host::experiment::claims::claims;
 use footprint_host::experiment::fly::{self, Fly, FlySpec};
 use footprint_host::experiment::heights;
 use footprint_host::experiment::paper::PAPER_PITCHES;

@@ -1,6 +1,7 @@
 //! Experiments: each returns data and prints nothing.
 
 pub mod bench;
+pub mod claims;
 pub mod firmware;
 pub mod fly;
 pub mod heights;

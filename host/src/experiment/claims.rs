@@ -1,0 +1,115 @@
+//! The paper's claims (Sects. 5–7), checked on the results of the table and flight
+//! experiments: each one a sentence, whether it holds, and the numbers that decide it. The
+//! report prints them; `tests/paper_claims.rs` asserts them on the built-in terrain.
+
+use super::fly::Fly;
+use super::table::{Case, Tables15};
+use crate::render::{Mode, Rate};
+
+/// The paper's claims, checked on these results: `(claim, holds, evidence)`.
+pub fn claims(t: &Tables15, f: &Fly) -> Vec<(String, bool, String)> {
+    let mut out = Vec::new();
+    let mode = |c: &Case, m: Mode| c.modes.iter().find(|r| r.mode == m).cloned();
+    let coverage = |m: Mode| -> Vec<f64> {
+        t.cases
+            .iter()
+            .filter_map(|c| mode(c, m))
+            .map(|r| r.coverage)
+            .collect()
+    };
+    let (exact_cov, paper_cov) = (coverage(Mode::AsExact), coverage(Mode::As));
+    out.push((
+        "AS coverage is 1 in all three cases (perspective-exact AS, `as-exact`)".into(),
+        exact_cov.iter().all(|&c| c == 1.0) && exact_cov.len() == t.cases.len(),
+        format!(
+            "as-exact {}; the paper's parallel-ray AS (`as`) {}",
+            exact_cov
+                .iter()
+                .map(|c| format!("{c:.3}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            paper_cov
+                .iter()
+                .map(|c| format!("{c:.4}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    ));
+    let ps: Vec<(f64, f64)> = t
+        .cases
+        .iter()
+        .filter_map(|c| mode(c, Mode::Ps).map(|r| (c.pitch, r.coverage)))
+        .collect();
+    let mut by_pitch = ps.clone();
+    by_pitch.sort_by(|a, b| b.0.total_cmp(&a.0));
+    out.push((
+        "PS coverage falls as the pitch falls".into(),
+        by_pitch.windows(2).all(|w| w[1].1 < w[0].1),
+        by_pitch
+            .iter()
+            .map(|(p, c)| format!("{p}°: {c:.3}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+    ));
+    let mono = t
+        .cases
+        .iter()
+        .all(|c| c.coverage_by_rate.windows(2).all(|w| w[1].1 >= w[0].1));
+    let five = t.cases.iter().find(|c| c.pitch == 5.0);
+    let ss32_5 = five
+        .and_then(|c| mode(c, Mode::Ss(Rate::N32)))
+        .map(|r| r.coverage);
+    out.push((
+        "SS coverage never decreases as N grows, and stays below 1 at pitch 5° for N = 32".into(),
+        mono && ss32_5.is_some_and(|c| c < 1.0),
+        format!(
+            "non-decreasing: {mono}; SS32 at 5°: {}",
+            ss32_5.map_or("missing".into(), |c| format!("{c:.3}"))
+        ),
+    ));
+    let (ss16, as5) = (
+        five.and_then(|c| mode(c, Mode::Ss(Rate::N16)))
+            .map(|r| r.hits),
+        five.and_then(|c| mode(c, Mode::As)).map(|r| r.hits),
+    );
+    out.push((
+        "At pitch 5°, SS16 spends more hits than AS, or within 10 %".into(),
+        matches!((ss16, as5), (Some(s), Some(a)) if s >= 0.9 * a),
+        format!(
+            "SS16 {}, AS {} hits per column",
+            ss16.map_or("missing".into(), |h| format!("{h:.0}")),
+            as5.map_or("missing".into(), |h| format!("{h:.0}"))
+        ),
+    ));
+    let bin = |m: Mode| {
+        f.modes
+            .iter()
+            .find(|x| x.mode == m)
+            .map(|x| x.histogram.get("6-60"))
+    };
+    let (a, s, p) = (bin(Mode::As), bin(Mode::Ss(Rate::N16)), bin(Mode::Ps));
+    out.push((
+        "In Table 6, AS has fewer 6–60 changes than SS16, and at least 10× fewer than PS".into(),
+        matches!((a, s, p), (Some(a), Some(s), Some(p)) if a < s && a * 10 <= p),
+        format!(
+            "column {}: AS {}, SS16 {}, PS {}",
+            f.column,
+            a.map_or("missing".into(), |v| v.to_string()),
+            s.map_or("missing".into(), |v| v.to_string()),
+            p.map_or("missing".into(), |v| v.to_string())
+        ),
+    ));
+    let rmse: Vec<(Mode, f64)> = five
+        .map(|c| c.modes.iter().map(|r| (r.mode, r.rmse)).collect())
+        .unwrap_or_default();
+    let best = rmse.iter().min_by(|a, b| a.1.total_cmp(&b.1)).map(|b| b.0);
+    out.push((
+        "AS has the lowest RMSE against the ground truth at pitch 5° (`as` or `as-exact`)".into(),
+        matches!(best, Some(Mode::As | Mode::AsExact)),
+        rmse.iter()
+            .map(|(m, e)| format!("{m} {e:.2}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+    ));
+    out
+}
