@@ -6,9 +6,10 @@ use anyhow::{bail, Result};
 use clap::Args;
 use footprint_core::Rgb;
 
-use crate::experiment::fly::{self, FlySpec, BINS};
+use crate::experiment::fly::{self, FlySpec};
 use crate::render::Mode;
 use crate::report::apng::Animation;
+use crate::report::flight;
 use crate::report::png::write_png;
 use crate::view::{MapArgs, Size};
 
@@ -135,38 +136,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     if args.json {
         println!("{}", serde_json::to_string(&result)?);
     } else {
-        print!("{}", markdown(&result));
+        print!("{}", flight::markdown(&result));
     }
     Ok(())
-}
-
-/// Table 6 as Markdown: the chosen column, then (when measured) every column.
-pub fn markdown(f: &fly::Fly) -> String {
-    let table = |get: &dyn Fn(&fly::ModeFly) -> Option<fly::Histogram>| {
-        let mut s = String::from("| Change |");
-        for m in &f.modes {
-            s += &format!(" {} |", m.mode.to_string().to_uppercase());
-        }
-        s += "\n|---|";
-        s += &"---|".repeat(f.modes.len());
-        s += "\n";
-        for (b, name) in BINS.iter().enumerate() {
-            s += &format!("| {name} |");
-            for m in &f.modes {
-                s += &format!(" {} |", get(m).map_or(0, |h| h.0[b]));
-            }
-            s += "\n";
-        }
-        s
-    };
-    let mut s = format!(
-        "**Table 6.** Changes in the 8-bit luminance of the pixels of column {}, between consecutive frames of {} ({} m per frame).\n\n",
-        f.column, f.frames, f.step
-    );
-    s += &table(&|m| Some(m.histogram));
-    if f.modes.iter().any(|m| m.all_columns.is_some()) {
-        s += "\nSummed over every column:\n\n";
-        s += &table(&|m| m.all_columns);
-    }
-    s
 }

@@ -280,9 +280,9 @@ fn markdown(
     s += "\n## The three views (Figs. 15–17)\n\n| Pitch | PS | AS |\n|---|---|---|\n";
     s += views;
     s += "\n## Tables 1–5\n\n";
-    s += &super::table::markdown(t, source);
+    s += &crate::report::tables::markdown(t, source);
     s += "\n![Coverage against N](coverage.png)\n\n## Table 6 and Fig. 14: the flight\n\n";
-    s += &super::fly::markdown(f);
+    s += &crate::report::flight::markdown(f);
     s += "\n![Table 6 as bars](table6.png)\n\nColumn ";
     s += &format!(
         "{} over time (one image column per frame; left to right: ",

@@ -1,10 +1,12 @@
-//! Writers: PNG images and JSON, each written atomically (temporary file, then rename), so an
+//! Writers: PNG images, plots, Markdown (Tables 1–6), HTML and JSON, each written atomically (temporary file, then rename), so an
 //! interrupted or failed run never leaves a half-written output.
 
 pub mod apng;
+pub mod flight;
 pub mod html;
 pub mod plot;
 pub mod png;
+pub mod tables;
 
 use std::io::Write;
 use std::path::Path;
