@@ -2,6 +2,7 @@
 //! interrupted or failed run never leaves a half-written output.
 
 pub mod apng;
+pub mod document;
 pub mod flight;
 pub mod html;
 pub mod plot;
