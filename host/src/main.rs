@@ -44,7 +44,29 @@ enum Command {
     FirmwareReference(commands::FirmwareReferenceArgs),
 }
 
+/// A closed stdout (`footprint … | head`) ends the run quietly with the status a shell gives a
+/// process killed by SIGPIPE (128 + 13), as `head` expects: Rust ignores SIGPIPE, so a write
+/// to the closed pipe fails, and `println!` turns that failure into a panic, which this hook
+/// catches before it prints anything. Every output file is written and renamed into place
+/// before the command prints to stdout, so nothing is left half-written.
+fn quiet_on_closed_stdout() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    quiet_on_closed_stdout();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => {

@@ -369,3 +369,37 @@ fn fly_animation_starts_with_the_rendered_view() {
         }
     }
 }
+
+/// A closed stdout (`footprint … | true`) is not a crash: no panic message, and the status a
+/// shell gives a process killed by SIGPIPE (141), as `head` expects. Before: exit 101 and
+/// "failed printing to stdout: Broken pipe".
+#[test]
+fn a_closed_stdout_ends_the_run_quietly() {
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args([
+            "render",
+            "--terrain-size",
+            "64",
+            "--size",
+            "8x8",
+            "--counts",
+            "--json",
+            "--per-column",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    // Close the reading end before the program writes its JSON.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("it ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "a panic: {stderr}");
+    assert_eq!(
+        out.status.code(),
+        Some(141),
+        "status {:?}: {stderr}",
+        out.status
+    );
+}
