@@ -63,6 +63,12 @@ pub struct Line {
 }
 
 impl Line {
+    /// The horizontal ray at height 0.
+    pub const ZERO: Line = Line {
+        base: Height::ZERO,
+        slope: Slope::ZERO,
+    };
+
     /// The ray's height above the voxel centred at `n` (half-voxels): exact, saturating.
     #[inline(always)]
     pub fn at(&self, n: i64) -> Height {

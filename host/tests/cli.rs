@@ -403,3 +403,13 @@ fn a_closed_stdout_ends_the_run_quietly() {
         out.status
     );
 }
+
+/// Counts the CLI refuses with one line naming the option: `--threads 0` (any command) and
+/// `bench --repeats 0` (before: "best of 0").
+#[test]
+fn zero_threads_and_zero_repeats_are_refused() {
+    let args = ["render", "--threads", "0", "--size", "8x8"];
+    assert_one_line_error(&footprint(&args), &args, "--threads");
+    let args = ["bench", "--repeats", "0"];
+    assert_one_line_error(&footprint(&args), &args, "--repeats");
+}

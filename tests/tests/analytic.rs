@@ -1704,3 +1704,19 @@ fn analytic_scenes_look_as_designed() {
         assert!(area.iter().flatten().all(|p| p.r == p.g && p.g == p.b));
     }
 }
+
+/// Public frame accessors do not panic on an index beyond the frame: `Frame::column` says
+/// `None`, and a walk of such a column draws nothing.
+#[test]
+fn a_column_beyond_the_frame_is_none() {
+    let map = common::flat();
+    let terrain = map.terrain();
+    let cam = common::camera(common::pose_for(&map), 10.0, 4);
+    common::with_frame(&cam, &terrain, true, |frame| {
+        assert!(frame.column(3).is_some());
+        assert!(frame.column(4).is_none());
+        let mut out = [Rgb::new(7, 7, 7); 4];
+        column::walk(frame, &terrain, 4, 0..4, &mut Point, &mut NoCost, &mut out);
+        assert_eq!(out, [Rgb::new(7, 7, 7); 4], "nothing drawn");
+    });
+}

@@ -189,14 +189,7 @@ impl<'a, 't> March<'a, 't> {
         let (len, pu, stride) = (self.len_u, self.pu, self.stride_u as isize);
         // Along the major axis the fold moves by ±1 until the step that crosses an edge of
         // the map (where the mirrored index repeats).
-        let (du, to_edge) = match (self.forward, pu < len) {
-            // One cell wide: every step reads the same cell, and no edge ends the run.
-            _ if len == 1 => (0, u32::MAX),
-            (true, true) => (stride, len - 1 - pu),
-            (true, false) => (-stride, 2 * len - 1 - pu),
-            (false, true) => (-stride, pu),
-            (false, false) => (stride, pu - len),
-        };
+        let (du, to_edge) = fold_run(self.forward, pu, len, stride);
         self.du = du;
         let mut run = i64::from(to_edge);
         if self.climb_at != i64::MAX {
@@ -259,19 +252,22 @@ impl<'a, 't> March<'a, 't> {
     /// one way (the ray moves across in the direction of `dv`).
     fn plan_cross(&mut self) {
         let (len, pv, stride) = (self.len_v, self.pv, self.stride_v as isize);
-        (self.dcross, self.cross_left) = match (self.dv_step > 0, pv < len) {
-            _ if len == 1 => (0, u32::MAX),
-            (true, true) => (stride, len - 1 - pv),
-            (true, false) => (-stride, 2 * len - 1 - pv),
-            (false, true) => (-stride, pv),
-            (false, false) => (stride, pv - len),
-        };
+        (self.dcross, self.cross_left) = fold_run(self.dv_step > 0, pv, len, stride);
     }
 
-    /// Moves the cross-axis period position by `crossed` crossings in the direction of `dv`,
-    /// none of them over a mirror edge (a one-cell-wide axis, whose period is 2, excepted).
+    /// Records `crossed` crossings into the next cell across the ray in the direction of `dv`,
+    /// none of them over a mirror edge (a one-cell-wide axis, whose period is 2, excepted),
+    /// arriving in cell `cv`; the caller has moved `idx` with them.
     #[inline(always)]
-    fn move_pv(&mut self, crossed: u32) {
+    fn take_crossings(&mut self, crossed: u32, cv: i64) {
+        if crossed == 0 {
+            return;
+        }
+        self.cv = cv;
+        self.cross_left -= crossed;
+        self.off_v = self
+            .off_v
+            .wrapping_add_signed(self.dcross * crossed as isize);
         if self.len_v == 1 {
             self.pv ^= crossed & 1;
         } else if self.dv_step > 0 {
@@ -287,18 +283,7 @@ impl<'a, 't> March<'a, 't> {
         self.v = v;
         let cv = v >> (32 + self.l);
         if cv != self.cv {
-            let period_v = 2 * self.len_v;
-            if cv > self.cv {
-                self.pv += 1;
-                if self.pv == period_v {
-                    self.pv = 0;
-                }
-            } else {
-                if self.pv == 0 {
-                    self.pv = period_v;
-                }
-                self.pv -= 1;
-            }
+            self.pv = period_step(self.pv, self.len_v, cv > self.cv);
             self.cv = cv;
             let off_v = self.offset_v(self.pv);
             self.idx = self.idx.wrapping_sub(self.off_v).wrapping_add(off_v);
@@ -375,13 +360,7 @@ impl<'a, 't> March<'a, 't> {
                     idx = idx.wrapping_add_signed(dcross);
                 }
             };
-            let crossed = self.cross_left - cross_left;
-            if crossed > 0 {
-                self.cv = cv;
-                self.cross_left = cross_left;
-                self.off_v = self.off_v.wrapping_add_signed(dcross * crossed as isize);
-                self.move_pv(crossed);
-            }
+            self.take_crossings(self.cross_left - cross_left, cv);
             let taken = start - left;
             self.idx = idx;
             self.commit(taken);
@@ -485,7 +464,7 @@ impl<'a, 't> March<'a, 't> {
         // Start at the level that last succeeded: climb while the blocks stay clear, or
         // descend to the first clear one. (Blocks grow with the level, so the voxels a clear
         // block covers never shrink going up.)
-        let top = self.terrain.levels().len() as u32 - 1;
+        let top = self.top;
         if top <= self.l {
             return 0;
         }
@@ -526,14 +505,7 @@ impl<'a, 't> March<'a, 't> {
             self.idx = self
                 .idx
                 .wrapping_add_signed(self.du * inner as isize + self.dcross * crossed as isize);
-            if crossed > 0 {
-                self.off_v = self
-                    .off_v
-                    .wrapping_add_signed(self.dcross * crossed as isize);
-                self.cross_left -= crossed;
-                self.move_pv(crossed);
-                self.cv = cv;
-            }
+            self.take_crossings(crossed, cv);
             self.v = v;
             self.commit(inner);
         }
@@ -583,18 +555,7 @@ impl<'a, 't> March<'a, 't> {
         }
         self.j += 1;
         self.n += self.dn;
-        let period_u = 2 * self.len_u;
-        if self.forward {
-            self.pu += 1;
-            if self.pu == period_u {
-                self.pu = 0;
-            }
-        } else {
-            if self.pu == 0 {
-                self.pu = period_u;
-            }
-            self.pu -= 1;
-        }
+        self.pu = period_step(self.pu, self.len_u, self.forward);
         self.idx = self.offset_u() + self.off_v;
         self.cross_to(self.v.saturating_add(self.dv_step));
         self.plan_run();
@@ -726,5 +687,36 @@ impl<'a, 't> March<'a, 't> {
         };
         let mix = |a: u8, b: u8| (u32::from(a) * (256 - f) + u32::from(b) * f) as u16;
         [mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b)]
+    }
+}
+
+/// Along one axis of the mirrored map, the index step of a move to the next cell in the
+/// direction `rising` (of the period position `p`, `0..2·len`), and how many such moves keep
+/// the mirrored index moving one way, before the move across an edge of the map where it
+/// repeats: `(±stride, moves)`. A one-cell-wide axis never changes cell: `(0, u32::MAX)`.
+fn fold_run(rising: bool, p: u32, len: u32, stride: isize) -> (isize, u32) {
+    match (rising, p < len) {
+        _ if len == 1 => (0, u32::MAX),
+        (true, true) => (stride, len - 1 - p),
+        (true, false) => (-stride, 2 * len - 1 - p),
+        (false, true) => (-stride, p),
+        (false, false) => (stride, p - len),
+    }
+}
+
+/// The period position `p` (`0..2·len`) moved by one cell, up or down, wrapping.
+#[inline(always)]
+fn period_step(p: u32, len: u32, up: bool) -> u32 {
+    let period = 2 * len;
+    if up {
+        if p + 1 == period {
+            0
+        } else {
+            p + 1
+        }
+    } else if p == 0 {
+        period - 1
+    } else {
+        p - 1
     }
 }

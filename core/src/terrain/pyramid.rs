@@ -232,3 +232,67 @@ pub fn assemble<'a>(
     }
     Ok(terrain)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::error::Error;
+
+    /// Sizes, the conservative maximum, and every refusal of the builder's API.
+    #[test]
+    fn the_builder_counts_builds_and_refuses() {
+        // 5×3 → 3×2 → 2×1 → 1×1: four levels, 6 + 2 + 1 cells above level 0.
+        assert_eq!((levels(5, 3), cells(5, 3)), (4, 9));
+        assert_eq!((levels(1, 1), cells(1, 1)), (1, 0));
+        let heights: [u16; 15] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];
+        let colors = [Rgb::new(9, 9, 9); 15];
+        let level0 = Level::new(5, 3, &heights, &colors).unwrap();
+        let (mut grid, mut palette) = ([0u16; 27], [Rgb::default(); 9]);
+        build(&level0, HeightFilter::Silhouette, &mut grid, &mut palette).unwrap();
+        // Level 1's maximum grid (the third of its three 6-cell grids): the 2×2 maxima, the
+        // odd edge column and the odd edge row repeating the edge voxels.
+        assert_eq!(&grid[12..18], &[7, 9, 10, 12, 14, 15]);
+        // The coarsest level's maximum is the map's.
+        assert_eq!(grid[26], 15);
+        let scale = Scale::new(30.0, 0.1).unwrap();
+        assert_eq!(
+            assemble(level0, scale, &grid, &palette, true)
+                .unwrap()
+                .levels()
+                .len(),
+            4
+        );
+        assert_eq!(
+            assemble(level0, scale, &grid, &palette, false)
+                .unwrap()
+                .levels()
+                .len(),
+            1
+        );
+        let short = |what: &'static str, expected, actual| Error::SliceLength {
+            what,
+            expected,
+            actual,
+        };
+        assert_eq!(
+            build(&level0, HeightFilter::Mean, &mut grid[..26], &mut palette),
+            Err(short("pyramid heights", 27, 26))
+        );
+        assert_eq!(
+            assemble(level0, scale, &grid, &palette[..8], true).err(),
+            Some(short("pyramid colors", 9, 8))
+        );
+        // A level without a maximum grid cannot build the next one's; a wrong length is named.
+        let no_max = Level::directional(5, 3, &heights, &heights, &colors).unwrap();
+        assert!(no_max.build_next_max(&mut [0; 6]).is_err());
+        assert_eq!(
+            no_max.with_max(&heights[..14]).err(),
+            Some(short("max heights", 15, 14))
+        );
+        assert_eq!(
+            level0.build_next_max(&mut [0; 5]),
+            Err(short("max heights", 6, 5))
+        );
+    }
+}

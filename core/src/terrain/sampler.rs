@@ -148,8 +148,8 @@ impl<const N: u32> Super<N> {
             sum: [0; 3],
             j: 0,
             delta: Height::ZERO,
-            lower: Line::default(),
-            upper: Line::default(),
+            lower: Line::ZERO,
+            upper: Line::ZERO,
         }
     }
 
@@ -249,10 +249,7 @@ impl Area {
     /// A fresh area sampler.
     pub const fn new() -> Self {
         Self {
-            upper: Line {
-                base: Height::ZERO,
-                slope: Slope::ZERO,
-            },
+            upper: Line::ZERO,
             eye: Eye {
                 h: Height::ZERO,
                 n: Height::ZERO,
@@ -384,14 +381,8 @@ impl ParallelArea {
     /// A fresh sampler.
     pub const fn new() -> Self {
         Self {
-            upper: Line {
-                base: Height::ZERO,
-                slope: Slope::ZERO,
-            },
-            lower: Line {
-                base: Height::ZERO,
-                slope: Slope::ZERO,
-            },
+            upper: Line::ZERO,
+            lower: Line::ZERO,
             span: 0,
             offset: 0,
             shift: 0,
