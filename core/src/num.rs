@@ -16,9 +16,11 @@
 //! | minor-axis coordinate | [`Coord`] = I32F32 | `|x|, |y|` ≤ [`MAX_COORD`] voxels |
 //! | position along the ray | `i64` half-voxels | `|n|` ≤ 2·([`MAX_COORD`] + [`MAX_FAR`]) |
 //!
-//! With these bounds `|n·slope| < 2^24 · 2^15 = 2^39` height units, inside I40F24, so the
-//! inner loop cannot overflow; it still uses saturating operations so that a broken invariant
-//! clamps instead of wrapping.
+//! With these bounds `|n·slope| < 2^24 · 2^15 = 2^39` height units, inside I40F24, and a ray's
+//! height `eye + (n − n_eye)·slope` is below 2^38 units, so [`Line::at`] is two wrapping integer
+//! operations: arithmetic modulo 2^64 gives the exact value whenever the result fits, even if
+//! `base` alone is large (no saturation tests in the walk, and no 64-bit overflow checks on a
+//! 32-bit core).
 
 use fixed::types::{I32F32, I40F24};
 
@@ -69,10 +71,16 @@ impl Line {
         slope: Slope::ZERO,
     };
 
-    /// The ray's height above the voxel centred at `n` (half-voxels): exact, saturating.
+    /// The ray's height above the voxel centred at `n` (half-voxels), Eq. 3: exact for the
+    /// rays a [`crate::terrain::Frame`] makes and any `n` within the ranges above (see the
+    /// module documentation); beyond them the result wraps (it never panics).
     #[inline(always)]
     pub fn at(&self, n: i64) -> Height {
-        self.base.saturating_add(self.slope.saturating_mul_int(n))
+        Height::from_bits(
+            self.base
+                .to_bits()
+                .wrapping_add(self.slope.to_bits().wrapping_mul(n)),
+        )
     }
 }
 

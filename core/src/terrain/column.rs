@@ -146,7 +146,7 @@ pub fn walk<S: Sampler, C: Cost>(
             if march.n() > column.n_far {
                 break;
             }
-            ray.h = ray.h.saturating_add(ray.slope.saturating_mul_int(dn));
+            ray.h = Height::from_bits(ray.h.to_bits().wrapping_add(ray.slope.to_bits().wrapping_mul(dn)));
         }
     }
 
