@@ -1,6 +1,7 @@
 //! footprint-host: the `footprint` CLI's library — maps, the pyramid, rendering, experiments
 //! and report writers. The binary (`src/main.rs`) only parses arguments and calls in here.
 
+pub mod args;
 pub mod commands;
 pub mod experiment;
 pub mod map;

@@ -342,6 +342,7 @@ fn best_of(
 
 /// The counts of one frame: totals with `V` filled by the exact visibility pass, and one
 /// tally per column.
+#[derive(Clone, Debug)]
 pub struct Measured {
     /// The frame's totals.
     pub total: Tally,

@@ -484,15 +484,19 @@ fn clamping_beats_none_on_the_plates_at_one_shade_per_pixel() {
             r.flagged_where_agrees
         );
     }
-    for scene in ["plate1", "plate2", "plate5"] {
-        let get = |mode: &str| {
+    for scene in SceneName::DISTINCT {
+        let get = |mode: scene::Mode| {
             records
                 .iter()
                 .find(|r| r.scene == scene && r.mode == mode)
                 .unwrap()
         };
-        let (none, clamp, crow, reference) =
-            (get("none"), get("clamp"), get("crow"), get("reference"));
+        let (none, clamp, crow, reference) = (
+            get(scene::Mode::None),
+            get(scene::Mode::Clamp),
+            get(scene::Mode::Crow),
+            get(scene::Mode::Reference),
+        );
         assert_eq!(reference.rmse, 0.0);
         assert_eq!(reference.excess_flicker, 0.0);
         assert!(none.rmse > 0.0);
@@ -508,7 +512,7 @@ fn clamping_beats_none_on_the_plates_at_one_shade_per_pixel() {
             clamp.excess_flicker,
             none.excess_flicker
         );
-        let clamp99 = get("clamp99");
+        let clamp99 = get(scene::Mode::Clamp99);
         assert!(
             clamp99.rmse < none.rmse,
             "{scene}: rmse clamp99 {}",

@@ -424,7 +424,7 @@ impl<'t> Frame<'t> {
         // (0 ≤ b < 2^24), ⌊n_eye·slope⌋ = a·slope + ⌊b·slope / 2^24⌋, where |a| ≤ 2^22 and
         // |slope| ≤ 2^39 (raw), so both products stay below 2^63.
         let n_eye = column.n_eye.to_bits();
-        let m = (n_eye >> 24) * slope + ((n_eye & 0xFF_FFFF) * slope >> 24);
+        let m = (n_eye >> 24) * slope + (((n_eye & 0xFF_FFFF) * slope) >> 24);
         Line {
             base: Height::from_bits(self.eye.to_bits().saturating_sub(m)),
             slope: Slope::from_bits(slope),

@@ -146,7 +146,11 @@ pub fn walk<S: Sampler, C: Cost>(
             if march.n() > column.n_far {
                 break;
             }
-            ray.h = Height::from_bits(ray.h.to_bits().wrapping_add(ray.slope.to_bits().wrapping_mul(dn)));
+            ray.h = Height::from_bits(
+                ray.h
+                    .to_bits()
+                    .wrapping_add(ray.slope.to_bits().wrapping_mul(dn)),
+            );
         }
     }
 

@@ -6,9 +6,10 @@ use std::time::Instant;
 use anyhow::Result;
 use clap::Args;
 
+use crate::args::{BenchModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::bench;
 use crate::render::Mode;
-use crate::view::{MapArgs, Size, Switch};
+use crate::view::{MapArgs, Switch};
 
 /// `footprint bench`.
 #[derive(Args, Debug)]
@@ -16,16 +17,12 @@ pub struct BenchArgs {
     #[command(flatten)]
     /// The map.
     pub map: MapArgs,
-    /// Modes to time (comma-separated).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "classic,ps,li,ss8,ss16,as,as-exact"
-    )]
-    pub modes: Vec<Mode>,
-    /// Image size.
-    #[arg(long, default_value = "400x400")]
-    pub size: Size,
+    #[command(flatten)]
+    /// The modes to time.
+    pub modes: ModesArg<BenchModes>,
+    #[command(flatten)]
+    /// The image size.
+    pub size: SizeArg,
     /// Rounds of the interleaved run (every view in every mode, once per round); the fastest
     /// and the median frame are reported.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
@@ -33,9 +30,9 @@ pub struct BenchArgs {
     /// Multiresolution traversal.
     #[arg(long, value_enum, default_value_t = Switch::On)]
     pub lod: Switch,
-    /// Print JSON.
-    #[arg(long)]
-    pub json: bool,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
 }
 
 /// Runs `footprint bench`.
@@ -43,7 +40,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     let started = Instant::now();
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
-    let mut modes = args.modes.clone();
+    let mut modes = args.modes.modes()?;
     for base in [Mode::Ps, Mode::Classic] {
         if !modes.contains(&base) {
             modes.insert(0, base);
@@ -52,18 +49,18 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     let total = modes.len() as u64
         * (crate::experiment::paper::PAPER_PITCHES.len() as u64 + 1)
         * args.repeats;
-    let bar = super::progress(total, "frames·modes", args.json);
+    let bar = super::progress(total, "frames·modes", args.format.json);
     let cases = bench::run(
         &map,
         &pyramid,
         &modes,
-        args.size,
+        args.size.size,
         args.lod == Switch::On,
         args.repeats as usize,
         || bar.inc(1),
     )?;
     bar.finish_and_clear();
-    if args.json {
+    if args.format.json {
         println!(
             "{}",
             serde_json::to_string(&serde_json::json!({ "cases": cases }))?
@@ -73,8 +70,8 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     println!(
         "{} · {}x{} · FOV 10° · {} interleaved rounds · ms per frame, fastest (median) on one thread, fastest on {} threads",
         map.source,
-        args.size.width,
-        args.size.height,
+        args.size.size.width,
+        args.size.size.height,
         args.repeats,
         rayon::current_num_threads()
     );

@@ -6,12 +6,13 @@ use anyhow::{bail, Result};
 use clap::Args;
 use footprint_core::Rgb;
 
+use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::fly::{self, FlySpec};
 use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
-use crate::view::{MapArgs, Size};
+use crate::view::MapArgs;
 
 /// The modes of `--animation`, left to right.
 const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
@@ -34,12 +35,12 @@ pub struct FlyArgs {
     /// The column of Table 6 and of the cut-in-time image [default: the middle one].
     #[arg(long)]
     pub column: Option<usize>,
-    /// Modes (comma-separated).
-    #[arg(long, value_delimiter = ',', default_value = "as,as-exact,ps,ss8,ss16")]
-    pub modes: Vec<Mode>,
-    /// Image size.
-    #[arg(long, default_value = "400x400")]
-    pub size: Size,
+    #[command(flatten)]
+    /// The modes.
+    pub modes: ModesArg<FlyModes>,
+    #[command(flatten)]
+    /// The image size.
+    pub size: SizeArg,
     /// Folder for the cut-in-time images (`cut_<mode>.png`); it must exist.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
@@ -50,9 +51,9 @@ pub struct FlyArgs {
     /// point sampling (left) and area sampling (right) side by side.
     #[arg(long, requires = "out")]
     pub animation: bool,
-    /// One JSON object.
-    #[arg(long)]
-    pub json: bool,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
 }
 
 /// Runs `footprint fly`.
@@ -60,9 +61,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     if args.frames < 2 {
         bail!("--frames {}: at least 2 frames are needed", args.frames);
     }
-    if args.modes.is_empty() {
-        bail!("--modes: give at least one mode");
-    }
+    let modes = args.modes.modes()?;
     if let Some(dir) = &args.out {
         if !dir.is_dir() {
             bail!(
@@ -72,22 +71,22 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         }
     }
     if let Some(c) = args.column {
-        if c >= args.size.width as usize {
+        if c >= args.size.size.width as usize {
             bail!(
                 "--column {c}: outside the image, which is {} columns wide",
-                args.size.width
+                args.size.size.width
             );
         }
     }
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
-    let bar = super::progress(args.frames as u64, "frames", args.json);
+    let bar = super::progress(args.frames as u64, "frames", args.format.json);
     let spec = FlySpec {
         frames: args.frames,
         step_m: args.step,
         column: args.column,
-        modes: args.modes.clone(),
-        size: args.size,
+        modes,
+        size: args.size.size,
         all_columns: !args.column_only,
     };
     let result = if args.animation {
@@ -95,7 +94,10 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
             .out
             .as_deref()
             .expect("clap requires --out with --animation");
-        let (w, h) = (args.size.width as usize, args.size.height as usize);
+        let (w, h) = (
+            args.size.size.width as usize,
+            args.size.size.height as usize,
+        );
         let width = PANELS.len() * w + (PANELS.len() - 1) * GAP;
         let mut animation = Animation::create(
             &dir.join("flight.png"),
@@ -130,10 +132,10 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     if let Some(dir) = &args.out {
         for m in &result.modes {
             let path = dir.join(format!("cut_{}.png", m.mode));
-            write_png(&path, result.frames as u32, args.size.height, &m.cut)?;
+            write_png(&path, result.frames as u32, args.size.size.height, &m.cut)?;
         }
     }
-    if args.json {
+    if args.format.json {
         println!("{}", serde_json::to_string(&result)?);
     } else {
         print!("{}", flight::markdown(&result));

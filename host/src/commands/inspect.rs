@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::{bail, Result};
 use clap::Args;
 
+use crate::args::OutputFormat;
 use crate::experiment::inspect;
 use crate::render::Mode;
 use crate::report::png::write_png;
@@ -58,9 +59,9 @@ pub struct InspectArgs {
     /// Output PNG (with several pictures, `-zoom`, `-pixel`, `-footprint` are added to its stem).
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
-    /// Print the pixel's samples or the footprint's counts as JSON.
-    #[arg(long)]
-    pub json: bool,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
 }
 
 /// Runs `footprint inspect`.
@@ -117,7 +118,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
                 "samples": samples,
             }),
         );
-        if !args.json {
+        if !args.format.json {
             println!(
                 "pixel {},{} ({}): {} samples, colour #{:02x}{:02x}{:02x}",
                 p.row,
@@ -134,14 +135,14 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         let (counts, pic) = inspect::footprint(&view.camera, &view.pyramid, args.mode, 1024)?;
         write_png(&path_for("footprint"), pic.width, pic.height, &pic.pixels)?;
         json.insert("footprint".into(), serde_json::to_value(counts)?);
-        if !args.json {
+        if !args.format.json {
             println!(
                 "footprint ({}): {} sampled, {} visible but unsampled, {} hidden",
                 args.mode, counts.sampled, counts.unsampled, counts.hidden
             );
         }
     }
-    if args.json {
+    if args.format.json {
         println!("{}", serde_json::Value::Object(json));
     }
     Ok(())

@@ -7,6 +7,7 @@ use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use serde::Serialize;
 
+use crate::args::OutputFormat;
 use crate::map::{self, describe, Format, LoadOptions, Loaded};
 use crate::report::write_atomic;
 
@@ -66,9 +67,9 @@ pub struct InfoArgs {
     /// How to read it.
     #[command(flatten)]
     pub read: ReadArgs,
-    /// Print one JSON object instead of text.
-    #[arg(long)]
-    pub json: bool,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
 }
 
 /// `footprint map convert`.
@@ -144,7 +145,7 @@ fn info(args: &InfoArgs) -> Result<()> {
         voids_filled: loaded.voids_filled,
         pyramid_levels: levels,
     };
-    if args.json {
+    if args.format.json {
         println!("{}", serde_json::to_string(&json)?);
         return Ok(());
     }

@@ -2,14 +2,15 @@
 //! specular antialiasing.
 
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::Args;
 
+use crate::args::OutputFormat;
 use crate::experiment::specular::{self as exp, MeasureConfig};
-use crate::report::plot::draw_png;
 use crate::report::png::write_png;
+use crate::report::specular_figures::{plot_figure2, plot_figure3};
 use crate::scene::{self, Mode, Scene, SceneName};
 
 /// `footprint specular`.
@@ -37,9 +38,9 @@ pub struct SpecularArgs {
     /// Measure every mode on every scene: RMSE, flicker, detection, shades per pixel.
     #[arg(long)]
     pub measure: bool,
-    /// With --measure: print JSON, one record per scene and mode.
-    #[arg(long, requires = "measure")]
-    pub json: bool,
+    #[command(flatten)]
+    /// `--json` (with --measure: one record per scene and mode).
+    pub format: OutputFormat,
     /// With --measure: frames of the animation (the scene turns 0.1° per frame).
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(2..=4096), requires = "measure")]
     pub frames: u32,
@@ -49,6 +50,9 @@ pub struct SpecularArgs {
 pub fn specular(args: &SpecularArgs) -> Result<()> {
     if let (Some(name), Some(mode)) = (args.scene, args.mode) {
         return plate(args, name, mode);
+    }
+    if args.format.json && !args.measure {
+        bail!("--json: only --measure prints JSON (add --measure, or use --csv with --figure)");
     }
     if let Some(fig) = args.figure {
         return figure(args, fig);
@@ -145,11 +149,11 @@ fn measure(args: &SpecularArgs) -> Result<()> {
     let bar = super::progress(
         u64::from(cfg.frames) * scenes.len() as u64,
         "frames (6 modes each)",
-        args.json,
+        args.format.json,
     );
     let records = exp::measure(&scenes, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    if args.json {
+    if args.format.json {
         println!("{}", serde_json::to_string(&records)?);
         return Ok(());
     }
@@ -176,104 +180,4 @@ fn measure(args: &SpecularArgs) -> Result<()> {
         );
     }
     Ok(())
-}
-
-const PLOT_SIZE: (u32, u32) = (800, 560);
-
-/// A Figure 2 curve: label, colour, and which cutoff.
-type Series = (
-    &'static str,
-    plotters::style::RGBColor,
-    fn(&exp::Figure2Row) -> u16,
-);
-
-fn plot_figure2(out: &Path, rows: &[exp::Figure2Row]) -> Result<()> {
-    use plotters::prelude::*;
-    let e = |e: DrawingAreaErrorKind<_>| anyhow::anyhow!("plot: {e}");
-    draw_png(out, PLOT_SIZE, |root| {
-        let top = rows.iter().map(|r| r.p999).max().unwrap_or(1);
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Figure 2: cutoff frequency holding a fraction of the power of cos^n (even n)",
-                ("sans-serif", 20),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(50)
-            .build_cartesian_2d(0u32..1000u32, 0u32..(u32::from(top) + 5))
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_desc("maximum frequency n")
-            .y_desc("cutoff frequency")
-            .draw()
-            .map_err(e)?;
-        let series: [Series; 3] = [
-            ("99.9 %", RED, |r| r.p999),
-            ("99 %", BLUE, |r| r.p99),
-            ("90 %", GREEN, |r| r.p90),
-        ];
-        for (label, color, get) in series {
-            chart
-                .draw_series(LineSeries::new(
-                    rows.iter()
-                        .filter(|r| r.n % 2 == 0)
-                        .map(|r| (r.n, u32::from(get(r)))),
-                    color.stroke_width(2),
-                ))
-                .map_err(e)?
-                .label(label)
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], color));
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .border_style(BLACK)
-            .background_style(WHITE)
-            .draw()
-            .map_err(e)?;
-        Ok(())
-    })
-}
-
-fn plot_figure3(out: &Path, f: &exp::Figure3) -> Result<()> {
-    use plotters::prelude::*;
-    let e = |e: DrawingAreaErrorKind<_>| anyhow::anyhow!("plot: {e}");
-    draw_png(out, PLOT_SIZE, |root| {
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Figure 3: clamped, normalised cos^n′ over cos^160, per cosine component",
-                ("sans-serif", 20),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(50)
-            .build_cartesian_2d(0u32..exp::FIGURE3_ORIGINAL, 0f64..1.05f64)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_desc("frequency m")
-            .y_desc("ratio of components")
-            .draw()
-            .map_err(e)?;
-        for (i, (np, ratios)) in f.curves.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            chart
-                .draw_series(LineSeries::new(
-                    f.m.iter().zip(ratios).map(|(&m, &r)| (m, r)),
-                    color.stroke_width(2),
-                ))
-                .map_err(e)?
-                .label(format!("n′ = {np}"))
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], color));
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .border_style(BLACK)
-            .background_style(WHITE)
-            .draw()
-            .map_err(e)?;
-        Ok(())
-    })
 }

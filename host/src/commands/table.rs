@@ -1,13 +1,13 @@
 //! `footprint table`: the paper's Tables 1–5 on any map.
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
 
+use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes};
 use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table;
-use crate::render::Mode;
 use crate::report::tables;
-use crate::view::{MapArgs, Size};
+use crate::view::MapArgs;
 
 /// Which case(s) of Table 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -34,24 +34,20 @@ pub struct TableArgs {
     /// The case: pitch 40, 20 or 5 degrees, or all.
     #[arg(long, value_enum, default_value_t = CaseArg::All)]
     pub case: CaseArg,
-    /// Modes (comma-separated).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "as,as-exact,ps,ss2,ss4,ss8,ss16,ss32"
-    )]
-    pub modes: Vec<Mode>,
-    /// Image size (the paper's is 400x400).
-    #[arg(long, default_value = "400x400")]
-    pub size: Size,
+    #[command(flatten)]
+    /// The modes.
+    pub modes: ModesArg<TableModes>,
+    #[command(flatten)]
+    /// The image size.
+    pub size: SizeArg,
     /// Markdown tables (the default).
     #[arg(long, conflicts_with_all = ["json", "csv"])]
     pub md: bool,
-    /// One JSON object.
-    #[arg(long, conflicts_with = "csv")]
-    pub json: bool,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
     /// CSV, one row per case and mode, then the Table 5 rows.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "json")]
     pub csv: bool,
 }
 
@@ -69,23 +65,21 @@ impl CaseArg {
 
 /// Runs `footprint table`.
 pub fn table(args: &TableArgs) -> Result<()> {
-    if args.modes.is_empty() {
-        bail!("--modes: give at least one mode");
-    }
+    let modes = args.modes.modes()?;
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
     let pitches = args.case.pitches();
     let bar = super::progress(
-        table::steps(pitches.len(), args.modes.len()),
+        table::steps(pitches.len(), modes.len()),
         "steps",
-        false,
+        args.format.json,
     );
-    let result = table::run(&map, &pyramid, &pitches, &args.modes, args.size, |msg| {
+    let result = table::run(&map, &pyramid, &pitches, &modes, args.size.size, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;
     bar.finish_and_clear();
-    if args.json {
+    if args.format.json {
         println!("{}", serde_json::to_string(&result)?);
     } else if args.csv {
         print!("{}", tables::csv(&result));

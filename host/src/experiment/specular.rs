@@ -129,9 +129,9 @@ impl Default for MeasureConfig {
 #[derive(Clone, Debug, Serialize)]
 pub struct Record {
     /// The scene.
-    pub scene: String,
+    pub scene: SceneName,
     /// The mode.
-    pub mode: String,
+    pub mode: Mode,
     /// RMS error against the reference over every frame, pixel and channel, in units of full
     /// scale (255).
     pub rmse: f64,
@@ -298,8 +298,8 @@ pub fn measure(
             let frac = |a: u64, b: u64| if b == 0 { 0.0 } else { a as f64 / b as f64 };
             let f = flicker(k);
             records.push(Record {
-                scene: name.as_str().to_string(),
-                mode: mode.as_str().to_string(),
+                scene: name,
+                mode,
                 rmse: (total.sq_err / (px * f64::from(frames))).sqrt(),
                 flicker: f,
                 excess_flicker: f - reference_flicker,

@@ -2,11 +2,13 @@
 //! interrupted or failed run never leaves a half-written output.
 
 pub mod apng;
+pub mod counts;
 pub mod document;
 pub mod flight;
 pub mod html;
 pub mod plot;
 pub mod png;
+pub mod specular_figures;
 pub mod tables;
 
 use std::io::Write;

@@ -1,0 +1,117 @@
+//! The argument groups that several subcommands share: the modes to compare (`--modes`), the
+//! image size (`--size`) and the output format (`--json`). Each is declared once here and
+//! flattened into the commands that take it, so its name, parsing and help read the same
+//! everywhere.
+
+use std::marker::PhantomData;
+
+use anyhow::{bail, Result};
+use clap::Args;
+
+use crate::render::Mode;
+use crate::view::Size;
+
+/// The default of a command's `--modes`: the modes it compares when none are given.
+pub trait DefaultModes: Clone + Send + Sync + 'static {
+    /// Comma-separated mode names (as `--modes` takes them).
+    const MODES: &'static str;
+}
+
+/// `--modes`: the sampling modes to compare, comma-separated, with the command's default `D`.
+#[derive(Args, Clone, Debug)]
+pub struct ModesArg<D: DefaultModes> {
+    /// Modes (comma-separated): classic, ps, li, ss2 … ss256, as, as-exact.
+    #[arg(long = "modes", value_delimiter = ',', default_value = D::MODES)]
+    pub list: Vec<Mode>,
+    #[arg(skip)]
+    default: PhantomData<D>,
+}
+
+impl<D: DefaultModes> ModesArg<D> {
+    /// The modes, each once, in the order given; an error naming `--modes` if there are none.
+    pub fn modes(&self) -> Result<Vec<Mode>> {
+        let mut modes: Vec<Mode> = Vec::with_capacity(self.list.len());
+        for &m in &self.list {
+            if !modes.contains(&m) {
+                modes.push(m);
+            }
+        }
+        if modes.is_empty() {
+            bail!("--modes: give at least one mode");
+        }
+        Ok(modes)
+    }
+}
+
+/// `--size WxH`: the image size, 400×400 (the paper's) unless given.
+#[derive(Args, Clone, Copy, Debug)]
+pub struct SizeArg {
+    /// Image size WxH (the paper's is 400x400).
+    #[arg(long, default_value = "400x400")]
+    pub size: Size,
+}
+
+/// `--json`: one JSON object on stdout instead of text (progress bars are then hidden).
+#[derive(Args, Clone, Copy, Debug)]
+pub struct OutputFormat {
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The modes of `footprint table` (the paper's Tables 2–4 and both area samplers).
+#[derive(Clone, Debug)]
+pub struct TableModes;
+impl DefaultModes for TableModes {
+    const MODES: &'static str = "as,as-exact,ps,ss2,ss4,ss8,ss16,ss32";
+}
+
+/// The modes of `footprint fly` (Table 6's).
+#[derive(Clone, Debug)]
+pub struct FlyModes;
+impl DefaultModes for FlyModes {
+    const MODES: &'static str = "as,as-exact,ps,ss8,ss16";
+}
+
+/// The modes of `footprint bench` (issue 10's list: the classic baseline first).
+#[derive(Clone, Debug)]
+pub struct BenchModes;
+impl DefaultModes for BenchModes {
+    const MODES: &'static str = "classic,ps,li,ss8,ss16,as,as-exact";
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser, Debug)]
+    struct Cli {
+        #[command(flatten)]
+        modes: ModesArg<FlyModes>,
+        #[command(flatten)]
+        size: SizeArg,
+        #[command(flatten)]
+        format: OutputFormat,
+    }
+
+    #[test]
+    fn defaults_repeats_and_an_empty_list() {
+        let cli = Cli::try_parse_from(["x"]).unwrap();
+        assert_eq!(cli.modes.modes().unwrap().len(), 5);
+        assert_eq!(
+            cli.size.size,
+            Size {
+                width: 400,
+                height: 400
+            }
+        );
+        assert!(!cli.format.json);
+        let cli = Cli::try_parse_from(["x", "--modes", "ps,as,ps", "--json"]).unwrap();
+        assert_eq!(cli.modes.modes().unwrap(), vec![Mode::Ps, Mode::As]);
+        assert!(cli.format.json);
+        let cli = Cli::try_parse_from(["x", "--modes="]);
+        assert!(cli.is_err() || cli.unwrap().modes.modes().is_err());
+        assert!(Cli::try_parse_from(["x", "--modes", "ss3"]).is_err());
+    }
+}

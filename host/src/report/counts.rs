@@ -1,0 +1,193 @@
+//! `footprint render --counts`: the cost counters of Sect. 6 for one frame, as text or as
+//! one JSON object (field names are the paper's letters).
+
+use std::fmt::Write as _;
+
+use anyhow::Result;
+use footprint_core::terrain::camera::CameraParams;
+use footprint_core::terrain::cost::Tally;
+use serde::Serialize;
+
+use crate::render::{Measured, Mode};
+
+/// One measured frame: what `render --counts` prints.
+#[derive(Debug)]
+pub struct RenderSummary<'a> {
+    /// The sampling mode.
+    pub mode: Mode,
+    /// The camera (eye height above the map's datum).
+    pub camera: CameraParams,
+    /// The map's datum, metres (the eye's height above sea level is `eye_m + base_m`).
+    pub base_m: f64,
+    /// Multiresolution traversal on.
+    pub lod: bool,
+    /// The counters, per frame and per column.
+    pub measured: &'a Measured,
+    /// Include every column's counters in the JSON.
+    pub per_column: bool,
+    /// Best of three one-thread renders, ms.
+    pub ms: f64,
+    /// Best of three renders on `threads` threads, ms.
+    pub ms_threads: f64,
+    /// Threads of the parallel render.
+    pub threads: usize,
+    /// The map's source.
+    pub map: &'a str,
+}
+
+/// The counters as JSON field names (the paper's letters).
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+pub struct CountsJson {
+    L: u64,
+    P: u64,
+    M: u64,
+    V: u64,
+    hits: u64,
+    a: u64,
+    b: u64,
+    c: u64,
+    d: u64,
+    d_prime: u64,
+    top_divisions: u64,
+    shifts: u64,
+    divisions: u64,
+}
+
+impl From<&Tally> for CountsJson {
+    fn from(t: &Tally) -> Self {
+        Self {
+            L: t.l,
+            P: t.p,
+            M: t.m,
+            V: t.v,
+            hits: t.hits,
+            a: t.a,
+            b: t.b,
+            c: t.c,
+            d: t.d,
+            d_prime: t.d_prime,
+            top_divisions: t.top_divisions,
+            shifts: t.shifts,
+            divisions: t.divisions,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct CameraJson {
+    x: f64,
+    y: f64,
+    height: f64,
+    heading: f64,
+    pitch: f64,
+    fov: f64,
+    far: f64,
+}
+
+#[derive(Serialize)]
+struct RenderJson {
+    mode: Mode,
+    width: u32,
+    height: u32,
+    counts: CountsJson,
+    column_average: ColumnAverage,
+    coverage: f64,
+    ms: f64,
+    ms_threads: f64,
+    threads: usize,
+    lod: bool,
+    camera: CameraJson,
+    map: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    columns: Option<Vec<CountsJson>>,
+}
+
+/// Per-column averages, the unit of the paper's Tables 1–4.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct ColumnAverage {
+    L: f64,
+    P: f64,
+    M: f64,
+    V: f64,
+    hits: f64,
+}
+
+/// The summary as one JSON object.
+pub fn json(s: &RenderSummary<'_>) -> Result<String> {
+    let t = &s.measured.total;
+    let p = &s.camera;
+    let cols = f64::from(p.width);
+    let json = RenderJson {
+        mode: s.mode,
+        width: p.width,
+        height: p.height,
+        counts: t.into(),
+        column_average: ColumnAverage {
+            L: t.l as f64 / cols,
+            P: t.p as f64 / cols,
+            M: t.m as f64 / cols,
+            V: t.v as f64 / cols,
+            hits: t.hits as f64 / cols,
+        },
+        coverage: t.coverage(),
+        ms: s.ms,
+        ms_threads: s.ms_threads,
+        threads: s.threads,
+        lod: s.lod,
+        camera: CameraJson {
+            x: p.x_m,
+            y: p.y_m,
+            height: p.eye_m + s.base_m,
+            heading: p.heading_deg,
+            pitch: p.pitch_deg,
+            fov: p.fov_deg,
+            far: p.far_m,
+        },
+        map: s.map.to_owned(),
+        columns: s
+            .per_column
+            .then(|| s.measured.columns.iter().map(CountsJson::from).collect()),
+    };
+    Ok(serde_json::to_string(&json)?)
+}
+
+/// The summary as four lines of text.
+pub fn text(s: &RenderSummary<'_>) -> String {
+    let t = &s.measured.total;
+    let p = &s.camera;
+    let cols = f64::from(p.width);
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "mode {}  {}x{}  height {:.1} m  pitch {}°  lod {}",
+        s.mode,
+        p.width,
+        p.height,
+        p.eye_m + s.base_m,
+        p.pitch_deg,
+        if s.lod { "on" } else { "off" }
+    );
+    let _ = writeln!(
+        out,
+        "per column: L {:.1}  P {:.1}  M {:.1}  V {:.1}  hits {:.1}  coverage M/V {:.3}",
+        t.l as f64 / cols,
+        t.p as f64 / cols,
+        t.m as f64 / cols,
+        t.v as f64 / cols,
+        t.hits as f64 / cols,
+        t.coverage()
+    );
+    let _ = writeln!(
+        out,
+        "frame: a {}  b {}  c {}  d {}  d' {}  top divisions {}  shifts {}  divisions {}",
+        t.a, t.b, t.c, t.d, t.d_prime, t.top_divisions, t.shifts, t.divisions
+    );
+    let _ = writeln!(
+        out,
+        "render {:.2} ms (best of 3, no counting, one thread); {:.2} ms on {} threads",
+        s.ms, s.ms_threads, s.threads
+    );
+    out
+}
