@@ -98,6 +98,10 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     }
+    if let Err(e) = footprint_host::output::remove_temporaries_on_signal() {
+        eprintln!("error: {e:#}");
+        return ExitCode::from(2);
+    }
     let result = match &cli.command {
         Command::Render(args) => commands::render(args),
         Command::Bench(args) => commands::bench(args),

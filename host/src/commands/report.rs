@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::Args;
 use footprint_core::terrain::camera::{CameraParams, Options};
 use serde_json::json;
@@ -13,6 +13,7 @@ use crate::experiment::heights;
 use crate::experiment::inspect;
 use crate::experiment::paper::{paper_camera, PAPER_PITCHES};
 use crate::experiment::table;
+use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, write_atomic};
 use crate::view::{MapArgs, Size};
@@ -33,25 +34,12 @@ pub struct ReportArgs {
 
 /// Runs `footprint report`.
 pub fn report(args: &ReportArgs) -> Result<()> {
-    let out = &args.out;
-    match out.parent() {
-        Some(p) if !p.as_os_str().is_empty() && !p.is_dir() => {
-            bail!(
-                "--out {:?}: the folder above it does not exist",
-                out.display().to_string()
-            )
-        }
-        _ => {}
-    }
     if args.frames < 2 {
         bail!("--frames {}: at least 2 frames are needed", args.frames);
     }
-    std::fs::create_dir_all(out).with_context(|| {
-        format!(
-            "--out {:?}: cannot create the folder",
-            out.display().to_string()
-        )
-    })?;
+    // Built in a temporary folder next to --out and moved into place at the end: a failed or
+    // interrupted run leaves nothing behind.
+    let folder = Folder::create("--out", &args.out)?;
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
     let size = Size {
@@ -61,7 +49,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let modes = crate::experiment::paper::paper_modes();
     let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
     let bar = super::progress(steps, "steps", false);
-    let file = |name: &str| -> PathBuf { out.join(name) };
+    let file = |name: &str| -> PathBuf { folder.file(name) };
 
     // Tables 1–5.
     let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, size, |msg| {
@@ -196,8 +184,9 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let data = json!({"tables": tables, "fly": flight, "pixel": pixel_json, "footprint": fp_json,
         "pyramid_heights_pitch5": study});
     write_text(&file("report.json"), &serde_json::to_string_pretty(&data)?)?;
+    folder.finish()?;
     bar.finish_and_clear();
-    println!("wrote {}", file("REPORT.md").display());
+    println!("wrote {}", args.out.join("REPORT.md").display());
     Ok(())
 }
 

@@ -10,15 +10,15 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
+use crate::output::Sink;
 use anyhow::{bail, Context, Result};
 use footprint_core::Rgb;
 use png::{BlendOp, DisposeOp};
-use tempfile::NamedTempFile;
 
 /// An APNG being written.
 pub struct Animation {
     writer: png::Writer<BufWriter<File>>,
-    tmp: NamedTempFile,
+    tmp: Sink,
     path: PathBuf,
     width: usize,
     height: usize,
@@ -46,8 +46,8 @@ impl Animation {
         if width == 0 || height == 0 || frames == 0 || fps == 0 {
             bail!("animation {:?}: empty", path.display().to_string());
         }
-        let tmp = super::temporary_for(path)?;
-        let file = tmp.reopen().context("reopening the temporary file")?;
+        let tmp = Sink::create(path)?;
+        let file = tmp.reopen()?;
         let mut encoder = png::Encoder::new(BufWriter::new(file), width, height);
         encoder.set_color(png::ColorType::Rgba);
         encoder.set_depth(png::BitDepth::Eight);
@@ -125,7 +125,7 @@ impl Animation {
         self.writer
             .finish()
             .with_context(|| format!("output {:?}", self.path.display().to_string()))?;
-        super::persist(self.tmp, &self.path)
+        self.tmp.finish()
     }
 }
 
