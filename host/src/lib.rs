@@ -5,6 +5,7 @@ pub mod args;
 pub mod commands;
 pub mod experiment;
 pub mod map;
+pub mod memory;
 pub mod output;
 pub mod pyramid;
 pub mod render;

@@ -19,6 +19,10 @@ struct Cli {
     /// the same for any number.
     #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     threads: Option<u16>,
+    /// The memory a run may use, e.g. 512M or 4G (default: the memory available now, less an
+    /// eighth). A run that would need more is refused before it allocates.
+    #[arg(long, global = true, value_name = "SIZE", value_parser = footprint_host::memory::parse_size)]
+    max_memory: Option<u64>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -89,6 +93,9 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some(bytes) = cli.max_memory {
+        footprint_host::memory::set_budget(bytes);
+    }
     if let Some(n) = cli.threads {
         if let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(usize::from(n))

@@ -134,7 +134,13 @@ impl MapArgs {
                         map::MAX_SIDE
                     );
                 }
-                Ok(map::procedural(self.seed, self.terrain_size))
+                let n = self.terrain_size;
+                crate::memory::check(
+                    crate::memory::map_bytes(n, n),
+                    &format!("--terrain-size {n}"),
+                    "the map and its pyramid",
+                )?;
+                Ok(map::procedural(self.seed, n))
             }
         }
     }

@@ -41,6 +41,7 @@ fn results() -> &'static (Tables15, Fly) {
             ],
             size: SIZE,
             all_columns: false,
+            keep_cut: true,
         };
         let flight = fly::run(&map, &pyramid, &spec, || {}).unwrap();
         (tables, flight)

@@ -62,6 +62,13 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         bail!("--frames {}: at least 2 frames are needed", args.frames);
     }
     let modes = args.modes.modes()?;
+    if args.out.is_some() && args.frames > i32::MAX as usize {
+        bail!(
+            "--frames {}: the cut-in-time image (one pixel per frame) would be wider than a PNG \
+             can be (2147483647)",
+            args.frames
+        );
+    }
     if let Some(dir) = &args.out {
         if !dir.is_dir() {
             bail!(
@@ -78,9 +85,6 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
             );
         }
     }
-    let map = args.map.load()?;
-    let pyramid = args.map.pyramid(&map)?;
-    let bar = super::progress(args.frames as u64, "frames", args.format.json);
     let spec = FlySpec {
         frames: args.frames,
         step_m: args.step,
@@ -88,7 +92,12 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         modes,
         size: args.size.size,
         all_columns: !args.column_only,
+        keep_cut: args.out.is_some(),
     };
+    spec.check_memory(if args.animation { PANELS.len() } else { 0 })?;
+    let map = args.map.load()?;
+    let pyramid = args.map.pyramid(&map)?;
+    let bar = super::progress(args.frames as u64, "frames", args.format.json);
     let result = if args.animation {
         let dir = args
             .out

@@ -40,12 +40,28 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     // Built in a temporary folder next to --out and moved into place at the end: a failed or
     // interrupted run leaves nothing behind.
     let folder = Folder::create("--out", &args.out)?;
+    let fly_spec = FlySpec {
+        frames: args.frames,
+        step_m: 0.5,
+        column: None,
+        modes: vec![
+            Mode::As,
+            Mode::AsExact,
+            Mode::Ps,
+            Mode::Ss(Rate::N8),
+            Mode::Ss(Rate::N16),
+        ],
+        size: Size {
+            width: 400,
+            height: 400,
+        },
+        all_columns: true,
+        keep_cut: true,
+    };
+    let size = fly_spec.size;
+    fly_spec.check_memory(0)?;
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
-    let size = Size {
-        width: 400,
-        height: 400,
-    };
     let modes = crate::experiment::paper::paper_modes();
     let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
     let bar = super::progress(steps, "steps", false);
@@ -84,26 +100,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
     // Table 6 and Fig. 14.
     bar.set_message("flight");
-    let fly_modes = vec![
-        Mode::As,
-        Mode::AsExact,
-        Mode::Ps,
-        Mode::Ss(Rate::N8),
-        Mode::Ss(Rate::N16),
-    ];
-    let flight = fly::run(
-        &map,
-        &pyramid,
-        &FlySpec {
-            frames: args.frames,
-            step_m: 0.5,
-            column: None,
-            modes: fly_modes,
-            size,
-            all_columns: true,
-        },
-        || bar.inc(1),
-    )?;
+    let flight = fly::run(&map, &pyramid, &fly_spec, || bar.inc(1))?;
     let mut cuts = String::new();
     for m in &flight.modes {
         let name = format!("cut_{}.png", m.mode);

@@ -78,6 +78,35 @@ pub struct FlySpec {
     pub size: Size,
     /// Also histogram every column (renders whole frames; otherwise only the one column).
     pub all_columns: bool,
+    /// Keep Fig. 14's cut-in-time image of each mode (`H × frames` pixels); without it, the
+    /// flight's memory does not grow with the frames.
+    pub keep_cut: bool,
+}
+
+impl FlySpec {
+    /// Refuses, naming `--frames`, a flight whose kept images exceed the memory budget: the
+    /// cut-in-time images (if kept) and the frames in flight (4 per thread, each with its
+    /// images and luminances), plus `panels` whole images per frame.
+    pub fn check_memory(&self, panels: usize) -> Result<()> {
+        let (w, h) = (u64::from(self.size.width), u64::from(self.size.height));
+        let n_modes = self.modes.len() as u64;
+        let chunk = 4 * rayon::current_num_threads().max(1) as u64;
+        let cuts = if self.keep_cut {
+            h.checked_mul(self.frames as u64)
+                .and_then(|c| c.checked_mul(3 * n_modes))
+        } else {
+            Some(0)
+        };
+        let streamed = w * h * 4 * (n_modes + panels as u64) * chunk;
+        crate::memory::check(
+            cuts.and_then(|c| c.checked_add(streamed)),
+            &format!("--frames {}", self.frames),
+            &format!(
+                "the cut-in-time images ({h} rows × {} frames per mode) and frames in flight",
+                self.frames
+            ),
+        )
+    }
 }
 
 /// One mode's flight.
@@ -157,6 +186,8 @@ pub fn run_with_frames(
     if column >= w {
         bail!("--column {column}: outside the image, which is {w} columns wide");
     }
+    spec.check_memory(panels.len())?;
+    let chunk = 4 * rayon::current_num_threads().max(1);
     let terrain = pyramid.terrain(true)?;
     let options = Options::default();
     // Each frame: per mode of `spec.modes`, the chosen column (bottom to top) and, if asked,
@@ -208,9 +239,9 @@ pub fn run_with_frames(
     let n_modes = spec.modes.len();
     let mut column_hist = vec![Histogram::default(); n_modes];
     let mut all_hist = vec![Histogram::default(); n_modes];
-    let mut cuts = vec![vec![Rgb::default(); h * spec.frames]; n_modes];
+    let cut_len = if spec.keep_cut { h * spec.frames } else { 0 };
+    let mut cuts = vec![vec![Rgb::default(); cut_len]; n_modes];
     let mut previous: Option<Rendered> = None;
-    let chunk = 4 * rayon::current_num_threads().max(1);
     for first in (0..spec.frames).step_by(chunk) {
         let frames: Vec<Rendered> = (first..(first + chunk).min(spec.frames))
             .into_par_iter()
@@ -222,8 +253,10 @@ pub fn run_with_frames(
                 on_frame(t, &rendered.panels)?;
             }
             for (m, (col, lum)) in rendered.measured.iter().enumerate() {
-                for (i, px) in col.iter().enumerate() {
-                    cuts[m][(h - 1 - i) * spec.frames + t] = *px;
+                if spec.keep_cut {
+                    for (i, px) in col.iter().enumerate() {
+                        cuts[m][(h - 1 - i) * spec.frames + t] = *px;
+                    }
                 }
                 if let Some((pcol, plum)) = previous.as_ref().map(|p| &p.measured[m]) {
                     let a: Vec<u8> = pcol.iter().map(|&p| luminance(p)).collect();

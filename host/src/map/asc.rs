@@ -376,6 +376,7 @@ pub fn read(path: &Path, what: &str) -> Result<(Grid, Header, Spacing), MapError
         ));
     }
 
+    Map::validate_memory(header.ncols, header.nrows, what)?;
     let mut values: Vec<f32> = Vec::with_capacity(n as usize);
     let mut token: Vec<u8> = Vec::with_capacity(MAX_TOKEN);
     let push = |token: &[u8], values: &mut Vec<f32>| -> Result<(), MapError> {

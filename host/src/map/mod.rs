@@ -74,6 +74,19 @@ impl Map {
         Ok(())
     }
 
+    /// Checks that a `w`×`h` map and its pyramid fit in the memory budget
+    /// ([`crate::memory`]); the loaders call it once the header is known to be plausible,
+    /// before they allocate the cells.
+    pub fn validate_memory(w: u32, h: u32, what: &str) -> Result<(), MapError> {
+        if crate::memory::map_bytes(w, h).is_none_or(|n| n > crate::memory::budget()) {
+            return Err(MapError::TooMuchMemory {
+                what: what.to_owned(),
+                size: (w, h),
+            });
+        }
+        Ok(())
+    }
+
     /// Number of voxels (`width * height`).
     pub fn len(&self) -> usize {
         self.width as usize * self.height as usize
@@ -166,6 +179,13 @@ pub enum MapError {
         /// The offending (largest) side.
         side: u32,
     },
+    /// A map whose cells would need more memory than the budget ([`crate::memory`]).
+    TooMuchMemory {
+        /// The map, e.g. `height map "dem.png"`.
+        what: String,
+        /// Its width and height.
+        size: (u32, u32),
+    },
     /// The colour map's size differs from the height map's.
     SizeMismatch {
         /// The colour map, e.g. `colour map "c.png"`.
@@ -250,6 +270,16 @@ impl fmt::Display for MapError {
             MapError::TooLarge { what, side } => {
                 write!(f, "{what}: side {side} exceeds {MAX_SIDE}")
             }
+            MapError::TooMuchMemory { what, size } => write!(
+                f,
+                "{what}: {}×{} cells need {}, more than the memory budget of {} (--max-memory)",
+                size.0,
+                size.1,
+                crate::memory::show(
+                    crate::memory::map_bytes(size.0, size.1).unwrap_or(u64::MAX)
+                ),
+                crate::memory::show(crate::memory::budget())
+            ),
             MapError::SizeMismatch {
                 color,
                 color_size,

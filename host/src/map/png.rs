@@ -174,6 +174,7 @@ impl PngFile {
                 ),
             });
         }
+        Map::validate_memory(width, height, what)?;
         reader.seek(SeekFrom::Start(0)).map_err(io_err)?;
         Ok(Self {
             what: what.to_owned(),

@@ -233,6 +233,8 @@ pub fn read(path: &Path, what: &str) -> Result<(Grid, TiffInfo), MapError> {
         }
     }
 
+    Map::validate_memory(width, height, what)?;
+
     // Georeferencing, read before the pixels (the tags are small).
     let spacing = pixel_spacing(&mut dec, height, what)?;
     let nodata: Option<f64> = match dec.find_tag(Tag::GdalNodata).map_err(err)? {

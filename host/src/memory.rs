@@ -1,0 +1,123 @@
+//! The memory budget: before a command allocates its large buffers (the map and its pyramid,
+//! the images, a flight's cut-in-time images) it estimates their bytes and refuses, with one
+//! line naming the option, a run that would not fit (`--max-memory`, by default the memory the
+//! machine has available, less an eighth, read once).
+
+use std::sync::OnceLock;
+
+use anyhow::{bail, Result};
+
+/// Peak bytes per map cell while a map is built or loaded and its pyramid made: measured for
+/// the built-in terrain (about 200 MB for 2048², 3 GB for 8192²), and used for every map.
+pub const BYTES_PER_CELL: u64 = 48;
+
+static BUDGET: OnceLock<u64> = OnceLock::new();
+
+/// Sets the budget (once, from `--max-memory`); later calls are ignored.
+pub fn set_budget(bytes: u64) {
+    let _ = BUDGET.set(bytes);
+}
+
+/// The budget in bytes: `--max-memory`, or the machine's available memory less an eighth
+/// (`MemAvailable` of `/proc/meminfo`; 8 GiB where it cannot be read).
+pub fn budget() -> u64 {
+    *BUDGET.get_or_init(|| {
+        let available = std::fs::read_to_string("/proc/meminfo")
+            .ok()
+            .and_then(|s| {
+                s.lines()
+                    .find_map(|l| l.strip_prefix("MemAvailable:"))
+                    .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+            })
+            .map_or(8 << 30, |kb| kb.saturating_mul(1024));
+        available - available / 8
+    })
+}
+
+/// Bytes in a readable unit ("1.5 GB").
+pub fn show(bytes: u64) -> String {
+    let b = bytes as f64;
+    if b >= 1e12 {
+        format!("{:.1} TB", b / 1e12)
+    } else if b >= 1e9 {
+        format!("{:.1} GB", b / 1e9)
+    } else {
+        format!("{:.0} MB", (b / 1e6).max(1.0))
+    }
+}
+
+/// Parses `--max-memory`: bytes, or a number with K, M, G or T (powers of 1024).
+pub fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let (num, unit) = match t.char_indices().find(|(_, c)| c.is_ascii_alphabetic()) {
+        Some((i, _)) => t.split_at(i),
+        None => (t, ""),
+    };
+    let scale: u64 = match unit.trim().to_ascii_uppercase().trim_end_matches('B') {
+        "" => 1,
+        "K" => 1 << 10,
+        "M" => 1 << 20,
+        "G" => 1 << 30,
+        "T" => 1 << 40,
+        _ => return Err(format!("{s:?}: expected bytes or a size like 512M, 4G")),
+    };
+    let n: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| format!("{s:?}: expected bytes or a size like 512M, 4G"))?;
+    if !n.is_finite() || n <= 0.0 || n * scale as f64 >= u64::MAX as f64 {
+        return Err(format!("{s:?}: must be a positive size below 16 EB"));
+    }
+    Ok((n * scale as f64) as u64)
+}
+
+/// Refuses a run that needs `need` bytes (`None`: more than a 64-bit count) when the budget is
+/// smaller; `what` names the option and its value, e.g. `--frames 1000000000`.
+pub fn check(need: Option<u64>, what: &str, for_what: &str) -> Result<()> {
+    let budget = budget();
+    match need {
+        Some(n) if n <= budget => Ok(()),
+        Some(n) => bail!(
+            "{what}: {for_what} need {}, more than the memory budget of {} (--max-memory)",
+            show(n),
+            show(budget)
+        ),
+        None => bail!("{what}: {for_what} would need more memory than any machine has"),
+    }
+}
+
+/// The bytes a `w × h` map needs while it is built or loaded and its pyramid made.
+pub fn map_bytes(w: u32, h: u32) -> Option<u64> {
+    u64::from(w)
+        .checked_mul(u64::from(h))?
+        .checked_mul(BYTES_PER_CELL)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_with_units() {
+        assert_eq!(parse_size("1000"), Ok(1000));
+        assert_eq!(parse_size("512M"), Ok(512 << 20));
+        assert_eq!(parse_size("4G"), Ok(4 << 30));
+        assert_eq!(parse_size("1.5g"), Ok(3 << 29));
+        assert_eq!(parse_size("2GB"), Ok(2 << 30));
+        assert!(parse_size("0").is_err());
+        assert!(parse_size("-1G").is_err());
+        assert!(parse_size("4X").is_err());
+        assert!(parse_size("1e30T").is_err());
+    }
+
+    #[test]
+    fn products_that_overflow_are_refused() {
+        assert_eq!(
+            map_bytes(65_536, 65_536),
+            Some(65_536 * 65_536 * BYTES_PER_CELL)
+        );
+        assert!(check(None, "--frames 1", "x").is_err());
+        assert!(check(Some(u64::MAX), "--frames 1", "x").is_err());
+        assert!(check(Some(1), "--frames 1", "x").is_ok());
+    }
+}

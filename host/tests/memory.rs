@@ -1,0 +1,149 @@
+//! Memory bombs and overflowing numbers (issue 14): refused up front with one line naming the
+//! option and exit code 2, never an abort, a panic or a machine out of memory.
+
+use std::time::{Duration, Instant};
+
+mod common;
+
+use common::{assert_one_line_error, footprint};
+
+/// Runs a command that must be refused quickly, naming `names`.
+fn refused(args: &[&str], names: &str) {
+    let started = Instant::now();
+    let o = footprint(args);
+    assert_one_line_error(&o, args, names);
+    assert!(
+        started.elapsed() < Duration::from_secs(30),
+        "{args:?}: refused only after {:?}",
+        started.elapsed()
+    );
+}
+
+#[test]
+fn memory_bombs_are_refused_under_the_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    // Before: 96 GB allocated up front, abort (exit 134).
+    refused(
+        &[
+            "fly",
+            "--frames",
+            "1000000000",
+            "--size",
+            "32x32",
+            "--column-only",
+            "--terrain-size",
+            "64",
+            "--out",
+            d,
+            "--max-memory",
+            "2G",
+        ],
+        "--frames 1000000000",
+    );
+    // Before: 17 GB asked for a documented size.
+    refused(
+        &[
+            "render",
+            "--terrain-size",
+            "65536",
+            "--max-memory",
+            "2G",
+            "--out",
+            &format!("{d}/x.png"),
+        ],
+        "--terrain-size 65536",
+    );
+    refused(
+        &[
+            "render",
+            "--terrain-size",
+            "4096",
+            "--max-memory",
+            "100M",
+            "--out",
+            &format!("{d}/x.png"),
+        ],
+        "--max-memory",
+    );
+    // Before: 1.2 TB asked for.
+    refused(
+        &[
+            "report",
+            "--frames",
+            "1000000000",
+            "--max-memory",
+            "2G",
+            "--out",
+            &format!("{d}/r"),
+        ],
+        "--frames 1000000000",
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "nothing written"
+    );
+}
+
+#[test]
+fn a_map_beyond_the_budget_is_refused_from_its_header() {
+    // A real 300×300 greyscale PNG (a few hundred bytes: zeros compress well) whose cells and
+    // pyramid need about 4 MB, against a budget of 1 MB. Before: no budget at all (a 3.5 MB
+    // PNG declaring 60000×60000 made `map info` ask for 7.2 GB).
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("big.png");
+    let mut bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut bytes, 300, 300);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut w = enc.write_header().unwrap();
+        w.write_image_data(&vec![0u8; 300 * 300]).unwrap();
+    }
+    std::fs::write(&path, &bytes).unwrap();
+    let p = path.to_str().unwrap();
+    refused(&["map", "info", p, "--max-memory", "1M"], "--max-memory");
+    refused(&["map", "info", p, "--max-memory", "1M"], "big.png");
+    let o = footprint(&["map", "info", p, "--max-memory", "64M"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn overflowing_frame_counts_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    // Before: index out of bounds (h · frames wrapped) and capacity overflow, exit 101.
+    for frames in ["2305843009213693952", "18446744073709551615"] {
+        refused(
+            &[
+                "fly",
+                "--frames",
+                frames,
+                "--terrain-size",
+                "64",
+                "--size",
+                "8x8",
+                "--out",
+                d,
+            ],
+            &format!("--frames {frames}"),
+        );
+    }
+    refused(
+        &[
+            "report",
+            "--frames",
+            "18446744073709551615",
+            "--out",
+            &format!("{d}/r"),
+        ],
+        "--frames 18446744073709551615",
+    );
+}
+
+#[test]
+fn bad_memory_sizes_name_the_option() {
+    let o = footprint(&["render", "--max-memory", "lots", "--out", "/tmp/never.png"]);
+    assert_one_line_error(&o, &["--max-memory", "lots"], "--max-memory");
+}
