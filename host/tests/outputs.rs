@@ -11,6 +11,20 @@ use common::footprint;
 
 const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
 
+/// A small render to `out`, which must succeed.
+fn render_to(out: &Path) {
+    let o = footprint(&[
+        "render",
+        "--terrain-size",
+        "64",
+        "--size",
+        "32x24",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 fn is_fifo(path: &Path) -> bool {
     use std::os::unix::fs::FileTypeExt;
     std::fs::symlink_metadata(path)
@@ -32,16 +46,7 @@ fn a_fifo_output_is_written_through_and_stays_a_fifo() {
         let fifo = fifo.clone();
         std::thread::spawn(move || std::fs::read(fifo).unwrap())
     };
-    let o = footprint(&[
-        "render",
-        "--terrain-size",
-        "64",
-        "--size",
-        "32x24",
-        "--out",
-        fifo.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    render_to(&fifo);
     let bytes = reader.join().unwrap();
     assert!(bytes.starts_with(PNG_SIGNATURE), "the reader got a PNG");
     assert!(is_fifo(&fifo), "the FIFO is still a FIFO");
@@ -52,16 +57,7 @@ fn a_fifo_output_is_written_through_and_stays_a_fifo() {
 /// old code could replace it; as another user the rename was refused anyway).
 #[test]
 fn dev_null_stays_a_device() {
-    let o = footprint(&[
-        "render",
-        "--terrain-size",
-        "64",
-        "--size",
-        "32x24",
-        "--out",
-        "/dev/null",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    render_to(Path::new("/dev/null"));
     let m = std::fs::metadata("/dev/null").unwrap();
     assert!(!m.is_file(), "/dev/null was replaced by a regular file");
 }
@@ -74,16 +70,7 @@ fn a_symlink_output_writes_its_target() {
     std::fs::write(&target, b"old").unwrap();
     let link = dir.path().join("link.png");
     std::os::unix::fs::symlink(&target, &link).unwrap();
-    let o = footprint(&[
-        "render",
-        "--terrain-size",
-        "64",
-        "--size",
-        "32x24",
-        "--out",
-        link.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    render_to(&link);
     assert!(std::fs::symlink_metadata(&link)
         .unwrap()
         .file_type()

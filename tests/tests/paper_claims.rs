@@ -12,7 +12,7 @@ use footprint_host::experiment::paper::PAPER_PITCHES;
 use footprint_host::experiment::table::{self, Tables15};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{Mode, Rate};
+use footprint_host::render::Mode;
 use footprint_host::view::Size;
 
 const SIZE: Size = Size {
@@ -29,19 +29,9 @@ fn results() -> &'static (Tables15, Fly) {
         let modes = footprint_host::experiment::paper::paper_modes();
         let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, |_| {}).unwrap();
         let spec = FlySpec {
-            frames: 400,
-            step_m: 0.5,
-            column: None,
-            modes: vec![
-                Mode::As,
-                Mode::AsExact,
-                Mode::Ps,
-                Mode::Ss(Rate::N8),
-                Mode::Ss(Rate::N16),
-            ],
             size: SIZE,
             all_columns: false,
-            keep_cut: true,
+            ..footprint_host::experiment::paper::paper_flight(400)
         };
         let flight = fly::run(&map, &pyramid, &spec, || {}).unwrap();
         (tables, flight)

@@ -8,10 +8,10 @@ use clap::Args;
 use footprint_core::terrain::camera::{CameraParams, Options};
 use serde_json::json;
 
-use crate::experiment::fly::{self, FlySpec, BINS};
+use crate::experiment::fly::{self, BINS};
 use crate::experiment::heights;
 use crate::experiment::inspect;
-use crate::experiment::paper::{paper_camera, PAPER_PITCHES};
+use crate::experiment::paper::{paper_camera, paper_flight, PAPER_PITCHES};
 use crate::experiment::table;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
@@ -40,26 +40,9 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     // Built in a temporary folder next to --out and moved into place at the end: a failed or
     // interrupted run leaves nothing behind.
     let folder = Folder::create("--out", &args.out)?;
-    let fly_spec = FlySpec {
-        frames: args.frames,
-        step_m: 0.5,
-        column: None,
-        modes: vec![
-            Mode::As,
-            Mode::AsExact,
-            Mode::Ps,
-            Mode::Ss(Rate::N8),
-            Mode::Ss(Rate::N16),
-        ],
-        size: Size {
-            width: 400,
-            height: 400,
-        },
-        all_columns: true,
-        keep_cut: true,
-    };
-    let size = fly_spec.size;
+    let fly_spec = paper_flight(args.frames);
     fly_spec.check_memory(0)?;
+    let size = fly_spec.size;
     let map = args.map.load()?;
     let pyramid = args.map.pyramid(&map)?;
     let modes = crate::experiment::paper::paper_modes();

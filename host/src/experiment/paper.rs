@@ -5,6 +5,7 @@
 use anyhow::{Context, Result};
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 
+use crate::experiment::fly::FlySpec;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{fit_first_hit, Mode, Rate};
@@ -18,6 +19,30 @@ pub fn paper_modes() -> Vec<Mode> {
     let mut m = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Li];
     m.extend([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss));
     m
+}
+
+/// Sect. 5's flight with `frames` frames: from the pitch-5° view, 0.5 m forward per frame, the
+/// middle column, 400×400, Table 6's modes (AS, the exact AS, PS, SS8, SS16), every column
+/// histogrammed and the cut-in-time images kept.
+pub fn paper_flight(frames: usize) -> FlySpec {
+    FlySpec {
+        frames,
+        step_m: 0.5,
+        column: None,
+        modes: vec![
+            Mode::As,
+            Mode::AsExact,
+            Mode::Ps,
+            Mode::Ss(Rate::N8),
+            Mode::Ss(Rate::N16),
+        ],
+        size: Size {
+            width: 400,
+            height: 400,
+        },
+        all_columns: true,
+        keep_cut: true,
+    }
 }
 
 /// The camera of a paper case on `map`: from the map's centre, heading north, FOV 10°,
