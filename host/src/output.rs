@@ -78,6 +78,14 @@ pub fn resolve(path: &Path) -> Result<PathBuf> {
     )
 }
 
+/// The folder that holds `path` (`.` for a bare file name).
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    }
+}
+
 /// A path as the user wrote it, for messages.
 pub fn shown(path: &Path) -> String {
     path.display().to_string()
@@ -120,10 +128,7 @@ impl Sink {
             }
             _ => {}
         }
-        let dir = match target.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
+        let dir = folder_of(&target);
         if !dir.is_dir() {
             bail!(
                 "output {:?}: folder {:?} does not exist",
@@ -224,10 +229,7 @@ pub struct Folder {
 impl Folder {
     /// Starts the folder `out` (which may exist; its parent must). Errors name `option`.
     pub fn create(option: &str, out: &Path) -> Result<Self> {
-        let parent = match out.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
+        let parent = folder_of(out);
         if !parent.is_dir() {
             bail!(
                 "{option} {:?}: the folder above it does not exist",

@@ -96,6 +96,23 @@ fn render_counts_json_has_the_documented_fields() {
     assert!(v["counts"]["V"].as_u64().unwrap() > 0);
 }
 
+/// `--json` alone prints the counters' JSON (it implies `--counts`; it used to be ignored).
+#[test]
+fn render_json_alone_prints_the_counters() {
+    let o = footprint(&[
+        "render",
+        "--terrain-size",
+        "64",
+        "--size",
+        "32x24",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+    assert_eq!(v["mode"], "as");
+    assert_eq!(v["counts"]["P"], 32 * 24);
+}
+
 #[test]
 fn render_writes_a_png_of_the_asked_size() {
     let dir = tempfile::tempdir().unwrap();

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{fails_writing, footprint};
+use common::{assert_one_line_error, fails_writing, footprint};
 
 /// Runs `footprint specular …` that must fail, and checks the failure.
 fn fails(args: &[&str], names: &str) {
@@ -127,5 +127,17 @@ fn measure_json_has_one_record_per_scene_and_mode() {
         if r["mode"] == "clamp" {
             assert_eq!(r["shades_per_pixel"].as_f64(), Some(1.0));
         }
+    }
+}
+
+/// `--json` prints only `--measure`'s records; elsewhere it is refused, not silently ignored.
+#[test]
+fn json_without_measure_is_refused() {
+    for args in [
+        &["specular", "--figure", "2", "--json"][..],
+        &["specular", "--scene", "plate1", "--mode", "clamp", "--json"][..],
+    ] {
+        let o = footprint(args);
+        assert_one_line_error(&o, args, "--json");
     }
 }

@@ -25,7 +25,8 @@
 use crate::color::Rgb;
 use crate::error::{check, check_in, Error};
 use crate::num::{
-    fixed_from_f64, Coord, Height, Line, Slope, MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE,
+    fixed_from_f64, mul_floor_24, Coord, Height, Line, Slope, MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR,
+    MAX_SLOPE,
 };
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
@@ -420,11 +421,9 @@ impl<'t> Frame<'t> {
         let q32 = saturate((i128::from(row) * i128::from(column.kc.to_bits())) >> 32);
         let limit = (MAX_SLOPE as i64) << 24;
         let slope = (q32 >> 8).clamp(-limit, limit);
-        // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: with n_eye = a·2^24 + b
-        // (0 ≤ b < 2^24), ⌊n_eye·slope⌋ = a·slope + ⌊b·slope / 2^24⌋, where |a| ≤ 2^22 and
-        // |slope| ≤ 2^39 (raw), so both products stay below 2^63.
-        let n_eye = column.n_eye.to_bits();
-        let m = (n_eye >> 24) * slope + (((n_eye & 0xFF_FFFF) * slope) >> 24);
+        // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 half-voxels
+        // (the eye is within ±MAX_COORD) and |slope| ≤ 2^39 raw (clamped above).
+        let m = mul_floor_24(column.n_eye.to_bits(), slope);
         Line {
             base: Height::from_bits(self.eye.to_bits().saturating_sub(m)),
             slope: Slope::from_bits(slope),

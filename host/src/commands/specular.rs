@@ -48,11 +48,11 @@ pub struct SpecularArgs {
 
 /// Runs `footprint specular`.
 pub fn specular(args: &SpecularArgs) -> Result<()> {
-    if let (Some(name), Some(mode)) = (args.scene, args.mode) {
-        return plate(args, name, mode);
-    }
     if args.format.json && !args.measure {
         bail!("--json: only --measure prints JSON (add --measure, or use --csv with --figure)");
+    }
+    if let (Some(name), Some(mode)) = (args.scene, args.mode) {
+        return plate(args, name, mode);
     }
     if let Some(fig) = args.figure {
         return figure(args, fig);
