@@ -88,7 +88,10 @@ impl fmt::Display for Error {
                 unit,
             } => write!(
                 f,
-                "{what} = {value}{unit} is outside {min}..{max}{unit} or not finite"
+                "{what} = {}{unit} is outside {}..{}{unit} or not finite",
+                Shown(value),
+                Shown(min),
+                Shown(max)
             ),
             Error::ImageSize { width, height, max } => write!(
                 f,
@@ -97,6 +100,23 @@ impl fmt::Display for Error {
             Error::BadNormal { x, y, z } => {
                 write!(f, "normal ({x}, {y}, {z}) is zero or not finite")
             }
+        }
+    }
+}
+
+/// A number as a person reads it in a one-line message: plain between 10⁻⁴ and 10⁹
+/// (`0.25`, `1000`), in exponent form beyond (`1e300`, `1e-300`), never 300 digits.
+#[derive(Clone, Copy, Debug)]
+pub struct Shown(pub f64);
+
+impl fmt::Display for Shown {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        let a = if v < 0.0 { -v } else { v };
+        if v.is_finite() && v != 0.0 && !(1e-4..1e9).contains(&a) {
+            write!(f, "{v:e}")
+        } else {
+            write!(f, "{v}")
         }
     }
 }
@@ -140,3 +160,27 @@ pub(crate) fn check_in(
 }
 
 impl core::error::Error for Error {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::fmt::Write;
+
+    #[test]
+    fn numbers_in_messages_are_short() {
+        let mut s: heapless::String<64> = heapless::String::new();
+        for v in [
+            1e300,
+            1e-300,
+            0.25,
+            1000.0,
+            0.0,
+            -2.5e12,
+            f64::INFINITY,
+            f64::NAN,
+        ] {
+            write!(s, "{} ", Shown(v)).unwrap();
+        }
+        assert_eq!(s.as_str(), "1e300 1e-300 0.25 1000 0 -2.5e12 inf NaN ");
+    }
+}

@@ -2,6 +2,8 @@
 //! and report writers. The binary (`src/main.rs`) only parses arguments and calls in here.
 
 pub mod args;
+pub mod camera;
+pub mod cli;
 pub mod commands;
 pub mod experiment;
 pub mod map;

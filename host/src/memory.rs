@@ -93,6 +93,18 @@ pub fn map_bytes(w: u32, h: u32) -> Option<u64> {
         .checked_mul(BYTES_PER_CELL)
 }
 
+/// Peak bytes per pixel while `render` or `inspect` draws an image and writes its PNG (the
+/// frame, the per-column buffers of the parallel render, the PNG's rows): measured 188 MB for
+/// 4096² on a 64² map, 11.2 bytes per pixel.
+pub const BYTES_PER_PIXEL: u64 = 12;
+
+/// The bytes a `w × h` image needs while it is rendered and written.
+pub fn image_bytes(w: u32, h: u32) -> Option<u64> {
+    u64::from(w)
+        .checked_mul(u64::from(h))?
+        .checked_mul(BYTES_PER_PIXEL)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,11 +4,11 @@ use std::fmt;
 use std::str::FromStr;
 use std::time::Instant;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use footprint_core::color::Color16;
 use footprint_core::num::Coord;
 use footprint_core::num::Weight;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, Column, Frame, Options};
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
@@ -441,39 +441,4 @@ pub fn first_hit_distance(frame: &Frame<'_>, terrain: &Terrain<'_>) -> Option<f6
     walk(frame, terrain, col, 0..1, &mut probe, &mut NoCost, &mut out);
     let column = frame.column(col)?;
     probe.n.map(|n| column.distance(n))
-}
-
-/// The paper's rule for Table 1: the eye height (metres) at which the pixel footprint at the
-/// first hit is one voxel wide, i.e. the lowest ray of the middle column first hits the terrain
-/// at `1/pixel_angle` voxels. Found by bisection on the eye height (the first-hit distance
-/// grows with it); the render's own walk is the probe, so the rule holds for what is drawn.
-pub fn fit_first_hit(params: CameraParams, terrain: &Terrain<'_>, options: Options) -> Result<f64> {
-    let camera = Camera::new(params)?;
-    let target = 1.0 / camera.pixel_angle();
-    let scale = terrain.scale();
-    let top_m = terrain.max_height().to_num::<f64>() * scale.height_scale_m;
-    let mut tables = Tables::new(&camera);
-    let mut probe = |eye_m: f64| -> Result<Option<f64>> {
-        let cam = Camera::new(CameraParams { eye_m, ..params })?;
-        let frame = tables.frame(&cam, terrain, options)?;
-        Ok(first_hit_distance(&frame, terrain))
-    };
-    // The lowest ray descends by |slope| per unit distance: from this high it reaches the
-    // ground no nearer than the target.
-    let slope = -camera.row_slope(0);
-    if slope <= 0.0 {
-        bail!("--fit-first-hit needs a lowest ray that descends: raise --pitch");
-    }
-    let (mut lo, mut hi) = (0.0, top_m + slope * target * scale.spacing_m * 1.01);
-    if probe(hi)?.is_none_or(|d| d < target) {
-        bail!("--fit-first-hit: no eye height up to {hi:.0} m puts the first hit at {target:.0} voxels");
-    }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        match probe(mid)? {
-            Some(d) if d >= target => hi = mid,
-            _ => lo = mid,
-        }
-    }
-    Ok(hi)
 }

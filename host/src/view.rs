@@ -2,14 +2,14 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::Args;
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 use footprint_core::terrain::pyramid::HeightFilter;
 
+use crate::camera::{place, Eye};
 use crate::map::{self, Map};
 use crate::pyramid::Pyramid;
-use crate::render::fit_first_hit;
 
 /// An image size `WxH`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,7 +70,8 @@ impl From<HeightFilterArg> for HeightFilter {
 #[derive(Args, Clone, Debug)]
 pub struct MapArgs {
     /// Height map: .png (8/16-bit grey), .hgt (SRTM), .asc (ESRI ASCII grid) or .tif/.tiff
-    /// (GeoTIFF), by extension (see --format). Without it, the built-in procedural terrain.
+    /// (GeoTIFF), by extension, else --format, else its first bytes; `-` reads standard input.
+    /// Without it, the built-in procedural terrain.
     #[arg(long, value_name = "FILE")]
     pub dem: Option<PathBuf>,
     /// The format of --dem, overriding its extension.
@@ -80,17 +81,17 @@ pub struct MapArgs {
     #[arg(long, value_name = "COLOR.png", requires = "dem")]
     pub color: Option<PathBuf>,
     /// Metres per voxel of --dem [default: from the file; 30 for PNG].
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, requires = "dem")]
     pub spacing: Option<f64>,
     /// Metres per height unit of --dem [default: 0.1 for PNG; chosen to fit the heights for
     /// other formats].
-    #[arg(long = "height-scale", allow_hyphen_values = true)]
+    #[arg(long = "height-scale", allow_hyphen_values = true, requires = "dem")]
     pub height_scale: Option<f64>,
     /// Seed of the built-in terrain.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, conflicts_with = "dem")]
     pub seed: u64,
     /// Side of the built-in terrain, voxels.
-    #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE)]
+    #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE, conflicts_with = "dem")]
     pub terrain_size: u32,
     /// How the pyramid's coarse voxels get their heights (colours are always 2×2 averages).
     #[arg(long = "height-filter", value_enum, default_value_t = HeightFilterArg::Silhouette)]
@@ -198,6 +199,12 @@ pub struct View {
 impl View {
     /// Loads the map and resolves the camera (fitting the eye height if asked).
     pub fn new(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
+        let (w, h) = (cam.size.width, cam.size.height);
+        crate::memory::check(
+            crate::memory::image_bytes(w, h),
+            &format!("--size {w}x{h}"),
+            "the images",
+        )?;
         let map = map_args.load()?;
         let pyramid = map_args.pyramid(&map)?;
         let options = Options {
@@ -214,12 +221,6 @@ impl View {
     }
 }
 
-/// The default far distance in voxels: 8 × the map's longer side (the mirrored terrain is
-/// infinite), and at least 4 × the distance where a pixel's footprint is one voxel wide.
-pub fn default_far_voxels(map: &Map, pixel_angle: f64) -> f64 {
-    (8.0 * f64::from(map.width.max(map.height))).max(4.0 / pixel_angle)
-}
-
 /// Turns the camera options into a validated camera for `map`.
 pub fn resolve_camera(
     map: &Map,
@@ -228,7 +229,7 @@ pub fn resolve_camera(
     options: Options,
 ) -> Result<Camera> {
     let centre = |n: u32| n as f64 * map.spacing_m / 2.0;
-    let mut params = CameraParams {
+    let params = CameraParams {
         x_m: cam.x.unwrap_or_else(|| centre(map.width)),
         y_m: cam.y.unwrap_or_else(|| centre(map.height)),
         eye_m: 0.0,
@@ -239,20 +240,9 @@ pub fn resolve_camera(
         height: cam.size.height,
         far_m: 1.0,
     };
-    // Validate everything but the eye height first, so errors name the bad argument.
-    let probe = Camera::new(params).context("camera")?;
-    params.far_m = match cam.far {
-        Some(far) => far,
-        None => default_far_voxels(map, probe.pixel_angle()) * map.spacing_m,
+    let eye = match cam.height {
+        Some(h) => Eye::Height(h),
+        None => Eye::FitFirstHit,
     };
-    Camera::new(params).context("camera")?;
-    params.eye_m = match cam.height {
-        // --height is metres above the datum; the camera counts from height unit 0.
-        Some(h) => h - map.base_m,
-        None => {
-            let terrain = pyramid.terrain(options.lod)?;
-            fit_first_hit(params, &terrain, options)?
-        }
-    };
-    Camera::new(params).context("camera")
+    place(map, pyramid, params, cam.far, eye, options)
 }

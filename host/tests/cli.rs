@@ -151,6 +151,50 @@ fn bad_numbers_name_their_argument() {
     fails(&["--height-filter", "max"], "height-filter");
 }
 
+/// Before (issue 14): these blamed a quantity the user never gave (the far distance, the eye
+/// height in height units, --fit-first-hit) and printed hundreds of digits. Now each names the
+/// option as given, in metres or degrees, in a short line.
+#[test]
+fn messages_name_the_option_the_user_gave() {
+    let short = |args: &[&str], names: &str| {
+        let mut all = vec!["--max-memory", "64G", "render", "--terrain-size", "64"];
+        all.extend_from_slice(args);
+        let o = footprint(&all);
+        assert_one_line_error(&o, args, names);
+        let line = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(line.len() < 300, "{args:?}: a long line: {line}");
+        line
+    };
+    short(&["--fov", "1e-300"], "--fov 1e-300");
+    short(&["--fov", "0.0001"], "--fov 0.0001");
+    short(&["--size", "16384x16384"], "--size");
+    short(&["--pitch", "89.9999"], "--pitch 89.9999");
+    short(&["--far", "1e-300"], "--far 1e-300 m");
+    short(&["--far", "1e300"], "--far 1e300 m");
+    short(&["--height", "1e9"], "--height 1e9 m");
+    short(&["--x", "1e12"], "--x 1e12 m");
+    let line = short(&["--pitch", "-30"], "--pitch -30");
+    assert!(line.contains("looks up"), "{line}");
+
+    let dir = tempfile::tempdir().unwrap();
+    for (cell, says) in [("1e300", "cellsize 1e300 m"), ("1e-300", "cellsize 1e-300")] {
+        let grid = dir.path().join(format!("c{cell}.asc"));
+        std::fs::write(
+            &grid,
+            format!("ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize {cell}\n1 2\n3 4\n"),
+        )
+        .unwrap();
+        let args = ["map", "info", grid.to_str().unwrap()];
+        let o = footprint(&args);
+        assert_one_line_error(&o, &args, says);
+        assert!(
+            o.stderr.len() < 400,
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}
+
 #[test]
 fn the_height_filter_changes_the_distant_terrain_only() {
     // At pitch 5° the upper rows come from coarse pyramid voxels, whose heights the filter
@@ -194,19 +238,21 @@ fn bad_maps_name_their_file() {
     let dir = tempfile::tempdir().unwrap();
     let p = |n: &str| -> PathBuf { dir.path().join(n) };
     let s = |b: &PathBuf| b.to_str().unwrap().to_string();
+    // A map file replaces the built-in terrain (whose --terrain-size clap refuses with --dem).
+    let fails_dem = |args: &[&str], names: &str| fails_writing(&["render"], args, names);
 
-    fails(&["--dem", &s(&p("missing.png"))], "missing.png");
+    fails_dem(&["--dem", &s(&p("missing.png"))], "missing.png");
 
     std::fs::write(p("corrupt.png"), b"this is not a png at all").unwrap();
-    fails(&["--dem", &s(&p("corrupt.png"))], "corrupt.png");
+    fails_dem(&["--dem", &s(&p("corrupt.png"))], "corrupt.png");
 
     write_gray16(&p("good.png"), 32, 32);
     let bytes = std::fs::read(p("good.png")).unwrap();
     std::fs::write(p("truncated.png"), &bytes[..bytes.len() / 2]).unwrap();
-    fails(&["--dem", &s(&p("truncated.png"))], "truncated.png");
+    fails_dem(&["--dem", &s(&p("truncated.png"))], "truncated.png");
 
     write_rgb(&p("small_color.png"), 16, 32);
-    fails(
+    fails_dem(
         &[
             "--dem",
             &s(&p("good.png")),
@@ -217,11 +263,11 @@ fn bad_maps_name_their_file() {
     );
 
     std::fs::write(p("zero.png"), png_with_header(0, 10)).unwrap();
-    fails(&["--dem", &s(&p("zero.png"))], "zero.png");
+    fails_dem(&["--dem", &s(&p("zero.png"))], "zero.png");
     std::fs::write(p("huge.png"), png_with_header(70_000, 1)).unwrap();
-    fails(&["--dem", &s(&p("huge.png"))], "huge.png");
+    fails_dem(&["--dem", &s(&p("huge.png"))], "huge.png");
 
-    fails(&["--dem", &s(&dir.path().to_path_buf())], "is a directory");
+    fails_dem(&["--dem", &s(&dir.path().to_path_buf())], "is a directory");
 }
 
 #[test]

@@ -292,13 +292,16 @@ fn ascii_grids_in_any_key_order_and_case_with_nodata_and_nan_voids() {
     );
     assert_eq!(v["max_unit"], 1305);
 
-    // --format reads a file whatever its name.
+    // --format reads a file whatever its name; without it, its first bytes tell.
     let dat = dir.path().join("grid.dat");
     std::fs::copy(&grid, &dat).unwrap();
     assert_eq!(info(&dat, &["--format", "asc"])["max_unit"], 1305);
-    let line = fails(&["map", "info", &s(&dat)], "grid.dat", None);
+    assert_eq!(info(&dat, &[])["max_unit"], 1305);
+    let text = dir.path().join("notes.dat");
+    std::fs::write(&text, "not a map\n").unwrap();
+    let line = fails(&["map", "info", &s(&text)], "notes.dat", None);
     assert!(
-        line.contains("unknown map format (extension .dat)") && line.contains("--format"),
+        line.contains("unknown map format (extension .dat") && line.contains("--format"),
         "{line}"
     );
 }
@@ -821,4 +824,148 @@ fn headers_declaring_huge_sizes_are_refused_at_once() {
         "refused at once: {:?}",
         t.elapsed()
     );
+}
+
+/// Runs `footprint ARGS…` with `input` on its standard input.
+fn footprint_with_stdin(args: &[&str], input: &[u8]) -> Output {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let mut stdin = child.stdin.take().unwrap();
+    let bytes = input.to_vec();
+    // A refused input may close the pipe early: a failed write is then expected.
+    let writer = std::thread::spawn(move || {
+        let _ = stdin.write_all(&bytes);
+    });
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    out
+}
+
+/// Before (issue 14): the loader judged a FIFO to be 0 bytes long, then opened it again to guess
+/// its format, and `map info f.asc` blocked for ever. Now each input is read exactly once.
+#[test]
+fn a_fifo_is_read_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("f.asc");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    if !matches!(made, Ok(s) if s.success()) {
+        eprintln!("SKIPPED: mkfifo is not available");
+        return;
+    }
+    let text = format!("{HEAD_3X2}1 2 3\n4 5 6\n");
+    let writer = {
+        let fifo = fifo.clone();
+        // Opening a FIFO for writing blocks until the reader opens it; if the reader opened it
+        // twice, the second open would block this test (the old hang) rather than pass it.
+        std::thread::spawn(move || std::fs::write(fifo, text).unwrap())
+    };
+    // Fails (rather than hangs) if the loader blocks: killed after a minute.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(["map", "info", "--json", &s(&fifo)])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            child.kill().unwrap();
+            // Unblock the writer, if it still waits for a reader.
+            let _ = std::fs::read(&fifo);
+            panic!("map info on a FIFO did not finish in a minute");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let o = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        (v["width"].as_u64(), v["height"].as_u64()),
+        (Some(3), Some(2))
+    );
+    assert_eq!(v["format"], "asc");
+}
+
+/// Before: `/dev/stdin` was judged 0 bytes long ("truncated"). Now `-` and `/dev/stdin` are read
+/// once, and the format is guessed from the first bytes when no extension names it.
+#[test]
+fn standard_input_is_a_map_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("g.asc");
+    write_asc(&grid, HEAD_3X2, &["1 2 3", "4 5 6"]);
+    let tif = dir.path().join("g.tif");
+    ok(&["map", "convert", &s(&grid), &s(&tif)]);
+    for (bytes, format) in [
+        (std::fs::read(&grid).unwrap(), "asc"),
+        (std::fs::read(&tif).unwrap(), "tiff"),
+    ] {
+        for path in ["-", "/dev/stdin"] {
+            let o = footprint_with_stdin(&["map", "info", "--json", path], &bytes);
+            assert!(
+                o.status.success(),
+                "{path}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+            let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+            assert_eq!(v["format"], format, "{path}");
+            assert_eq!(v["width"], 3, "{path}");
+        }
+    }
+    // A render from standard input.
+    let out = dir.path().join("r.png");
+    let o = footprint_with_stdin(
+        &["render", "--dem", "-", "--size", "16x12", "--out", &s(&out)],
+        &std::fs::read(&grid).unwrap(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.exists());
+    // Bytes that are no map: one line naming the input and what would name the format.
+    let o = footprint_with_stdin(&["map", "info", "-"], b"hello, world\n");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("height map \"-\"") && stderr.contains("--format"),
+        "{stderr}"
+    );
+    let o = footprint_with_stdin(&["map", "info", "-"], b"");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("it is empty"), "{stderr}");
+    // A stream over the memory budget is refused, not read to the end of memory.
+    let o = footprint_with_stdin(
+        &["--max-memory", "1K", "map", "info", "--format", "asc", "-"],
+        &vec![b' '; 4096],
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--max-memory"), "{stderr}");
+}
+
+/// Before: `--spacing` and `--height-scale` without `--dem`, and `--seed` or `--terrain-size`
+/// with it, were silently ignored. Now clap refuses the combination, naming both.
+#[test]
+fn options_that_would_be_ignored_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("g.asc");
+    write_asc(&grid, HEAD_3X2, &["1 2 3", "4 5 6"]);
+    let g = s(&grid);
+    for (args, names) in [
+        (vec!["render", "--spacing", "10"], "--dem"),
+        (vec!["render", "--height-scale", "10"], "--dem"),
+        (vec!["table", "--spacing", "10"], "--dem"),
+        (vec!["render", "--dem", &g, "--seed", "3"], "--seed"),
+        (
+            vec!["render", "--dem", &g, "--terrain-size", "64"],
+            "--terrain-size",
+        ),
+    ] {
+        fails(&args, names, None);
+    }
 }

@@ -66,6 +66,19 @@ fn memory_bombs_are_refused_under_the_budget() {
         ],
         "--max-memory",
     );
+    // The largest image: 3.2 GB of buffers, refused under a 1 GB budget before the map loads.
+    refused(
+        &[
+            "render",
+            "--size",
+            "16384x16384",
+            "--max-memory",
+            "1G",
+            "--out",
+            &format!("{d}/x.png"),
+        ],
+        "--size 16384x16384",
+    );
     // Before: 1.2 TB asked for.
     refused(
         &[

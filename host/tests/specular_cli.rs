@@ -141,3 +141,20 @@ fn json_without_measure_is_refused() {
         assert_one_line_error(&o, args, "--json");
     }
 }
+
+/// Before (issue 14): `--csv` with `--scene` or `--measure`, and `--size` with `--figure`, were
+/// silently ignored. Now each is refused, naming the option.
+#[test]
+fn options_that_would_be_ignored_are_refused() {
+    for (args, names) in [
+        (
+            &["specular", "--scene", "plate1", "--mode", "clamp", "--csv"][..],
+            "--csv",
+        ),
+        (&["specular", "--measure", "--csv"][..], "--csv"),
+        (&["specular", "--figure", "2", "--size", "64"][..], "--size"),
+    ] {
+        let o = footprint(args);
+        assert_one_line_error(&o, args, names);
+    }
+}

@@ -61,7 +61,8 @@ impl ReadArgs {
 /// `footprint map info`.
 #[derive(Args, Debug)]
 pub struct InfoArgs {
-    /// The height map: .png, .hgt, .asc, .tif or .tiff.
+    /// The height map: .png, .hgt, .asc, .tif or .tiff (else --format, else its first bytes);
+    /// `-` reads standard input.
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
     /// How to read it.
@@ -75,7 +76,7 @@ pub struct InfoArgs {
 /// `footprint map convert`.
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
-    /// The input height map.
+    /// The input height map; `-` reads standard input.
     #[arg(value_name = "IN")]
     pub input: PathBuf,
     /// The output file; its format comes from its extension (see --to).
@@ -177,7 +178,7 @@ fn info(args: &InfoArgs) -> Result<()> {
 fn convert(args: &ConvertArgs) -> Result<()> {
     let out_what = describe("output", &args.output);
     // The output format first: a wrong name fails before the input is read.
-    let to = Format::resolve(args.to, &args.output, &out_what)?;
+    let to = Format::from_name(args.to, &args.output, &out_what)?;
     let loaded = args.read.load(&args.input)?;
     let m = &loaded.map;
     map::format::check_writable(m, to, &out_what)?;

@@ -26,9 +26,9 @@ pub struct SpecularArgs {
     /// Output PNG (a plate or a figure).
     #[arg(long, value_name = "FILE.png", conflicts_with = "measure")]
     pub out: Option<PathBuf>,
-    /// Image side in pixels (plates and --measure).
-    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=4096))]
-    pub size: u32,
+    /// Image side in pixels (plates and --measure) [default: 256].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096), conflicts_with = "figure")]
+    pub size: Option<u32>,
     /// Figure 2 (power cutoffs against n) or Figure 3 (clamped/original cosine components).
     #[arg(long, value_parser = clap::value_parser!(u8).range(2..=3))]
     pub figure: Option<u8>,
@@ -46,8 +46,18 @@ pub struct SpecularArgs {
     pub frames: u32,
 }
 
+impl SpecularArgs {
+    /// `--size`, or its default.
+    fn side(&self) -> u32 {
+        self.size.unwrap_or(256)
+    }
+}
+
 /// Runs `footprint specular`.
 pub fn specular(args: &SpecularArgs) -> Result<()> {
+    if args.csv && args.figure.is_none() {
+        bail!("--csv: only --figure prints CSV (use --json with --measure)");
+    }
     if args.format.json && !args.measure {
         bail!("--json: only --measure prints JSON (add --measure, or use --csv with --figure)");
     }
@@ -62,7 +72,7 @@ pub fn specular(args: &SpecularArgs) -> Result<()> {
 
 fn plate(args: &SpecularArgs, name: SceneName, mode: Mode) -> Result<()> {
     let scene = Scene::new(name);
-    let frame = scene::render(&scene, args.size, 0.0, mode, 32)?;
+    let frame = scene::render(&scene, args.side(), 0.0, mode, 32)?;
     if let Some(out) = &args.out {
         write_png(out, frame.size, frame.size, &frame.image)?;
     }
@@ -141,7 +151,7 @@ fn figure(args: &SpecularArgs, fig: u8) -> Result<()> {
 
 fn measure(args: &SpecularArgs) -> Result<()> {
     let cfg = MeasureConfig {
-        size: args.size,
+        size: args.side(),
         frames: args.frames,
         ..Default::default()
     };

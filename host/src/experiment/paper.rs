@@ -2,14 +2,15 @@
 //! 400×400, the eye at the fit-first-hit height, at pitch 40°, 20° and 5°. A plain view spec,
 //! no CLI types.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 
+use crate::camera::{place, Eye};
 use crate::experiment::fly::FlySpec;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{fit_first_hit, Mode, Rate};
-use crate::view::{default_far_voxels, Size};
+use crate::render::{Mode, Rate};
+use crate::view::Size;
 
 /// The paper's three pitches (Table 1).
 pub const PAPER_PITCHES: [f64; 3] = [40.0, 20.0, 5.0];
@@ -56,7 +57,7 @@ pub fn paper_camera(
     size: Size,
     lod: bool,
 ) -> Result<Camera> {
-    let mut params = CameraParams {
+    let params = CameraParams {
         x_m: f64::from(map.width) * map.spacing_m / 2.0,
         y_m: f64::from(map.height) * map.spacing_m / 2.0,
         eye_m: 0.0,
@@ -67,13 +68,9 @@ pub fn paper_camera(
         height: size.height,
         far_m: 1.0,
     };
-    let probe = Camera::new(params).context("camera")?;
-    params.far_m = default_far_voxels(map, probe.pixel_angle()) * map.spacing_m;
     let options = Options {
         lod,
         ..Options::default()
     };
-    let terrain = pyramid.terrain(lod)?;
-    params.eye_m = fit_first_hit(params, &terrain, options)?;
-    Camera::new(params).context("camera")
+    place(map, pyramid, params, None, Eye::FitFirstHit, options)
 }

@@ -10,11 +10,12 @@
 //! 0.1 whose whole extent lies within ±180° and ±90°; geographic cells are converted to metres
 //! at the grid's centre latitude.
 
-use std::fs::File;
-use std::io::{self, BufRead, BufReader, Write};
-use std::path::Path;
+use std::io::{self, BufRead, Write};
 
 use super::grid::{Grid, Spacing};
+use footprint_core::error::Shown;
+
+use super::input::{is_stdin, Input};
 use super::{Map, MapError};
 
 /// The format's name in errors.
@@ -72,17 +73,21 @@ impl Header {
                 "degrees (a cell under 0.1 within ±180°, ±90°)"
             };
             let cell = if dx == dy {
-                format!("cellsize {dx}° {why}")
+                format!("cellsize {} {why}", Shown(dx))
             } else {
-                format!("cells {dx}°×{dy}° {why}")
+                format!("cells {}×{} {why}", Shown(dx), Shown(dy))
             };
             Spacing::geographic((south + north) / 2.0, dx, dy, &cell)
         } else if dx == dy {
-            Spacing::metres(dx, format!("cellsize {dx} m"))
+            Spacing::metres(dx, format!("cellsize {} m", Shown(dx)))
         } else {
             Spacing::metres(
                 (dx * dy).sqrt(),
-                format!("cells {dx}×{dy} m; square voxels of their geometric mean"),
+                format!(
+                    "cells {}×{} m; square voxels of their geometric mean",
+                    Shown(dx),
+                    Shown(dy)
+                ),
             )
         }
     }
@@ -352,14 +357,14 @@ fn parse_value(
 /// The header's size is checked before anything is allocated: a side over 65,536 is refused,
 /// and so is a file too short to hold the declared number of values (each takes at least two
 /// bytes, a digit and a separator). Too few values, or more than declared, are errors.
-pub fn read(path: &Path, what: &str) -> Result<(Grid, Header, Spacing), MapError> {
+pub fn read(mut reader: Input) -> Result<(Grid, Header, Spacing), MapError> {
+    let what = reader.what().to_owned();
+    let what = what.as_str();
     let io_err = |error: io::Error| MapError::Io {
         what: what.to_owned(),
         error,
     };
-    let file = File::open(path).map_err(io_err)?;
-    let len = file.metadata().map_err(io_err)?.len();
-    let mut reader = BufReader::with_capacity(1 << 16, file);
+    let len = reader.len();
     let (header, header_len, first) = read_header(&mut reader, what)?;
 
     let n = u64::from(header.ncols) * u64::from(header.nrows);
@@ -447,7 +452,10 @@ pub fn read(path: &Path, what: &str) -> Result<(Grid, Header, Spacing), MapError
         ));
     }
 
-    let prj = std::fs::read_to_string(path.with_extension("prj")).ok();
+    // The projection file beside it, if any (standard input has none).
+    let prj = (!is_stdin(reader.path()))
+        .then(|| std::fs::read_to_string(reader.path().with_extension("prj")).ok())
+        .flatten();
     let spacing = header.spacing(prj.as_deref());
     let grid = Grid {
         width: header.ncols,
@@ -511,7 +519,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("g.asc");
         std::fs::write(&p, text).unwrap();
-        read(&p, "height map \"g.asc\"")
+        read(Input::open(&p, "height map \"g.asc\"")?)
     }
 
     #[test]

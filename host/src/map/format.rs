@@ -1,15 +1,17 @@
 //! Map formats: chosen by file extension (or `--format`), read into a [`Map`], and written.
 
 use std::fmt;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::Path;
 
+use footprint_core::error::Shown;
 use footprint_core::terrain::Scale;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 
 use super::grid::{Grid, Spacing};
-use super::png::{load_color_map, load_png_pair};
+use super::input::{is_stdin, Input};
+use super::png::{self, load_color_map};
 use super::{asc, describe, hgt, tiff, tint::tint, Map, MapError};
 
 /// The spacing of a PNG height map, or of a TIFF without `ModelPixelScale`, when `--spacing`
@@ -50,20 +52,28 @@ impl Format {
 
     /// `format` if given, else the format from the extension of `path`; an error naming the
     /// file (`what`) if neither says.
-    pub fn resolve(format: Option<Format>, path: &Path, what: &str) -> Result<Format, MapError> {
-        format.or_else(|| Format::from_path(path)).ok_or_else(|| {
-            let ext = path
-                .extension()
-                .map(|e| format!("extension .{}", e.to_string_lossy()))
-                .unwrap_or_else(|| "no extension".to_owned());
-            MapError::Invalid {
-                what: what.to_owned(),
-                detail: format!(
-                    "unknown map format ({ext}): name it .png, .hgt, .asc, .tif or .tiff, or give \
-                     --format png|hgt|asc|tiff"
-                ),
-            }
-        })
+    pub fn from_name(format: Option<Format>, path: &Path, what: &str) -> Result<Format, MapError> {
+        format
+            .or_else(|| Format::from_path(path))
+            .ok_or_else(|| unknown(path, what, None))
+    }
+
+    /// The format of an opened map: `format` if given, else from the extension, else from the
+    /// first bytes already read (so that `-` and extension-less streams work); an error naming
+    /// the input if none of them says.
+    pub fn resolve(format: Option<Format>, input: &Input) -> Result<Format, MapError> {
+        if let Some(f) = format.or_else(|| Format::from_path(input.path())) {
+            return Ok(f);
+        }
+        let looks = input.looks_like();
+        let by_bytes = match looks {
+            Some("a PNG file") => Some(Format::Png),
+            Some("a TIFF file") => Some(Format::Tiff),
+            Some("an ESRI ASCII grid") => Some(Format::Asc),
+            Some("an SRTM .hgt tile") => Some(Format::Hgt),
+            _ => None,
+        };
+        by_bytes.ok_or_else(|| unknown(input.path(), input.what(), Some(input.is_empty())))
     }
 
     /// The name used by `--format`.
@@ -80,6 +90,27 @@ impl Format {
 impl fmt::Display for Format {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+/// The error for a map whose format neither `--format`, its extension nor (when `empty` is
+/// given: its bytes were read) its first bytes tell.
+fn unknown(path: &Path, what: &str, empty: Option<bool>) -> MapError {
+    let ext = path
+        .extension()
+        .map(|e| format!("extension .{}", e.to_string_lossy()))
+        .unwrap_or_else(|| "no extension".to_owned());
+    let bytes = match empty {
+        Some(true) => ", and it is empty",
+        Some(false) => ", and its first bytes are none of them",
+        None => "",
+    };
+    MapError::Invalid {
+        what: what.to_owned(),
+        detail: format!(
+            "unknown map format ({ext}{bytes}): name it .png, .hgt, .asc, .tif or .tiff, or \
+             give --format png|hgt|asc|tiff"
+        ),
     }
 }
 
@@ -133,21 +164,26 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     check_option("--spacing", opts.spacing_m)?;
     check_option("--height-scale", opts.height_scale_m)?;
     let what = describe("height map", path);
-    let meta = std::fs::metadata(path).map_err(|error| MapError::Io {
-        what: what.clone(),
-        error,
-    })?;
-    if meta.is_dir() {
-        return Err(MapError::IsDirectory { what });
+    if is_stdin(path) && opts.color.is_some_and(is_stdin) {
+        return Err(MapError::Invalid {
+            what,
+            detail: "the height map and --color cannot both be standard input (-)".to_owned(),
+        });
     }
-    let format = Format::resolve(opts.format, path, &what)?;
+    let input = Input::open(path, &what)?;
+    let format = Format::resolve(opts.format, &input)?;
 
     let (grid, detail, file_spacing) = match format {
         Format::Png => {
             let spacing = opts.spacing_m.unwrap_or(DEFAULT_SPACING_M);
             let scale = opts.height_scale_m.unwrap_or(DEFAULT_PNG_HEIGHT_SCALE_M);
-            check_scale(&what, spacing, scale)?;
-            let map = load_png_pair(path, opts.color, spacing, scale)?;
+            check_scale(
+                &what,
+                spacing,
+                &spacing_note(opts.spacing_m, "the default for PNG"),
+                scale,
+            )?;
+            let map = png::load_pair(input, opts.color, spacing, scale)?;
             let (lo, hi) = map.height_range();
             let range_m = (f64::from(lo) * scale, f64::from(hi) * scale);
             return Ok(Loaded {
@@ -161,7 +197,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
         }
         Format::Hgt => {
             // The spacing comes from the name: check it before reading the data.
-            let side = hgt::side_from_len(meta.len()).unwrap_or(0);
+            let side = hgt::side_from_len(input.len()).unwrap_or(0);
             let spacing = match opts.spacing_m {
                 Some(_) => None,
                 None => match hgt::spacing(path, side) {
@@ -177,15 +213,18 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
                     }
                 },
             };
-            let (grid, detail) = hgt::read(path, &what).map_err(|e| hint(e, path))?;
+            let looks = input.looks_like();
+            let (grid, detail) = hgt::read(input).map_err(|e| hint(e, looks))?;
             (grid, detail, spacing)
         }
         Format::Asc => {
-            let (grid, _, spacing) = asc::read(path, &what).map_err(|e| hint(e, path))?;
+            let looks = input.looks_like();
+            let (grid, _, spacing) = asc::read(input).map_err(|e| hint(e, looks))?;
             (grid, asc::FORMAT.to_owned(), Some(spacing))
         }
         Format::Tiff => {
-            let (grid, info) = tiff::read(path, &what).map_err(|e| hint(e, path))?;
+            let looks = input.looks_like();
+            let (grid, info) = tiff::read(input).map_err(|e| hint(e, looks))?;
             (grid, info.detail, info.spacing)
         }
     };
@@ -208,15 +247,22 @@ fn spacing_note(given: Option<f64>, default: &str) -> String {
     }
 }
 
-/// Checks that the spacing and the height scale are within the core's range.
-fn check_scale(what: &str, spacing_m: f64, height_scale_m: f64) -> Result<(), MapError> {
+/// Checks that the spacing (from `source`: `--spacing`, the file's `cellsize`, …) and the
+/// height scale are within the core's range.
+fn check_scale(
+    what: &str,
+    spacing_m: f64,
+    source: &str,
+    height_scale_m: f64,
+) -> Result<(), MapError> {
     Scale::new(spacing_m, height_scale_m)
         .map(|_| ())
         .map_err(|e| MapError::Invalid {
             what: what.to_owned(),
             detail: format!(
-                "a spacing of {spacing_m} m with {height_scale_m} m per height unit is out of \
-                 range ({e})"
+                "a spacing of {} m ({source}) with {} m per height unit is out of range ({e})",
+                Shown(spacing_m),
+                Shown(height_scale_m)
             ),
         })
 }
@@ -233,7 +279,7 @@ fn from_grid(
 ) -> Result<Loaded, MapError> {
     let (width, height) = (grid.width, grid.height);
     let h = grid.into_heights(what, opts.height_scale_m)?;
-    check_scale(what, spacing.spacing_m, h.height_scale_m)?;
+    check_scale(what, spacing.spacing_m, &spacing.note, h.height_scale_m)?;
     let colors = match opts.color {
         Some(c) => load_color_map(c, width, height, what)?,
         None => tint(
@@ -302,16 +348,17 @@ pub fn check_writable(map: &Map, format: Format, what: &str) -> Result<(), MapEr
     }
 }
 
-/// Adds what the file looks like to a [`MapError::Malformed`] error, when its first bytes say it
-/// is another format (e.g. a PNG named `.tif`).
-fn hint(e: MapError, path: &Path) -> MapError {
+/// Adds what the file looks like (`looks`, from [`Input::looks_like`]) to a
+/// [`MapError::Malformed`] error, when its first bytes say it is another format (e.g. a PNG
+/// named `.tif`).
+fn hint(e: MapError, looks: Option<&'static str>) -> MapError {
     match e {
         MapError::Malformed {
             what,
             format,
             detail,
         } => {
-            let detail = match sniff(path) {
+            let detail = match looks {
                 Some(looks) if !looks.contains(format) => {
                     format!("{detail}; it looks like {looks}")
                 }
@@ -324,25 +371,5 @@ fn hint(e: MapError, path: &Path) -> MapError {
             }
         }
         other => other,
-    }
-}
-
-/// What a file looks like from its first bytes: `a PNG file`, `a TIFF file`,
-/// `an ESRI ASCII grid`, or `None`.
-pub fn sniff(path: &Path) -> Option<&'static str> {
-    let mut head = [0u8; 8];
-    let mut f = std::fs::File::open(path).ok()?;
-    let n = f.read(&mut head).ok()?;
-    let head = &head[..n];
-    if head.starts_with(b"\x89PNG") {
-        Some("a PNG file")
-    } else if head.starts_with(b"II*\0") || head.starts_with(b"MM\0*") {
-        Some("a TIFF file")
-    } else if head.len() >= 5 && head[..5].eq_ignore_ascii_case(b"ncols")
-        || head.len() >= 5 && head[..5].eq_ignore_ascii_case(b"nrows")
-    {
-        Some("an ESRI ASCII grid")
-    } else {
-        None
     }
 }

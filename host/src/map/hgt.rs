@@ -6,11 +6,11 @@
 //! of latitude and longitude, converted to metres at the tile's centre latitude (see
 //! [`Spacing::geographic`]).
 
-use std::fs::File;
-use std::io::{self, BufReader, Read, Write};
+use std::io::{self, Read, Write};
 use std::path::Path;
 
 use super::grid::{Grid, Spacing};
+use super::input::Input;
 use super::{Map, MapError};
 
 /// The format's name in errors.
@@ -86,13 +86,10 @@ pub fn side_from_len(len: u64) -> Option<u32> {
 ///
 /// The size comes from the file's length and is checked before anything is allocated; a length
 /// that is not exactly that of a 1201×1201 or 3601×3601 tile is refused.
-pub fn read(path: &Path, what: &str) -> Result<(Grid, String), MapError> {
-    let io_err = |error: io::Error| MapError::Io {
-        what: what.to_owned(),
-        error,
-    };
-    let file = File::open(path).map_err(io_err)?;
-    let len = file.metadata().map_err(io_err)?.len();
+pub fn read(mut input: Input) -> Result<(Grid, String), MapError> {
+    let what = input.what().to_owned();
+    let what = what.as_str();
+    let len = input.len();
     let Some(side) = side_from_len(len) else {
         return Err(MapError::Malformed {
             what: what.to_owned(),
@@ -103,13 +100,13 @@ pub fn read(path: &Path, what: &str) -> Result<(Grid, String), MapError> {
             ),
         });
     };
+    Map::validate_memory(side, side, what)?;
     let arcsec = arcsec_for_side(side).unwrap_or(0);
     let n = side as usize * side as usize;
     let mut values = Vec::with_capacity(n);
-    let mut reader = BufReader::with_capacity(1 << 16, file);
     let mut row = vec![0u8; side as usize * 2];
     for _ in 0..side {
-        reader.read_exact(&mut row).map_err(|e| {
+        input.read_exact(&mut row).map_err(|e| {
             if e.kind() == io::ErrorKind::UnexpectedEof {
                 MapError::Malformed {
                     what: what.to_owned(),
@@ -117,7 +114,7 @@ pub fn read(path: &Path, what: &str) -> Result<(Grid, String), MapError> {
                     detail: "the file is truncated (it shrank while being read)".to_owned(),
                 }
             } else {
-                io_err(e)
+                input.io_error(e)
             }
         })?;
         values.extend(row.chunks_exact(2).map(|b| {

@@ -17,6 +17,7 @@ pub mod asc;
 pub mod format;
 pub mod grid;
 pub mod hgt;
+pub mod input;
 pub mod png;
 pub mod procedural;
 pub mod tiff;
@@ -186,6 +187,11 @@ pub enum MapError {
         /// Its width and height.
         size: (u32, u32),
     },
+    /// A stream (standard input, a FIFO) longer than the memory budget ([`crate::memory`]).
+    StreamTooLong {
+        /// The map, e.g. `height map "-"`.
+        what: String,
+    },
     /// The colour map's size differs from the height map's.
     SizeMismatch {
         /// The colour map, e.g. `colour map "c.png"`.
@@ -278,6 +284,11 @@ impl fmt::Display for MapError {
                 crate::memory::show(
                     crate::memory::map_bytes(size.0, size.1).unwrap_or(u64::MAX)
                 ),
+                crate::memory::show(crate::memory::budget())
+            ),
+            MapError::StreamTooLong { what } => write!(
+                f,
+                "{what}: the stream is longer than the memory budget of {} (--max-memory)",
                 crate::memory::show(crate::memory::budget())
             ),
             MapError::SizeMismatch {

@@ -1,13 +1,13 @@
 //! Loading a map from a PNG height map and an optional PNG colour map.
 
-use std::fs::File;
-use std::io::{self, BufReader, Read, Seek, SeekFrom};
+use std::io::{self, Read, Seek, SeekFrom};
 use std::path::Path;
 
 use footprint_core::Rgb;
 use image::codecs::png::PngDecoder;
 use image::{ColorType, DynamicImage, ImageDecoder, Limits};
 
+use super::input::Input;
 use super::{describe, tint::tint, Map, MapError};
 
 /// The eight bytes every PNG file starts with.
@@ -33,11 +33,27 @@ pub fn load_png_pair(
     spacing_m: f64,
     height_scale_m: f64,
 ) -> Result<Map, MapError> {
+    load_pair(
+        Input::open(dem, &describe("height map", dem))?,
+        color,
+        spacing_m,
+        height_scale_m,
+    )
+}
+
+/// [`load_png_pair`] on a height map already opened (`dem`).
+pub fn load_pair(
+    dem: Input,
+    color: Option<&Path>,
+    spacing_m: f64,
+    height_scale_m: f64,
+) -> Result<Map, MapError> {
     check_parameter("--spacing", spacing_m)?;
     check_parameter("--height-scale", height_scale_m)?;
 
-    let dem_what = describe("height map", dem);
-    let dem_png = PngFile::open(dem, &dem_what)?;
+    let dem_path = dem.path().to_owned();
+    let dem_what = dem.what().to_owned();
+    let dem_png = PngFile::open(dem)?;
     let (width, height) = (dem_png.width, dem_png.height);
     let color_png = match color {
         Some(path) => Some(open_color(path, width, height, &dem_what)?),
@@ -50,8 +66,8 @@ pub fn load_png_pair(
         None => tint(width, height, &heights, spacing_m, height_scale_m),
     };
     let source = match color {
-        Some(c) => format!("{} (colours {})", dem.display(), c.display()),
-        None => dem.display().to_string(),
+        Some(c) => format!("{} (colours {})", dem_path.display(), c.display()),
+        None => dem_path.display().to_string(),
     };
     Ok(Map {
         width,
@@ -82,7 +98,7 @@ pub fn load_color_map(
 /// of the height map described by `heights`.
 fn open_color(path: &Path, width: u32, height: u32, heights: &str) -> Result<PngFile, MapError> {
     let what = describe("colour map", path);
-    let png = PngFile::open(path, &what)?;
+    let png = PngFile::open(Input::open(path, &what)?)?;
     if (png.width, png.height) != (width, height) {
         return Err(MapError::SizeMismatch {
             color: what,
@@ -111,7 +127,7 @@ struct PngFile {
     /// Description for errors, e.g. `height map "h.png"`.
     what: String,
     /// The file, rewound to its start.
-    reader: BufReader<File>,
+    reader: Input,
     /// Width from the IHDR chunk.
     width: u32,
     /// Height from the IHDR chunk.
@@ -119,21 +135,16 @@ struct PngFile {
 }
 
 impl PngFile {
-    /// Opens `path`, checks the PNG signature, reads the size from the IHDR chunk and validates
+    /// Checks the PNG signature of `input`, reads the size from the IHDR chunk and validates
     /// it, all without decoding any pixel data.
-    fn open(path: &Path, what: &str) -> Result<Self, MapError> {
+    fn open(mut reader: Input) -> Result<Self, MapError> {
+        let what = reader.what().to_owned();
+        let what = what.as_str();
         let io_err = |error: io::Error| MapError::Io {
             what: what.to_owned(),
             error,
         };
-        let meta = std::fs::metadata(path).map_err(io_err)?;
-        if meta.is_dir() {
-            return Err(MapError::IsDirectory {
-                what: what.to_owned(),
-            });
-        }
-        let file = File::open(path).map_err(io_err)?;
-        let mut reader = BufReader::new(file);
+        let len = reader.len();
 
         // Signature (8) + IHDR length (4) + "IHDR" (4) + width (4) + height (4).
         let mut head = [0u8; 24];
@@ -165,13 +176,10 @@ impl PngFile {
         // per pixel: a header that declares more than the file can hold is refused before the
         // decoder allocates the image (found by the `png` fuzz target).
         let least_raw = u64::from(width).div_ceil(8) * u64::from(height) + u64::from(height);
-        if least_raw > meta.len().saturating_mul(MAX_DEFLATE_EXPANSION) {
+        if least_raw > len.saturating_mul(MAX_DEFLATE_EXPANSION) {
             return Err(MapError::Corrupt {
                 what: what.to_owned(),
-                detail: format!(
-                    "declares {width}×{height} pixels, which {} bytes cannot hold",
-                    meta.len()
-                ),
+                detail: format!("declares {width}×{height} pixels, which {len} bytes cannot hold"),
             });
         }
         Map::validate_memory(width, height, what)?;
@@ -185,7 +193,7 @@ impl PngFile {
     }
 
     /// A decoder for the file (header parsed, pixel data not yet decoded).
-    fn decoder(self) -> Result<(String, PngDecoder<BufReader<File>>), MapError> {
+    fn decoder(self) -> Result<(String, PngDecoder<Input>), MapError> {
         // Sizes were validated already; allow whatever memory a valid map needs.
         match PngDecoder::with_limits(self.reader, Limits::no_limits()) {
             Ok(d) => Ok((self.what, d)),

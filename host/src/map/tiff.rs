@@ -10,15 +10,14 @@
 //! file's length, and their total against the most that the compression could expand it to, so
 //! a small file cannot make the reader allocate a large image.
 
-use std::fs::File;
-use std::io::{self, BufReader, Cursor, Write};
-use std::path::Path;
+use std::io::{self, Cursor, Write};
 
 use tiff::decoder::{ChunkType, Decoder, DecodingResult, Limits};
 use tiff::tags::{SampleFormat, Tag};
 use tiff::{ColorType, TiffError, TiffFormatError};
 
 use super::grid::{Grid, Spacing};
+use super::input::Input;
 use super::{Map, MapError};
 
 /// The format's name in errors.
@@ -99,16 +98,13 @@ fn compression_name(code: u16) -> String {
 }
 
 /// Reads a single-band TIFF: its heights (voids as NaN) and what it says about itself.
-pub fn read(path: &Path, what: &str) -> Result<(Grid, TiffInfo), MapError> {
-    let io_err = |error: io::Error| MapError::Io {
-        what: what.to_owned(),
-        error,
-    };
-    let file = File::open(path).map_err(io_err)?;
-    let file_len = file.metadata().map_err(io_err)?.len();
+pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
+    let what = input.what().to_owned();
+    let what = what.as_str();
+    let file_len = input.len();
     let err = |e| tiff_error(what, e);
     // Decoder::new reads the header and the first directory (tag arrays up to 1 MiB), no pixels.
-    let mut dec = Decoder::new(BufReader::new(file)).map_err(err)?;
+    let mut dec = Decoder::new(input).map_err(err)?;
     let (width, height) = dec.dimensions().map_err(err)?;
     Map::validate_size(width, height, what)?;
 
@@ -500,7 +496,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("t.tif");
         std::fs::write(&p, bytes).unwrap();
-        read(&p, "height map \"t.tif\"")
+        read(Input::open(&p, "height map \"t.tif\"")?)
     }
 
     fn err(bytes: &[u8]) -> String {

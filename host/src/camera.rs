@@ -1,0 +1,219 @@
+//! Placing the camera on a map: the default far distance, the paper's fit-first-hit eye height
+//! (Table 1), and the core's range errors said in the user's options and units.
+//!
+//! The core checks every camera and frame parameter in its own units (voxels, height units);
+//! a person gave metres and degrees, and often not the parameter that broke: a default far
+//! distance comes from `--fov`, a fitted eye height from `--pitch`, `--fov` and `--size`. Every
+//! error here names what the user gave.
+
+use anyhow::{anyhow, bail, Result};
+use footprint_core::error::Shown;
+use footprint_core::num::{MAX_EYE_HEIGHT, MAX_FAR};
+use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::Terrain;
+use footprint_core::Error;
+
+use crate::map::Map;
+use crate::pyramid::Pyramid;
+use crate::render::{first_hit_distance, Tables};
+
+/// Where the eye height comes from.
+#[derive(Clone, Copy, Debug)]
+pub enum Eye {
+    /// `--height`: metres above the datum.
+    Height(f64),
+    /// `--fit-first-hit`: the paper's rule (see [`fit_first_hit`]).
+    FitFirstHit,
+}
+
+/// The default far distance in voxels: 8 × the map's longer side (the mirrored terrain is
+/// infinite), and at least 4 × the distance where a pixel's footprint is one voxel wide; below
+/// the core's [`MAX_FAR`].
+pub fn default_far_voxels(map: &Map, pixel_angle: f64) -> f64 {
+    (8.0 * f64::from(map.width.max(map.height)))
+        .max(4.0 / pixel_angle)
+        .min(MAX_FAR - 1.0)
+}
+
+/// A computed distance or height in metres, rounded for a message: `68580`, `6.927e10`.
+fn metres(v: f64) -> String {
+    if v.abs() < 1e9 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// A validated camera on `map` from `params` (whose `eye_m` and `far_m` are ignored): the far
+/// distance `far_m` (`None`: [`default_far_voxels`]) and the eye from `eye`. Every error names
+/// the option the user gave (`--fov`, `--far`, `--height`, …), in metres or degrees.
+pub fn place(
+    map: &Map,
+    pyramid: &Pyramid,
+    mut params: CameraParams,
+    far_m: Option<f64>,
+    eye: Eye,
+    options: Options,
+) -> Result<Camera> {
+    // Everything but the eye height and the far distance first, so errors name the option.
+    params.eye_m = 0.0;
+    params.far_m = 1.0;
+    let probe = Camera::new(params).map_err(|e| explain(e, map, None))?;
+    params.far_m = match far_m {
+        Some(far) => far,
+        None => default_far_voxels(map, probe.pixel_angle()) * map.spacing_m,
+    };
+    let terrain = pyramid.terrain(options.lod)?;
+    // The frame's own limits (voxels, height units), at the eye height 0.
+    let camera = Camera::new(params).map_err(|e| explain(e, map, None))?;
+    Tables::new(&camera)
+        .frame(&camera, &terrain, options)
+        .map_err(|e| explain(e, map, None))?;
+    params.eye_m = match eye {
+        // --height is metres above the datum; the camera counts from height unit 0.
+        Eye::Height(h) => h - map.base_m,
+        Eye::FitFirstHit => fit_first_hit(params, &terrain, options, far_m.is_some())?,
+    };
+    let camera = Camera::new(params).map_err(|e| explain(e, map, Some(eye)))?;
+    Tables::new(&camera)
+        .frame(&camera, &terrain, options)
+        .map_err(|e| explain(e, map, Some(eye)))?;
+    Ok(camera)
+}
+
+/// The core's range error `e` for a camera or frame on `map`, said as the option the user gave,
+/// in metres or degrees. `eye` is how the eye height was chosen, once it has been.
+pub fn explain(e: impl Into<anyhow::Error>, map: &Map, eye: Option<Eye>) -> anyhow::Error {
+    let e = e.into();
+    let Some(&Error::OutOfRange {
+        what,
+        value,
+        min,
+        max,
+        unit,
+    }) = e.downcast_ref::<Error>()
+    else {
+        return e.context("camera");
+    };
+    // From the core's unit to the user's: metres for positions and distances, metres above the
+    // datum for the eye; degrees and pixels pass through.
+    let (scale, offset, user_unit) = match unit {
+        " voxels" => (map.spacing_m, 0.0, " m"),
+        " height units" => (map.height_scale_m, map.base_m, " m"),
+        _ if what == "height" => (1.0, map.base_m, " m"),
+        _ if what == "x" || what == "y" || what == "far" => (1.0, 0.0, " m"),
+        _ => (
+            1.0,
+            0.0,
+            if what == "fov" || what == "pitch" || what == "heading" {
+                "°"
+            } else {
+                ""
+            },
+        ),
+    };
+    let user = |v: f64| Shown(v * scale + offset);
+    let range = format!("{}..{}{user_unit}", user(min), user(max));
+    if what == "height" {
+        if let Some(Eye::FitFirstHit) = eye {
+            return anyhow!(
+                "--fit-first-hit: the eye height it finds, {}{user_unit}, is outside the camera's \
+                 {range}: give --height, or a smaller --pitch, a wider --fov or a smaller --size",
+                user(value)
+            );
+        }
+    }
+    anyhow!(
+        "--{what} {}{user_unit}: outside {range} or not finite",
+        user(value)
+    )
+}
+
+/// The paper's rule for Table 1: the eye height (metres) at which the pixel footprint at the
+/// first hit is one voxel wide, i.e. the lowest ray of the middle column first hits the terrain
+/// at `1/pixel_angle` voxels. Found by bisection on the eye height (the first-hit distance
+/// grows with it); the render's own walk is the probe, so the rule holds for what is drawn.
+/// `far_given` says whether the far distance is the user's `--far` (named in its error).
+pub fn fit_first_hit(
+    params: CameraParams,
+    terrain: &Terrain<'_>,
+    options: Options,
+    far_given: bool,
+) -> Result<f64> {
+    let camera = Camera::new(params)?;
+    let target = 1.0 / camera.pixel_angle();
+    let scale = terrain.scale();
+    let views = || {
+        format!(
+            "--fov {} over {} rows",
+            Shown(params.fov_deg),
+            params.height
+        )
+    };
+    let far_voxels = params.far_m / scale.spacing_m;
+    if target > far_voxels {
+        let target_m = metres(target * scale.spacing_m);
+        if far_given {
+            bail!(
+                "--far {} m: nearer than the first hit --fit-first-hit aims for, {target_m} m \
+                 away (one pixel one voxel wide, from {}); give a larger --far, or --height",
+                Shown(params.far_m),
+                views()
+            );
+        }
+        bail!(
+            "--fit-first-hit: the first hit it aims for, {target_m} m away (one pixel one voxel \
+             wide, from {}), is beyond the camera's far limit of {} m; widen --fov, use fewer \
+             rows, or give --height",
+            views(),
+            metres(MAX_FAR * scale.spacing_m)
+        );
+    }
+    let top_m = terrain.max_height().to_num::<f64>() * scale.height_scale_m;
+    let max_eye_m = MAX_EYE_HEIGHT * scale.height_scale_m;
+    let mut tables = Tables::new(&camera);
+    let mut probe = |eye_m: f64| -> Result<Option<f64>> {
+        let cam = Camera::new(CameraParams { eye_m, ..params })?;
+        let frame = tables.frame(&cam, terrain, options)?;
+        Ok(first_hit_distance(&frame, terrain))
+    };
+    // The lowest ray descends by |slope| per unit distance: from this high it reaches the
+    // ground no nearer than the target.
+    let slope = -camera.row_slope(0);
+    if slope <= 0.0 {
+        bail!(
+            "--fit-first-hit needs a lowest ray that descends: --pitch {}° with {} looks up; \
+             raise --pitch or give --height",
+            Shown(params.pitch_deg),
+            views()
+        );
+    }
+    let (mut lo, mut hi) = (0.0, top_m + slope * target * scale.spacing_m * 1.01);
+    if hi > max_eye_m {
+        bail!(
+            "--fit-first-hit: at --pitch {}° a first hit {} m away (one pixel one voxel wide, from \
+             {}) needs the eye about {} m high, above the camera's limit of {} m (2^22 height \
+             units of {} m); give --height, or change --pitch, --fov or --size",
+            Shown(params.pitch_deg),
+            metres(target * scale.spacing_m),
+            views(),
+            metres(hi),
+            metres(max_eye_m),
+            Shown(scale.height_scale_m)
+        );
+    }
+    if probe(hi)?.is_none_or(|d| d < target) {
+        bail!(
+            "--fit-first-hit: no eye height up to {hi:.0} m puts the first hit at {target:.0} \
+             voxels"
+        );
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        match probe(mid)? {
+            Some(d) if d >= target => hi = mid,
+            _ => lo = mid,
+        }
+    }
+    Ok(hi)
+}

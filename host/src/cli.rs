@@ -1,0 +1,157 @@
+//! The `footprint` command line: its arguments ([`Cli`]), and [`main`], which parses them, runs
+//! the command and turns every error into one line on stderr and exit code 2.
+
+use std::process::ExitCode;
+
+use crate::commands::{self, BenchArgs, FlyArgs, InspectArgs, RenderArgs, ReportArgs, TableArgs};
+use clap::{Parser, Subcommand};
+
+/// Exact antialiasing for fixed-point terrain renderers (Cohen-Or): render a height field in
+/// point sampling, linear interpolation, supersampling or exact area sampling, and count what
+/// each costs.
+#[derive(Parser, Debug)]
+#[command(name = "footprint", version, about, long_about = None)]
+pub struct Cli {
+    /// The subcommand.
+    #[command(subcommand)]
+    pub command: Command,
+    /// Threads that render columns and frames in parallel (default: every core). Images are
+    /// the same for any number.
+    #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
+    pub threads: Option<u16>,
+    /// The memory a run may use, e.g. 512M or 4G (default: the memory available now, less an
+    /// eighth). A run that would need more is refused before it allocates.
+    #[arg(long, global = true, value_name = "SIZE", value_parser = crate::memory::parse_size)]
+    pub max_memory: Option<u64>,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render one frame to PNG, and optionally print its cost counters.
+    Render(Box<RenderArgs>),
+    /// Time every mode in the paper's three views and the classic renderer's view, interleaved:
+    /// ms per frame on one thread and on all, ratios to classic and to PS, steps per frame.
+    Bench(Box<BenchArgs>),
+    /// The paper's Tables 1–5 (coverage, hits, time, error against the ground truth) on any map.
+    Table(Box<TableArgs>),
+    /// Specular aliasing (Amanatides): the plates, Figures 2 and 3, and the measurements.
+    Specular(Box<commands::SpecularArgs>),
+    /// The flight of Sect. 5: Table 6 (pixel changes between frames) and Fig. 14 (a column over time).
+    Fly(Box<FlyArgs>),
+    /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9).
+    Inspect(Box<InspectArgs>),
+    /// Every terrain experiment, written as REPORT.md, index.html, images and plots.
+    Report(Box<ReportArgs>),
+    /// Check a height map (`map info FILE`) or convert it to another format (`map convert IN OUT`).
+    Map(commands::MapCommandArgs),
+    /// Print the lines the firmware (firmware/) prints, rendered on the host, for comparison.
+    FirmwareReference(commands::FirmwareReferenceArgs),
+}
+
+/// A closed stdout (`footprint … | head`) ends the run quietly with the status a shell gives a
+/// process killed by SIGPIPE (128 + 13), as `head` expects: Rust ignores SIGPIPE, so a write
+/// to the closed pipe fails, and `println!` turns that failure into a panic, which this hook
+/// catches before it prints anything. Every output file is written and renamed into place
+/// before the command prints to stdout, so nothing is left half-written.
+fn quiet_on_closed_stdout() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default(info);
+    }));
+}
+
+/// Parses `args` (the program name first): the command line, or what to print and the exit
+/// code (`--help` and `--version`: their text and 0; a usage error: one line and 2).
+pub fn parse<I, T>(args: I) -> Result<Cli, (String, u8)>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    Cli::try_parse_from(args).map_err(|e| {
+        if !e.use_stderr() {
+            return (e.render().to_string(), 0);
+        }
+        // A usage error on one line: clap's message without the usage that follows it
+        // ("error: the following required arguments were not provided: --out <DIR>").
+        let text = e.render().to_string();
+        let line = text
+            .lines()
+            .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+            .map(str::trim)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join(" ");
+        (
+            if line.is_empty() {
+                "error".to_owned()
+            } else {
+                line
+            },
+            2,
+        )
+    })
+}
+
+/// The whole program: parses the process's arguments, runs the command, and prints any error
+/// as one line (exit code 2).
+pub fn main() -> ExitCode {
+    quiet_on_closed_stdout();
+    let cli = match parse(std::env::args_os()) {
+        Ok(cli) => cli,
+        Err((text, 0)) => {
+            // --help and --version: print them whole.
+            print!("{text}");
+            return ExitCode::SUCCESS;
+        }
+        Err((line, code)) => {
+            eprintln!("{line}");
+            return ExitCode::from(code);
+        }
+    };
+    if let Some(bytes) = cli.max_memory {
+        crate::memory::set_budget(bytes);
+    }
+    if let Some(n) = cli.threads {
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(usize::from(n))
+            .build_global()
+        {
+            eprintln!("error: --threads {n}: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    if let Err(e) = crate::output::remove_temporaries_on_signal() {
+        eprintln!("error: {e:#}");
+        return ExitCode::from(2);
+    }
+    let result = match &cli.command {
+        Command::Render(args) => commands::render(args),
+        Command::Bench(args) => commands::bench(args),
+        Command::Table(args) => commands::table(args),
+        Command::Specular(args) => commands::specular(args),
+        Command::Fly(args) => commands::fly(args),
+        Command::Inspect(args) => commands::inspect(args),
+        Command::Report(args) => commands::report(args),
+        Command::Map(args) => commands::map(args),
+        Command::FirmwareReference(args) => commands::firmware_reference(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // One line: the context chain joined by ": ".
+            let msg = format!("{e:#}").replace('\n', " ");
+            eprintln!("error: {msg}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,260 @@
+//! One map input, opened exactly once.
+//!
+//! A regular file is opened once and read from there (its length is known and it can seek, so
+//! the readers check a header against the length before they allocate). Anything else (`-` for
+//! standard input, a FIFO, a character device) can be read only once: it is read into memory in
+//! one pass, at most the memory budget ([`crate::memory`]), and then served from there. Either
+//! way the first bytes are kept, so the format can be guessed from them ([`Input::looks_like`])
+//! without opening the file again.
+
+use std::fs::File;
+use std::io::{self, BufRead, BufReader, Cursor, Read, Seek, SeekFrom};
+use std::path::{Path, PathBuf};
+
+use super::MapError;
+
+/// How many first bytes are kept for guessing the format.
+const HEAD: usize = 16;
+
+/// An opened map input (see the module documentation).
+pub struct Input {
+    /// The path as given (`-` for standard input).
+    path: PathBuf,
+    /// Its description in errors, e.g. `height map "dem.png"`.
+    what: String,
+    /// Its length in bytes.
+    len: u64,
+    /// Its first bytes (fewer if it is shorter).
+    head: Vec<u8>,
+    /// Where the bytes come from.
+    source: Source,
+}
+
+/// The bytes of an [`Input`].
+enum Source {
+    /// A regular file, read in place.
+    File(BufReader<File>),
+    /// A stream, read into memory once.
+    Memory(Cursor<Vec<u8>>),
+}
+
+/// True if `path` means standard input.
+pub fn is_stdin(path: &Path) -> bool {
+    path.as_os_str() == "-"
+}
+
+impl Input {
+    /// Opens `path` (`-`: standard input); `what` names it in errors.
+    pub fn open(path: &Path, what: &str) -> Result<Self, MapError> {
+        let io_err = |error: io::Error| MapError::Io {
+            what: what.to_owned(),
+            error,
+        };
+        let (source, len) = if is_stdin(path) {
+            let bytes = read_stream(io::stdin().lock(), what)?;
+            let len = bytes.len() as u64;
+            (Source::Memory(Cursor::new(bytes)), len)
+        } else {
+            let file = File::open(path).map_err(io_err)?;
+            let meta = file.metadata().map_err(io_err)?;
+            if meta.is_dir() {
+                return Err(MapError::IsDirectory {
+                    what: what.to_owned(),
+                });
+            }
+            if meta.is_file() {
+                (
+                    Source::File(BufReader::with_capacity(1 << 16, file)),
+                    meta.len(),
+                )
+            } else {
+                let bytes = read_stream(file, what)?;
+                let len = bytes.len() as u64;
+                (Source::Memory(Cursor::new(bytes)), len)
+            }
+        };
+        let mut input = Self {
+            path: path.to_owned(),
+            what: what.to_owned(),
+            len,
+            head: Vec::new(),
+            source,
+        };
+        input.head = input.peek(HEAD).map_err(io_err)?;
+        Ok(input)
+    }
+
+    /// The path as given (`-` for standard input).
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Its description in errors, e.g. `height map "dem.png"`.
+    pub fn what(&self) -> &str {
+        &self.what
+    }
+
+    /// Its length in bytes (for a regular file, as it was when opened).
+    pub fn len(&self) -> u64 {
+        self.len
+    }
+
+    /// True if it holds no bytes.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Its first bytes (up to 16), as read when it was opened.
+    pub fn head(&self) -> &[u8] {
+        &self.head
+    }
+
+    /// An I/O error on this input, as a [`MapError`] naming it.
+    pub fn io_error(&self, error: io::Error) -> MapError {
+        MapError::Io {
+            what: self.what.clone(),
+            error,
+        }
+    }
+
+    /// Up to `n` first bytes, without consuming them.
+    fn peek(&mut self, n: usize) -> io::Result<Vec<u8>> {
+        let mut head = Vec::with_capacity(n);
+        match &mut self.source {
+            Source::File(f) => {
+                f.by_ref().take(n as u64).read_to_end(&mut head)?;
+                // Within the reader's buffer: nothing is read twice.
+                f.seek_relative(-(head.len() as i64))?;
+            }
+            Source::Memory(c) => {
+                let bytes = c.get_ref();
+                head.extend_from_slice(&bytes[..bytes.len().min(n)]);
+            }
+        }
+        Ok(head)
+    }
+
+    /// What the first bytes look like: `a PNG file`, `a TIFF file`, `an ESRI ASCII grid`,
+    /// `an SRTM .hgt tile` (from its length alone), or `None`.
+    pub fn looks_like(&self) -> Option<&'static str> {
+        sniff(&self.head, self.len)
+    }
+}
+
+/// What a file with these first bytes and this length looks like (see [`Input::looks_like`]).
+pub fn sniff(head: &[u8], len: u64) -> Option<&'static str> {
+    // An ASCII grid starts with one of its header keys, in any order and case.
+    const ASC_KEYS: [&[u8]; 8] = [
+        b"ncols",
+        b"nrows",
+        b"xllcorner",
+        b"yllcorner",
+        b"xllcenter",
+        b"yllcenter",
+        b"cellsize",
+        b"nodata_value",
+    ];
+    let text = head.trim_ascii_start();
+    let starts_ci =
+        |word: &[u8]| text.len() > word.len() && text[..word.len()].eq_ignore_ascii_case(word);
+    if head.starts_with(b"\x89PNG") {
+        Some("a PNG file")
+    } else if head.starts_with(b"II*\0") || head.starts_with(b"MM\0*") {
+        Some("a TIFF file")
+    } else if ASC_KEYS.iter().any(|k| starts_ci(k)) {
+        Some("an ESRI ASCII grid")
+    } else if super::hgt::side_from_len(len).is_some() {
+        Some("an SRTM .hgt tile")
+    } else {
+        None
+    }
+}
+
+/// Reads a stream to its end, refusing one longer than the memory budget.
+fn read_stream(stream: impl Read, what: &str) -> Result<Vec<u8>, MapError> {
+    let budget = crate::memory::budget();
+    let mut bytes = Vec::new();
+    stream
+        .take(budget.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|error| MapError::Io {
+            what: what.to_owned(),
+            error,
+        })?;
+    if bytes.len() as u64 > budget {
+        return Err(MapError::StreamTooLong {
+            what: what.to_owned(),
+        });
+    }
+    Ok(bytes)
+}
+
+impl Read for Input {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        match &mut self.source {
+            Source::File(f) => f.read(buf),
+            Source::Memory(c) => c.read(buf),
+        }
+    }
+}
+
+impl BufRead for Input {
+    fn fill_buf(&mut self) -> io::Result<&[u8]> {
+        match &mut self.source {
+            Source::File(f) => f.fill_buf(),
+            Source::Memory(c) => c.fill_buf(),
+        }
+    }
+
+    fn consume(&mut self, amt: usize) {
+        match &mut self.source {
+            Source::File(f) => f.consume(amt),
+            Source::Memory(c) => c.consume(amt),
+        }
+    }
+}
+
+impl Seek for Input {
+    fn seek(&mut self, pos: SeekFrom) -> io::Result<u64> {
+        match &mut self.source {
+            Source::File(f) => f.seek(pos),
+            Source::Memory(c) => c.seek(pos),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_head_is_kept_and_the_input_still_reads_from_its_start() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.asc");
+        std::fs::write(&path, b"ncols 2\nnrows 1\n1 2\n").unwrap();
+        let mut input = Input::open(&path, "height map").unwrap();
+        assert_eq!(input.head(), b"ncols 2\nnrows 1\n");
+        assert_eq!(input.looks_like(), Some("an ESRI ASCII grid"));
+        let mut all = String::new();
+        input.read_to_string(&mut all).unwrap();
+        assert_eq!(all, "ncols 2\nnrows 1\n1 2\n");
+        assert_eq!(input.len(), 20);
+    }
+
+    #[test]
+    fn a_short_file_has_a_short_head() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x");
+        std::fs::write(&path, b"II*\0").unwrap();
+        let input = Input::open(&path, "height map").unwrap();
+        assert_eq!(input.head(), b"II*\0");
+        assert_eq!(input.looks_like(), Some("a TIFF file"));
+    }
+
+    #[test]
+    fn a_folder_is_refused_naming_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let e = Input::open(dir.path(), "height map \"d\"").err().unwrap();
+        assert!(matches!(e, MapError::IsDirectory { .. }), "{e}");
+    }
+}
