@@ -12,7 +12,7 @@ use footprint_core::terrain::camera::{Camera, Column, Frame, Options};
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
-use footprint_core::terrain::march::March;
+use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
 use footprint_core::terrain::visibility::{visible_voxels, visit};
 use footprint_core::terrain::Terrain;
@@ -389,8 +389,8 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
 struct Sampled(Vec<u32>);
 
 impl Cost for Sampled {
-    fn sample(&mut self, march: &March<'_, '_>, _: Color16, _: Weight) {
-        let k = march.step_index();
+    fn sample(&mut self, voxel: &Voxel<'_>, _: Color16, _: Weight) {
+        let k = voxel.step_index();
         if self.0.last() != Some(&k) {
             self.0.push(k);
         }

@@ -22,7 +22,7 @@ use footprint_core::num::{Coord, Weight};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
-use footprint_core::terrain::march::March;
+use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::visibility::count_visible;
@@ -235,7 +235,7 @@ impl Cost for Ranges {
     fn begin_pixel(&mut self, row: usize) {
         self.row = row;
     }
-    fn sample(&mut self, _: &March<'_, '_>, color: Color16, _: Weight) {
+    fn sample(&mut self, _: &Voxel<'_>, color: Color16, _: Weight) {
         self.add(color);
     }
     fn sky_sample(&mut self, color: Color16, _: Weight) {
@@ -382,12 +382,12 @@ impl Cost for Spans {
     fn begin_pixel(&mut self, row: usize) {
         self.row = row;
     }
-    fn sample(&mut self, march: &March<'_, '_>, _: Color16, w: Weight) {
+    fn sample(&mut self, voxel: &Voxel<'_>, _: Color16, w: Weight) {
         match self.pixels.last_mut() {
             Some(p) if (p.0, p.1) == (self.col, self.row) => p.3 += w.to_bits(),
             _ => self
                 .pixels
-                .push((self.col, self.row, march.n(), w.to_bits())),
+                .push((self.col, self.row, voxel.n(), w.to_bits())),
         }
     }
     fn sky_sample(&mut self, _: Color16, w: Weight) {

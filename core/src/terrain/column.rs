@@ -17,7 +17,7 @@ use crate::error::Error;
 use crate::num::{Eye, Height, Line};
 use crate::terrain::camera::Frame;
 use crate::terrain::cost::Cost;
-use crate::terrain::march::March;
+use crate::terrain::march::{Flow, March, RideEnd, Voxel};
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
@@ -57,19 +57,20 @@ pub fn walk<S: Sampler, C: Cost>(
     let mut upper = frame.ray(column, i);
     // Pixel i spans R_i (the previous pixel's upper ray) to R_{i+1}, the one new ray (Eqs.
     // 2–3); R_i resumes at the current voxel (Fig. 3). Returns the ray to walk.
-    let begin = |i: usize, lower: Line, march: &March<'_, '_>, sampler: &mut S, cost: &mut C| {
+    // `n` is the current voxel's centre.
+    let begin = |i: usize, lower: Line, n: i64, sampler: &mut S, cost: &mut C| {
         cost.new_ray();
         let upper = frame.ray(column, i + 1);
         cost.begin_pixel(i);
         sampler.begin_pixel(&Pixel { lower, upper, eye }, cost);
         let ray = Ray {
-            h: lower.at(march.n()),
+            h: lower.at(n),
             slope: lower.slope,
         };
         (ray, upper)
     };
     let mut ray;
-    (ray, upper) = begin(i, upper, &march, sampler, cost);
+    (ray, upper) = begin(i, upper, march.n(), sampler, cost);
     let mut in_footprint = false;
     let skips = march.can_skip();
 
@@ -93,21 +94,15 @@ pub fn walk<S: Sampler, C: Cost>(
             } else {
                 1
             };
-            let mut steps = 0;
-            let hit = if ray.slope >= 0 {
-                march.ride::<true>(&mut ray.h, rise, max_h, limit, step_first, &mut steps)
-            } else {
-                march.ride::<false>(&mut ray.h, rise, max_h, limit, step_first, &mut steps)
-            };
-            cost.steps(steps, in_footprint);
-            if let Some(top) = hit {
-                // The hits on this voxel: each sampler call may raise the ray or begin the
-                // next pixel, and the same voxel is tested again until the ray passes above
-                // it; then the next ride steps on.
+            // The hits: each sampler call may raise the ray or begin the next pixel, and the
+            // same voxel is tested again until the ray passes above it; then the ride steps on.
+            let mut finished = false;
+            let mut on_hit = |voxel: &Voxel<'_>, top: Height, ray: &mut Ray, steps: u32| {
+                cost.steps(steps, in_footprint);
                 let mut again = Some(top);
                 while let Some(top) = again {
                     again = None;
-                    match sampler.hit(&march, top, &mut ray, cost) {
+                    match sampler.hit(voxel, top, ray, cost) {
                         Hit::Sampled => {
                             cost.hit();
                             in_footprint = true;
@@ -121,18 +116,33 @@ pub fn walk<S: Sampler, C: Cost>(
                             cost.hit();
                             cost.terrain_pixel();
                             in_footprint = true;
-                            out[i - first] = color;
+                            if let Some(px) = out.get_mut(i - first) {
+                                *px = color;
+                            }
                             i += 1;
                             if i == end {
-                                cost.end_column();
-                                return;
+                                finished = true;
+                                return Flow::Stop;
                             }
-                            (ray, upper) = begin(i, upper, &march, sampler, cost);
+                            (*ray, upper) = begin(i, upper, voxel.n(), sampler, cost);
                             again = (top > ray.h).then_some(top);
                         }
                         Hit::Rejected => {}
                     }
                 }
+                Flow::Continue
+            };
+            let (end_of_ride, steps) = if ray.slope >= 0 {
+                march.ride::<true>(&mut ray, max_h, limit, step_first, &mut on_hit)
+            } else {
+                march.ride::<false>(&mut ray, max_h, limit, step_first, &mut on_hit)
+            };
+            cost.steps(steps, in_footprint);
+            if finished {
+                cost.end_column();
+                return;
+            }
+            if end_of_ride == RideEnd::Hit {
                 step_first = true;
                 continue;
             }

@@ -11,7 +11,7 @@
 
 use crate::color::Color16;
 use crate::num::Weight;
-use crate::terrain::march::March;
+use crate::terrain::march::Voxel;
 
 /// The per-event hooks of the walk. Every method defaults to doing nothing.
 pub trait Cost {
@@ -25,7 +25,7 @@ pub trait Cost {
     /// (the paper's `L` ignores those steps).
     #[inline(always)]
     fn step(&mut self, _in_footprint: bool) {}
-    /// Term `a`, `count` times: the steps of one ride through a run ([`March::ride`]).
+    /// Term `a`, `count` times: the steps of one ride through a run ([`crate::terrain::march::March::ride`]).
     #[inline(always)]
     fn steps(&mut self, count: u32, in_footprint: bool) {
         for _ in 0..count {
@@ -38,11 +38,11 @@ pub trait Cost {
     /// A pixel (row `row`, from the bottom) begins.
     #[inline(always)]
     fn begin_pixel(&mut self, _row: usize) {}
-    /// Term `c`: one voxel sample (with its interpolation) of the current voxel of `march`,
+    /// Term `c`: one voxel sample (with its interpolation) of the current voxel, `voxel`,
     /// which gave `color` and enters its pixel with `weight` (1 per sample for PS, LI and
     /// SS_N; the subtended slope for AS).
     #[inline(always)]
-    fn sample(&mut self, _march: &March<'_, '_>, _color: Color16, _weight: Weight) {}
+    fn sample(&mut self, _voxel: &Voxel<'_>, _color: Color16, _weight: Weight) {}
     /// The sky fills the rest of a pixel that saw terrain, with `weight`.
     #[inline(always)]
     fn sky_sample(&mut self, _color: Color16, _weight: Weight) {}
@@ -201,8 +201,8 @@ impl Cost for Counts<'_> {
     fn new_ray(&mut self) {
         self.current.b += 1;
     }
-    fn sample(&mut self, march: &March<'_, '_>, _: Color16, _: Weight) {
-        let index = march.step_index();
+    fn sample(&mut self, voxel: &Voxel<'_>, _: Color16, _: Weight) {
+        let index = voxel.step_index();
         self.current.c += 1;
         if self.last_sampled != Some(index) {
             self.current.m += 1;

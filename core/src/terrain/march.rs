@@ -35,11 +35,12 @@
 //! level-0 height is at or below the ray: the voxels it passes over are exactly those the walk
 //! would have found below the ray, so the samplers see the same sequence of voxels.
 
-use crate::color::{to_color16, Color16};
+use crate::color::{to_color16, Color16, Rgb};
 use crate::num::{height, Height};
 use crate::terrain::camera::{Column, Frame};
 use crate::terrain::map::Axis;
 use crate::terrain::map::{fold, Level, Terrain};
+use crate::terrain::sampler::Ray;
 
 /// A cursor on the voxel sequence of one column.
 #[derive(Clone, Debug)]
@@ -300,33 +301,40 @@ impl<'a, 't> March<'a, 't> {
     }
 
     /// The walk's inner loop: from the current voxel, steps along the run while the voxel's
-    /// top is at or below the ray, whose height here is `*h` and which rises by `rise` per
-    /// step. Returns the top of the first voxel above the ray (the cursor is on it), or `None`
-    /// when the run ends first (the cursor is on the run's last voxel, which the ray passes
-    /// above; [`March::advance`] takes the step out of the run). `*h` follows the ray, and
-    /// `*steps` counts the steps taken, at most `limit`. With `step_first` the current voxel
-    /// is not tested (a sampler has already dealt with it): the ride begins with a step. With
-    /// `ASCENDING` (a ray that does not descend) the ride also stops, returning `None`, on the
-    /// first voxel where the ray is above `ceiling` (the highest point of the terrain: nothing
-    /// further can be hit).
+    /// top is at or below the ray, and hands every hit to `on_hit` without leaving the loop, so
+    /// that the walk's state stays in registers from pixel to pixel.
+    ///
+    /// The ray is `ray` here (its slope per half-voxel times the step gives the rise per step).
+    /// On a hit — a voxel whose top is above the ray — `on_hit(voxel, top, ray, steps)` gets
+    /// the voxel, its top, the ray (which it may raise, or replace by the next pixel's) and the
+    /// steps taken since the last report; [`Flow::Continue`] steps on with the ray it leaves.
+    /// The ride returns [`RideEnd::Hit`] (the cursor on the hit voxel) when `on_hit` says
+    /// [`Flow::Stop`], when `limit` is finite (the walk is crossing empty air a step at a time)
+    /// or when the ray's slope changed sign (`ASCENDING` no longer holds); and
+    /// [`RideEnd::Run`] when the run ends (the cursor on its last voxel, which the ray passes
+    /// above; [`March::advance`] takes the step out of it) or, with `ASCENDING` (a ray that does
+    /// not descend), on the first voxel where the ray is above `ceiling` (the highest point of
+    /// the terrain: nothing further can be hit). With `step_first` the current voxel is not
+    /// tested (it is done with): the ride begins with a step. Returns the steps taken since the
+    /// last report to `on_hit`.
     #[inline(always)]
     pub fn ride<const ASCENDING: bool>(
         &mut self,
-        h: &mut Height,
-        rise: Height,
+        ray: &mut Ray,
         ceiling: Height,
         limit: u32,
         step_first: bool,
-        steps: &mut u32,
-    ) -> Option<Height> {
+        on_hit: &mut impl FnMut(&Voxel<'a>, Height, &mut Ray, u32) -> Flow,
+    ) -> (RideEnd, u32) {
         let ceiling = ceiling.to_bits();
         let heights = self.heights;
-        let (du, dv_step, shift) = (self.du, self.dv_step, 32 + self.l);
-        let rise = rise.to_bits();
-        let mut ray = h.to_bits();
+        let (du, dv_step, shift, dn) = (self.du, self.dv_step, 32 + self.l, self.dn);
+        let mut rise = ray.slope.to_bits().wrapping_mul(dn);
+        let mut h = ray.h.to_bits();
         let mut test = !step_first;
+        let mut unreported = 0;
         enum Stop {
-            Hit(i64),
+            Hit,
             End,
             Edge,
         }
@@ -334,20 +342,34 @@ impl<'a, 't> March<'a, 't> {
             let start = self.run.min(limit);
             let (mut left, mut idx, mut v, mut cv) = (start, self.idx, self.v, self.cv);
             let (dcross, mut cross_left) = (self.dcross, self.cross_left);
-            // The tight loop: one voxel per iteration, until a hit, the run's end, or a mirror
-            // edge across the ray.
+            let mut mark = start;
+            // The tight loop: one voxel per iteration, until a hit that returns, the run's
+            // end, or a mirror edge across the ray.
             let found = loop {
                 let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
-                if test && top > ray {
-                    break Stop::Hit(top);
+                if test && top > h {
+                    let crossed = self.cross_left - cross_left;
+                    let voxel = self.voxel_at(idx, v, cv, crossed, start - left);
+                    ray.h = Height::from_bits(h);
+                    let steps = unreported + (mark - left);
+                    (unreported, mark) = (0, left);
+                    let flow = on_hit(&voxel, Height::from_bits(top), ray, steps);
+                    if flow == Flow::Stop
+                        || limit != u32::MAX
+                        || (ray.slope.to_bits() >= 0) != ASCENDING
+                    {
+                        break Stop::Hit;
+                    }
+                    h = ray.h.to_bits();
+                    rise = ray.slope.to_bits().wrapping_mul(dn);
                 }
                 test = true;
-                if left == 0 || (ASCENDING && ray > ceiling) {
+                if left == 0 || (ASCENDING && h > ceiling) {
                     break Stop::End;
                 }
                 left -= 1;
                 idx = idx.wrapping_add_signed(du);
-                ray += rise;
+                h = h.wrapping_add(rise);
                 v += dv_step;
                 let c = v >> shift;
                 if c != cv {
@@ -361,21 +383,25 @@ impl<'a, 't> March<'a, 't> {
                 }
             };
             self.take_crossings(self.cross_left - cross_left, cv);
-            let taken = start - left;
             self.idx = idx;
-            self.commit(taken);
-            *steps += taken;
-            if let Stop::Edge = found {
-                // A mirror edge across the ray: the general crossing, then the same run.
-                self.cross_to(v);
-                continue;
+            self.commit(start - left);
+            unreported += mark - left;
+            match found {
+                Stop::Edge => {
+                    // A mirror edge across the ray: the general crossing, then the same run.
+                    self.cross_to(v);
+                    continue;
+                }
+                Stop::Hit => {
+                    self.v = v;
+                    return (RideEnd::Hit, unreported);
+                }
+                Stop::End => {
+                    self.v = v;
+                    ray.h = Height::from_bits(h);
+                    return (RideEnd::Run, unreported);
+                }
             }
-            self.v = v;
-            *h = Height::from_bits(ray);
-            return match found {
-                Stop::Hit(top) => Some(Height::from_bits(top)),
-                _ => None,
-            };
         }
     }
 
@@ -635,16 +661,138 @@ impl<'a, 't> March<'a, 't> {
         self.v as f64 / 4_294_967_296.0
     }
 
-    /// Point sampling: the colour of the current voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
+    /// The current voxel as a sampler sees it.
+    #[inline(always)]
+    pub fn voxel(&self) -> Voxel<'a> {
+        self.voxel_at(self.idx, self.v, self.cv, 0, 0)
+    }
+
+    /// The voxel at array index `idx`, cross coordinate `v` and cross cell `cv`, `crossed`
+    /// crossings across the ray and `taken` steps into the current run beyond what the cursor's
+    /// fields record (a ride's locals, not yet written back).
+    #[inline(always)]
+    fn voxel_at(&self, idx: usize, v: i64, cv: i64, crossed: u32, taken: u32) -> Voxel<'a> {
+        let pv = if crossed == 0 {
+            self.pv
+        } else if self.len_v == 1 {
+            self.pv ^ (crossed & 1)
+        } else if self.dv_step > 0 {
+            self.pv + crossed
+        } else {
+            self.pv - crossed
+        };
+        let taken = self.taken() + taken;
+        Voxel {
+            colors: self.level.colors(),
+            idx,
+            v,
+            l: self.l,
+            pv,
+            len_v: self.len_v,
+            stride_v: self.stride_v,
+            n: self.n + i64::from(taken) * self.dn,
+            k: self.k.saturating_add(taken),
+            j: self.j + i64::from(taken),
+            cv,
+            forward: self.forward,
+            axis: self.axis,
+        }
+    }
+
+    /// Point sampling of the current voxel ([`Voxel::sample_point`]).
     #[inline(always)]
     pub fn sample_point(&self) -> Color16 {
-        to_color16(
-            self.level
-                .colors()
-                .get(self.idx)
-                .copied()
-                .unwrap_or_default(),
-        )
+        self.voxel().sample_point()
+    }
+
+    /// Linear interpolation at the current voxel ([`Voxel::sample_linear`]).
+    #[inline(always)]
+    pub fn sample_linear(&self) -> Color16 {
+        self.voxel().sample_linear()
+    }
+}
+
+/// What a ride does after a sampler has dealt with a hit ([`March::ride`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flow {
+    /// Step on along the run with the (possibly new) ray.
+    Continue,
+    /// Return to the walk: the column is finished, or it must choose again how to ride.
+    Stop,
+}
+
+/// How a ride ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RideEnd {
+    /// The run ended, or a non-descending ray rose above the ceiling: the cursor is on the
+    /// run's last voxel, which the ray passes above ([`March::advance`] takes the next step).
+    Run,
+    /// A hit, after which the ride returned (the hit handler said [`Flow::Stop`], the ride
+    /// had a step limit, or the ray's slope changed sign): the cursor is on the hit voxel.
+    Hit,
+}
+
+/// The voxel the walk stands on, as a sampler sees it (Sect. 4): where its colour is, the
+/// ray's cross-axis position over it, and its place in the voxel sequence. Built from a ride's
+/// locals, so a sampler that reads only the colour costs only the colour's load.
+#[derive(Clone, Copy, Debug)]
+pub struct Voxel<'a> {
+    colors: &'a [Rgb],
+    /// The voxel's index in the level's arrays.
+    idx: usize,
+    /// The ray's cross coordinate, raw I32F32 level-0 voxels.
+    v: i64,
+    /// The pyramid level.
+    l: u32,
+    /// The cross-axis position in the mirrored period, the level's cross side and stride.
+    pv: u32,
+    len_v: u32,
+    stride_v: usize,
+    /// The centre, half-voxels along the ray.
+    n: i64,
+    /// The index in the voxel sequence (steps taken).
+    k: u32,
+    /// The cell index along `n` and across it, and which way the ray runs along which axis.
+    j: i64,
+    cv: i64,
+    forward: bool,
+    axis: Axis,
+}
+
+impl Voxel<'_> {
+    /// The voxel's centre, half-voxels along the ray.
+    #[inline(always)]
+    pub fn n(&self) -> i64 {
+        self.n
+    }
+
+    /// The index of the voxel in the column's sequence (the number of steps taken): the
+    /// identity the distinct-sample count `M` uses (Sect. 6).
+    #[inline(always)]
+    pub fn step_index(&self) -> u32 {
+        self.k
+    }
+
+    /// The voxel's pyramid level.
+    #[inline(always)]
+    pub fn level(&self) -> u32 {
+        self.l
+    }
+
+    /// The voxel's `(x, y)` at its level in the infinite (unmirrored) grid (see
+    /// [`March::cell_unmirrored`]).
+    pub fn cell_unmirrored(&self) -> (i64, i64) {
+        let u = if self.forward { self.j } else { -self.j - 1 };
+        match self.axis {
+            Axis::X => (u, self.cv),
+            Axis::Y => (self.cv, u),
+        }
+    }
+
+    /// Point sampling: the colour of the voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
+    #[inline(always)]
+    pub fn sample_point(&self) -> Color16 {
+        to_color16(self.colors.get(self.idx).copied().unwrap_or_default())
     }
 
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose
@@ -677,7 +825,7 @@ impl<'a, 't> March<'a, 't> {
             };
             (step, ((frac + (1 << 31)) >> 24) as u32)
         };
-        let colors = self.level.colors();
+        let colors = self.colors;
         let at = |i: usize| colors.get(i).copied().unwrap_or_default();
         let (here, there) = (at(self.idx), at(self.idx.wrapping_add_signed(near)));
         let (c0, c1) = if frac >= 1 << 31 {

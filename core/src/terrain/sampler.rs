@@ -13,7 +13,7 @@ use crate::color::Rgb;
 use crate::color::{to_color16, to_rgb, Color16};
 use crate::num::{Eye, Height, Line, Slope, Weight};
 use crate::terrain::cost::Cost;
-use crate::terrain::march::March;
+use crate::terrain::march::Voxel;
 
 /// The ray being walked: its height at the current voxel and its slope per half-voxel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,14 +54,8 @@ pub enum Hit {
 pub trait Sampler {
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
-    /// The ray passes below the top `top` of the current voxel of `march`.
-    fn hit<C: Cost>(
-        &mut self,
-        march: &March<'_, '_>,
-        top: Height,
-        ray: &mut Ray,
-        cost: &mut C,
-    ) -> Hit;
+    /// The ray passes below the top `top` of the current voxel, `voxel`.
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit;
     /// The walk ended (far distance, or nothing left to hit) inside this pixel. Returns the
     /// pixel's colour if terrain was seen in it, `None` if it is all sky.
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
@@ -75,9 +69,9 @@ impl Sampler for Point {
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
-        let color = march.sample_point();
-        cost.sample(march, color, Weight::ONE);
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
+        let color = voxel.sample_point();
+        cost.sample(voxel, color, Weight::ONE);
         Hit::Done(to_rgb(color))
     }
     #[inline(always)]
@@ -94,9 +88,9 @@ impl Sampler for Linear {
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
-        let color = march.sample_linear();
-        cost.sample(march, color, Weight::ONE);
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
+        let color = voxel.sample_linear();
+        cost.sample(voxel, color, Weight::ONE);
         Hit::Done(to_rgb(color))
     }
     #[inline(always)]
@@ -180,21 +174,15 @@ impl<const N: u32> Sampler for Super<N> {
         self.upper = pixel.upper;
     }
     #[inline(always)]
-    fn hit<C: Cost>(
-        &mut self,
-        march: &March<'_, '_>,
-        _: Height,
-        ray: &mut Ray,
-        cost: &mut C,
-    ) -> Hit {
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, ray: &mut Ray, cost: &mut C) -> Hit {
         cost.ss_hit();
         if self.j == 0 {
-            let n = march.n();
+            let n = voxel.n();
             let gap = self.upper.at(n).saturating_sub(self.lower.at(n));
             self.delta = (gap >> Self::LOG2).max(Height::ZERO);
         }
-        let c = march.sample_linear();
-        cost.sample(march, c, Weight::ONE);
+        let c = voxel.sample_linear();
+        cost.sample(voxel, c, Weight::ONE);
         for (s, c) in self.sum.iter_mut().zip(c) {
             *s += u32::from(c);
         }
@@ -297,14 +285,8 @@ impl Sampler for Area {
     }
 
     #[inline(always)]
-    fn hit<C: Cost>(
-        &mut self,
-        march: &March<'_, '_>,
-        top: Height,
-        ray: &mut Ray,
-        cost: &mut C,
-    ) -> Hit {
-        let n = march.n();
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+        let n = voxel.n();
         if let Some((n_top, h_top)) = self.top {
             // The rounded-down ray lies at most (n − n_top) units in the last place below the
             // exact one: inside that band, ask the exact question.
@@ -313,19 +295,19 @@ impl Sampler for Area {
                 return Hit::Rejected;
             }
         }
-        let color = march.sample_linear();
+        let color = voxel.sample_linear();
         self.seen = true;
         if top >= self.upper.at(n) {
             // The voxel reaches R_{i+1}: the pixel is done (H' = H(R_{i+1})).
             let w = self.upper.slope.saturating_sub(ray.slope);
-            cost.sample(march, color, w);
+            cost.sample(voxel, color, w);
             self.accumulate(w, color, cost);
             return Hit::Done(self.finish(color, cost));
         }
         cost.top_division();
         let through_top = self.eye.slope_through(n, top).min(self.upper.slope);
         let w = through_top.saturating_sub(ray.slope);
-        cost.sample(march, color, w);
+        cost.sample(voxel, color, w);
         self.accumulate(w, color, cost);
         ray.h = top;
         ray.slope = through_top.max(ray.slope);
@@ -429,16 +411,10 @@ impl Sampler for ParallelArea {
     }
 
     #[inline(always)]
-    fn hit<C: Cost>(
-        &mut self,
-        march: &March<'_, '_>,
-        top: Height,
-        ray: &mut Ray,
-        cost: &mut C,
-    ) -> Hit {
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
         if !self.seen {
             // The pixel's first hit: its span, here, and the shift that quantizes it.
-            let n = march.n();
+            let n = voxel.n();
             self.span = self
                 .upper
                 .at(n)
@@ -453,14 +429,14 @@ impl Sampler for ParallelArea {
                 .clamp(0, self.span);
             self.seen = true;
         }
-        let color = march.sample_linear();
+        let color = voxel.sample_linear();
         // H′ − H(R), as an offset into the span: the voxel's top, or the pixel's upper edge.
         let to = self
             .offset
             .saturating_add(top.saturating_sub(ray.h).to_bits())
             .min(self.span);
         let w = self.accumulate(to, color, cost);
-        cost.sample(march, color, Weight::from_bits(i64::from(w)));
+        cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
         if to == self.span {
             return Hit::Done(self.finish(color, cost));
         }
@@ -489,8 +465,8 @@ pub struct FirstHit {
 
 impl Sampler for FirstHit {
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
-    fn hit<C: Cost>(&mut self, march: &March<'_, '_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
-        self.n.get_or_insert(march.n());
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
+        self.n.get_or_insert(voxel.n());
         Hit::Done(Rgb::default())
     }
     fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {

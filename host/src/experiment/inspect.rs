@@ -9,7 +9,7 @@ use footprint_core::color::{to_rgb, Color16};
 use footprint_core::num::Weight;
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 use footprint_core::terrain::cost::Cost;
-use footprint_core::terrain::march::March;
+use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::visibility::visit;
 use footprint_core::Rgb;
 
@@ -120,9 +120,9 @@ impl Cost for Trace {
     fn begin_pixel(&mut self, row: usize) {
         self.at.1 = row;
     }
-    fn sample(&mut self, march: &March<'_, '_>, color: Color16, weight: Weight) {
-        let (x, y) = march.cell_unmirrored();
-        self.sampled.insert((march.level(), x, y));
+    fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
+        let (x, y) = voxel.cell_unmirrored();
+        self.sampled.insert((voxel.level(), x, y));
         if self.at == self.target {
             self.samples.push(Sample {
                 color: to_rgb(color),
