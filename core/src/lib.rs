@@ -48,8 +48,8 @@
 //! })?;
 //! let (mut rows, mut cols) = ([Coord::ZERO; 9], [Column::default(); 8]);
 //! let frame = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut cols)?;
-//! let (mut scratch, mut image) = ([Rgb::default(); 8], [Rgb::default(); 64]);
-//! column::render(&frame, &terrain, &Area::new(), &mut NoCost, &mut scratch, &mut image)?;
+//! let mut image = [Rgb::default(); 64];
+//! column::render(&frame, &terrain, &Area::new(), &mut NoCost, &mut image)?;
 //! assert_eq!(image[63], Rgb::new(40, 120, 40)); // the bottom row sees the flat green ground
 //! # Ok::<(), footprint_core::Error>(())
 //! ```

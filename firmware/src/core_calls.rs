@@ -25,10 +25,9 @@ pub fn render<S: Sampler + Clone, C: Cost>(
     terrain: &Terrain<'_>,
     sampler: &S,
     cost: &mut C,
-    scratch: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<(), Error> {
-    column::render(frame, terrain, sampler, cost, scratch, image)
+    column::render(frame, terrain, sampler, cost, image)
 }
 
 /// `Frame::new`: the camera tables (soft-double trigonometry, once per frame).

@@ -180,8 +180,6 @@ pub struct Buffers {
     pub rows: &'static mut [Coord; HEIGHT + 1],
     /// The frame's column table, `W` columns.
     pub columns: &'static mut [Column; WIDTH],
-    /// One column of pixels, the walk's scratch.
-    pub scratch: &'static mut [Rgb; HEIGHT],
     /// The image, row-major from the top.
     pub image: &'static mut [Rgb; WIDTH * HEIGHT],
 }
@@ -201,7 +199,6 @@ impl Buffers {
             )?,
             rows: cortex_m::singleton!(ROWS: [Coord; HEIGHT + 1] = [Coord::ZERO; HEIGHT + 1])?,
             columns: cortex_m::singleton!(COLUMNS: [Column; WIDTH] = [Column::default(); WIDTH])?,
-            scratch: cortex_m::singleton!(SCRATCH: [Rgb; HEIGHT] = [Rgb::new(0, 0, 0); HEIGHT])?,
             image: cortex_m::singleton!(
                 IMAGE: [Rgb; WIDTH * HEIGHT] = [Rgb::new(0, 0, 0); WIDTH * HEIGHT]
             )?,

@@ -73,16 +73,15 @@ fn run_mode<S: Sampler + Clone>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     tables: u64,
-    scratch: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<Option<u64>, Error> {
     let (render, result) =
-        instructions(|| core_calls::render(frame, terrain, sampler, &mut NoCost, scratch, image));
+        instructions(|| core_calls::render(frame, terrain, sampler, &mut NoCost, image));
     result?;
     let hash = image_hash(image);
 
     let mut counts = Counts::new(&mut []);
-    core_calls::render(frame, terrain, sampler, &mut counts, scratch, image)?;
+    core_calls::render(frame, terrain, sampler, &mut counts, image)?;
     core_calls::count_visible(frame, terrain, &mut counts);
     let counted_hash = image_hash(image);
     let t: Tally = counts.total;
@@ -194,7 +193,6 @@ fn error_paths(
     camera: &Camera,
     rows: &mut [Coord],
     columns: &mut [Column],
-    scratch: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<bool, Error> {
     let level0 = *terrain.base();
@@ -252,7 +250,6 @@ fn error_paths(
             terrain,
             &Point,
             &mut NoCost,
-            scratch,
             &mut image[..WIDTH * HEIGHT - 1],
         ),
     );
@@ -283,7 +280,6 @@ fn run() -> Result<bool, Error> {
         pyramid_colors,
         rows,
         columns,
-        scratch,
         image,
     }) = Buffers::take()
     else {
@@ -328,15 +324,14 @@ fn run() -> Result<bool, Error> {
         "# icount frame tables (Frame::new, soft-double trigonometry): {} instructions",
         tables
     );
-    let (scratch, image) = (&mut scratch[..], &mut image[..]);
-    let ps = run_mode("ps", &Point, &frame, &terrain, tables, scratch, image)?;
+    let image = &mut image[..];
+    let ps = run_mode("ps", &Point, &frame, &terrain, tables, image)?;
     let ss8 = run_mode(
         "ss8",
         &Super::<8>::new(),
         &frame,
         &terrain,
         tables,
-        scratch,
         image,
     )?;
     let area = run_mode(
@@ -345,7 +340,6 @@ fn run() -> Result<bool, Error> {
         &frame,
         &terrain,
         tables,
-        scratch,
         image,
     )?;
     let paper = run_mode(
@@ -354,7 +348,6 @@ fn run() -> Result<bool, Error> {
         &frame,
         &terrain,
         tables,
-        scratch,
         image,
     )?;
     match (ps, ss8, area, paper) {
@@ -379,7 +372,7 @@ fn run() -> Result<bool, Error> {
         _ => ok = false,
     }
     run_plate(plate_buffers)?;
-    ok &= error_paths(&terrain, &camera, rows, columns, scratch, image)?;
+    ok &= error_paths(&terrain, &camera, rows, columns, image)?;
     Ok(ok)
 }
 

@@ -101,30 +101,15 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     };
     let mut tallies = vec![Tally::default(); cw];
     let mut counts = Counts::new(&mut tallies);
-    let (mut scratch, mut image) = (vec![Rgb::default(); ch], vec![Rgb::default(); cw * ch]);
+    let mut image = vec![Rgb::default(); cw * ch];
     let done = match input.mode % 8 {
-        0 => render(
-            &frame,
-            &terrain,
-            &Point,
-            &mut counts,
-            &mut scratch,
-            &mut image,
-        ),
-        1 => render(
-            &frame,
-            &terrain,
-            &Linear,
-            &mut counts,
-            &mut scratch,
-            &mut image,
-        ),
+        0 => render(&frame, &terrain, &Point, &mut counts, &mut image),
+        1 => render(&frame, &terrain, &Linear, &mut counts, &mut image),
         2 => render(
             &frame,
             &terrain,
             &Super::<2>::new(),
             &mut counts,
-            &mut scratch,
             &mut image,
         ),
         3 => render(
@@ -132,7 +117,6 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             &terrain,
             &Super::<16>::new(),
             &mut counts,
-            &mut scratch,
             &mut image,
         ),
         4 => render(
@@ -140,26 +124,17 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             &terrain,
             &Super::<256>::new(),
             &mut counts,
-            &mut scratch,
             &mut image,
         ),
-        5 => render(
-            &frame,
-            &terrain,
-            &Area::new(),
-            &mut counts,
-            &mut scratch,
-            &mut image,
-        ),
+        5 => render(&frame, &terrain, &Area::new(), &mut counts, &mut image),
         6 => render(
             &frame,
             &terrain,
             &ParallelArea::new(),
             &mut counts,
-            &mut scratch,
             &mut image,
         ),
-        _ => classic::render(&frame, &terrain, &mut counts, &mut scratch, &mut image),
+        _ => classic::render(&frame, &terrain, &mut counts, &mut image),
     };
     assert!(done.is_ok(), "buffers were sized from the camera");
     count_visible(&frame, &terrain, &mut counts);

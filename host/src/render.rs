@@ -243,9 +243,8 @@ pub fn render_with<C: Cost>(
 ) -> Result<Rendered> {
     let (w, h) = (frame.width(), frame.height());
     let mut image = vec![Rgb::default(); w * h];
-    let mut scratch = vec![Rgb::default(); h];
-    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut scratch, &mut image),
-        classic => classic::render(frame, terrain, cost, &mut scratch, &mut image))?;
+    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut image),
+        classic => classic::render(frame, terrain, cost, &mut image))?;
     Ok(Rendered {
         image,
         size: (w as u32, h as u32),

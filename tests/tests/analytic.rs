@@ -1361,50 +1361,20 @@ fn constructor_errors() {
         "far",
     );
 
-    // render's image and scratch buffers.
+    // render's image buffer.
     let mut rows = vec![Coord::ZERO; 5];
     let mut cols = vec![Column::default(); 4];
     let fr = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut cols).unwrap();
-    let mut scratch = [Rgb::default(); 4];
     expect(
-        column::render(
-            &fr,
-            &terrain,
-            &Point,
-            &mut NoCost,
-            &mut scratch,
-            &mut [c; 15],
-        ),
+        column::render(&fr, &terrain, &Point, &mut NoCost, &mut [c; 15]),
         Error::SliceLength {
             what: "image",
             expected: 16,
             actual: 15,
         },
     );
-    expect(
-        column::render(
-            &fr,
-            &terrain,
-            &Point,
-            &mut NoCost,
-            &mut [c; 3],
-            &mut [c; 16],
-        ),
-        Error::SliceLength {
-            what: "column",
-            expected: 4,
-            actual: 3,
-        },
-    );
     assert_eq!(
-        column::render(
-            &fr,
-            &terrain,
-            &Point,
-            &mut NoCost,
-            &mut scratch,
-            &mut [c; 16]
-        ),
+        column::render(&fr, &terrain, &Point, &mut NoCost, &mut [c; 16]),
         Ok(())
     );
 
@@ -1482,46 +1452,20 @@ fn extreme_valid_inputs_do_not_panic() {
     ];
     fn all_modes(frame: &Frame<'_>, terrain: &Terrain<'_>) {
         let (w, h) = (frame.width(), frame.height());
-        let mut scratch = vec![Rgb::default(); h];
         let mut image = vec![Rgb::default(); w * h];
         let mut tallies = vec![Tally::default(); w];
         let mut counts = Counts::new(&mut tallies);
-        column::render(
-            frame,
-            terrain,
-            &Point,
-            &mut counts,
-            &mut scratch,
-            &mut image,
-        )
-        .unwrap();
-        column::render(
-            frame,
-            terrain,
-            &Linear,
-            &mut counts,
-            &mut scratch,
-            &mut image,
-        )
-        .unwrap();
+        column::render(frame, terrain, &Point, &mut counts, &mut image).unwrap();
+        column::render(frame, terrain, &Linear, &mut counts, &mut image).unwrap();
         column::render(
             frame,
             terrain,
             &Super::<256>::new(),
             &mut counts,
-            &mut scratch,
             &mut image,
         )
         .unwrap();
-        column::render(
-            frame,
-            terrain,
-            &Area::new(),
-            &mut counts,
-            &mut scratch,
-            &mut image,
-        )
-        .unwrap();
+        column::render(frame, terrain, &Area::new(), &mut counts, &mut image).unwrap();
         visibility::count_visible(frame, terrain, &mut counts);
     }
     for p in cases {

@@ -141,8 +141,7 @@ fn classic_counters_are_consistent() {
         let mut counts = Counts::new(&mut columns);
         let (w, h) = (frame.width(), frame.height());
         let mut image = vec![Rgb::default(); w * h];
-        let mut scratch = vec![Rgb::default(); h];
-        classic::render(frame, &terrain, &mut counts, &mut scratch, &mut image).unwrap();
+        classic::render(frame, &terrain, &mut counts, &mut image).unwrap();
         let t = counts.total;
         let terrain_px = image.iter().filter(|&&p| p != SKY).count() as u64;
         assert!(

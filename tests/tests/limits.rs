@@ -25,8 +25,8 @@ fn draw<S: Sampler + Clone>(terrain: &Terrain<'_>, camera: &Camera, s: &S) -> (V
     let frame = Frame::new(camera, terrain, options, &mut rows, &mut cols).expect("in range");
     let mut tallies = vec![Tally::default(); w];
     let mut counts = Counts::new(&mut tallies);
-    let (mut scratch, mut image) = (vec![Rgb::default(); h], vec![Rgb::default(); w * h]);
-    render(&frame, terrain, s, &mut counts, &mut scratch, &mut image).expect("sized");
+    let mut image = vec![Rgb::default(); w * h];
+    render(&frame, terrain, s, &mut counts, &mut image).expect("sized");
     count_visible(&frame, terrain, &mut counts);
     (image, counts.total)
 }

@@ -402,17 +402,9 @@ impl Cost for Spans {
 /// The whole image, row-major from the top, through `column::render` with `NoCost`.
 fn image<S: Sampler + Clone>(frame: &Frame<'_>, terrain: &Terrain<'_>, sampler: &S) -> Vec<u8> {
     let (w, h) = (frame.width(), frame.height());
-    let mut scratch = vec![Rgb::default(); h];
     let mut image = vec![Rgb::default(); w * h];
-    column::render(
-        frame,
-        terrain,
-        sampler,
-        &mut NoCost,
-        &mut scratch,
-        &mut image,
-    )
-    .expect("buffers of the right size");
+    column::render(frame, terrain, sampler, &mut NoCost, &mut image)
+        .expect("buffers of the right size");
     image.iter().flat_map(|p| [p.r, p.g, p.b]).collect()
 }
 

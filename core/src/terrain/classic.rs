@@ -22,7 +22,7 @@ use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::height;
 use crate::terrain::camera::Frame;
-use crate::terrain::column::render_frame;
+use crate::terrain::column::{render_frame, ColumnOut};
 use crate::terrain::cost::Cost;
 use crate::terrain::map::Axis;
 use crate::terrain::{mirror, Terrain};
@@ -40,7 +40,18 @@ pub fn walk<C: Cost>(
     cost: &mut C,
     out: &mut [Rgb],
 ) {
-    let h = frame.height().min(out.len());
+    walk_into(frame, terrain, col, cost, out);
+}
+
+/// [`walk`] into any [`ColumnOut`].
+pub fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    cost: &mut C,
+    out: &mut O,
+) {
+    let h = frame.height().min(out.rows());
     let Some(column) = frame.columns().get(col) else {
         return;
     };
@@ -78,9 +89,7 @@ pub fn walk<C: Cost>(
             let color = map.colors().get(at).copied().unwrap_or_default();
             // Fill from the y-buffer up to the sample's projected top.
             while i < h && top > ray.at(n) {
-                if let Some(px) = out.get_mut(i) {
-                    *px = color;
-                }
+                out.set(i, color);
                 cost.hit();
                 cost.terrain_pixel();
                 i += 1;
@@ -94,22 +103,21 @@ pub fn walk<C: Cost>(
         dn5 += 2;
     }
     let sky = frame.sky();
-    for px in out.iter_mut().take(h).skip(i) {
-        *px = sky;
+    for k in i..h {
+        out.set(k, sky);
     }
     cost.end_column();
 }
 
-/// Renders the whole frame into `image`, row-major from the top, using `column` (at least `H`
-/// long) as scratch: the classic counterpart of [`crate::terrain::column::render`].
+/// Renders the whole frame into `image`, row-major from the top: the classic counterpart of
+/// [`crate::terrain::column::render`].
 pub fn render<C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     cost: &mut C,
-    column: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<(), Error> {
-    render_frame(frame, column, image, |x, out| {
-        walk(frame, terrain, x, cost, out)
+    render_frame(frame, image, |x, out| {
+        walk_into(frame, terrain, x, cost, out)
     })
 }

@@ -21,6 +21,66 @@ use crate::terrain::march::{Flow, March, RideEnd, Voxel};
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
+/// Where a column walk writes its pixels: pixel `k` of the walked rows, counted from the first
+/// (the lowest).
+pub trait ColumnOut {
+    /// How many pixels it holds.
+    fn rows(&self) -> usize;
+    /// Writes pixel `k`; beyond [`ColumnOut::rows`], nothing.
+    fn set(&mut self, k: usize, color: Rgb);
+}
+
+impl ColumnOut for [Rgb] {
+    #[inline(always)]
+    fn rows(&self) -> usize {
+        self.len()
+    }
+    #[inline(always)]
+    fn set(&mut self, k: usize, color: Rgb) {
+        if let Some(px) = self.get_mut(k) {
+            *px = color;
+        }
+    }
+}
+
+/// Column `x` of a row-major image `W` pixels wide and `H` high (`image[y·W + x]`, `y` from the
+/// top), written from the bottom row up: a frame is drawn in place, with no scratch column to
+/// copy.
+pub struct ImageColumn<'i> {
+    image: &'i mut [Rgb],
+    x: usize,
+    w: usize,
+    h: usize,
+    /// The index of the column's bottom pixel, `(H − 1)·W + x`.
+    bottom: usize,
+}
+
+impl core::fmt::Debug for ImageColumn<'_> {
+    /// The column and the image's size; the pixels are far too many to print.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("ImageColumn")
+            .field("x", &self.x)
+            .field("w", &self.w)
+            .field("h", &self.h)
+            .finish()
+    }
+}
+
+impl ColumnOut for ImageColumn<'_> {
+    #[inline(always)]
+    fn rows(&self) -> usize {
+        self.h
+    }
+    #[inline(always)]
+    fn set(&mut self, k: usize, color: Rgb) {
+        // Row `H − 1 − k` from the top; for k ≥ H the index wraps past the image's end.
+        let at = self.bottom.wrapping_sub(k.wrapping_mul(self.w));
+        if let Some(px) = self.image.get_mut(at) {
+            *px = color;
+        }
+    }
+}
+
 /// Walks column `col` for the pixel rows `rows` (counted from the bottom) and writes pixel
 /// `i` to `out[i − rows.start]`.
 ///
@@ -35,15 +95,27 @@ pub fn walk<S: Sampler, C: Cost>(
     cost: &mut C,
     out: &mut [Rgb],
 ) {
+    walk_into(frame, terrain, col, rows, sampler, cost, out);
+}
+
+/// [`walk`] into any [`ColumnOut`] (pixel `i` to `out.set(i − rows.start, …)`).
+pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    rows: Range<usize>,
+    sampler: &mut S,
+    cost: &mut C,
+    out: &mut O,
+) {
     let first = rows.start;
-    let end = rows.end.min(frame.height()).min(first + out.len());
+    let end = rows.end.min(frame.height()).min(first + out.rows());
     let Some(column) = frame.column(col) else {
         return;
     };
     if first >= end {
         return;
     }
-    let out = &mut out[..end - first];
     let eye = Eye {
         h: frame.eye(),
         n: column.n_eye,
@@ -116,9 +188,7 @@ pub fn walk<S: Sampler, C: Cost>(
                             cost.hit();
                             cost.terrain_pixel();
                             in_footprint = true;
-                            if let Some(px) = out.get_mut(i - first) {
-                                *px = color;
-                            }
+                            out.set(i - first, color);
                             i += 1;
                             if i == end {
                                 finished = true;
@@ -166,44 +236,43 @@ pub fn walk<S: Sampler, C: Cost>(
 
     // The walk ended inside pixel i: what is left of it, and every pixel above, is sky.
     let sky = frame.sky();
-    out[i - first] = match sampler.sky(&ray, sky, cost) {
+    let last = match sampler.sky(&ray, sky, cost) {
         Some(color) => {
             cost.terrain_pixel();
             color
         }
         None => sky,
     };
-    for px in &mut out[i - first + 1..] {
-        *px = sky;
+    out.set(i - first, last);
+    for k in i - first + 1..end - first {
+        out.set(k, sky);
     }
     cost.end_column();
 }
 
 /// Renders the whole frame with a fresh copy of `sampler` per column into `image`, row-major
-/// from the top (`image[y·W + x]`), using `column` (at least `H` long) as scratch.
+/// from the top (`image[y·W + x]`).
 pub fn render<S: Sampler + Clone, C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampler: &S,
     cost: &mut C,
-    column: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<(), Error> {
     let h = frame.height();
-    render_frame(frame, column, image, |x, out| {
+    render_frame(frame, image, |x, out| {
         let mut s = sampler.clone();
-        walk(frame, terrain, x, 0..h, &mut s, cost, out);
+        walk_into(frame, terrain, x, 0..h, &mut s, cost, out);
     })
 }
 
-/// Runs `walk_column(x, scratch)` for every column `x` of `frame` (it writes the column's rows,
-/// bottom to top, into `scratch`) and copies each column into `image`, row-major from the top.
-/// Errors if `image` does not hold `W × H` pixels or `column` is shorter than `H`.
+/// Runs `walk_column(x, out)` for every column `x` of `frame`, where `out` is column `x` of
+/// `image` (row-major from the top), written from the bottom up. Errors if `image` does not
+/// hold `W × H` pixels.
 pub fn render_frame(
     frame: &Frame<'_>,
-    column: &mut [Rgb],
     image: &mut [Rgb],
-    mut walk_column: impl FnMut(usize, &mut [Rgb]),
+    mut walk_column: impl FnMut(usize, &mut ImageColumn<'_>),
 ) -> Result<(), Error> {
     let (w, h) = (frame.width(), frame.height());
     if image.len() != w * h {
@@ -213,20 +282,18 @@ pub fn render_frame(
             actual: image.len(),
         });
     }
-    if column.len() < h {
-        return Err(Error::SliceLength {
-            what: "column",
-            expected: h,
-            actual: column.len(),
-        });
-    }
     for x in 0..w {
-        walk_column(x, column);
-        for (i, px) in column.iter().take(h).enumerate() {
-            if let Some(dst) = image.get_mut((h - 1 - i) * w + x) {
-                *dst = *px;
-            }
-        }
+        walk_column(
+            x,
+            &mut ImageColumn {
+                image: &mut *image,
+                x,
+                w,
+                h,
+                // `Frame::new` proves H ≥ 1.
+                bottom: (h - 1) * w + x,
+            },
+        );
     }
     Ok(())
 }

@@ -792,7 +792,13 @@ impl Voxel<'_> {
     /// Point sampling: the colour of the voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
     #[inline(always)]
     pub fn sample_point(&self) -> Color16 {
-        to_color16(self.colors.get(self.idx).copied().unwrap_or_default())
+        to_color16(self.color())
+    }
+
+    /// The voxel's 8-bit colour, as the map stores it.
+    #[inline(always)]
+    pub fn color(&self) -> Rgb {
+        self.colors.get(self.idx).copied().unwrap_or_default()
     }
 
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose

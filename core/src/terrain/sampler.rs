@@ -70,9 +70,11 @@ impl Sampler for Point {
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
-        let color = voxel.sample_point();
-        cost.sample(voxel, color, Weight::ONE);
-        Hit::Done(to_rgb(color))
+        // The voxel's colour as it is: to 8.8 and back is the identity, and only the counters
+        // need the 8.8 colour.
+        let color = voxel.color();
+        cost.sample(voxel, to_color16(color), Weight::ONE);
+        Hit::Done(color)
     }
     #[inline(always)]
     fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {

@@ -43,7 +43,6 @@ fn run() -> Result<(u64, u64), &'static str> {
         pyramid_colors: colors,
         rows,
         columns,
-        scratch,
         image,
     } = Buffers::take().ok_or("the buffers were taken twice")?;
     // From here on the stack holds only what rendering needs.
@@ -56,7 +55,7 @@ fn run() -> Result<(u64, u64), &'static str> {
     let frame = core_calls::frame(&camera, &terrain, Options::default(), rows, columns)
         .map_err(|_| "Frame::new")?;
     let (render, result) = instructions(|| {
-        core_calls::render(&frame, &terrain, &Area::new(), &mut NoCost, scratch, image)
+        core_calls::render(&frame, &terrain, &Area::new(), &mut NoCost, image)
     });
     result.map_err(|_| "column::render")?;
     Ok((image_hash(image), render))

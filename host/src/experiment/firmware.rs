@@ -136,7 +136,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
     let full = pyramid.terrain(true)?;
     let camera = Camera::new(scene.params)?;
     let (mut rows, mut cols) = (vec![Coord::ZERO; h + 1], vec![Column::default(); w]);
-    let (mut scratch, mut image) = (vec![Rgb::default(); h], vec![Rgb::default(); w * h]);
+    let mut image = vec![Rgb::default(); w * h];
 
     let mut lines = vec![
         error_line(
@@ -195,14 +195,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
     let frame = Frame::new(&camera, &full, scene.options, &mut rows, &mut cols)?;
     lines.push(error_line(
         "column::render(short image)",
-        column::render(
-            &frame,
-            &full,
-            &Point,
-            &mut NoCost,
-            &mut scratch,
-            &mut image[..w * h - 1],
-        ),
+        column::render(&frame, &full, &Point, &mut NoCost, &mut image[..w * h - 1]),
     )?);
     Ok(lines)
 }
