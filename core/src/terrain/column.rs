@@ -15,9 +15,9 @@ use core::ops::Range;
 use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::{Eye, Height, Line};
-use crate::terrain::camera::Frame;
+use crate::terrain::camera::{Column, Frame};
 use crate::terrain::cost::Cost;
-use crate::terrain::march::{Flow, March, RideEnd, Voxel};
+use crate::terrain::march::{Flow, Hits, March, RideEnd, Voxel};
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
@@ -98,6 +98,90 @@ pub fn walk<S: Sampler, C: Cost>(
     walk_into(frame, terrain, col, rows, sampler, cost, out);
 }
 
+/// The pixels of one column as the walk fills them, bottom to top (Fig. 4): the current pixel
+/// `i`, its upper ray, and what each hit does to them ([`Hits`], which a ride calls without
+/// leaving its loop).
+struct Pixels<'w, 'f, S, C, O: ?Sized> {
+    frame: &'w Frame<'f>,
+    column: &'w Column,
+    eye: Eye,
+    sampler: &'w mut S,
+    cost: &'w mut C,
+    out: &'w mut O,
+    /// The first row walked and the end of the rows drawn.
+    first: usize,
+    end: usize,
+    /// The current pixel and its upper edge `R_{i+1}`.
+    i: usize,
+    upper: Line,
+    /// Whether the column has hit terrain (the paper's `L` counts steps from there).
+    in_footprint: bool,
+    /// Whether the last pixel is done.
+    finished: bool,
+}
+
+impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
+    /// Pixel `i` begins: it spans `R_i` (the previous pixel's upper ray, `lower`) to
+    /// `R_{i+1}`, the one new ray (Eqs. 2–3). Returns `R_i` resumed at the current voxel,
+    /// whose centre is `n` (Fig. 3).
+    #[inline(always)]
+    fn begin(&mut self, lower: Line, n: i64) -> Ray {
+        self.cost.new_ray();
+        self.upper = self.frame.ray(self.column, self.i + 1);
+        self.cost.begin_pixel(self.i);
+        let pixel = Pixel {
+            lower,
+            upper: self.upper,
+            eye: self.eye,
+        };
+        self.sampler.begin_pixel(&pixel, self.cost);
+        Ray {
+            h: lower.at(n),
+            slope: lower.slope,
+        }
+    }
+}
+
+impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O> {
+    /// The hits on one voxel: each sampler call may raise the ray or begin the next pixel,
+    /// and the same voxel is tested again until the ray passes above it; then the ride steps
+    /// on.
+    #[inline(always)]
+    fn hit(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, steps: u32) -> Flow {
+        self.cost.steps(steps, self.in_footprint);
+        let mut again = Some(top);
+        while let Some(top) = again {
+            again = None;
+            match self.sampler.hit(voxel, top, ray, self.cost) {
+                Hit::Sampled => {
+                    self.cost.hit();
+                    self.in_footprint = true;
+                    again = (top > ray.h).then_some(top);
+                }
+                Hit::Next => {
+                    self.cost.hit();
+                    self.in_footprint = true;
+                }
+                Hit::Done(color) => {
+                    self.cost.hit();
+                    self.cost.terrain_pixel();
+                    self.in_footprint = true;
+                    self.out.set(self.i - self.first, color);
+                    self.i += 1;
+                    if self.i == self.end {
+                        self.finished = true;
+                        return Flow::Stop;
+                    }
+                    *ray = self.begin(self.upper, voxel.n());
+                    again = (top > ray.h).then_some(top);
+                }
+                Hit::Rejected => {}
+            }
+        }
+        Flow::Continue
+    }
+}
+
 /// [`walk`] into any [`ColumnOut`] (pixel `i` to `out.set(i − rows.start, …)`).
 pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
@@ -116,34 +200,29 @@ pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     if first >= end {
         return;
     }
-    let eye = Eye {
-        h: frame.eye(),
-        n: column.n_eye,
-    };
     let max_h = terrain.max_height();
     cost.begin_column(col);
 
     let mut march = March::new(frame, terrain, column);
-    let mut i = first;
     cost.new_ray();
-    let mut upper = frame.ray(column, i);
-    // Pixel i spans R_i (the previous pixel's upper ray) to R_{i+1}, the one new ray (Eqs.
-    // 2–3); R_i resumes at the current voxel (Fig. 3). Returns the ray to walk.
-    // `n` is the current voxel's centre.
-    let begin = |i: usize, lower: Line, n: i64, sampler: &mut S, cost: &mut C| {
-        cost.new_ray();
-        let upper = frame.ray(column, i + 1);
-        cost.begin_pixel(i);
-        sampler.begin_pixel(&Pixel { lower, upper, eye }, cost);
-        let ray = Ray {
-            h: lower.at(n),
-            slope: lower.slope,
-        };
-        (ray, upper)
+    let mut px = Pixels {
+        frame,
+        column,
+        eye: Eye {
+            h: frame.eye(),
+            n: column.n_eye,
+        },
+        sampler,
+        cost,
+        out,
+        first,
+        end,
+        i: first,
+        upper: frame.ray(column, first),
+        in_footprint: false,
+        finished: false,
     };
-    let mut ray;
-    (ray, upper) = begin(i, upper, march.n(), sampler, cost);
-    let mut in_footprint = false;
+    let mut ray = px.begin(px.upper, march.n());
     let skips = march.can_skip();
 
     if march.n() <= column.n_far {
@@ -155,10 +234,10 @@ pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
             let rise = Height::from_bits(ray.slope.to_bits() * march.step());
             // Before the column's first hit, cross empty air a block at a time; the ride then
             // takes one step between attempts.
-            let limit = if in_footprint || !skips {
+            let limit = if px.in_footprint || !skips {
                 u32::MAX
             } else if march.skip(&mut ray.h, rise) > 0 {
-                cost.step(false);
+                px.cost.step(false);
                 if ray.slope >= 0 && ray.h > max_h {
                     break;
                 }
@@ -166,50 +245,14 @@ pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
             } else {
                 1
             };
-            // The hits: each sampler call may raise the ray or begin the next pixel, and the
-            // same voxel is tested again until the ray passes above it; then the ride steps on.
-            let mut finished = false;
-            let mut on_hit = |voxel: &Voxel<'_>, top: Height, ray: &mut Ray, steps: u32| {
-                cost.steps(steps, in_footprint);
-                let mut again = Some(top);
-                while let Some(top) = again {
-                    again = None;
-                    match sampler.hit(voxel, top, ray, cost) {
-                        Hit::Sampled => {
-                            cost.hit();
-                            in_footprint = true;
-                            again = (top > ray.h).then_some(top);
-                        }
-                        Hit::Next => {
-                            cost.hit();
-                            in_footprint = true;
-                        }
-                        Hit::Done(color) => {
-                            cost.hit();
-                            cost.terrain_pixel();
-                            in_footprint = true;
-                            out.set(i - first, color);
-                            i += 1;
-                            if i == end {
-                                finished = true;
-                                return Flow::Stop;
-                            }
-                            (*ray, upper) = begin(i, upper, voxel.n(), sampler, cost);
-                            again = (top > ray.h).then_some(top);
-                        }
-                        Hit::Rejected => {}
-                    }
-                }
-                Flow::Continue
-            };
             let (end_of_ride, steps) = if ray.slope >= 0 {
-                march.ride::<true>(&mut ray, max_h, limit, step_first, &mut on_hit)
+                march.ride::<true>(&mut ray, max_h, limit, step_first, &mut px)
             } else {
-                march.ride::<false>(&mut ray, max_h, limit, step_first, &mut on_hit)
+                march.ride::<false>(&mut ray, max_h, limit, step_first, &mut px)
             };
-            cost.steps(steps, in_footprint);
-            if finished {
-                cost.end_column();
+            px.cost.steps(steps, px.in_footprint);
+            if px.finished {
+                px.cost.end_column();
                 return;
             }
             if end_of_ride == RideEnd::Hit {
@@ -222,7 +265,7 @@ pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
                 break;
             }
             let dn = march.advance();
-            cost.step(in_footprint);
+            px.cost.step(px.in_footprint);
             if march.n() > column.n_far {
                 break;
             }
@@ -235,6 +278,13 @@ pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     }
 
     // The walk ended inside pixel i: what is left of it, and every pixel above, is sky.
+    let Pixels {
+        sampler,
+        cost,
+        out,
+        i,
+        ..
+    } = px;
     let sky = frame.sky();
     let last = match sampler.sky(&ray, sky, cost) {
         Some(color) => {

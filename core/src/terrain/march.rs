@@ -305,7 +305,7 @@ impl<'a, 't> March<'a, 't> {
     /// that the walk's state stays in registers from pixel to pixel.
     ///
     /// The ray is `ray` here (its slope per half-voxel times the step gives the rise per step).
-    /// On a hit — a voxel whose top is above the ray — `on_hit(voxel, top, ray, steps)` gets
+    /// On a hit — a voxel whose top is above the ray — `on_hit.hit(voxel, top, ray, steps)` gets
     /// the voxel, its top, the ray (which it may raise, or replace by the next pixel's) and the
     /// steps taken since the last report; [`Flow::Continue`] steps on with the ray it leaves.
     /// The ride returns [`RideEnd::Hit`] (the cursor on the hit voxel) when `on_hit` says
@@ -324,7 +324,7 @@ impl<'a, 't> March<'a, 't> {
         ceiling: Height,
         limit: u32,
         step_first: bool,
-        on_hit: &mut impl FnMut(&Voxel<'a>, Height, &mut Ray, u32) -> Flow,
+        on_hit: &mut impl Hits,
     ) -> (RideEnd, u32) {
         let ceiling = ceiling.to_bits();
         let heights = self.heights;
@@ -353,7 +353,7 @@ impl<'a, 't> March<'a, 't> {
                     ray.h = Height::from_bits(h);
                     let steps = unreported + (mark - left);
                     (unreported, mark) = (0, left);
-                    let flow = on_hit(&voxel, Height::from_bits(top), ray, steps);
+                    let flow = on_hit.hit(&voxel, Height::from_bits(top), ray, steps);
                     if flow == Flow::Stop
                         || limit != u32::MAX
                         || (ray.slope.to_bits() >= 0) != ASCENDING
@@ -710,6 +710,13 @@ impl<'a, 't> March<'a, 't> {
     pub fn sample_linear(&self) -> Color16 {
         self.voxel().sample_linear()
     }
+}
+
+/// What a ride does with the hits it finds ([`March::ride`]): the column walk's per-hit part.
+pub trait Hits {
+    /// The ray `ray` passes below the top `top` of `voxel`, `steps` steps after the last
+    /// report. May raise the ray or replace it with the next pixel's.
+    fn hit(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, steps: u32) -> Flow;
 }
 
 /// What a ride does after a sampler has dealt with a hit ([`March::ride`]).
