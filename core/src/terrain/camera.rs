@@ -25,8 +25,8 @@
 use crate::color::Rgb;
 use crate::error::{check, check_in, Error};
 use crate::num::{
-    fixed_from_f64, mul_floor_24, Coord, Height, Line, Slope, MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR,
-    MAX_SLOPE,
+    fixed_from_f64, mul_floor_24, mul_floor_32, Coord, Height, Line, Slope, MAX_COORD,
+    MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE,
 };
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
@@ -120,12 +120,6 @@ impl Camera {
             ((y * cp - sp) / den).clamp(-MAX_TAN, MAX_TAN)
         }
     }
-}
-
-/// A 128-bit value saturated to 64 bits.
-#[inline(always)]
-fn saturate(x: i128) -> i64 {
-    x.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
 }
 
 /// `⌊x⌋` as an `i64` (saturating), without `f64::floor`, which `core` lacks.
@@ -412,13 +406,14 @@ impl<'t> Frame<'t> {
     /// Ray `R_i` of `column` (the lower edge of row `i`, `0..=H`): Eqs. 2 and 3 as a
     /// [`Line`] `H(n) = base + n·slope` with `base = eye − n_eye·slope`.
     ///
-    /// The arithmetic is `fixed`'s saturating multiplication written out (a 64×64→128-bit
-    /// product, floored, saturated to 64 bits), which the walk pays once per pixel.
+    /// The arithmetic is `fixed`'s saturating multiplication written out (a 64×64-bit
+    /// product, floored, saturated to 64 bits: [`mul_floor_32`], in 64-bit arithmetic for
+    /// every sane view), which the walk pays once per pixel.
     #[inline]
     pub fn ray(&self, column: &Column, i: usize) -> Line {
         let row = self.rows.get(i).map_or(0, |r| r.to_bits());
         // I32F32 × I32F32 → I32F32 (floor, saturating), then to I40F24 (floor), clamped.
-        let q32 = saturate((i128::from(row) * i128::from(column.kc.to_bits())) >> 32);
+        let q32 = mul_floor_32(row, column.kc.to_bits());
         let limit = (MAX_SLOPE as i64) << 24;
         let slope = (q32 >> 8).clamp(-limit, limit);
         // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 half-voxels
