@@ -919,6 +919,18 @@ fn standard_input_is_a_map_too() {
             assert_eq!(v["width"], 3, "{path}");
         }
     }
+    // A streamed tile: its format from its length, its spacing from --spacing (no name to
+    // take the latitude from, and the error says so).
+    let hgt = dir.path().join("N46E008.hgt");
+    write_hgt(&hgt, 1201, |x, y| Some(alps(x, y)));
+    let bytes = std::fs::read(&hgt).unwrap();
+    let o = footprint_with_stdin(&["map", "info", "--json", "--spacing", "30", "-"], &bytes);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!((v["format"].as_str(), v["width"].as_u64()), (Some("hgt"), Some(1201)));
+    let o = footprint_with_stdin(&["map", "info", "-"], &bytes);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(2) && stderr.contains("--spacing"), "{stderr}");
     // A render from standard input.
     let out = dir.path().join("r.png");
     let o = footprint_with_stdin(
