@@ -927,10 +927,16 @@ fn standard_input_is_a_map_too() {
     let o = footprint_with_stdin(&["map", "info", "--json", "--spacing", "30", "-"], &bytes);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!((v["format"].as_str(), v["width"].as_u64()), (Some("hgt"), Some(1201)));
+    assert_eq!(
+        (v["format"].as_str(), v["width"].as_u64()),
+        (Some("hgt"), Some(1201))
+    );
     let o = footprint_with_stdin(&["map", "info", "-"], &bytes);
     let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.code() == Some(2) && stderr.contains("--spacing"), "{stderr}");
+    assert!(
+        o.status.code() == Some(2) && stderr.contains("--spacing"),
+        "{stderr}"
+    );
     // A render from standard input.
     let out = dir.path().join("r.png");
     let o = footprint_with_stdin(
