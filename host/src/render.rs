@@ -14,7 +14,7 @@ use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
-use footprint_core::terrain::visibility::{visible_voxels, visit};
+use footprint_core::terrain::visibility::visit;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 
@@ -339,96 +339,149 @@ fn best_of(
     Ok((out.expect("at least one run"), best))
 }
 
-/// The counts of one frame: totals with `V` filled by the exact visibility pass, and one
-/// tally per column.
+/// The counts of one frame: totals with `V` filled by the exact visibility pass, one tally per
+/// column, and what coverage `M/V` does not tell: the voxels the mode samples that the pass
+/// finds hidden, and the visible voxels it does not sample. Both are 0 for `as-exact` (`M′ = V`
+/// voxel for voxel); the paper's parallel-ray `as` can sample a hidden voxel or miss a visible
+/// one; `classic` samples no voxel set: all missed.
 #[derive(Clone, Debug)]
 pub struct Measured {
     /// The frame's totals.
     pub total: Tally,
     /// One tally per column.
     pub columns: Vec<Tally>,
+    /// Sampled voxels the visibility pass finds hidden, summed over the columns.
+    pub hidden: u64,
+    /// Visible voxels not sampled, summed over the columns.
+    pub missed: u64,
 }
 
-/// Renders with every counter on, then counts the visible voxels `V` independently; the
-/// columns are counted in parallel (rayon), each with its own counters, and summed, so the
-/// result is the same for any number of threads.
+/// Renders with every counter on, then walks the visibility pass over the same voxel sequence
+/// for `V` and for the hidden and missed voxels; the columns are counted in parallel (rayon),
+/// each with its own counters, and summed, so the result is the same for any number of
+/// threads. One walk per column and mode.
 pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Rendered, Measured)> {
     use rayon::prelude::*;
     let (w, h) = (frame.width(), frame.height());
-    let per_column: Vec<(Vec<Rgb>, Tally)> = (0..w)
+    let per_column: Vec<(Vec<Rgb>, Tally, (u64, u64))> = (0..w)
         .into_par_iter()
         .map(|x| {
             let mut out = vec![Rgb::default(); h];
-            let mut counts = Counts::new(&mut []);
+            let mut counts = Recorded {
+                counts: Counts::new(&mut []),
+                sampled: Vec::new(),
+            };
             walk_mode(frame, terrain, mode, x, &mut counts, &mut out);
-            let mut tally = counts.total;
-            tally.v = visible_voxels(frame, terrain, x);
-            (out, tally)
-        })
-        .collect();
-    let mut image = vec![Rgb::default(); w * h];
-    let mut total = Tally::default();
-    let mut columns = Vec::with_capacity(w);
-    for (x, (col, tally)) in per_column.into_iter().enumerate() {
-        for (i, px) in col.iter().enumerate() {
-            image[(h - 1 - i) * w + x] = *px;
-        }
-        total.add(&tally);
-        columns.push(tally);
-    }
-    let rendered = Rendered {
-        image,
-        size: (w as u32, h as u32),
-    };
-    Ok((rendered, Measured { total, columns }))
-}
-
-/// Records the step index of every voxel a sampler samples (for [`hidden_and_missed`]).
-#[derive(Default)]
-struct Sampled(Vec<u32>);
-
-impl Cost for Sampled {
-    fn sample(&mut self, voxel: &Voxel<'_>, _: Color16, _: Weight) {
-        let k = voxel.step_index();
-        if self.0.last() != Some(&k) {
-            self.0.push(k);
-        }
-    }
-}
-
-/// What coverage `M/V` does not tell: the voxels `mode` samples that the exact visibility pass
-/// finds hidden, and the visible voxels it does not sample, summed over the frame's columns.
-/// Both are 0 for `as-exact` (`M′ = V` voxel for voxel); the paper's parallel-ray `as` can
-/// sample a hidden voxel or miss a visible one. `classic` samples no voxel set: all missed.
-pub fn hidden_and_missed(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> (u64, u64) {
-    use rayon::prelude::*;
-    let h = frame.height();
-    (0..frame.width())
-        .into_par_iter()
-        .map(|x| {
-            let mut out = vec![Rgb::default(); h];
-            let mut sampled = Sampled::default();
-            walk_mode(frame, terrain, mode, x, &mut sampled, &mut out);
             let mut visible = Vec::new();
             visit(frame, terrain, x, |march, seen| {
                 if seen {
                     visible.push(march.step_index());
                 }
             });
-            // Both lists are increasing: the walk and the pass step through one sequence.
-            let (mut i, mut j, mut hidden, mut missed) = (0, 0, 0u64, 0u64);
-            let (s, v) = (&sampled.0, &visible);
-            while i < s.len() || j < v.len() {
-                match (s.get(i), v.get(j)) {
-                    (Some(a), Some(b)) if a == b => (i, j) = (i + 1, j + 1),
-                    (Some(a), Some(b)) if a < b => (i, hidden) = (i + 1, hidden + 1),
-                    (Some(_), None) => (i, hidden) = (i + 1, hidden + 1),
-                    _ => (j, missed) = (j + 1, missed + 1),
-                }
-            }
-            (hidden, missed)
+            let mut tally = counts.counts.total;
+            tally.v = visible.len() as u64;
+            (out, tally, hidden_and_missed(&counts.sampled, &visible))
         })
-        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+        .collect();
+    let mut image = vec![Rgb::default(); w * h];
+    let mut total = Tally::default();
+    let mut columns = Vec::with_capacity(w);
+    let (mut hidden, mut missed) = (0, 0);
+    for (x, (col, tally, (hid, mis))) in per_column.into_iter().enumerate() {
+        for (i, px) in col.iter().enumerate() {
+            image[(h - 1 - i) * w + x] = *px;
+        }
+        total.add(&tally);
+        columns.push(tally);
+        (hidden, missed) = (hidden + hid, missed + mis);
+    }
+    let rendered = Rendered {
+        image,
+        size: (w as u32, h as u32),
+    };
+    Ok((
+        rendered,
+        Measured {
+            total,
+            columns,
+            hidden,
+            missed,
+        },
+    ))
+}
+
+/// Every counter of [`Counts`], and the step index of every voxel a sampler samples.
+struct Recorded<'a> {
+    counts: Counts<'a>,
+    sampled: Vec<u32>,
+}
+
+impl Cost for Recorded<'_> {
+    fn begin_column(&mut self, column: usize) {
+        self.counts.begin_column(column);
+    }
+    fn end_column(&mut self) {
+        self.counts.end_column();
+    }
+    fn step(&mut self, in_footprint: bool) {
+        self.counts.step(in_footprint);
+    }
+    fn steps(&mut self, count: u32, in_footprint: bool) {
+        self.counts.steps(count, in_footprint);
+    }
+    fn new_ray(&mut self) {
+        self.counts.new_ray();
+    }
+    fn begin_pixel(&mut self, row: usize) {
+        self.counts.begin_pixel(row);
+    }
+    fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
+        self.counts.sample(voxel, color, weight);
+        let k = voxel.step_index();
+        if self.sampled.last() != Some(&k) {
+            self.sampled.push(k);
+        }
+    }
+    fn sky_sample(&mut self, color: Color16, weight: Weight) {
+        self.counts.sky_sample(color, weight);
+    }
+    fn hit(&mut self) {
+        self.counts.hit();
+    }
+    fn ss_hit(&mut self) {
+        self.counts.ss_hit();
+    }
+    fn as_hit(&mut self) {
+        self.counts.as_hit();
+    }
+    fn top_division(&mut self) {
+        self.counts.top_division();
+    }
+    fn shifts(&mut self, count: u32) {
+        self.counts.shifts(count);
+    }
+    fn divisions(&mut self, count: u32) {
+        self.counts.divisions(count);
+    }
+    fn terrain_pixel(&mut self) {
+        self.counts.terrain_pixel();
+    }
+}
+
+/// The sampled step indices that are not visible (hidden) and the visible ones not sampled
+/// (missed); both lists are increasing, because the walk and the visibility pass step through
+/// one voxel sequence.
+fn hidden_and_missed(sampled: &[u32], visible: &[u32]) -> (u64, u64) {
+    let (mut i, mut j, mut hidden, mut missed) = (0, 0, 0u64, 0u64);
+    while i < sampled.len() || j < visible.len() {
+        match (sampled.get(i), visible.get(j)) {
+            (Some(a), Some(b)) if a == b => (i, j) = (i + 1, j + 1),
+            (Some(a), Some(b)) if a < b => (i, hidden) = (i + 1, hidden + 1),
+            (Some(_), None) => (i, hidden) = (i + 1, hidden + 1),
+            _ => (j, missed) = (j + 1, missed + 1),
+        }
+    }
+    (hidden, missed)
 }
 
 /// The horizontal distance, in voxels, at which the lowest ray of the middle column first

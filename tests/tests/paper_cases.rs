@@ -9,7 +9,7 @@ use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{count, first_hit_distance, hidden_and_missed, Mode, Rate, Tables};
+use footprint_host::render::{count, first_hit_distance, Mode, Rate, Tables};
 use footprint_host::view::Size;
 
 const SIZE: Size = Size {
@@ -45,10 +45,11 @@ fn area_sampling_coverage_is_exactly_one_in_every_paper_case() {
         let terrain = pyramid.terrain(true).unwrap();
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
-        assert_eq!(hidden_and_missed(&frame, &terrain, Mode::AsExact), (0, 0));
+        let (_, exact) = count(&frame, &terrain, Mode::AsExact).unwrap();
+        assert_eq!((exact.hidden, exact.missed), (0, 0));
         // The paper's parallel-ray AS samples a few hidden voxels and misses a few visible
         // ones (README); point sampling misses most of them.
-        let (_, missed) = hidden_and_missed(&frame, &terrain, Mode::Ps);
+        let missed = count(&frame, &terrain, Mode::Ps).unwrap().1.missed;
         assert!(
             missed > t.v / 2,
             "pitch {pitch}: PS missed {missed} of {}",

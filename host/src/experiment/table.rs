@@ -12,7 +12,7 @@ use super::paper::paper_camera;
 use super::reference::{psnr, reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{count, hidden_and_missed, render_timed, Mode, Tables, SS_RATES};
+use crate::render::{count, render_timed, Mode, Tables, SS_RATES};
 use crate::view::Size;
 
 /// The coverage ratios of Table 5.
@@ -141,7 +141,7 @@ pub fn run(
             let (_, ms) = render_timed(&frame, &terrain, mode, 3)?;
             let t = measured.total;
             let e = rmse(&image.image, &truth);
-            let (hidden, missed) = hidden_and_missed(&frame, &terrain, mode);
+            let (hidden, missed) = (measured.hidden, measured.missed);
             rows.push(ModeRow {
                 mode,
                 M: per(t.m),
