@@ -14,7 +14,7 @@ use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
-use footprint_core::terrain::visibility::visit;
+use footprint_core::terrain::visibility::visit_visible;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 
@@ -373,11 +373,7 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
             };
             walk_mode(frame, terrain, mode, x, &mut counts, &mut out);
             let mut visible = Vec::new();
-            visit(frame, terrain, x, |march, seen| {
-                if seen {
-                    visible.push(march.step_index());
-                }
-            });
+            visit_visible(frame, terrain, x, |march| visible.push(march.step_index()));
             let mut tally = counts.counts.total;
             tally.v = visible.len() as u64;
             (out, tally, hidden_and_missed(&counts.sampled, &visible))

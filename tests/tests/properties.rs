@@ -25,7 +25,7 @@ use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
-use footprint_core::terrain::visibility::count_visible;
+use footprint_core::terrain::visibility::{count_visible, visit, visit_visible};
 use footprint_core::terrain::{Scale, Terrain};
 use footprint_core::Rgb;
 use proptest::prelude::*;
@@ -452,6 +452,26 @@ proptest! {
             prop_assert_eq!(t.coverage(), 1.0);
             for (c, ct) in cols.iter().enumerate() {
                 prop_assert_eq!(ct.m, ct.v, "column {}: {:?}", c, ct);
+            }
+            Ok(())
+        })
+        .unwrap_or(Ok(()))?;
+    }
+
+    /// The visibility pass that skips blocks below the horizon finds exactly the visible
+    /// voxels of the pass that visits every voxel, in every column.
+    #[test]
+    fn skipping_below_the_horizon_keeps_every_visible_voxel(case in case()) {
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            for col in 0..frame.width() {
+                let (mut all, mut skipped) = (Vec::new(), Vec::new());
+                visit(frame, terrain, col, |m, seen| {
+                    if seen {
+                        all.push(m.step_index());
+                    }
+                });
+                visit_visible(frame, terrain, col, |m| skipped.push(m.step_index()));
+                prop_assert_eq!(&all, &skipped, "column {}", col);
             }
             Ok(())
         })

@@ -26,9 +26,7 @@ enum Horizon {
 /// The number of voxels of column `col` that are visible in the image.
 pub fn visible_voxels(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> u64 {
     let mut count = 0;
-    visit(frame, terrain, col, |_, visible| {
-        count += u64::from(visible)
-    });
+    visit_visible(frame, terrain, col, |_| count += 1);
     count
 }
 
@@ -38,6 +36,63 @@ pub fn visit(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
+    f: impl FnMut(&March<'_, '_>, bool),
+) {
+    pass(frame, terrain, col, false, f);
+}
+
+/// Calls `f(voxel)` for every visible voxel of column `col`, in order. Blocks of the
+/// conservative maximum pyramid that lie below the horizon are crossed in one step
+/// ([`March::skip`]), as the walk crosses empty air: none of their voxels can be visible, so
+/// the visible voxels are exactly those [`visit`] reports, in far fewer steps (a view without
+/// LOD to a far distance of 2^21 voxels took 2^21 steps per column).
+pub fn visit_visible(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    mut f: impl FnMut(&March<'_, '_>),
+) {
+    pass(frame, terrain, col, true, |march, visible| {
+        if visible {
+            f(march);
+        }
+    });
+}
+
+/// The largest `|slope|` (raw) and `|height|` (raw) of a horizon line the skip may use: the
+/// ranges of the walk's own rays, within which its arithmetic cannot overflow.
+const MAX_SKIP_SLOPE: i64 = 1 << 39;
+const MAX_SKIP_HEIGHT: i64 = 1 << 61;
+
+/// A line at or below the horizon from the current voxel on, as the height at `n` and the
+/// slope per half-voxel (raw), for [`March::skip`]; `None` where the arithmetic would leave the
+/// walk's ranges. The line through a top keeps the top and floors the slope, so it never rises
+/// above the exact horizon ahead of the top.
+fn below_horizon(horizon: Horizon, eye: Eye, n: i64) -> Option<(i64, i64)> {
+    match horizon {
+        Horizon::Lowest(line) => Some((line.at(n).to_bits(), line.slope.to_bits())),
+        Horizon::Top(n_top, h_top) => {
+            let run = (i128::from(n_top) << 24) - i128::from(eye.n.to_bits());
+            if run <= 0 {
+                return None;
+            }
+            let rise = i128::from(h_top.to_bits()) - i128::from(eye.h.to_bits());
+            let slope = (rise << 24).div_euclid(run);
+            let h = i128::from(h_top.to_bits()) + slope * i128::from(n - n_top);
+            let limit = |x: i128, l: i64| (-i128::from(l)..=i128::from(l)).contains(&x);
+            (limit(slope, MAX_SKIP_SLOPE) && limit(h, MAX_SKIP_HEIGHT))
+                .then_some((h as i64, slope as i64))
+        }
+    }
+}
+
+/// The visibility pass: `f(voxel, visible)` for the voxels of the sequence, every one, or with
+/// `skip` only past blocks that lie below the horizon.
+fn pass(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    skip: bool,
     mut f: impl FnMut(&March<'_, '_>, bool),
 ) {
     let Some(column) = frame.column(col) else {
@@ -51,30 +106,48 @@ pub fn visit(
     let highest = frame.ray(column, frame.height());
     let max_h = terrain.max_height();
     let mut march = March::new(frame, terrain, column);
+    // Only the visible voxels are wanted: the pass may stop early and skip blocks.
+    let only_visible = skip;
+    let skip = skip && march.can_skip();
     let mut horizon = Horizon::Lowest(lowest);
-    while march.n() <= column.n_far {
+    let far = column.n_far;
+    while march.n() <= far {
         let n = march.n();
-        let top = march.height();
-        let (above, open) = match horizon {
+        // Nothing further is visible once the horizon stays at or above the highest point of
+        // the terrain (a voxel is visible only strictly above it), or reaches the highest ray.
+        // The full pass (which reports the hidden voxels too) stops where a non-descending
+        // horizon is above the terrain; the other also where the horizon is at or above it
+        // both here and at the far distance (a line is lowest at one of its ends).
+        let stop = match horizon {
             Horizon::Lowest(line) => {
-                if line.slope >= Height::ZERO && line.at(n) > max_h {
-                    break;
-                }
-                (top > line.at(n), true)
+                line.slope >= Height::ZERO && line.at(n) > max_h
+                    || only_visible && line.at(n) >= max_h && line.at(far) >= max_h
             }
             Horizon::Top(n_top, h_top) => {
-                if h_top >= eye.h && h_top >= max_h {
-                    break;
-                }
-                (
-                    eye.above_ray_through(n_top, h_top, n, top),
-                    eye.above_ray_through(n_top, h_top, n, highest.at(n)),
-                )
+                h_top >= eye.h && h_top >= max_h
+                    || only_visible
+                        && !eye.above_ray_through(n_top, h_top, n, max_h)
+                        && !eye.above_ray_through(n_top, h_top, far, max_h)
+                    || !eye.above_ray_through(n_top, h_top, n, highest.at(n))
             }
         };
-        if !open {
+        if stop {
             break;
         }
+        if skip {
+            if let Some((h, slope)) = below_horizon(horizon, eye, n) {
+                let mut h = Height::from_bits(h);
+                let rise = Height::from_bits(slope.wrapping_mul(march.step()));
+                if march.skip(&mut h, rise) > 0 {
+                    continue;
+                }
+            }
+        }
+        let top = march.height();
+        let above = match horizon {
+            Horizon::Lowest(line) => top > line.at(n),
+            Horizon::Top(n_top, h_top) => eye.above_ray_through(n_top, h_top, n, top),
+        };
         f(&march, above);
         if above {
             horizon = Horizon::Top(n, top);
