@@ -175,3 +175,37 @@ fn pitch_and_field_of_view_at_their_limits() {
     .unwrap();
     assert!(all_modes(&terrain, &up).0.iter().all(|&p| p == SKY));
 }
+
+/// Found by the `core_render` fuzz target (a 10 s timeout under ASan): level rays exactly at
+/// the height of a flat 4×1 map, with the far distance at the core's limit and a pixel too
+/// narrow for LOD to climb. Nothing can be hit or seen (a hit needs a top strictly above the
+/// ray), and the walk and the visibility pass used to step 2^21 voxels per column to find
+/// that out. Now both end at once: no traversal step, the sky everywhere, `V = 0`.
+#[test]
+fn rays_at_the_height_of_a_flat_map_end_at_once() {
+    let heights = [0u16; 4];
+    let colors = [Rgb::new(0, 0, 164); 4];
+    let level0 = Level::new(4, 1, &heights, &colors).unwrap();
+    let cells = footprint_core::terrain::pyramid::cells(4, 1);
+    let (mut grid, mut palette) = (vec![0u16; 3 * cells], vec![Rgb::default(); cells]);
+    let filter = footprint_core::terrain::pyramid::HeightFilter::Mean;
+    footprint_core::terrain::pyramid::build(&level0, filter, &mut grid, &mut palette).unwrap();
+    let scale = Scale::new(32.5, 32.5).unwrap();
+    let terrain =
+        footprint_core::terrain::pyramid::assemble(level0, scale, &grid, &palette, true).unwrap();
+    let camera = Camera::new(CameraParams {
+        x_m: 0.0,
+        y_m: 0.0,
+        eye_m: 0.0,
+        heading_deg: 0.0,
+        pitch_deg: 0.0,
+        fov_deg: 1e-300,
+        width: 12,
+        height: 12,
+        far_m: 65_536_000.0,
+    })
+    .unwrap();
+    let (image, t) = draw(&terrain, &camera, &Area::new());
+    assert_eq!((t.a, t.hits, t.v), (0, 0, 0), "{t:?}");
+    assert!(image.iter().all(|&p| p == SKY));
+}
