@@ -127,6 +127,16 @@ impl MapArgs {
                 Ok(loaded.map)
             }
             None => {
+                // clap's `requires` is not checked when `--terrain-size` (which conflicts with
+                // --dem) is given, so the built-in terrain refuses the map-file options itself.
+                for (option, given) in [
+                    ("--spacing", self.spacing.is_some()),
+                    ("--height-scale", self.height_scale.is_some()),
+                ] {
+                    if given {
+                        bail!("{option}: only a --dem map takes it (the built-in terrain has its own scale)");
+                    }
+                }
                 if self.terrain_size < map::MIN_SIZE || self.terrain_size > map::MAX_SIDE {
                     bail!(
                         "--terrain-size {}: must be {}..={}",

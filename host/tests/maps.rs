@@ -978,6 +978,14 @@ fn options_that_would_be_ignored_are_refused() {
         (vec!["render", "--spacing", "10"], "--dem"),
         (vec!["render", "--height-scale", "10"], "--dem"),
         (vec!["table", "--spacing", "10"], "--dem"),
+        (
+            vec!["render", "--terrain-size", "64", "--spacing", "10"],
+            "--spacing",
+        ),
+        (
+            vec!["render", "--terrain-size", "64", "--height-scale", "3"],
+            "--height-scale",
+        ),
         (vec!["render", "--dem", &g, "--seed", "3"], "--seed"),
         (
             vec!["render", "--dem", &g, "--terrain-size", "64"],
