@@ -130,6 +130,8 @@ impl MapArgs {
                 // clap's `requires` is not checked when `--terrain-size` (which conflicts with
                 // --dem) is given, so the built-in terrain refuses the map-file options itself.
                 for (option, given) in [
+                    ("--format", self.format.is_some()),
+                    ("--color", self.color.is_some()),
                     ("--spacing", self.spacing.is_some()),
                     ("--height-scale", self.height_scale.is_some()),
                 ] {

@@ -986,6 +986,14 @@ fn options_that_would_be_ignored_are_refused() {
             vec!["render", "--terrain-size", "64", "--height-scale", "3"],
             "--height-scale",
         ),
+        (
+            vec!["render", "--terrain-size", "64", "--color", &g],
+            "--color",
+        ),
+        (
+            vec!["render", "--terrain-size", "64", "--format", "asc"],
+            "--format",
+        ),
         (vec!["render", "--dem", &g, "--seed", "3"], "--seed"),
         (
             vec!["render", "--dem", &g, "--terrain-size", "64"],

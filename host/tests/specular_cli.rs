@@ -142,8 +142,9 @@ fn json_without_measure_is_refused() {
     }
 }
 
-/// Before (issue 14): `--csv` with `--scene` or `--measure`, and `--size` with `--figure`, were
-/// silently ignored. Now each is refused, naming the option.
+/// Before (issue 14): `--csv` with `--scene` or `--measure`, `--size` with `--figure`,
+/// `--frames` without `--measure` and `--mode` with `--measure` were silently ignored. Now each
+/// is refused, naming the option.
 #[test]
 fn options_that_would_be_ignored_are_refused() {
     for (args, names) in [
@@ -153,6 +154,17 @@ fn options_that_would_be_ignored_are_refused() {
         ),
         (&["specular", "--measure", "--csv"][..], "--csv"),
         (&["specular", "--figure", "2", "--size", "64"][..], "--size"),
+        (
+            &[
+                "specular", "--scene", "plate1", "--mode", "clamp", "--frames", "10",
+            ][..],
+            "--frames",
+        ),
+        (
+            &["specular", "--figure", "2", "--frames", "5"][..],
+            "--frames",
+        ),
+        (&["specular", "--measure", "--mode", "clamp"][..], "--mode"),
     ] {
         let o = footprint(args);
         assert_one_line_error(&o, args, names);

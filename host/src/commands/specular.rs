@@ -41,9 +41,9 @@ pub struct SpecularArgs {
     #[command(flatten)]
     /// `--json` (with --measure: one record per scene and mode).
     pub format: OutputFormat,
-    /// With --measure: frames of the animation (the scene turns 0.1° per frame).
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(2..=4096), requires = "measure")]
-    pub frames: u32,
+    /// With --measure: frames of the animation (the scene turns 0.1° per frame) [default: 64].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=4096), requires = "measure")]
+    pub frames: Option<u32>,
 }
 
 impl SpecularArgs {
@@ -55,6 +55,14 @@ impl SpecularArgs {
 
 /// Runs `footprint specular`.
 pub fn specular(args: &SpecularArgs) -> Result<()> {
+    // clap skips `requires` when a conflicting member of the `what` group is given, so the
+    // options that only one action takes are checked here too.
+    if args.frames.is_some() && !args.measure {
+        bail!("--frames: only --measure animates (add --measure)");
+    }
+    if args.mode.is_some() && args.scene.is_none() {
+        bail!("--mode: only a --scene is rendered in one mode (--measure measures every mode)");
+    }
     if args.csv && args.figure.is_none() {
         bail!("--csv: only --figure prints CSV (use --json with --measure)");
     }
@@ -152,7 +160,7 @@ fn figure(args: &SpecularArgs, fig: u8) -> Result<()> {
 fn measure(args: &SpecularArgs) -> Result<()> {
     let cfg = MeasureConfig {
         size: args.side(),
-        frames: args.frames,
+        frames: args.frames.unwrap_or(64),
         ..Default::default()
     };
     let scenes = SceneName::DISTINCT;
