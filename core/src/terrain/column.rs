@@ -73,7 +73,9 @@ impl ColumnOut for ImageColumn<'_> {
     }
     #[inline(always)]
     fn set(&mut self, k: usize, color: Rgb) {
-        // Row `H − 1 − k` from the top; for k ≥ H the index wraps past the image's end.
+        // Row `H − 1 − k` from the top. For H ≤ k the index wraps past the image's end (the
+        // walk writes only k < H; k·W itself wraps only for k ≥ 2^64 / W), so nothing is
+        // written there.
         let at = self.bottom.wrapping_sub(k.wrapping_mul(self.w));
         if let Some(px) = self.image.get_mut(at) {
             *px = color;
