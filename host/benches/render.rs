@@ -15,15 +15,16 @@ use footprint_host::render::{render_with, Tables};
 use footprint_host::view::Size;
 
 fn paper_cases(c: &mut Criterion) {
-    let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).expect("the built-in map builds");
+    let pyramid = Pyramid::build(procedural(1, DEFAULT_SIZE), HeightFilter::default())
+        .expect("the built-in map builds");
+    let map = pyramid.map();
     let terrain = pyramid.terrain(true).expect("the pyramid lends a terrain");
     let size = Size {
         width: 400,
         height: 400,
     };
     for pitch in PAPER_PITCHES {
-        let camera = paper_camera(&map, &pyramid, pitch, size, true).expect("paper camera");
+        let camera = paper_camera(map, &pyramid, pitch, size, true).expect("paper camera");
         let mut tables = Tables::new(&camera);
         let frame = tables
             .frame(&camera, &terrain, Options::default())

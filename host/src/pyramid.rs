@@ -8,9 +8,10 @@ use footprint_core::Rgb;
 
 use crate::map::Map;
 
-/// Every level above the map, in the core's layout (`pyramid::build`), and a copy of level 0.
+/// The map (level 0, owned: not copied) and every level above it, in the core's layout
+/// (`pyramid::build`).
 pub struct Pyramid {
-    base: (u32, u32, Vec<u16>, Vec<Rgb>),
+    map: Map,
     /// Per level above 0: the heights along x, along y, and the conservative maximum.
     heights: Vec<u16>,
     colors: Vec<Rgb>,
@@ -19,8 +20,9 @@ pub struct Pyramid {
 
 impl Pyramid {
     /// Builds all levels of `map` down to 1×1 with `filter` (colours are 2×2 box averages;
-    /// see `footprint_core::terrain::pyramid`).
-    pub fn build(map: &Map, filter: HeightFilter) -> Result<Self> {
+    /// see `footprint_core::terrain::pyramid`). The pyramid keeps the map as its level 0
+    /// ([`Pyramid::map`]).
+    pub fn build(map: Map, filter: HeightFilter) -> Result<Self> {
         let scale = Scale::new(map.spacing_m, map.height_scale_m)
             .with_context(|| format!("map {}", map.source))?;
         let level0 = Level::new(map.width, map.height, &map.heights, &map.colors)?;
@@ -29,21 +31,21 @@ impl Pyramid {
         let mut colors = vec![Rgb::default(); cells];
         pyramid::build(&level0, filter, &mut heights, &mut colors)?;
         Ok(Self {
-            base: (
-                map.width,
-                map.height,
-                map.heights.clone(),
-                map.colors.clone(),
-            ),
+            map,
             heights,
             colors,
             scale,
         })
     }
 
+    /// The map: level 0, its scale and where it came from.
+    pub fn map(&self) -> &Map {
+        &self.map
+    }
+
     /// The number of levels, level 0 included.
     pub fn len(&self) -> usize {
-        pyramid::levels(self.base.0, self.base.1)
+        pyramid::levels(self.map.width, self.map.height)
     }
 
     /// Whether the pyramid is empty (never: level 0 is always present).
@@ -53,8 +55,8 @@ impl Pyramid {
 
     /// The terrain over all levels, or over level 0 alone when `lod` is false.
     pub fn terrain(&self, lod: bool) -> Result<Terrain<'_>> {
-        let (w, h, hs, cs) = &self.base;
-        let level0 = Level::new(*w, *h, hs, cs)?;
+        let m = &self.map;
+        let level0 = Level::new(m.width, m.height, &m.heights, &m.colors)?;
         Ok(pyramid::assemble(
             level0,
             self.scale,

@@ -99,9 +99,10 @@ pub struct MapArgs {
 }
 
 impl MapArgs {
-    /// Builds the pyramid of `map` with `--height-filter`.
-    pub fn pyramid(&self, map: &Map) -> Result<Pyramid> {
-        Pyramid::build(map, self.height_filter.into())
+    /// Loads the map (or generates the built-in one) and builds its pyramid with
+    /// `--height-filter`; the pyramid keeps the map ([`Pyramid::map`]).
+    pub fn pyramid(&self) -> Result<Pyramid> {
+        Pyramid::build(self.load()?, self.height_filter.into())
     }
 
     /// Loads the map (or generates the built-in one).
@@ -198,9 +199,7 @@ pub struct CameraArgs {
 
 /// A loaded map with its pyramid, and the view of it.
 pub struct View {
-    /// The map.
-    pub map: Map,
-    /// Its pyramid.
+    /// The map's pyramid, which holds the map ([`View::map`]).
     pub pyramid: Pyramid,
     /// The camera, with its eye height resolved.
     pub camera: Camera,
@@ -209,6 +208,11 @@ pub struct View {
 }
 
 impl View {
+    /// The map.
+    pub fn map(&self) -> &Map {
+        self.pyramid.map()
+    }
+
     /// Loads the map and resolves the camera (fitting the eye height if asked).
     pub fn new(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
         let (w, h) = (cam.size.width, cam.size.height);
@@ -217,15 +221,13 @@ impl View {
             &format!("--size {w}x{h}"),
             "the images",
         )?;
-        let map = map_args.load()?;
-        let pyramid = map_args.pyramid(&map)?;
+        let pyramid = map_args.pyramid()?;
         let options = Options {
             lod: cam.lod == Switch::On,
             ..Options::default()
         };
-        let camera = resolve_camera(&map, &pyramid, cam, options)?;
+        let camera = resolve_camera(pyramid.map(), &pyramid, cam, options)?;
         Ok(Self {
-            map,
             pyramid,
             camera,
             options,

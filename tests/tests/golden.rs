@@ -60,7 +60,7 @@ fn check(room: &str, name: &str, width: u32, height: u32, pixels: &[Rgb]) -> Opt
 #[test]
 fn terrain_frames_match_the_golden_images() {
     let map = procedural(5, 256);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let terrain = pyramid.terrain(true).unwrap();
     let size = Size {
         width: 64,

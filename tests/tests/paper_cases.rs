@@ -28,7 +28,7 @@ fn measure(pyramid: &Pyramid, map: &footprint_host::map::Map, pitch: f64, mode: 
 #[test]
 fn area_sampling_coverage_is_exactly_one_in_every_paper_case() {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     for pitch in PAPER_PITCHES {
         let t = measure(&pyramid, &map, pitch, Mode::AsExact);
         assert!(
@@ -61,7 +61,7 @@ fn area_sampling_coverage_is_exactly_one_in_every_paper_case() {
 #[test]
 fn point_sampling_undersamples_more_as_the_pitch_falls() {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let cov: Vec<f64> = PAPER_PITCHES
         .iter()
         .map(|&p| measure(&pyramid, &map, p, Mode::Ps).coverage())
@@ -74,7 +74,7 @@ fn point_sampling_undersamples_more_as_the_pitch_falls() {
 #[test]
 fn fit_first_hit_puts_a_one_voxel_footprint_at_the_first_hit() {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let terrain = pyramid.terrain(true).unwrap();
     for pitch in PAPER_PITCHES {
         let camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
@@ -101,7 +101,7 @@ fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
     // voxel and ×2.2 with the pyramid; the test before the skip used `a` and a bound of 1.6.)
     use footprint_core::terrain::camera::{Camera, CameraParams};
     let map = procedural(7, 512);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let top_m = f64::from(map.height_range().1) * map.height_scale_m;
     let mut with_lod = Vec::new();
     let mut without = Vec::new();
@@ -148,7 +148,7 @@ fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
 #[test]
 fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
     let map = procedural(1, DEFAULT_SIZE);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let terrain = pyramid.terrain(true).unwrap();
     let mut lines = Vec::new();
     for pitch in PAPER_PITCHES {
@@ -185,7 +185,7 @@ fn images_and_counts_are_the_same_for_any_number_of_threads() {
     use footprint_core::terrain::cost::NoCost;
     use footprint_host::render::{render_parallel, render_with};
     let map = procedural(3, 256);
-    let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let terrain = pyramid.terrain(true).unwrap();
     let size = Size {
         width: 96,

@@ -25,7 +25,7 @@ fn results() -> &'static (Tables15, Fly) {
     static RESULTS: OnceLock<(Tables15, Fly)> = OnceLock::new();
     RESULTS.get_or_init(|| {
         let map = procedural(1, DEFAULT_SIZE);
-        let pyramid = Pyramid::build(&map, HeightFilter::default()).unwrap();
+        let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
         let modes = footprint_host::experiment::paper::paper_modes();
         let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, |_| {}).unwrap();
         let spec = FlySpec {

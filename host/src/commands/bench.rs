@@ -38,8 +38,8 @@ pub struct BenchArgs {
 /// Runs `footprint bench`.
 pub fn bench(args: &BenchArgs) -> Result<()> {
     let started = Instant::now();
-    let map = args.map.load()?;
-    let pyramid = args.map.pyramid(&map)?;
+    let pyramid = args.map.pyramid()?;
+    let map = pyramid.map();
     let mut modes = args.modes.modes()?;
     for base in [Mode::Ps, Mode::Classic] {
         if !modes.contains(&base) {
@@ -51,7 +51,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         * args.repeats;
     let bar = super::progress(total, "frames·modes", args.format.json);
     let cases = bench::run(
-        &map,
+        map,
         &pyramid,
         &modes,
         args.size.size,

@@ -95,8 +95,8 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         keep_cut: args.out.is_some(),
     };
     spec.check_memory(if args.animation { PANELS.len() } else { 0 })?;
-    let map = args.map.load()?;
-    let pyramid = args.map.pyramid(&map)?;
+    let pyramid = args.map.pyramid()?;
+    let map = pyramid.map();
     let bar = super::progress(args.frames as u64, "frames", args.format.json);
     let result = if args.animation {
         let dir = args
@@ -117,7 +117,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         )?;
         let mut canvas = vec![Rgb::default(); width * h];
         let result = fly::run_with_frames(
-            &map,
+            map,
             &pyramid,
             &spec,
             &PANELS,
@@ -135,7 +135,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         animation.finish()?;
         result
     } else {
-        fly::run(&map, &pyramid, &spec, || bar.inc(1))?
+        fly::run(map, &pyramid, &spec, || bar.inc(1))?
     };
     bar.finish_and_clear();
     if let Some(dir) = &args.out {

@@ -59,14 +59,14 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         let summary = RenderSummary {
             mode: args.mode,
             camera: *view.camera.params(),
-            base_m: view.map.base_m,
+            base_m: view.map().base_m,
             lod: view.options.lod,
             measured: &measured,
             per_column: args.per_column,
             ms,
             ms_threads,
             threads: rayon::current_num_threads(),
-            map: &view.map.source,
+            map: &view.map().source,
         };
         if args.format.json {
             println!("{}", counts::json(&summary)?);

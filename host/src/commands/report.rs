@@ -43,15 +43,15 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let fly_spec = paper_flight(args.frames);
     fly_spec.check_memory(0)?;
     let size = fly_spec.size;
-    let map = args.map.load()?;
-    let pyramid = args.map.pyramid(&map)?;
+    let pyramid = args.map.pyramid()?;
+    let map = pyramid.map();
     let modes = crate::experiment::paper::paper_modes();
     let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
     let bar = super::progress(steps, "steps", false);
     let file = |name: &str| -> PathBuf { folder.file(name) };
 
     // Tables 1–5.
-    let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, size, |msg| {
+    let tables = table::run(map, &pyramid, &PAPER_PITCHES, &modes, size, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;
@@ -66,7 +66,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let terrain = pyramid.terrain(true)?;
     let mut views = String::new();
     for pitch in PAPER_PITCHES {
-        let camera = paper_camera(&map, &pyramid, pitch, size, true)?;
+        let camera = paper_camera(map, &pyramid, pitch, size, true)?;
         let mut t = Tables::new(&camera);
         let frame = t.frame(&camera, &terrain, Options::default())?;
         for mode in [Mode::Ps, Mode::As] {
@@ -83,7 +83,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
     // Table 6 and Fig. 14.
     bar.set_message("flight");
-    let flight = fly::run(&map, &pyramid, &fly_spec, || bar.inc(1))?;
+    let flight = fly::run(map, &pyramid, &fly_spec, || bar.inc(1))?;
     let mut cuts = String::new();
     for m in &flight.modes {
         let name = format!("cut_{}.png", m.mode);
@@ -111,7 +111,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
     // Diagnostic pictures.
     bar.set_message("pictures");
-    let five = *paper_camera(&map, &pyramid, 5.0, size, true)?.params();
+    let five = *paper_camera(map, &pyramid, 5.0, size, true)?.params();
     let zoom = inspect::zoom(&five, &pyramid, Mode::Li, 16.0, 48, 6)?;
     write_png(&file("zoom.png"), zoom.width, zoom.height, &zoom.pixels)?;
     let camera5 = footprint_core::terrain::camera::Camera::new(five)?;
@@ -133,7 +133,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         width: 32,
         height: 32,
     };
-    let small = paper_camera(&map, &pyramid, 20.0, window, true)?;
+    let small = paper_camera(map, &pyramid, 20.0, window, true)?;
     let small = footprint_core::terrain::camera::Camera::new(CameraParams { ..*small.params() })?;
     let mut fp_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
@@ -149,7 +149,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     bar.inc(4);
 
     bar.set_message("pyramid height filters");
-    let study = heights::compare(&map, args.map.height_filter.into(), 5.0, &modes, size)?;
+    let study = heights::compare(map, args.map.height_filter.into(), 5.0, &modes, size)?;
     let md = document::markdown(
         &map.source,
         &tables,

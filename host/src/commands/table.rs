@@ -66,15 +66,15 @@ impl CaseArg {
 /// Runs `footprint table`.
 pub fn table(args: &TableArgs) -> Result<()> {
     let modes = args.modes.modes()?;
-    let map = args.map.load()?;
-    let pyramid = args.map.pyramid(&map)?;
+    let pyramid = args.map.pyramid()?;
+    let map = pyramid.map();
     let pitches = args.case.pitches();
     let bar = super::progress(
         table::steps(pitches.len(), modes.len()),
         "steps",
         args.format.json,
     );
-    let result = table::run(&map, &pyramid, &pitches, &modes, args.size.size, |msg| {
+    let result = table::run(map, &pyramid, &pitches, &modes, args.size.size, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;

@@ -82,7 +82,7 @@ pub struct Scene {
 /// paper's camera (`experiment::paper::paper_camera`, the rule of Table 1).
 pub fn scene() -> Result<Scene> {
     let map = procedural(SEED, MAP_SIDE);
-    let pyramid = Pyramid::build(&map, HeightFilter::default())?;
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default())?;
     let camera = paper_camera(&map, &pyramid, PITCH_DEG, SIZE, true)?;
     Ok(Scene {
         params: *camera.params(),
@@ -132,7 +132,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
     let (w, h) = (SIZE.width as usize, SIZE.height as usize);
     let level0 = Level::new(map.width, map.height, &map.heights, &map.colors)?;
     let scale = Scale::new(map.spacing_m, map.height_scale_m)?;
-    let pyramid = Pyramid::build(map, HeightFilter::default())?;
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default())?;
     let full = pyramid.terrain(true)?;
     let camera = Camera::new(scene.params)?;
     let (mut rows, mut cols) = (vec![Coord::ZERO; h + 1], vec![Column::default(); w]);
@@ -204,7 +204,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
 /// [`MODES`], the specular plate's `frame` line, then the `error` lines.
 pub fn reference_lines() -> Result<Vec<String>> {
     let scene = scene()?;
-    let pyramid = Pyramid::build(&scene.map, HeightFilter::default())?;
+    let pyramid = Pyramid::build(scene.map.clone(), HeightFilter::default())?;
     let terrain = pyramid.terrain(scene.options.lod)?;
     let camera = Camera::new(scene.params)?;
     let mut tables = Tables::new(&camera);

@@ -50,14 +50,14 @@ pub fn compare(
     modes: &[Mode],
     size: Size,
 ) -> Result<Vec<Variant>> {
-    let main = Pyramid::build(map, filter)?;
+    let main = Pyramid::build(map.clone(), filter)?;
     let camera = paper_camera(map, &main, pitch, size, true)?;
     let truth = reference(&camera, &main, Options::default().sky)?;
     let other = match filter {
         HeightFilter::Silhouette => HeightFilter::Mean,
         HeightFilter::Mean => HeightFilter::Silhouette,
     };
-    let other_pyramid = Pyramid::build(map, other)?;
+    let other_pyramid = Pyramid::build(map.clone(), other)?;
     [
         (name(filter), &main, true),
         (name(other), &other_pyramid, true),
