@@ -326,30 +326,9 @@ fn run() -> Result<bool, Error> {
     );
     let image = &mut image[..];
     let ps = run_mode("ps", &Point, &frame, &terrain, tables, image)?;
-    let ss8 = run_mode(
-        "ss8",
-        &Super::<8>::new(),
-        &frame,
-        &terrain,
-        tables,
-        image,
-    )?;
-    let area = run_mode(
-        "as-exact",
-        &Area::new(),
-        &frame,
-        &terrain,
-        tables,
-        image,
-    )?;
-    let paper = run_mode(
-        "as",
-        &ParallelArea::new(),
-        &frame,
-        &terrain,
-        tables,
-        image,
-    )?;
+    let ss8 = run_mode("ss8", &Super::<8>::new(), &frame, &terrain, tables, image)?;
+    let area = run_mode("as-exact", &Area::new(), &frame, &terrain, tables, image)?;
+    let paper = run_mode("as", &ParallelArea::new(), &frame, &terrain, tables, image)?;
     match (ps, ss8, area, paper) {
         (Some(ps), Some(_), Some(area), Some(paper)) => {
             hprintln!(

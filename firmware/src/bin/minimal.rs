@@ -54,9 +54,8 @@ fn run() -> Result<(u64, u64), &'static str> {
     let camera = Camera::new(PARAMS).map_err(|_| "Camera::new")?;
     let frame = core_calls::frame(&camera, &terrain, Options::default(), rows, columns)
         .map_err(|_| "Frame::new")?;
-    let (render, result) = instructions(|| {
-        core_calls::render(&frame, &terrain, &Area::new(), &mut NoCost, image)
-    });
+    let (render, result) =
+        instructions(|| core_calls::render(&frame, &terrain, &Area::new(), &mut NoCost, image));
     result.map_err(|_| "column::render")?;
     Ok((image_hash(image), render))
 }
