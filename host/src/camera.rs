@@ -44,17 +44,18 @@ fn metres(v: f64) -> String {
     }
 }
 
-/// A validated camera on `map` from `params` (whose `eye_m` and `far_m` are ignored): the far
-/// distance `far_m` (`None`: [`default_far_voxels`]) and the eye from `eye`. Every error names
-/// the option the user gave (`--fov`, `--far`, `--height`, …), in metres or degrees.
+/// A validated camera on the map of `pyramid` from `params` (whose `eye_m` and `far_m` are
+/// ignored): the far distance `far_m` (`None`: [`default_far_voxels`]) and the eye from `eye`.
+/// Every error names the option the user gave (`--fov`, `--far`, `--height`, …), in metres or
+/// degrees.
 pub fn place(
-    map: &Map,
     pyramid: &Pyramid,
     mut params: CameraParams,
     far_m: Option<f64>,
     eye: Eye,
     options: Options,
 ) -> Result<Camera> {
+    let map = pyramid.map();
     // Everything but the eye height and the far distance first, so errors name the option.
     params.eye_m = 0.0;
     params.far_m = 1.0;

@@ -226,7 +226,7 @@ impl View {
             lod: cam.lod == Switch::On,
             ..Options::default()
         };
-        let camera = resolve_camera(pyramid.map(), &pyramid, cam, options)?;
+        let camera = resolve_camera(&pyramid, cam, options)?;
         Ok(Self {
             pyramid,
             camera,
@@ -235,13 +235,9 @@ impl View {
     }
 }
 
-/// Turns the camera options into a validated camera for `map`.
-pub fn resolve_camera(
-    map: &Map,
-    pyramid: &Pyramid,
-    cam: &CameraArgs,
-    options: Options,
-) -> Result<Camera> {
+/// Turns the camera options into a validated camera for the map of `pyramid`.
+pub fn resolve_camera(pyramid: &Pyramid, cam: &CameraArgs, options: Options) -> Result<Camera> {
+    let map = pyramid.map();
     let centre = |n: u32| n as f64 * map.spacing_m / 2.0;
     let params = CameraParams {
         x_m: cam.x.unwrap_or_else(|| centre(map.width)),
@@ -258,5 +254,5 @@ pub fn resolve_camera(
         Some(h) => Eye::Height(h),
         None => Eye::FitFirstHit,
     };
-    place(map, pyramid, params, cam.far, eye, options)
+    place(pyramid, params, cam.far, eye, options)
 }

@@ -72,5 +72,5 @@ pub fn paper_camera(
         lod,
         ..Options::default()
     };
-    place(map, pyramid, params, None, Eye::FitFirstHit, options)
+    place(pyramid, params, None, Eye::FitFirstHit, options)
 }
