@@ -65,15 +65,9 @@ impl Format {
         if let Some(f) = format.or_else(|| Format::from_path(input.path())) {
             return Ok(f);
         }
-        let looks = input.looks_like();
-        let by_bytes = match looks {
-            Some("a PNG file") => Some(Format::Png),
-            Some("a TIFF file") => Some(Format::Tiff),
-            Some("an ESRI ASCII grid") => Some(Format::Asc),
-            Some("an SRTM .hgt tile") => Some(Format::Hgt),
-            _ => None,
-        };
-        by_bytes.ok_or_else(|| unknown(input.path(), input.what(), Some(input.is_empty())))
+        input
+            .format()
+            .ok_or_else(|| unknown(input.path(), input.what(), Some(input.is_empty())))
     }
 
     /// The name used by `--format`.

@@ -11,7 +11,7 @@ use std::fs::File;
 use std::io::{self, BufRead, BufReader, Cursor, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
-use super::MapError;
+use super::{Format, MapError};
 
 /// How many first bytes are kept for guessing the format.
 const HEAD: usize = 16;
@@ -134,15 +134,26 @@ impl Input {
         Ok(head)
     }
 
-    /// What the first bytes look like: `a PNG file`, `a TIFF file`, `an ESRI ASCII grid`,
-    /// `an SRTM .hgt tile` (from its length alone), or `None`.
-    pub fn looks_like(&self) -> Option<&'static str> {
+    /// The format the first bytes show ([`sniff`]), if any.
+    pub fn format(&self) -> Option<Format> {
         sniff(&self.head, self.len)
+    }
+
+    /// What the first bytes look like, for messages: `a PNG file`, `a TIFF file`,
+    /// `an ESRI ASCII grid`, `an SRTM .hgt tile` (from its length alone), or `None`.
+    pub fn looks_like(&self) -> Option<&'static str> {
+        self.format().map(|f| match f {
+            Format::Png => "a PNG file",
+            Format::Tiff => "a TIFF file",
+            Format::Asc => "an ESRI ASCII grid",
+            Format::Hgt => "an SRTM .hgt tile",
+        })
     }
 }
 
-/// What a file with these first bytes and this length looks like (see [`Input::looks_like`]).
-pub fn sniff(head: &[u8], len: u64) -> Option<&'static str> {
+/// The format of a file with these first bytes and this length: a PNG or TIFF signature, an
+/// ASCII grid's header key, or the exact length of an SRTM tile.
+pub fn sniff(head: &[u8], len: u64) -> Option<Format> {
     // An ASCII grid starts with one of its header keys, in any order and case.
     const ASC_KEYS: [&[u8]; 8] = [
         b"ncols",
@@ -158,13 +169,13 @@ pub fn sniff(head: &[u8], len: u64) -> Option<&'static str> {
     let starts_ci =
         |word: &[u8]| text.len() > word.len() && text[..word.len()].eq_ignore_ascii_case(word);
     if head.starts_with(b"\x89PNG") {
-        Some("a PNG file")
+        Some(Format::Png)
     } else if head.starts_with(b"II*\0") || head.starts_with(b"MM\0*") {
-        Some("a TIFF file")
+        Some(Format::Tiff)
     } else if ASC_KEYS.iter().any(|k| starts_ci(k)) {
-        Some("an ESRI ASCII grid")
+        Some(Format::Asc)
     } else if super::hgt::side_from_len(len).is_some() {
-        Some("an SRTM .hgt tile")
+        Some(Format::Hgt)
     } else {
         None
     }
