@@ -956,6 +956,14 @@ fn standard_input_is_a_map_too() {
     let o = footprint_with_stdin(&["map", "info", "-"], b"");
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(stderr.contains("it is empty"), "{stderr}");
+    // Standard input can be read once: not as both the height map and the colour map.
+    let o = footprint_with_stdin(&["render", "--dem", "-", "--color", "-"], b"");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("--color") && stderr.contains("standard input"),
+        "{stderr}"
+    );
     // A stream over the memory budget is refused, not read to the end of memory.
     let o = footprint_with_stdin(
         &["--max-memory", "1K", "map", "info", "--format", "asc", "-"],
