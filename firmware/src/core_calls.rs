@@ -65,7 +65,7 @@ pub fn build_terrain(
 }
 
 /// One baked plate vertex in the core's form: `Vertex::new` and `Normal::new` (soft double)
-/// on exactly the host's `f64`s (`footprint_host::experiment::firmware::PlateVertex::vertex`).
+/// on exactly the host's `f64`s (`footprint_scenes::firmware::PlateVertex::vertex`).
 #[inline(never)]
 pub fn plate_vertex(v: &PlateVertex) -> Result<Vertex, Error> {
     let [nx, ny, nz] = v.normal.map(f64::from_bits);

@@ -1,7 +1,7 @@
 //! footprint-firmware's library: what both firmware binaries share.
 //!
-//! * [`scene`]: the level-0 map and the camera that `build.rs` baked from the host's
-//!   `footprint_host::experiment::firmware::scene()`, and the specular plate from its
+//! * [`scene`]: the level-0 map and the camera that `build.rs` baked from
+//!   `footprint_scenes::firmware::scene()`, and the specular plate from its
 //!   `plate()` ([`PlateVertex`], decoded on the chip by [`core_calls::plate_vertex`]);
 //! * [`core_calls`]: every call into `footprint-core` that does real work, behind
 //!   `#[inline(never)]`, so the core's code can be told apart in the symbol table;
@@ -207,7 +207,7 @@ impl Buffers {
 }
 
 /// One vertex of the specular plate as `build.rs` bakes it (the host's
-/// `footprint_host::experiment::firmware::PlateVertex`): position and depth in the fixed-point
+/// `footprint_scenes::firmware::PlateVertex`): position and depth in the fixed-point
 /// form of the core's [`Vertex`], the normal as the host's `f64` direction (bit patterns).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PlateVertex {

@@ -1,8 +1,8 @@
 //! footprint-firmware: `footprint-core` on a Cortex-M4F, under QEMU's `mps2-an386`.
 //!
 //! From statics alone (no heap, no allocator) it builds the terrain pyramid on the chip from
-//! the level-0 map that `build.rs` baked into flash, renders the host's firmware scene
-//! (`footprint_host::experiment::firmware`: 128² built-in terrain, 160×120, FOV 10°, pitch 20°,
+//! the level-0 map that `build.rs` baked into flash, renders the firmware scene
+//! (`footprint_scenes::firmware`: 128² built-in terrain, 160×120, FOV 10°, pitch 20°,
 //! the eye fitted by the paper's rule) in PS, SS8 and AS, and prints over semihosting:
 //!
 //! * one `frame` line per mode — the mode, the 64-bit FNV-1a of the image's RGB bytes and the

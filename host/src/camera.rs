@@ -6,16 +6,15 @@
 //! distance comes from `--fov`, a fitted eye height from `--pitch`, `--fov` and `--size`. Every
 //! error here names what the user gave.
 
-use anyhow::{anyhow, bail, Result};
+use anyhow::{anyhow, Result};
 use footprint_core::error::Shown;
-use footprint_core::num::{MAX_EYE_HEIGHT, MAX_FAR};
+use footprint_core::num::MAX_FAR;
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 use footprint_core::terrain::Terrain;
 use footprint_core::Error;
 
-use crate::map::Map;
-use crate::pyramid::Pyramid;
-use crate::render::{first_hit_distance, Tables};
+use footprint_scenes::view::{self, FitError, Tables};
+use footprint_scenes::{Map, Pyramid};
 
 /// Where the eye height comes from.
 #[derive(Clone, Copy, Debug)]
@@ -26,13 +25,10 @@ pub enum Eye {
     FitFirstHit,
 }
 
-/// The default far distance in voxels: 8 × the map's longer side (the mirrored terrain is
-/// infinite), and at least 4 × the distance where a pixel's footprint is one voxel wide; below
-/// the core's [`MAX_FAR`].
+/// The default far distance in voxels for `map`
+/// ([`footprint_scenes::view::default_far_voxels`]).
 pub fn default_far_voxels(map: &Map, pixel_angle: f64) -> f64 {
-    (8.0 * f64::from(map.width.max(map.height)))
-        .max(4.0 / pixel_angle)
-        .min(MAX_FAR - 1.0)
+    view::default_far_voxels(map.width, map.height, pixel_angle)
 }
 
 /// A computed distance or height in metres, rounded for a message: `68580`, `6.927e10`.
@@ -130,19 +126,15 @@ pub fn explain(e: impl Into<anyhow::Error>, map: &Map, eye: Option<Eye>) -> anyh
     )
 }
 
-/// The paper's rule for Table 1: the eye height (metres) at which the pixel footprint at the
-/// first hit is one voxel wide, i.e. the lowest ray of the middle column first hits the terrain
-/// at `1/pixel_angle` voxels. Found by bisection on the eye height (the first-hit distance
-/// grows with it); the render's own walk is the probe, so the rule holds for what is drawn.
-/// `far_given` says whether the far distance is the user's `--far` (named in its error).
+/// The paper's rule for Table 1 ([`footprint_scenes::view::fit_first_hit`]), its errors said
+/// in the user's options. `far_given` says whether the far distance is the user's `--far`
+/// (named in its error).
 pub fn fit_first_hit(
     params: CameraParams,
     terrain: &Terrain<'_>,
     options: Options,
     far_given: bool,
 ) -> Result<f64> {
-    let camera = Camera::new(params)?;
-    let target = 1.0 / camera.pixel_angle();
     let scale = terrain.scale();
     let views = || {
         format!(
@@ -151,70 +143,44 @@ pub fn fit_first_hit(
             params.height
         )
     };
-    let far_voxels = params.far_m / scale.spacing_m;
-    if target > far_voxels {
-        let target_m = metres(target * scale.spacing_m);
-        if far_given {
-            bail!(
-                "--far {} m: nearer than the first hit --fit-first-hit aims for, {target_m} m \
-                 away (one pixel one voxel wide, from {}); give a larger --far, or --height",
-                Shown(params.far_m),
-                views()
-            );
-        }
-        bail!(
-            "--fit-first-hit: the first hit it aims for, {target_m} m away (one pixel one voxel \
+    view::fit_first_hit(params, terrain, options).map_err(|e| match e {
+        FitError::Camera(e) => e.into(),
+        FitError::BeyondFar { target_m } if far_given => anyhow!(
+            "--far {} m: nearer than the first hit --fit-first-hit aims for, {} m \
+             away (one pixel one voxel wide, from {}); give a larger --far, or --height",
+            Shown(params.far_m),
+            metres(target_m),
+            views()
+        ),
+        FitError::BeyondFar { target_m } => anyhow!(
+            "--fit-first-hit: the first hit it aims for, {} m away (one pixel one voxel \
              wide, from {}), is beyond the camera's far limit of {} m; widen --fov, use fewer \
              rows, or give --height",
+            metres(target_m),
             views(),
             metres(MAX_FAR * scale.spacing_m)
-        );
-    }
-    let top_m = terrain.max_height().to_num::<f64>() * scale.height_scale_m;
-    let max_eye_m = MAX_EYE_HEIGHT * scale.height_scale_m;
-    let mut tables = Tables::new(&camera);
-    let mut probe = |eye_m: f64| -> Result<Option<f64>> {
-        let cam = Camera::new(CameraParams { eye_m, ..params })?;
-        let frame = tables.frame(&cam, terrain, options)?;
-        Ok(first_hit_distance(&frame, terrain))
-    };
-    // The lowest ray descends by |slope| per unit distance: from this high it reaches the
-    // ground no nearer than the target.
-    let slope = -camera.row_slope(0);
-    if slope <= 0.0 {
-        bail!(
+        ),
+        FitError::LooksUp => anyhow!(
             "--fit-first-hit needs a lowest ray that descends: --pitch {}° with {} looks up; \
              raise --pitch or give --height",
             Shown(params.pitch_deg),
             views()
-        );
-    }
-    let (mut lo, mut hi) = (0.0, top_m + slope * target * scale.spacing_m * 1.01);
-    if hi > max_eye_m {
-        bail!(
+        ),
+        FitError::TooHigh {
+            target_m,
+            eye_m,
+            max_eye_m,
+        } => anyhow!(
             "--fit-first-hit: at --pitch {}° a first hit {} m away (one pixel one voxel wide, from \
              {}) needs the eye about {} m high, above the camera's limit of {} m (2^22 height \
              units of {} m); give --height, or change --pitch, --fov or --size",
             Shown(params.pitch_deg),
-            metres(target * scale.spacing_m),
+            metres(target_m),
             views(),
-            metres(hi),
+            metres(eye_m),
             metres(max_eye_m),
             Shown(scale.height_scale_m)
-        );
-    }
-    if probe(hi)?.is_none_or(|d| d < target) {
-        bail!(
-            "--fit-first-hit: no eye height up to {hi:.0} m puts the first hit at {target:.0} \
-             voxels"
-        );
-    }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        match probe(mid)? {
-            Some(d) if d >= target => hi = mid,
-            _ => lo = mid,
-        }
-    }
-    Ok(hi)
+        ),
+        e @ FitError::NoFit { .. } => anyhow!("--fit-first-hit: {e}"),
+    })
 }

@@ -1,5 +1,9 @@
 //! footprint-host: the `footprint` CLI's library — maps, the pyramid, rendering, experiments
 //! and report writers. The binary (`src/main.rs`) only parses arguments and calls in here.
+//!
+//! The built-in terrain, the owned pyramid and the specular plates come from the
+//! `footprint-scenes` crate (which the firmware's build script shares); [`pyramid`] and
+//! [`scene`] re-export them under the names the host has always used.
 
 pub mod args;
 pub mod camera;
@@ -9,8 +13,8 @@ pub mod experiment;
 pub mod map;
 pub mod memory;
 pub mod output;
-pub mod pyramid;
+pub use footprint_scenes::pyramid;
 pub mod render;
 pub mod report;
-pub mod scene;
+pub use footprint_scenes::plates as scene;
 pub mod view;

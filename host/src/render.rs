@@ -6,14 +6,13 @@ use std::time::Instant;
 
 use anyhow::Result;
 use footprint_core::color::Color16;
-use footprint_core::num::Coord;
 use footprint_core::num::Weight;
-use footprint_core::terrain::camera::{Camera, Column, Frame, Options};
+use footprint_core::terrain::camera::Frame;
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::sampler::{Area, FirstHit, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Super};
 use footprint_core::terrain::visibility::visit_visible;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
@@ -192,39 +191,7 @@ macro_rules! with_sampler {
     };
 }
 
-/// The camera tables of one frame, owned.
-pub struct Tables {
-    rows: Vec<Coord>,
-    columns: Vec<Column>,
-}
-
-impl Tables {
-    /// Buffers sized for `camera`.
-    pub fn new(camera: &Camera) -> Self {
-        Self {
-            rows: vec![Coord::ZERO; camera.height() + 1],
-            columns: vec![Column::default(); camera.width()],
-        }
-    }
-
-    /// Builds the frame's tables.
-    pub fn frame<'t>(
-        &'t mut self,
-        camera: &Camera,
-        terrain: &Terrain<'_>,
-        options: Options,
-    ) -> Result<Frame<'t>> {
-        let columns = camera.width() * options.columns_per_pixel.max(1) as usize;
-        self.columns.resize(columns, Column::default());
-        Ok(Frame::new(
-            camera,
-            terrain,
-            options,
-            &mut self.rows,
-            &mut self.columns,
-        )?)
-    }
-}
+pub use footprint_scenes::view::{first_hit_distance, Tables};
 
 /// A rendered frame.
 pub struct Rendered {
@@ -478,15 +445,4 @@ fn hidden_and_missed(sampled: &[u32], visible: &[u32]) -> (u64, u64) {
         }
     }
     (hidden, missed)
-}
-
-/// The horizontal distance, in voxels, at which the lowest ray of the middle column first
-/// hits the terrain, or `None` if it hits nothing within the far distance.
-pub fn first_hit_distance(frame: &Frame<'_>, terrain: &Terrain<'_>) -> Option<f64> {
-    let col = frame.width() / 2;
-    let mut probe = FirstHit::default();
-    let mut out = [Rgb::default()];
-    walk(frame, terrain, col, 0..1, &mut probe, &mut NoCost, &mut out);
-    let column = frame.column(col)?;
-    probe.n.map(|n| column.distance(n))
 }

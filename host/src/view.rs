@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args;
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 use footprint_core::terrain::pyramid::HeightFilter;
@@ -102,7 +102,9 @@ impl MapArgs {
     /// Loads the map (or generates the built-in one) and builds its pyramid with
     /// `--height-filter`; the pyramid keeps the map ([`Pyramid::map`]).
     pub fn pyramid(&self) -> Result<Pyramid> {
-        Pyramid::build(self.load()?, self.height_filter.into())
+        let map = self.load()?;
+        let source = map.source.clone();
+        Pyramid::build(map, self.height_filter.into()).with_context(|| format!("map {source}"))
     }
 
     /// Loads the map (or generates the built-in one).

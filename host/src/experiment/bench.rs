@@ -100,7 +100,7 @@ pub fn run(
         .iter()
         .zip(tables.iter_mut())
         .map(|((_, c), t)| t.frame(c, &terrain, options))
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     // [view][mode] → (one-thread samples, all-thread samples)
     let mut samples = vec![vec![(Vec::new(), Vec::new()); modes.len()]; views.len()];
     for _ in 0..repeats.max(1) {

@@ -1,9 +1,10 @@
-//! The firmware's scene and the host's reference for it (issue 6).
+//! The host's reference for the firmware's scenes (issue 6).
 //!
 //! `firmware/` runs `footprint-core` on an emulated Cortex-M4F (QEMU `mps2-an386`). Its
-//! `build.rs` calls [`scene`] to bake the level-0 map and the camera into the firmware, so the
-//! chip and the host render the same [`CameraParams`], bit for bit (the eye height comes from
-//! the host's fit-first-hit bisection, which needs `std`). [`reference_lines`] renders that
+//! `build.rs` calls [`scene`] (from `footprint-scenes`, which builds over the core alone) to
+//! bake the level-0 map and the camera into the firmware, so the chip and the host render the
+//! same [`CameraParams`], bit for bit (the eye height comes from the paper's fit-first-hit
+//! bisection, which needs `std`). [`reference_lines`] renders that
 //! scene here through the same core API and returns the lines the firmware prints over
 //! semihosting; `tests/tests/firmware.rs` asserts that the two agree byte for byte.
 //!
@@ -24,7 +25,7 @@
 //! The second scene is the specular plate of the specular issue: [`plate`] gives `build.rs`
 //! Plate 2's triangles as the host's tiler receives them at 64×64, and
 //! [`plate_reference_line`] renders them here with the core's tiler and conservative clamping
-//! (checking the result against `crate::scene::render`), printed after the terrain frames:
+//! (checking the result against `footprint_scenes::plates::render`), printed after the terrain frames:
 //!
 //! ```text
 //! frame specular-plate2-clamp 64x64 fnv1a=<16 hex digits> fragments=… shades=… flagged=…
@@ -32,7 +33,7 @@
 
 use anyhow::{bail, Result};
 use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
@@ -40,56 +41,27 @@ use footprint_core::terrain::sampler::Point;
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 
-use footprint_core::specular::raster::{self, Target, Triangle, Vertex};
+use footprint_core::specular::raster::{self, Target, Triangle};
 use footprint_core::specular::{self, Light, Material, Normal, Phong};
 
-use crate::experiment::paper::paper_camera;
-use crate::map::{procedural, Map};
+pub use footprint_scenes::firmware::{
+    plate, plate_mode_name, scene, Plate, PlateVertex, Scene, HEIGHT, MAP_SIDE, PITCH_DEG, PLATE,
+    PLATE_MODE, PLATE_SIZE, SEED, WIDTH,
+};
+use footprint_scenes::plates::Scene as PlateScene;
+
 use crate::pyramid::Pyramid;
 use crate::render::{count, Mode, Rate, Tables};
-use crate::scene::{Mode as SpecularMode, Scene as PlateScene, SceneName};
 use crate::view::Size;
 
-/// The seed of the firmware's built-in terrain.
-pub const SEED: u64 = 1;
-
-/// The side of the firmware's built-in terrain, voxels (the host's procedural generator).
-pub const MAP_SIDE: u32 = 128;
-
-/// The firmware's image size.
+/// The firmware's image size ([`WIDTH`]×[`HEIGHT`]).
 pub const SIZE: Size = Size {
-    width: 160,
-    height: 120,
+    width: WIDTH,
+    height: HEIGHT,
 };
-
-/// The firmware's pitch, degrees (the README's default view; FOV 10°, fit-first-hit).
-pub const PITCH_DEG: f64 = 20.0;
 
 /// The modes the firmware renders, in the order it prints them.
 pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(Rate::N8), Mode::AsExact, Mode::As];
-
-/// The firmware's terrain scene: the map and the camera, with the eye height fitted.
-pub struct Scene {
-    /// Level 0: the procedural map.
-    pub map: Map,
-    /// The camera (FOV 10°, [`PITCH_DEG`], [`SIZE`], the eye fitted by the paper's rule).
-    pub params: CameraParams,
-    /// Frame options (the defaults: LOD on, the default sky).
-    pub options: Options,
-}
-
-/// Builds the firmware's scene: `procedural(SEED, MAP_SIDE)` seen from its centre by the
-/// paper's camera (`experiment::paper::paper_camera`, the rule of Table 1).
-pub fn scene() -> Result<Scene> {
-    let map = procedural(SEED, MAP_SIDE);
-    let pyramid = Pyramid::build(map.clone(), HeightFilter::default())?;
-    let camera = paper_camera(&map, &pyramid, PITCH_DEG, SIZE, true)?;
-    Ok(Scene {
-        params: *camera.params(),
-        map,
-        options: Options::default(),
-    })
-}
 
 /// The 64-bit FNV-1a hash of `bytes`.
 pub fn fnv1a64(bytes: impl IntoIterator<Item = u8>) -> u64 {
@@ -231,145 +203,6 @@ pub fn reference_text() -> Result<String> {
 // ---------------------------------------------------------------------------------------------
 // The specular plate (the specular issue's scene, on the chip).
 
-/// The firmware's specular plate: Plate 2's four cylinders (the scene of Plates 2–4).
-pub const PLATE: SceneName = SceneName::Plate2;
-
-/// The side of the plate's square image, pixels.
-pub const PLATE_SIZE: u32 = 64;
-
-/// The plate's mode: conservative clamping (`MinDot[n]`, the paper's Plate 3 on this scene).
-pub const PLATE_MODE: SpecularMode = SpecularMode::Clamp;
-
-/// One vertex as the firmware bakes it: position and depth in the fixed-point form the core's
-/// [`raster::Vertex`] holds (Q8 pixels, 1/65,535 of the depth range), and the normal as the
-/// host's `f64` direction (bit patterns), which `Normal::new` rounds to `I2F30` on either side.
-///
-/// The core has no constructor from raw bits (`Vertex`'s fields are private and `Normal` has
-/// no `from_bits`), so [`PlateVertex::vertex`] goes through `Vertex::new` and `Normal::new`.
-/// The position and depth pass exactly (`x_q8/256` is exact in `f64`; `z/65535` rounds back to
-/// `z`); a normal's `I2F30` bits do not always survive `Normal::new` (a renormalisation of an
-/// already rounded vector can move a component by one unit), hence the `f64` direction.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct PlateVertex {
-    /// `x`, pixels × 256.
-    pub x_q8: i32,
-    /// `y`, pixels × 256 (down).
-    pub y_q8: i32,
-    /// Depth, 0 nearest, `u16::MAX` farthest.
-    pub z: u16,
-    /// The normal direction, `f64::to_bits` of each component (world axes: x right, y up,
-    /// z toward the eye).
-    pub normal: [u64; 3],
-}
-
-impl PlateVertex {
-    /// The core's vertex, decoded with the same expressions as the firmware's
-    /// (`firmware/src/main.rs`), in IEEE `f64` on both sides; [`plate`] checks that each
-    /// equals the vertex the host's `scene::render` draws.
-    pub fn vertex(&self) -> Result<Vertex, Error> {
-        let [nx, ny, nz] = self.normal.map(f64::from_bits);
-        Vertex::new(
-            f64::from(self.x_q8) / 256.0,
-            f64::from(self.y_q8) / 256.0,
-            f64::from(self.z) / 65535.0,
-            Normal::new(nx, ny, nz)?,
-        )
-    }
-}
-
-/// The plate, as `firmware/build.rs` bakes it: shared vertices, indexed triangles tagged with
-/// their object, the objects' colours, and the surface and light of `crate::scene`.
-#[derive(Clone, Debug)]
-pub struct Plate {
-    /// Distinct vertices, in order of first use.
-    pub vertices: Vec<PlateVertex>,
-    /// Triangles in drawing order: three indices into `vertices` and the object's index.
-    pub triangles: Vec<([u16; 3], u16)>,
-    /// Base colour per object.
-    pub colors: Vec<Rgb>,
-    /// Ambient weight (every object).
-    pub ambient: f64,
-    /// Diffuse weight.
-    pub diffuse: f64,
-    /// Phong exponent.
-    pub n: u32,
-    /// Phong weight.
-    pub k_spec: f64,
-    /// The direction to the light (the eye is `+z`).
-    pub light: [f64; 3],
-    /// The background colour.
-    pub background: Rgb,
-}
-
-/// The plate's triangles exactly as `crate::scene::render` hands them to the tiler at angle 0
-/// (after its back-face culling), in the fixed-point form of [`PlateVertex`], vertices
-/// deduplicated. Errors if a vertex does not decode to the host's, or if the plate needs more
-/// than 65,536 vertices.
-pub fn plate() -> Result<Plate> {
-    let scene = PlateScene::new(PLATE);
-    let half = f64::from(PLATE_SIZE) / 2.0;
-    let mut vertices = Vec::new();
-    let mut index = std::collections::HashMap::new();
-    let mut triangles = Vec::new();
-    for (id, object) in scene.objects.iter().enumerate() {
-        anyhow::ensure!(
-            !object.control,
-            "the firmware's plate has no control object"
-        );
-        for tri in &object.triangles {
-            // `scene::render`'s culling and vertex, at angle 0 (no rotation).
-            if tri.iter().all(|v| v.n[2] < 0.0) {
-                continue;
-            }
-            let mut ids = [0u16; 3];
-            for (slot, vert) in ids.iter_mut().zip(tri) {
-                let (p, n) = (vert.p, vert.n);
-                let (x, y) = ((p[0] + 1.0) * half, (1.0 - p[1]) * half);
-                let depth = ((2.0 - p[2]) / 4.0).clamp(0.0, 1.0);
-                let normal = Normal::new(n[0], n[1], n[2])?;
-                let host = Vertex::new(x, y, depth, normal)?;
-                let q = |v: f64| (v * 256.0).round() as i32;
-                let baked = PlateVertex {
-                    x_q8: q(x),
-                    y_q8: q(y),
-                    z: (depth * 65535.0 + 0.5) as u16,
-                    normal: n.map(f64::to_bits),
-                };
-                anyhow::ensure!(
-                    baked.vertex()? == host,
-                    "plate vertex {baked:?} does not decode to the host's {host:?}"
-                );
-                *slot = match index.get(&baked) {
-                    Some(&i) => i,
-                    None => {
-                        let i = u16::try_from(vertices.len())?;
-                        vertices.push(baked);
-                        index.insert(baked, i);
-                        i
-                    }
-                };
-            }
-            triangles.push((ids, u16::try_from(id)?));
-        }
-    }
-    Ok(Plate {
-        vertices,
-        triangles,
-        colors: scene.objects.iter().map(|o| o.color).collect(),
-        ambient: 0.15,
-        diffuse: 0.7,
-        n: crate::scene::SHININESS,
-        k_spec: crate::scene::K_SPEC,
-        light: scene.light,
-        background: crate::scene::BACKGROUND,
-    })
-}
-
-/// The plate's mode name on its `frame` line, e.g. `specular-plate2-clamp`.
-pub fn plate_mode_name() -> String {
-    format!("specular-{}-{}", PLATE.as_str(), PLATE_MODE.as_str())
-}
-
 /// The plate's `frame` line: the image's FNV-1a, fragments shaded, highlight evaluations and
 /// pixels flagged by detection (in the last fragment drawn there).
 pub fn plate_line(hash: u64, fragments: u64, shades: u64, flagged: u64) -> String {
@@ -421,7 +254,8 @@ pub fn plate_reference_line() -> Result<String> {
     let flagged = flagged.iter().filter(|&&f| f).count() as u64;
     let hash = image_hash(&color);
 
-    let host = crate::scene::render(&PlateScene::new(PLATE), PLATE_SIZE, 0.0, PLATE_MODE, 1)?;
+    let host =
+        footprint_scenes::plates::render(&PlateScene::new(PLATE), PLATE_SIZE, 0.0, PLATE_MODE, 1)?;
     let host_flagged = host.flagged.iter().filter(|&&f| f).count() as u64;
     let host_line = plate_line(
         image_hash(&host.image),

@@ -3,7 +3,8 @@
 //! no CLI types.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::camera::{Camera, Options};
+use footprint_scenes::view;
 
 use crate::camera::{place, Eye};
 use crate::experiment::fly::FlySpec;
@@ -57,20 +58,30 @@ pub fn paper_camera(
     size: Size,
     lod: bool,
 ) -> Result<Camera> {
-    let params = CameraParams {
-        x_m: f64::from(map.width) * map.spacing_m / 2.0,
-        y_m: f64::from(map.height) * map.spacing_m / 2.0,
-        eye_m: 0.0,
-        heading_deg: 0.0,
-        pitch_deg: pitch,
-        fov_deg: 10.0,
-        width: size.width,
-        height: size.height,
-        far_m: 1.0,
-    };
+    let params = view::paper_params(map, pitch, size.width, size.height);
     let options = Options {
         lod,
         ..Options::default()
     };
     place(pyramid, params, None, Eye::FitFirstHit, options)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiment::firmware;
+    use footprint_core::terrain::pyramid::HeightFilter;
+
+    /// The firmware bakes `footprint_scenes::view::paper_camera`; the CLI places the same view
+    /// through `camera::place` (which words its errors for the user). Both must give the same
+    /// camera, bit for bit.
+    #[test]
+    fn the_firmware_camera_is_the_clis_paper_camera() {
+        let baked = firmware::scene().unwrap();
+        let map = baked.map.clone();
+        let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+        let cli = paper_camera(&map, &pyramid, firmware::PITCH_DEG, firmware::SIZE, true).unwrap();
+        assert_eq!(*cli.params(), baked.params);
+        assert!(baked.params.eye_m > 0.0 && baked.params.far_m > 1.0);
+    }
 }

@@ -175,7 +175,7 @@ fn measure_frame(scene: &Scene, cfg: &MeasureConfig, t: u32) -> Result<FrameResu
     let frames: Vec<scene::Frame> = Mode::ALL
         .iter()
         .map(|&m| scene::render(scene, cfg.size, angle, m, cfg.reference_grid))
-        .collect::<Result<_>>()?;
+        .collect::<Result<_, _>>()?;
     let reference = &frames[Mode::ALL.len() - 1];
     let none = &frames[0];
     // Where the unantialiased image is visibly wrong: some channel off by more than 2/255.

@@ -16,7 +16,7 @@ use super::grid::{Grid, Spacing};
 use footprint_core::error::Shown;
 
 use super::input::{is_stdin, Input};
-use super::{Map, MapError};
+use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "ESRI ASCII grid";
@@ -313,7 +313,7 @@ fn read_header(reader: &mut impl BufRead, what: &str) -> Result<(Header, u64, Ve
     }
     let clamp = |n: u64| u32::try_from(n).unwrap_or(u32::MAX);
     let (ncols, nrows) = (clamp(ncols), clamp(nrows));
-    Map::validate_size(ncols, nrows, what)?;
+    validate_size(ncols, nrows, what)?;
     Ok((
         Header {
             ncols,
@@ -381,7 +381,7 @@ pub fn read(mut reader: Input) -> Result<(Grid, Header, Spacing), MapError> {
         ));
     }
 
-    Map::validate_memory(header.ncols, header.nrows, what)?;
+    validate_memory(header.ncols, header.nrows, what)?;
     let mut values: Vec<f32> = Vec::with_capacity(n as usize);
     let mut token: Vec<u8> = Vec::with_capacity(MAX_TOKEN);
     let push = |token: &[u8], values: &mut Vec<f32>| -> Result<(), MapError> {

@@ -11,7 +11,7 @@ use std::path::Path;
 
 use super::grid::{Grid, Spacing};
 use super::input::Input;
-use super::{Map, MapError};
+use super::{validate_memory, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "SRTM .hgt";
@@ -100,7 +100,7 @@ pub fn read(mut input: Input) -> Result<(Grid, String), MapError> {
             ),
         });
     };
-    Map::validate_memory(side, side, what)?;
+    validate_memory(side, side, what)?;
     let arcsec = arcsec_for_side(side).unwrap_or(0);
     let n = side as usize * side as usize;
     let mut values = Vec::with_capacity(n);

@@ -11,18 +11,19 @@ use std::fmt;
 use std::io;
 use std::path::Path;
 
-use footprint_core::Rgb;
-
 pub mod asc;
 pub mod format;
 pub mod grid;
 pub mod hgt;
 pub mod input;
 pub mod png;
-pub mod procedural;
 pub mod tiff;
-pub mod tint;
 pub mod voids;
+
+pub use footprint_scenes::Map;
+/// The built-in terrain and the height tint live in the scenes crate (the firmware bakes them
+/// too); re-exported here, where the loaders and the CLI look for them.
+pub use footprint_scenes::{procedural, tint};
 
 pub use self::format::{load, Format, LoadOptions, Loaded};
 pub use self::grid::Grid;
@@ -33,93 +34,36 @@ pub use self::tint::tint;
 /// The largest accepted width or height of a map, in voxels.
 pub const MAX_SIDE: u32 = footprint_core::terrain::MAX_SIDE;
 
-/// An owned terrain map, ready to lend to `footprint_core::terrain::Level`.
-#[derive(Clone, PartialEq)]
-pub struct Map {
-    /// Width in voxels (west to east).
-    pub width: u32,
-    /// Height in voxels (north to south).
-    pub height: u32,
-    /// Row-major, `heights[y * width + x]`, in height units.
-    pub heights: Vec<u16>,
-    /// Row-major, same layout and length as `heights`.
-    pub colors: Vec<Rgb>,
-    /// Metres per voxel (horizontal).
-    pub spacing_m: f64,
-    /// Metres per height unit.
-    pub height_scale_m: f64,
-    /// Metres above the datum (sea level) of height unit 0: a height `u` is
-    /// `base_m + u · height_scale_m` metres above the datum. 0 for PNG and built-in maps.
-    pub base_m: f64,
-    /// Human-readable origin: a file path or "built-in (seed N)".
-    pub source: String,
+/// Checks that a `w`×`h` map is acceptable: neither side may be zero or exceed [`MAX_SIDE`].
+///
+/// `what` names the map in the error, e.g. `height map "dem.png"` (see [`describe`]).
+pub fn validate_size(w: u32, h: u32, what: &str) -> Result<(), MapError> {
+    if w == 0 || h == 0 {
+        return Err(MapError::ZeroSize {
+            what: what.to_owned(),
+        });
+    }
+    let side = w.max(h);
+    if side > MAX_SIDE {
+        return Err(MapError::TooLarge {
+            what: what.to_owned(),
+            side,
+        });
+    }
+    Ok(())
 }
 
-impl Map {
-    /// Checks that a `w`×`h` map is acceptable: neither side may be zero or exceed [`MAX_SIDE`].
-    ///
-    /// `what` names the map in the error, e.g. `height map "dem.png"` (see [`describe`]).
-    pub fn validate_size(w: u32, h: u32, what: &str) -> Result<(), MapError> {
-        if w == 0 || h == 0 {
-            return Err(MapError::ZeroSize {
-                what: what.to_owned(),
-            });
-        }
-        let side = w.max(h);
-        if side > MAX_SIDE {
-            return Err(MapError::TooLarge {
-                what: what.to_owned(),
-                side,
-            });
-        }
-        Ok(())
+/// Checks that a `w`×`h` map and its pyramid fit in the memory budget
+/// ([`crate::memory`]); the loaders call it once the header is known to be plausible,
+/// before they allocate the cells.
+pub fn validate_memory(w: u32, h: u32, what: &str) -> Result<(), MapError> {
+    if crate::memory::map_bytes(w, h).is_none_or(|n| n > crate::memory::budget()) {
+        return Err(MapError::TooMuchMemory {
+            what: what.to_owned(),
+            size: (w, h),
+        });
     }
-
-    /// Checks that a `w`×`h` map and its pyramid fit in the memory budget
-    /// ([`crate::memory`]); the loaders call it once the header is known to be plausible,
-    /// before they allocate the cells.
-    pub fn validate_memory(w: u32, h: u32, what: &str) -> Result<(), MapError> {
-        if crate::memory::map_bytes(w, h).is_none_or(|n| n > crate::memory::budget()) {
-            return Err(MapError::TooMuchMemory {
-                what: what.to_owned(),
-                size: (w, h),
-            });
-        }
-        Ok(())
-    }
-
-    /// Number of voxels (`width * height`).
-    pub fn len(&self) -> usize {
-        self.width as usize * self.height as usize
-    }
-
-    /// True if the map has no voxels (never the case for maps built by this module).
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Lowest and highest height in the map, in height units (`(0, 0)` for an empty map).
-    pub fn height_range(&self) -> (u16, u16) {
-        let min = self.heights.iter().copied().min().unwrap_or(0);
-        let max = self.heights.iter().copied().max().unwrap_or(0);
-        (min, max)
-    }
-}
-
-impl fmt::Debug for Map {
-    /// A one-line summary; the voxel data is far too large to print.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("Map")
-            .field("width", &self.width)
-            .field("height", &self.height)
-            .field("heights", &format_args!("[{} values]", self.heights.len()))
-            .field("colors", &format_args!("[{} values]", self.colors.len()))
-            .field("spacing_m", &self.spacing_m)
-            .field("height_scale_m", &self.height_scale_m)
-            .field("base_m", &self.base_m)
-            .field("source", &self.source)
-            .finish()
-    }
+    Ok(())
 }
 
 /// Names a map file for error messages: `describe("height map", "h.png")` is `height map "h.png"`.
@@ -348,18 +292,18 @@ mod tests {
     #[test]
     fn validate_size_limits() {
         let what = describe("height map", Path::new("h.png"));
-        assert!(Map::validate_size(1, 1, &what).is_ok());
-        assert!(Map::validate_size(MAX_SIDE, MAX_SIDE, &what).is_ok());
-        let e = Map::validate_size(0, 5, &what).unwrap_err();
+        assert!(validate_size(1, 1, &what).is_ok());
+        assert!(validate_size(MAX_SIDE, MAX_SIDE, &what).is_ok());
+        let e = validate_size(0, 5, &what).unwrap_err();
         assert_eq!(e.to_string(), "height map \"h.png\": zero size");
-        let e = Map::validate_size(5, 0, &what).unwrap_err();
+        let e = validate_size(5, 0, &what).unwrap_err();
         assert_eq!(e.to_string(), "height map \"h.png\": zero size");
-        let e = Map::validate_size(70_000, 10, &what).unwrap_err();
+        let e = validate_size(70_000, 10, &what).unwrap_err();
         assert_eq!(
             e.to_string(),
             "height map \"h.png\": side 70000 exceeds 65536"
         );
-        let e = Map::validate_size(10, MAX_SIDE + 1, &what).unwrap_err();
+        let e = validate_size(10, MAX_SIDE + 1, &what).unwrap_err();
         assert_eq!(
             e.to_string(),
             "height map \"h.png\": side 65537 exceeds 65536"

@@ -8,7 +8,7 @@ use image::codecs::png::PngDecoder;
 use image::{ColorType, DynamicImage, ImageDecoder, Limits};
 
 use super::input::Input;
-use super::{describe, tint::tint, Map, MapError};
+use super::{describe, tint::tint, validate_memory, validate_size, Map, MapError};
 
 /// The eight bytes every PNG file starts with.
 const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
@@ -25,7 +25,7 @@ const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
 /// `spacing_m` (metres per voxel) and `height_scale_m` (metres per height unit) must be finite
 /// and greater than zero; errors name them as `--spacing` and `--height-scale`.
 ///
-/// Sizes are checked (see [`Map::validate_size`]) from the PNG headers, before any pixel data
+/// Sizes are checked (see [`validate_size`]) from the PNG headers, before any pixel data
 /// is decoded. Every error is one line naming the offending file.
 pub fn load_png_pair(
     dem: &Path,
@@ -171,7 +171,7 @@ impl PngFile {
         }
         let be = |b: &[u8]| u32::from_be_bytes([b[0], b[1], b[2], b[3]]);
         let (width, height) = (be(&head[16..20]), be(&head[20..24]));
-        Map::validate_size(width, height, what)?;
+        validate_size(width, height, what)?;
         // Deflate expands at most 1032:1, and a row holds at least one filter byte and one bit
         // per pixel: a header that declares more than the file can hold is refused before the
         // decoder allocates the image (found by the `png` fuzz target).
@@ -182,7 +182,7 @@ impl PngFile {
                 detail: format!("declares {width}×{height} pixels, which {len} bytes cannot hold"),
             });
         }
-        Map::validate_memory(width, height, what)?;
+        validate_memory(width, height, what)?;
         reader.seek(SeekFrom::Start(0)).map_err(io_err)?;
         Ok(Self {
             what: what.to_owned(),

@@ -18,7 +18,7 @@ use tiff::{ColorType, TiffError, TiffFormatError};
 
 use super::grid::{Grid, Spacing};
 use super::input::Input;
-use super::{Map, MapError};
+use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "TIFF";
@@ -106,7 +106,7 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
     // Decoder::new reads the header and the first directory (tag arrays up to 1 MiB), no pixels.
     let mut dec = Decoder::new(input).map_err(err)?;
     let (width, height) = dec.dimensions().map_err(err)?;
-    Map::validate_size(width, height, what)?;
+    validate_size(width, height, what)?;
 
     // One band, of a supported sample type.
     let samples: u16 = dec
@@ -229,7 +229,7 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
         }
     }
 
-    Map::validate_memory(width, height, what)?;
+    validate_memory(width, height, what)?;
 
     // Georeferencing, read before the pixels (the tags are small).
     let spacing = pixel_spacing(&mut dec, height, what)?;

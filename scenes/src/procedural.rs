@@ -10,10 +10,11 @@
 //! Everything is integer or fixed-point arithmetic on top of a splitmix64 hash, so a seed gives
 //! the same map, bit for bit, on every platform.
 
+use footprint_core::terrain::MAX_SIDE;
 use footprint_core::Rgb;
 
-use super::tint::{hillshade_q8, lerp, shade};
-use super::{Map, MAX_SIDE};
+use crate::tint::{hillshade_q8, lerp, shade};
+use crate::Map;
 
 /// The side of the built-in map when none is given on the command line.
 pub const DEFAULT_SIZE: u32 = 1024;

@@ -23,10 +23,9 @@
 
 pub mod mesh;
 
-use anyhow::{Context, Result};
 use footprint_core::specular::raster::{self, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal, Phong};
-use footprint_core::Rgb;
+use footprint_core::{Error, Rgb};
 
 pub use mesh::{cone, cylinder, Tri, Vert};
 
@@ -38,8 +37,9 @@ pub const K_SPEC: f64 = 0.9;
 pub const BACKGROUND: Rgb = Rgb::new(16, 16, 24);
 
 /// One of the paper's scenes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum, serde::Serialize))]
+#[cfg_attr(feature = "cli", serde(rename_all = "lowercase"))]
 pub enum SceneName {
     /// Two very shiny cylinders, one slightly tilted (Plate 1).
     Plate1,
@@ -67,7 +67,8 @@ impl SceneName {
 }
 
 /// A shading mode of `footprint specular`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Mode {
     /// One highlight evaluation at the pixel's centre (Plate 2).
     None,
@@ -76,7 +77,7 @@ pub enum Mode {
     /// Aggressive clamping at 99 % of the power.
     Clamp99,
     /// Aggressive clamping at 99.9 % of the power (Plate 4).
-    #[value(name = "clamp99.9")]
+    #[cfg_attr(feature = "cli", value(name = "clamp99.9"))]
     Clamp999,
     /// Crow's method: supersample the highlight in detected pixels at the detection's rate.
     Crow,
@@ -128,6 +129,7 @@ impl std::fmt::Display for Mode {
 }
 
 /// A mode serializes as the CLI spells it (`"clamp99.9"`).
+#[cfg(feature = "cli")]
 impl serde::Serialize for Mode {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.serialize_str(self.as_str())
@@ -261,13 +263,8 @@ pub struct Frame {
 }
 
 /// The surface of every plate object.
-pub fn material(color: Rgb) -> Result<Material> {
-    Ok(Material::new(
-        color,
-        0.15,
-        0.7,
-        Phong::new(SHININESS, K_SPEC)?,
-    )?)
+pub fn material(color: Rgb) -> Result<Material, Error> {
+    Material::new(color, 0.15, 0.7, Phong::new(SHININESS, K_SPEC)?)
 }
 
 /// Renders `scene` turned by `angle_deg` about the view axis into a `size × size` image with
@@ -279,13 +276,13 @@ pub fn render(
     angle_deg: f64,
     mode: Mode,
     reference_grid: u8,
-) -> Result<Frame> {
+) -> Result<Frame, Error> {
     let n_px = (size * size) as usize;
     let mut color = vec![BACKGROUND; n_px];
     let mut depth = vec![u16::MAX; n_px];
     let mut flagged = vec![false; n_px];
     let mut covered = vec![false; n_px];
-    let mut target = Target::new(size, size, &mut color, &mut depth).context("image size")?;
+    let mut target = Target::new(size, size, &mut color, &mut depth)?;
     target.clear(BACKGROUND);
     let l = scene.light;
     let light = Light::new(Normal::new(l[0], l[1], l[2])?, Normal::new(0.0, 0.0, 1.0)?);
@@ -313,14 +310,14 @@ pub fn render(
             if tri.iter().all(|v| rot(v.n)[2] < 0.0) {
                 continue;
             }
-            let vertex = |vert: &Vert| -> Result<Vertex> {
+            let vertex = |vert: &Vert| -> Result<Vertex, Error> {
                 let (p, n) = (rot(vert.p), rot(vert.n));
-                Ok(Vertex::new(
+                Vertex::new(
                     (p[0] + 1.0) * half,
                     (1.0 - p[1]) * half,
                     ((2.0 - p[2]) / 4.0).clamp(0.0, 1.0),
                     Normal::new(n[0], n[1], n[2])?,
-                )?)
+                )
             };
             let tri = Triangle {
                 v: [vertex(&tri[0])?, vertex(&tri[1])?, vertex(&tri[2])?],

@@ -1,10 +1,9 @@
-//! The owned multiresolution pyramid that the host lends to `footprint_core::Terrain`, built
-//! by the core's one pyramid builder (`footprint_core::terrain::pyramid::build`).
+//! The owned multiresolution pyramid that a `std` program lends to `footprint_core::Terrain`,
+//! built by the core's one pyramid builder (`footprint_core::terrain::pyramid::build`).
 
-use anyhow::{Context, Result};
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::{Level, Scale, Terrain};
-use footprint_core::Rgb;
+use footprint_core::{Error, Rgb};
 
 use crate::map::Map;
 
@@ -22,9 +21,8 @@ impl Pyramid {
     /// Builds all levels of `map` down to 1×1 with `filter` (colours are 2×2 box averages;
     /// see `footprint_core::terrain::pyramid`). The pyramid keeps the map as its level 0
     /// ([`Pyramid::map`]).
-    pub fn build(map: Map, filter: HeightFilter) -> Result<Self> {
-        let scale = Scale::new(map.spacing_m, map.height_scale_m)
-            .with_context(|| format!("map {}", map.source))?;
+    pub fn build(map: Map, filter: HeightFilter) -> Result<Self, Error> {
+        let scale = Scale::new(map.spacing_m, map.height_scale_m)?;
         let level0 = Level::new(map.width, map.height, &map.heights, &map.colors)?;
         let cells = pyramid::cells(map.width, map.height);
         let mut heights = vec![0; 3 * cells];
@@ -54,15 +52,19 @@ impl Pyramid {
     }
 
     /// The terrain over all levels, or over level 0 alone when `lod` is false.
-    pub fn terrain(&self, lod: bool) -> Result<Terrain<'_>> {
+    pub fn terrain(&self, lod: bool) -> Result<Terrain<'_>, Error> {
         let m = &self.map;
         let level0 = Level::new(m.width, m.height, &m.heights, &m.colors)?;
-        Ok(pyramid::assemble(
-            level0,
-            self.scale,
-            &self.heights,
-            &self.colors,
-            lod,
-        )?)
+        pyramid::assemble(level0, self.scale, &self.heights, &self.colors, lod)
+    }
+}
+
+impl std::fmt::Debug for Pyramid {
+    /// The map's summary and the number of levels; the cells are far too many to print.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Pyramid")
+            .field("map", &self.map)
+            .field("levels", &self.len())
+            .finish_non_exhaustive()
     }
 }

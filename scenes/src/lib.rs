@@ -1,0 +1,35 @@
+#![forbid(unsafe_code)]
+#![deny(
+    missing_docs,
+    missing_debug_implementations,
+    trivial_casts,
+    trivial_numeric_casts,
+    unused_qualifications
+)]
+//! # footprint-scenes
+//!
+//! What footprint looks at, in `std` Rust over [`footprint_core`] alone, so that both the
+//! host CLI and the firmware's build script (which bakes a scene into flash) can build it
+//! without the host's dependencies:
+//!
+//! * [`Map`]: an owned level 0 (heights, colours, scale, origin); [`Pyramid`]: the map and its
+//!   levels, built by the core's one pyramid builder;
+//! * [`procedural`]: the built-in terrain, and [`tint`], the colours of a bare height field;
+//! * [`view`]: the paper's camera (Sect. 7, Table 1: fit-first-hit, the default far distance)
+//!   and the owned camera tables of a frame;
+//! * [`plates`]: the scenes of Amanatides' plates (shiny cylinders and cones) and their
+//!   renderer over the core's tiler;
+//! * [`firmware`]: the terrain scene and the specular plate the firmware bakes.
+//!
+//! The feature `cli` derives `clap` and `serde` traits for the host's command line.
+
+pub mod firmware;
+pub mod map;
+pub mod plates;
+pub mod procedural;
+pub mod pyramid;
+pub mod tint;
+pub mod view;
+
+pub use map::Map;
+pub use pyramid::Pyramid;
