@@ -2,16 +2,17 @@
 //! and report writers. The binary (`src/main.rs`) only parses arguments and calls in here.
 //!
 //! The built-in terrain, the owned pyramid and the specular plates come from the
-//! `footprint-scenes` crate (which the firmware's build script shares); [`pyramid`] and
-//! [`scene`] re-export them under the names the host has always used.
+//! `footprint-scenes` crate (which the firmware's build script shares), and the map files and
+//! the memory budget from `footprint-maps` (which the browser page shares); [`pyramid`],
+//! [`scene`], [`map`] and [`memory`] re-export them under the names the host has always used.
 
 pub mod args;
 pub mod camera;
 pub mod cli;
 pub mod commands;
 pub mod experiment;
-pub mod map;
-pub mod memory;
+pub use footprint_maps as map;
+pub use footprint_maps::memory;
 pub mod output;
 pub use footprint_scenes::pyramid;
 pub mod render;

@@ -1,7 +1,22 @@
-//! Terrain maps: loading height/colour PNG pairs and generating the built-in procedural terrain.
+#![forbid(unsafe_code)]
+#![deny(
+    missing_docs,
+    missing_debug_implementations,
+    trivial_casts,
+    trivial_numeric_casts,
+    unused_qualifications
+)]
+//! # footprint-maps
+//!
+//! Terrain map files: reading and writing height/colour PNG pairs, SRTM `.hgt` tiles, ESRI
+//! ASCII grids and GeoTIFFs, with the limits that keep a bad file from crashing anything
+//! ([`memory`]: the memory budget every reader checks a header against before it allocates).
+//! The built-in procedural terrain comes from `footprint-scenes`, re-exported here.
 //!
 //! Everything here produces a [`Map`]: an owned, row-major height field plus a colour per voxel,
-//! ready to lend to `footprint_core::terrain::Level`.
+//! ready to lend to `footprint_core::terrain::Level`. The crate has no command-line or
+//! terminal dependencies, so the `footprint` CLI and the browser page (`web/`, WebAssembly)
+//! read maps with the same code and the same one-line errors.
 //!
 //! Real elevation data (SRTM `.hgt`, ESRI ASCII grids, GeoTIFF) is read by [`load`]: one reader
 //! per format ([`hgt`], [`asc`], [`tiff`]) gives a [`Grid`] of metres, whose voids are filled
@@ -16,6 +31,7 @@ pub mod format;
 pub mod grid;
 pub mod hgt;
 pub mod input;
+pub mod memory;
 pub mod png;
 pub mod tiff;
 pub mod voids;
@@ -57,7 +73,7 @@ pub fn validate_size(w: u32, h: u32, what: &str) -> Result<(), MapError> {
 /// ([`crate::memory`]); the loaders call it once the header is known to be plausible,
 /// before they allocate the cells.
 pub fn validate_memory(w: u32, h: u32, what: &str) -> Result<(), MapError> {
-    if crate::memory::map_bytes(w, h).is_none_or(|n| n > crate::memory::budget()) {
+    if memory::map_bytes(w, h).is_none_or(|n| n > memory::budget()) {
         return Err(MapError::TooMuchMemory {
             what: what.to_owned(),
             size: (w, h),
@@ -225,15 +241,15 @@ impl fmt::Display for MapError {
                 "{what}: {}×{} cells need {}, more than the memory budget of {} (--max-memory)",
                 size.0,
                 size.1,
-                crate::memory::show(
-                    crate::memory::map_bytes(size.0, size.1).unwrap_or(u64::MAX)
+                memory::show(
+                    memory::map_bytes(size.0, size.1).unwrap_or(u64::MAX)
                 ),
-                crate::memory::show(crate::memory::budget())
+                memory::show(memory::budget())
             ),
             MapError::StreamTooLong { what } => write!(
                 f,
                 "{what}: the stream is longer than the memory budget of {} (--max-memory)",
-                crate::memory::show(crate::memory::budget())
+                memory::show(memory::budget())
             ),
             MapError::SizeMismatch {
                 color,

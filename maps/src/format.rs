@@ -22,7 +22,8 @@ pub const DEFAULT_SPACING_M: f64 = 30.0;
 pub const DEFAULT_PNG_HEIGHT_SCALE_M: f64 = 0.1;
 
 /// A height map format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
     /// 8- or 16-bit greyscale PNG (`.png`): height units, with `--spacing` and `--height-scale`.
     Png,

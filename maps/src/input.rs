@@ -30,6 +30,17 @@ pub struct Input {
     source: Source,
 }
 
+impl std::fmt::Debug for Input {
+    /// The path, the description and the length; not the bytes.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Input")
+            .field("path", &self.path)
+            .field("what", &self.what)
+            .field("len", &self.len)
+            .finish_non_exhaustive()
+    }
+}
+
 /// The bytes of an [`Input`].
 enum Source {
     /// A regular file, read in place.
