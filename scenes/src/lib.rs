@@ -17,6 +17,8 @@
 //! * [`procedural`]: the built-in terrain, and [`tint`], the colours of a bare height field;
 //! * [`view`]: the paper's camera (Sect. 7, Table 1: fit-first-hit, the default far distance)
 //!   and the owned camera tables of a frame;
+//! * [`render`]: the sampling modes by name, one frame on one thread, and the counted frame with
+//!   the exact visibility pass;
 //! * [`plates`]: the scenes of Amanatides' plates (shiny cylinders and cones) and their
 //!   renderer over the core's tiler;
 //! * [`firmware`]: the terrain scene and the specular plate the firmware bakes.
@@ -28,6 +30,7 @@ pub mod map;
 pub mod plates;
 pub mod procedural;
 pub mod pyramid;
+pub mod render;
 pub mod tint;
 pub mod view;
 
