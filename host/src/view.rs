@@ -118,6 +118,7 @@ impl MapArgs {
                         color: self.color.as_deref(),
                         spacing_m: self.spacing,
                         height_scale_m: self.height_scale,
+                        ..map::LoadOptions::default()
                     },
                 )?;
                 if loaded.voids_filled > 0 {

@@ -10,7 +10,7 @@ use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 
 use super::grid::{Grid, Spacing};
-use super::input::{is_stdin, Input};
+use super::input::{is_stdin, InMemory, Input};
 use super::png::{self, load_color_map};
 use super::{asc, describe, hgt, tiff, tint::tint, Map, MapError};
 
@@ -122,6 +122,9 @@ pub struct LoadOptions<'a> {
     /// `--height-scale`: metres per height unit. `None`: PNG [`DEFAULT_PNG_HEIGHT_SCALE_M`];
     /// other formats, chosen to fit the heights (see [`Grid::into_heights`]).
     pub height_scale_m: Option<f64>,
+    /// Files already in memory (the height map, the colour map, or both), read from there
+    /// instead of the file system: the browser page's dropped files.
+    pub in_memory: InMemory<'a>,
 }
 
 /// A loaded map and what was learnt on the way.
@@ -165,7 +168,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
             detail: "the height map and --color cannot both be standard input (-)".to_owned(),
         });
     }
-    let input = Input::open(path, &what)?;
+    let input = Input::open_in(path, &what, opts.in_memory)?;
     let format = Format::resolve(opts.format, &input)?;
 
     let (grid, detail, file_spacing) = match format {
@@ -178,7 +181,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
                 &spacing_note(opts.spacing_m, "the default for PNG"),
                 scale,
             )?;
-            let map = png::load_pair(input, opts.color, spacing, scale)?;
+            let map = png::load_pair(input, opts.color, opts.in_memory, spacing, scale)?;
             let (lo, hi) = map.height_range();
             let range_m = (f64::from(lo) * scale, f64::from(hi) * scale);
             return Ok(Loaded {
@@ -276,7 +279,7 @@ fn from_grid(
     let h = grid.into_heights(what, opts.height_scale_m)?;
     check_scale(what, spacing.spacing_m, &spacing.note, h.height_scale_m)?;
     let colors = match opts.color {
-        Some(c) => load_color_map(c, width, height, what)?,
+        Some(c) => load_color_map(c, opts.in_memory, width, height, what)?,
         None => tint(
             width,
             height,

@@ -54,7 +54,39 @@ pub fn is_stdin(path: &Path) -> bool {
     path.as_os_str() == "-"
 }
 
+/// Files already in memory, by path: a path found here is read from its bytes, not from the
+/// file system (the browser page's dropped files; tests).
+pub type InMemory<'a> = &'a [(&'a Path, &'a [u8])];
+
 impl Input {
+    /// Opens `path`: from `in_memory` if it is there, else as [`Input::open`] does.
+    pub fn open_in(path: &Path, what: &str, in_memory: InMemory<'_>) -> Result<Self, MapError> {
+        match in_memory.iter().find(|(p, _)| *p == path) {
+            Some((_, bytes)) => Self::from_bytes(path, what, bytes.to_vec()),
+            None => Self::open(path, what),
+        }
+    }
+
+    /// An input over `bytes` that came from `path`; `what` names it in errors. Refused if it
+    /// is longer than the memory budget, as a stream would be.
+    pub fn from_bytes(path: &Path, what: &str, bytes: Vec<u8>) -> Result<Self, MapError> {
+        if bytes.len() as u64 > crate::memory::budget() {
+            return Err(MapError::StreamTooLong {
+                what: what.to_owned(),
+            });
+        }
+        let len = bytes.len() as u64;
+        let mut input = Self {
+            path: path.to_owned(),
+            what: what.to_owned(),
+            len,
+            head: Vec::new(),
+            source: Source::Memory(Cursor::new(bytes)),
+        };
+        input.head = input.peek(HEAD).map_err(|e| input.io_error(e))?;
+        Ok(input)
+    }
+
     /// Opens `path` (`-`: standard input); `what` names it in errors.
     pub fn open(path: &Path, what: &str) -> Result<Self, MapError> {
         let io_err = |error: io::Error| MapError::Io {

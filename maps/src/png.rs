@@ -7,7 +7,7 @@ use footprint_core::Rgb;
 use image::codecs::png::PngDecoder;
 use image::{ColorType, DynamicImage, ImageDecoder, Limits};
 
-use super::input::Input;
+use super::input::{InMemory, Input};
 use super::{describe, tint::tint, validate_memory, validate_size, Map, MapError};
 
 /// The eight bytes every PNG file starts with.
@@ -36,15 +36,18 @@ pub fn load_png_pair(
     load_pair(
         Input::open(dem, &describe("height map", dem))?,
         color,
+        &[],
         spacing_m,
         height_scale_m,
     )
 }
 
-/// [`load_png_pair`] on a height map already opened (`dem`).
+/// [`load_png_pair`] on a height map already opened (`dem`), the colour map read from
+/// `in_memory` if it is there.
 pub fn load_pair(
     dem: Input,
     color: Option<&Path>,
+    in_memory: InMemory<'_>,
     spacing_m: f64,
     height_scale_m: f64,
 ) -> Result<Map, MapError> {
@@ -56,7 +59,7 @@ pub fn load_pair(
     let dem_png = PngFile::open(dem)?;
     let (width, height) = (dem_png.width, dem_png.height);
     let color_png = match color {
-        Some(path) => Some(open_color(path, width, height, &dem_what)?),
+        Some(path) => Some(open_color(path, in_memory, width, height, &dem_what)?),
         None => None,
     };
 
@@ -87,18 +90,25 @@ pub fn load_pair(
 /// header before any pixel data is decoded.
 pub fn load_color_map(
     path: &Path,
+    in_memory: InMemory<'_>,
     width: u32,
     height: u32,
     heights: &str,
 ) -> Result<Vec<Rgb>, MapError> {
-    open_color(path, width, height, heights)?.decode_colors()
+    open_color(path, in_memory, width, height, heights)?.decode_colors()
 }
 
 /// Opens colour map `path` and checks from its header that it is `width`×`height`, the size
 /// of the height map described by `heights`.
-fn open_color(path: &Path, width: u32, height: u32, heights: &str) -> Result<PngFile, MapError> {
+fn open_color(
+    path: &Path,
+    in_memory: InMemory<'_>,
+    width: u32,
+    height: u32,
+    heights: &str,
+) -> Result<PngFile, MapError> {
     let what = describe("colour map", path);
-    let png = PngFile::open(Input::open(path, &what)?)?;
+    let png = PngFile::open(Input::open_in(path, &what, in_memory)?)?;
     if (png.width, png.height) != (width, height) {
         return Err(MapError::SizeMismatch {
             color: what,

@@ -19,6 +19,7 @@
 //!   and the owned camera tables of a frame;
 //! * [`render`]: the sampling modes by name, one frame on one thread, and the counted frame with
 //!   the exact visibility pass;
+//! * [`flight`]: Sect. 5's flight and Table 6's flicker bins;
 //! * [`plates`]: the scenes of Amanatides' plates (shiny cylinders and cones) and their
 //!   renderer over the core's tiler;
 //! * [`firmware`]: the terrain scene and the specular plate the firmware bakes.
@@ -26,6 +27,7 @@
 //! The feature `cli` derives `clap` and `serde` traits for the host's command line.
 
 pub mod firmware;
+pub mod flight;
 pub mod map;
 pub mod plates;
 pub mod procedural;

@@ -53,6 +53,7 @@ impl ReadArgs {
                 color: None,
                 spacing_m: self.spacing,
                 height_scale_m: self.height_scale,
+                ..LoadOptions::default()
             },
         )?)
     }

@@ -4,64 +4,17 @@
 
 use anyhow::{bail, Result};
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
-use footprint_core::trig::sin_cos_deg;
 use footprint_core::Rgb;
 use rayon::prelude::*;
-use serde::ser::SerializeMap;
-use serde::{Serialize, Serializer};
+use serde::Serialize;
+
+pub use footprint_scenes::flight::{self, bin, luminance, Histogram, BINS};
 
 use super::paper::paper_camera;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column, render_with, Mode, Tables};
 use crate::view::Size;
-
-/// The bins of Table 6, by the change in 8-bit luminance.
-pub const BINS: [&str; 8] = ["0", "1", "2", "3", "4", "5", "6-60", ">60"];
-
-/// The bin of a change of `d` levels.
-pub fn bin(d: u8) -> usize {
-    match d {
-        0..=5 => usize::from(d),
-        6..=60 => 6,
-        _ => 7,
-    }
-}
-
-/// 8-bit luminance, `(77 R + 150 G + 29 B + 128) >> 8` (Rec. 601 weights).
-pub fn luminance(p: Rgb) -> u8 {
-    ((77 * u32::from(p.r) + 150 * u32::from(p.g) + 29 * u32::from(p.b) + 128) >> 8) as u8
-}
-
-/// Counts of pixel changes per bin of [`BINS`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Histogram(pub [u64; 8]);
-
-impl Histogram {
-    /// Adds the changes between two equally long luminance runs.
-    pub fn add(&mut self, before: &[u8], after: &[u8]) {
-        for (a, b) in before.iter().zip(after) {
-            self.0[bin(a.abs_diff(*b))] += 1;
-        }
-    }
-
-    /// The count of bin `name` (one of [`BINS`]).
-    pub fn get(&self, name: &str) -> u64 {
-        BINS.iter()
-            .position(|b| *b == name)
-            .map_or(0, |i| self.0[i])
-    }
-}
-
-impl Serialize for Histogram {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(Some(BINS.len()))?;
-        for (name, count) in BINS.iter().zip(self.0) {
-            m.serialize_entry(name, &count)?;
-        }
-        m.end()
-    }
-}
 
 /// What to fly.
 #[derive(Clone, Debug)]
@@ -141,13 +94,7 @@ pub struct Fly {
 
 /// The camera of frame `t`: the start moved `t·step` metres along the heading.
 fn camera_at(start: &CameraParams, t: usize, step: f64) -> Result<Camera> {
-    let (s, c) = sin_cos_deg(start.heading_deg);
-    let d = t as f64 * step;
-    Ok(Camera::new(CameraParams {
-        x_m: start.x_m + d * s,
-        y_m: start.y_m - d * c,
-        ..*start
-    })?)
+    Ok(Camera::new(flight::moved(start, t, step))?)
 }
 
 /// Flies `spec` over `map`, rendering frames on all cores; calls `progress` once per frame.
