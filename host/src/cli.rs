@@ -47,6 +47,9 @@ pub enum Command {
     Map(commands::MapCommandArgs),
     /// Print the lines the firmware (firmware/) prints, rendered on the host, for comparison.
     FirmwareReference(commands::FirmwareReferenceArgs),
+    /// Fly the terrain in the browser: serve the page (two modes side by side, live counters
+    /// and flicker meter) on 127.0.0.1.
+    Serve(commands::ServeArgs),
 }
 
 /// A closed stdout (`footprint … | head`) ends the run quietly with the status a shell gives a
@@ -144,6 +147,7 @@ pub fn main() -> ExitCode {
         Command::Report(args) => commands::report(args),
         Command::Map(args) => commands::map(args),
         Command::FirmwareReference(args) => commands::firmware_reference(args),
+        Command::Serve(args) => commands::serve(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -7,6 +7,7 @@ pub mod inspect;
 pub mod map;
 pub mod render;
 pub mod report;
+pub mod serve;
 pub mod specular;
 pub mod table;
 
@@ -17,6 +18,7 @@ pub use inspect::{inspect, InspectArgs};
 pub use map::{map, MapCommandArgs};
 pub use render::{render, RenderArgs};
 pub use report::{report, ReportArgs};
+pub use serve::{serve, ServeArgs};
 pub use specular::{specular, SpecularArgs};
 pub use table::{table, TableArgs};
 

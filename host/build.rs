@@ -1,0 +1,96 @@
+//! Builds the browser page's WebAssembly (`web/`, `footprint-web` for `wasm32-unknown-unknown`)
+//! into `$OUT_DIR/footprint_web.wasm`, which `footprint serve` embeds.
+//!
+//! A nested `cargo build` in its own target folder (under `$OUT_DIR`), with the workspace's
+//! lock file (`--locked`) and none of the outer build's flags (sanitizers, clippy's wrapper).
+//! If the target is not installed (`rustup target add wasm32-unknown-unknown`) or the build
+//! fails, the host still builds: the file is left empty, a warning says why, and `serve`
+//! refuses to start with the same advice. Set `FOOTPRINT_NO_WASM=1` to skip it.
+
+use std::env;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn main() {
+    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("host/ is inside the workspace")
+        .to_owned();
+    for dir in [
+        "web/src",
+        "web/Cargo.toml",
+        "core/src",
+        "scenes/src",
+        "maps/src",
+        "Cargo.lock",
+    ] {
+        println!("cargo:rerun-if-changed={}", root.join(dir).display());
+    }
+    println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-env-changed=FOOTPRINT_NO_WASM");
+    let wasm = out.join("footprint_web.wasm");
+    let built = if env::var_os("FOOTPRINT_NO_WASM").is_some() {
+        Err("FOOTPRINT_NO_WASM is set".to_owned())
+    } else {
+        build(&root, &out.join("wasm-target"))
+    };
+    match built {
+        Ok(path) => {
+            fs::copy(&path, &wasm).expect("copy the page's WebAssembly into OUT_DIR");
+        }
+        Err(why) => {
+            fs::write(&wasm, b"").expect("write OUT_DIR/footprint_web.wasm");
+            println!(
+                "cargo:warning=footprint serve will not work: the page's WebAssembly was not \
+                 built ({why}); run `rustup target add wasm32-unknown-unknown` and build again"
+            );
+        }
+    }
+}
+
+/// Runs the nested build; the path of the `.wasm`, or why it failed.
+fn build(root: &Path, target_dir: &Path) -> Result<PathBuf, String> {
+    let cargo = env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let mut cmd = Command::new(cargo);
+    cmd.current_dir(root)
+        .args([
+            "build",
+            "--release",
+            "--locked",
+            "--quiet",
+            "-p",
+            "footprint-web",
+            "--target",
+            "wasm32-unknown-unknown",
+            "--target-dir",
+        ])
+        .arg(target_dir)
+        // Not the outer build's flags: fuzzing's sanitizers, clippy's driver, a target.
+        .env_remove("RUSTFLAGS")
+        .env_remove("CARGO_ENCODED_RUSTFLAGS")
+        .env_remove("CARGO_BUILD_RUSTFLAGS")
+        .env_remove("RUSTC_WRAPPER")
+        .env_remove("RUSTC_WORKSPACE_WRAPPER")
+        .env_remove("CARGO_BUILD_TARGET")
+        .env_remove("CARGO_TARGET_DIR")
+        // The page loads fastest without debug info.
+        .env("CARGO_PROFILE_RELEASE_DEBUG", "0")
+        .env("CARGO_PROFILE_RELEASE_STRIP", "true");
+    let output = cmd.output().map_err(|e| format!("cannot run cargo: {e}"))?;
+    if !output.status.success() {
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let first = stderr
+            .lines()
+            .find(|l| l.starts_with("error"))
+            .unwrap_or("cargo build failed");
+        return Err(first.to_owned());
+    }
+    let path = target_dir.join("wasm32-unknown-unknown/release/footprint_web.wasm");
+    if path.is_file() {
+        Ok(path)
+    } else {
+        Err(format!("{} is missing", path.display()))
+    }
+}

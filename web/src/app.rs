@@ -1,0 +1,368 @@
+//! The page's state: one map, one camera, two halves (see the crate documentation).
+
+use std::path::Path;
+
+use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::cost::{NoCost, Tally};
+use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::Rgb;
+use footprint_maps::{memory, LoadOptions};
+use footprint_scenes::flight::{self, bin, luminance};
+use footprint_scenes::render::{count, render_with, Mode};
+use footprint_scenes::view::{self, Tables};
+use footprint_scenes::{procedural, Map, Pyramid};
+
+/// The memory budget in the browser: a 32-bit WebAssembly memory holds at most 4 GiB, and a
+/// tab gets less. A map and its pyramid above it are refused with the CLI's one-line error.
+pub const BUDGET_BYTES: u64 = 1 << 30;
+
+/// The built-in terrain's seed and side when the page opens (the CLI's defaults).
+pub const DEFAULT_SEED: u64 = 1;
+/// The built-in terrain's side, voxels.
+pub const DEFAULT_SIZE: u32 = procedural::DEFAULT_SIZE;
+
+/// The counters of one frame (Sect. 6), from the counted render with the visibility pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Counters {
+    /// Steps from the first hit (`L`).
+    pub l: u64,
+    /// Terrain pixels (`P`).
+    pub p: u64,
+    /// Distinct voxels sampled (`M`).
+    pub m: u64,
+    /// Visible voxels (`V`, the exact pass).
+    pub v: u64,
+    /// Hits.
+    pub hits: u64,
+    /// Coverage `M/V`.
+    pub coverage: f64,
+    /// Sampled voxels that are hidden.
+    pub hidden: u64,
+    /// Visible voxels not sampled.
+    pub missed: u64,
+}
+
+impl Counters {
+    /// The counters of a frame's tally and its hidden and missed voxels.
+    fn new(t: &Tally, hidden: u64, missed: u64) -> Self {
+        Self {
+            l: t.l,
+            p: t.p,
+            m: t.m,
+            v: t.v,
+            hits: t.hits,
+            coverage: t.coverage(),
+            hidden,
+            missed,
+        }
+    }
+}
+
+/// One half of the canvas: a mode, its last frame, and how much it flickered.
+#[derive(Debug)]
+pub struct Half {
+    mode: Mode,
+    /// The last frame, RGBA row-major from the top (what a canvas `ImageData` takes).
+    rgba: Vec<u8>,
+    /// The last frame's 8-bit luminance per pixel, for the flicker meter.
+    luma: Vec<u8>,
+    /// Whether `luma` holds a frame of the current size.
+    has_previous: bool,
+    /// The FNV-1a-64 of the last frame's RGB bytes (the firmware's and the CLI's hash).
+    hash: u64,
+    /// Mean |ΔY| against the frame before, and the pixels that changed by 6–60 levels.
+    mean_dy: f64,
+    changed_6_60: u64,
+    counters: Counters,
+}
+
+impl Half {
+    fn new(mode: Mode) -> Self {
+        Self {
+            mode,
+            rgba: Vec::new(),
+            luma: Vec::new(),
+            has_previous: false,
+            hash: 0,
+            mean_dy: 0.0,
+            changed_6_60: 0,
+            counters: Counters::default(),
+        }
+    }
+
+    /// The mode.
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+    /// The last frame, RGBA.
+    pub fn rgba(&self) -> &[u8] {
+        &self.rgba
+    }
+    /// The FNV-1a-64 of the last frame's RGB bytes, row-major from the top.
+    pub fn hash(&self) -> u64 {
+        self.hash
+    }
+    /// Mean |ΔY| (8-bit luminance) between the last two frames; 0 after the first.
+    pub fn mean_dy(&self) -> f64 {
+        self.mean_dy
+    }
+    /// Pixels whose luminance changed by 6–60 levels between the last two frames (Table 6).
+    pub fn changed_6_60(&self) -> u64 {
+        self.changed_6_60
+    }
+    /// The counters of the last [`App::count`].
+    pub fn counters(&self) -> Counters {
+        self.counters
+    }
+
+    /// Takes a new frame: RGBA, hash and the flicker against the frame before.
+    fn take(&mut self, image: &[Rgb]) {
+        self.rgba.clear();
+        self.rgba
+            .extend(image.iter().flat_map(|c| [c.r, c.g, c.b, 255]));
+        self.hash = fnv1a64(image.iter().flat_map(|c| [c.r, c.g, c.b]));
+        let luma: Vec<u8> = image.iter().map(|&c| luminance(c)).collect();
+        if self.has_previous && self.luma.len() == luma.len() && !luma.is_empty() {
+            let mut sum = 0u64;
+            let mut changed = 0u64;
+            for (a, b) in self.luma.iter().zip(&luma) {
+                let d = a.abs_diff(*b);
+                sum += u64::from(d);
+                changed += u64::from(bin(d) == 6);
+            }
+            self.mean_dy = sum as f64 / luma.len() as f64;
+            self.changed_6_60 = changed;
+        } else {
+            self.mean_dy = 0.0;
+            self.changed_6_60 = 0;
+        }
+        self.luma = luma;
+        self.has_previous = true;
+    }
+}
+
+/// The 64-bit FNV-1a hash of `bytes` (as `footprint firmware-reference` prints it).
+pub fn fnv1a64(bytes: impl IntoIterator<Item = u8>) -> u64 {
+    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    bytes
+        .into_iter()
+        .fold(OFFSET, |h, b| (h ^ u64::from(b)).wrapping_mul(PRIME))
+}
+
+/// The page's state.
+#[derive(Debug)]
+pub struct App {
+    pyramid: Pyramid,
+    params: CameraParams,
+    options: Options,
+    halves: [Half; 2],
+}
+
+impl App {
+    /// The page as it opens: the built-in terrain ([`DEFAULT_SEED`], [`DEFAULT_SIZE`]) seen by
+    /// the paper's camera at pitch 20°, 400×400 (the CLI's `render` defaults), PS left and AS
+    /// right.
+    pub fn new() -> Result<Self, String> {
+        memory::set_budget(BUDGET_BYTES);
+        let pyramid = build(procedural::procedural(DEFAULT_SEED, DEFAULT_SIZE))?;
+        let options = Options::default();
+        let camera = view::paper_camera(&pyramid, 20.0, 400, 400, options)
+            .map_err(|e| format!("camera: {e}"))?;
+        Ok(Self {
+            pyramid,
+            params: *camera.params(),
+            options,
+            halves: [Half::new(Mode::Ps), Half::new(Mode::As)],
+        })
+    }
+
+    /// The map.
+    pub fn map(&self) -> &Map {
+        self.pyramid.map()
+    }
+
+    /// The camera.
+    pub fn params(&self) -> &CameraParams {
+        &self.params
+    }
+
+    /// Half `i` (0 left, 1 right), if there is one.
+    pub fn half(&self, i: usize) -> Option<&Half> {
+        self.halves.get(i)
+    }
+
+    /// Replaces the map by the built-in terrain of `seed` and `size`, seen by the paper's camera
+    /// at the current pitch and size. On error the map stays as it was.
+    pub fn load_builtin(&mut self, seed: u64, size: u32) -> Result<(), String> {
+        if !(procedural::MIN_SIZE..=footprint_core::terrain::MAX_SIDE).contains(&size) {
+            return Err(format!(
+                "--terrain-size {size}: must be {}..={}",
+                procedural::MIN_SIZE,
+                footprint_core::terrain::MAX_SIDE
+            ));
+        }
+        memory::check(
+            memory::map_bytes(size, size),
+            &format!("--terrain-size {size}"),
+            "the map and its pyramid",
+        )
+        .map_err(|e| e.to_string())?;
+        self.replace(build(procedural::procedural(seed, size))?)
+    }
+
+    /// Replaces the map by the files the user dropped: a height map (`.png`, `.asc`, `.hgt`,
+    /// `.tif`) named `name`, and optionally a colour PNG of the same size, read by the CLI's
+    /// readers with the CLI's limits and one-line errors. On error the map stays as it was.
+    pub fn load_files(
+        &mut self,
+        name: &str,
+        bytes: &[u8],
+        color: Option<(&str, &[u8])>,
+    ) -> Result<(), String> {
+        let path = Path::new(name);
+        let color_path = color.map(|(n, _)| Path::new(n));
+        let mut files = vec![(path, bytes)];
+        if let Some((n, b)) = color {
+            files.push((Path::new(n), b));
+        }
+        let loaded = footprint_maps::load(
+            path,
+            &LoadOptions {
+                color: color_path,
+                in_memory: &files,
+                ..LoadOptions::default()
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        self.replace(build(loaded.map)?)
+    }
+
+    /// Puts the pyramid in place with the paper's camera at the current pitch and size.
+    fn replace(&mut self, pyramid: Pyramid) -> Result<(), String> {
+        let camera = view::paper_camera(
+            &pyramid,
+            self.params.pitch_deg,
+            self.params.width,
+            self.params.height,
+            self.options,
+        )
+        .map_err(|e| format!("camera: {e}"))?;
+        self.pyramid = pyramid;
+        self.params = *camera.params();
+        self.forget_frames();
+        Ok(())
+    }
+
+    /// The paper's camera (Table 1: the map's centre, heading north, FOV 10°, the eye fitted)
+    /// at `pitch_deg`, `width`×`height` pixels. On error the camera stays as it was.
+    pub fn paper_view(&mut self, pitch_deg: f64, width: u32, height: u32) -> Result<(), String> {
+        let camera = view::paper_camera(&self.pyramid, pitch_deg, width, height, self.options)
+            .map_err(|e| format!("camera: {e}"))?;
+        if (width, height) != (self.params.width, self.params.height) {
+            self.forget_frames();
+        }
+        self.params = *camera.params();
+        Ok(())
+    }
+
+    /// Moves the camera to `params` (the size and the far distance stay), if the core takes
+    /// it; otherwise the camera stays as it was.
+    pub fn set_view(&mut self, params: CameraParams) -> Result<(), String> {
+        let params = CameraParams {
+            width: self.params.width,
+            height: self.params.height,
+            far_m: self.params.far_m,
+            ..params
+        };
+        self.check(params)?;
+        self.params = params;
+        Ok(())
+    }
+
+    /// Flies `metres` along the heading (Sect. 5's flight steps 0.5 m a frame).
+    pub fn forward(&mut self, metres: f64) -> Result<(), String> {
+        self.set_view(flight::moved(&self.params, 1, metres))
+    }
+
+    /// Sets the mode of half `half` from its CLI name (`ps`, `as`, `ss8`, `classic`, …).
+    pub fn set_mode(&mut self, half: usize, name: &str) -> Result<(), String> {
+        let mode: Mode = name.parse().map_err(|e: String| format!("--mode: {e}"))?;
+        let h = self
+            .halves
+            .get_mut(half)
+            .ok_or_else(|| format!("no half {half}"))?;
+        if h.mode != mode {
+            *h = Half::new(mode);
+        }
+        Ok(())
+    }
+
+    /// Renders half `half` (no counting: the time is the render's) and updates its flicker
+    /// meter.
+    pub fn render(&mut self, half: usize) -> Result<(), String> {
+        let camera = Camera::new(self.params).map_err(|e| format!("camera: {e}"))?;
+        let terrain = self
+            .pyramid
+            .terrain(self.options.lod)
+            .map_err(|e| e.to_string())?;
+        let mut tables = Tables::new(&camera);
+        let frame = tables
+            .frame(&camera, &terrain, self.options)
+            .map_err(|e| format!("camera: {e}"))?;
+        let h = self
+            .halves
+            .get_mut(half)
+            .ok_or_else(|| format!("no half {half}"))?;
+        let rendered =
+            render_with(&frame, &terrain, h.mode, &mut NoCost).map_err(|e| e.to_string())?;
+        h.take(&rendered.image);
+        Ok(())
+    }
+
+    /// Counts half `half`'s frame: every counter, and `V` from the exact visibility pass.
+    pub fn count(&mut self, half: usize) -> Result<Counters, String> {
+        let camera = Camera::new(self.params).map_err(|e| format!("camera: {e}"))?;
+        let terrain = self
+            .pyramid
+            .terrain(self.options.lod)
+            .map_err(|e| e.to_string())?;
+        let mut tables = Tables::new(&camera);
+        let frame = tables
+            .frame(&camera, &terrain, self.options)
+            .map_err(|e| format!("camera: {e}"))?;
+        let h = self
+            .halves
+            .get_mut(half)
+            .ok_or_else(|| format!("no half {half}"))?;
+        let (_, measured) = count(&frame, &terrain, h.mode);
+        h.counters = Counters::new(&measured.total, measured.hidden, measured.missed);
+        Ok(h.counters)
+    }
+
+    /// Whether the core takes a camera at `params` over this map.
+    fn check(&self, params: CameraParams) -> Result<(), String> {
+        let camera = Camera::new(params).map_err(|e| format!("camera: {e}"))?;
+        let terrain = self
+            .pyramid
+            .terrain(self.options.lod)
+            .map_err(|e| e.to_string())?;
+        Tables::new(&camera)
+            .frame(&camera, &terrain, self.options)
+            .map(|_| ())
+            .map_err(|e| format!("camera: {e}"))
+    }
+
+    /// A new map or size: the flicker meters start again.
+    fn forget_frames(&mut self) {
+        for h in &mut self.halves {
+            *h = Half::new(h.mode);
+        }
+    }
+}
+
+/// The pyramid of `map`, with the CLI's default height filter.
+fn build(map: Map) -> Result<Pyramid, String> {
+    let source = map.source.clone();
+    Pyramid::build(map, HeightFilter::default()).map_err(|e| format!("map {source}: {e}"))
+}
