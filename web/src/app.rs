@@ -366,3 +366,94 @@ fn build(map: Map) -> Result<Pyramid, String> {
     let source = map.source.clone();
     Pyramid::build(map, HeightFilter::default()).map_err(|e| format!("map {source}: {e}"))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn small() -> App {
+        let mut app = App::new().unwrap();
+        app.paper_view(20.0, 64, 48).unwrap();
+        app
+    }
+
+    #[test]
+    fn a_still_camera_does_not_flicker_and_a_moving_one_does() {
+        let mut app = small();
+        app.render(0).unwrap();
+        app.render(0).unwrap();
+        let h = app.half(0).unwrap();
+        assert_eq!((h.mean_dy(), h.changed_6_60()), (0.0, 0));
+        assert_eq!(h.rgba().len(), 64 * 48 * 4);
+        let still = h.hash();
+        app.forward(200.0).unwrap();
+        app.render(0).unwrap();
+        let h = app.half(0).unwrap();
+        assert_ne!(h.hash(), still);
+        assert!(h.mean_dy() > 0.0, "{}", h.mean_dy());
+    }
+
+    #[test]
+    fn the_counters_cover_every_visible_voxel_in_exact_area_sampling() {
+        let mut app = small();
+        app.set_mode(1, "as-exact").unwrap();
+        let c = app.count(1).unwrap();
+        assert!(c.v > 0 && c.p > 0);
+        assert_eq!((c.m, c.hidden, c.missed), (c.v, 0, 0));
+        assert_eq!(c.coverage, 1.0);
+    }
+
+    #[test]
+    fn a_bad_mode_or_file_changes_nothing_and_says_what_the_cli_says() {
+        let mut app = small();
+        let e = app.set_mode(0, "ss3").unwrap_err();
+        assert!(e.starts_with("--mode: unknown mode \"ss3\""), "{e}");
+        assert_eq!(app.half(0).unwrap().mode(), Mode::Ps);
+
+        let before = app.map().source.clone();
+        let bad = b"ncols 4\nnrows 3\nxllcorner 0\n";
+        let e = app.load_files("bad.asc", bad, None).unwrap_err();
+        let dir = std::env::temp_dir().join(format!("footprint-web-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let on_disk = dir.join("bad.asc");
+        std::fs::write(&on_disk, bad).unwrap();
+        let cli = footprint_maps::load(&on_disk, &LoadOptions::default()).unwrap_err();
+        std::fs::remove_dir_all(&dir).unwrap();
+        // The same message, but for the name: the page knows the file's name, not its path.
+        assert_eq!(
+            e,
+            cli.to_string()
+                .replace(&on_disk.display().to_string(), "bad.asc")
+        );
+        assert_eq!(app.map().source, before);
+    }
+
+    #[test]
+    fn a_dropped_grid_becomes_the_map() {
+        let mut app = small();
+        let mut asc = String::from("ncols 32\nnrows 24\nxllcorner 0\nyllcorner 0\ncellsize 10\n");
+        for y in 0..24 {
+            let row: Vec<String> = (0..32)
+                .map(|x| ((x * 7 + y * 3) % 50).to_string())
+                .collect();
+            asc.push_str(&row.join(" "));
+            asc.push('\n');
+        }
+        app.load_files("hill.asc", asc.as_bytes(), None).unwrap();
+        assert_eq!((app.map().width, app.map().height), (32, 24));
+        assert!(
+            app.map().source.contains("hill.asc"),
+            "{}",
+            app.map().source
+        );
+        app.render(0).unwrap();
+        app.render(1).unwrap();
+    }
+
+    #[test]
+    fn the_fnv_hash_is_the_published_one() {
+        // FNV-1a-64 test vectors.
+        assert_eq!(fnv1a64(*b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(fnv1a64(*b"a"), 0xaf63_dc4c_8601_ec8c);
+    }
+}

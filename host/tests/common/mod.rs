@@ -4,6 +4,8 @@
 
 use std::process::{Command, Output};
 
+pub mod browser;
+
 /// Runs `footprint ARGS…`.
 pub fn footprint(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_footprint"))
