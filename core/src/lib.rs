@@ -7,6 +7,29 @@
     trivial_numeric_casts,
     unused_qualifications
 )]
+// The clippy half of the lint wall: no silent narrowing, no indexing, no unwrap, no panic. A
+// site that keeps one carries `#[allow(clippy::…, reason = "…")]` on the smallest item, and the
+// reason names where the range is proved.
+#![deny(
+    clippy::cast_possible_truncation,
+    clippy::indexing_slicing,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    clippy::unreachable,
+    clippy::todo,
+    clippy::unimplemented,
+    clippy::allow_attributes_without_reason
+)]
+#![cfg_attr(
+    test,
+    allow(
+        clippy::cast_possible_truncation,
+        clippy::indexing_slicing,
+        clippy::unwrap_used,
+        reason = "the unit tests index, unwrap and narrow freely: a panic there is a failed test"
+    )
+)]
 //! # footprint-core
 //!
 //! Exact antialiasing for fixed-point renderers, after two papers:

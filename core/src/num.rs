@@ -39,9 +39,15 @@ pub type Weight = I40F24;
 /// The largest eye height above or below the datum, in height units.
 pub const MAX_EYE_HEIGHT: f64 = (1u64 << 22) as f64;
 
+/// `log2` of [`MAX_SLOPE`].
+const MAX_SLOPE_LOG2: u32 = 15;
+
 /// The largest ray slope, in height units per half-voxel; steeper rays are clamped, which only
 /// matters for rays within a few thousandths of a degree of the vertical.
-pub const MAX_SLOPE: f64 = (1u64 << 15) as f64;
+pub const MAX_SLOPE: f64 = (1u64 << MAX_SLOPE_LOG2) as f64;
+
+/// [`MAX_SLOPE`] as raw [`Slope`] bits (I40F24), `2^39`.
+pub(crate) const MAX_SLOPE_BITS: i64 = 1 << (MAX_SLOPE_LOG2 + 24);
 
 /// The largest `|x|` or `|y|` of the eye, in voxels (the map itself repeats by mirroring).
 pub const MAX_COORD: f64 = (1u64 << 21) as f64;
@@ -80,7 +86,7 @@ pub fn mul_floor_32(a: i64, b: i64) -> i64 {
         ((p * r) << 32) + p * s + q * r + ((q as u64 * s as u64) >> 32) as i64
     } else {
         let x = (i128::from(a) * i128::from(b)) >> 32;
-        x.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+        i64::try_from(x).unwrap_or(if x < 0 { i64::MIN } else { i64::MAX })
     }
 }
 
@@ -149,7 +155,7 @@ impl Eye {
     /// The slope of the ray from the eye through `(n, h)`, rounded down (so the ray it
     /// describes never lies above the exact one), clamped to ±[`MAX_SLOPE`].
     pub fn slope_through(&self, n: i64, h: Height) -> Slope {
-        let limit = (MAX_SLOPE as i64) << 24;
+        let limit = MAX_SLOPE_BITS;
         let run = n.saturating_mul(1 << 24).saturating_sub(self.n.to_bits());
         let rise = h.to_bits().saturating_sub(self.h.to_bits());
         if run <= 0 {
@@ -162,9 +168,13 @@ impl Eye {
             q -= 1;
             r += run;
         }
-        if q.unsigned_abs() >= MAX_SLOPE as u64 {
+        if q.unsigned_abs() >= 1 << MAX_SLOPE_LOG2 {
             return Slope::from_bits(if q >= 0 { limit } else { -limit });
         }
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "0 ≤ r < run (the remainder fixed just above), so the quotient is below 2^24"
+        )]
         let frac = if run < 1 << 39 {
             (r << 24) / run
         } else {

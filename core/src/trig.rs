@@ -16,6 +16,10 @@ use core::f64::consts::{FRAC_PI_2, PI};
 /// plus the rounding of the reduction `r = x − kπ/2`.
 pub fn sin_cos(x: f64) -> (f64, f64) {
     let t = x / FRAC_PI_2;
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "`as` rounds toward zero after the ±½ (round half away), saturating beyond i64"
+    )]
     let k = if t >= 0.0 {
         (t + 0.5) as i64
     } else {
@@ -58,7 +62,11 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// headings keep full precision.
 pub fn sin_cos_deg(deg: f64) -> (f64, f64) {
     let turns = deg / 360.0;
-    let whole = turns as i64; // truncation; saturates for absurd inputs, which callers reject
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "the whole turns, truncated; `as` saturates for absurd inputs, which callers reject"
+    )]
+    let whole = turns as i64;
     let reduced = deg - (whole as f64) * 360.0;
     sin_cos(reduced * (PI / 180.0))
 }

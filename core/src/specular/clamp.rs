@@ -27,7 +27,7 @@ use fixed::types::U2F30;
 use super::detect::Spread;
 use super::phong::Phong;
 use super::policy::Clamp;
-use super::tables::MAXIMUM;
+use super::tables::maximum;
 
 /// What [`clamp`] decided for one pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,9 +56,11 @@ pub fn clamp(phong: &Phong, spread: Spread, policy: Clamp) -> Clamped {
         n2 -= 1;
     }
     let k = u64::from(phong.k_spec().to_bits());
-    let k2 = k * u64::from(MAXIMUM[usize::from(n)]) / u64::from(MAXIMUM[usize::from(n2)]);
+    let max = |n: u16| u64::from(maximum(u32::from(n)).to_bits());
+    // Maximum is non-increasing and n2 ≤ n, so k2 ≤ k: the fallback is never taken.
+    let k2 = u32::try_from(k * max(n) / max(n2)).unwrap_or(u32::MAX);
     Clamped {
-        phong: Phong::from_parts(n2, U2F30::from_bits(k2 as u32)),
+        phong: Phong::from_parts(n2, U2F30::from_bits(k2)),
         aliased: true,
     }
 }

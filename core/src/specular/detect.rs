@@ -25,7 +25,7 @@ use fixed::types::{I2F30, U16F16, U2F30};
 
 use super::normal::{isqrt, Normal, ONE};
 use super::policy::Clamp;
-use super::tables::{clamp_n, MIN_DOT, N_MAX};
+use super::tables::{clamp_n, min_dot, MIN_DOT, N_MAX};
 
 /// π in `U2F30` bits (rounded to nearest).
 pub(crate) const PI_Q30: u64 = 3_373_259_426;
@@ -49,14 +49,16 @@ impl Spread {
     /// counts as the widest possible spread, `dot_ΔN = −1`.
     pub fn from_corners(corners: &[Option<Normal>; 4]) -> Spread {
         let mut min = I2F30::ONE;
-        for i in 0..4 {
-            for j in i + 1..4 {
-                let d = match (&corners[i], &corners[j]) {
+        let mut rest = corners.as_slice();
+        while let [a, tail @ ..] = rest {
+            for b in tail {
+                let d = match (a, b) {
                     (Some(a), Some(b)) => a.dot(b),
                     _ => I2F30::NEG_ONE,
                 };
                 min = min.min(d);
             }
+            rest = tail;
         }
         Spread::Dot(min)
     }
@@ -66,10 +68,12 @@ impl Spread {
     /// no spread.
     pub fn from_normals(normals: &[Normal]) -> Spread {
         let mut min = I2F30::ONE;
-        for (i, a) in normals.iter().enumerate() {
-            for b in &normals[i + 1..] {
+        let mut rest = normals;
+        while let [a, tail @ ..] = rest {
+            for b in tail {
                 min = min.min(a.dot(b));
             }
+            rest = tail;
         }
         Spread::Dot(min)
     }
@@ -79,7 +83,7 @@ impl Spread {
     /// same unit, e.g. pixels. Saturates.
     pub fn from_curvature(curvature: U16F16, footprint: U16F16) -> Spread {
         let d = (u64::from(curvature.to_bits()) * u64::from(footprint.to_bits())) >> 2; // Q30
-        Spread::Angle(U2F30::from_bits(d.min(u64::from(u32::MAX)) as u32))
+        Spread::Angle(U2F30::from_bits(u32::try_from(d).unwrap_or(u32::MAX)))
     }
 
     /// The angle `D` through which the normal turns (half of `Δα_ΔN`): `acos(dot_ΔN)` for a
@@ -98,27 +102,17 @@ impl Spread {
         match *self {
             Spread::Dot(d) => {
                 let d = d.to_bits();
-                // MIN_DOT is increasing and MIN_DOT[0] = −1 ≤ d: find the last entry ≤ d.
-                let (mut lo, mut hi) = (0usize, usize::from(N_MAX)); // MIN_DOT[lo] ≤ d
-                if MIN_DOT[hi] <= d {
-                    return N_MAX;
-                }
-                while hi - lo > 1 {
-                    let mid = (lo + hi) / 2;
-                    if MIN_DOT[mid] <= d {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                lo as u16
+                // MIN_DOT is increasing: the last entry ≤ d, or 0 when even MIN_DOT[0] = −1
+                // is above d.
+                let above = MIN_DOT.partition_point(|&m| m <= d);
+                u16::try_from(above.saturating_sub(1)).unwrap_or(N_MAX)
             }
             Spread::Angle(a) => {
                 let a = u64::from(a.to_bits());
                 if a == 0 {
                     return N_MAX;
                 }
-                clamp_n((PI_Q30 / (2 * a)).min(u64::from(N_MAX)) as u32)
+                clamp_n(u32::try_from(PI_Q30 / (2 * a)).unwrap_or(u32::MAX))
             }
         }
     }
@@ -130,7 +124,7 @@ impl Spread {
     pub fn aliases(&self, n: u16, policy: Clamp) -> bool {
         let k = policy.frequency_limit(n);
         match *self {
-            Spread::Dot(d) => d.to_bits() < MIN_DOT[usize::from(k)],
+            Spread::Dot(d) => d < min_dot(u32::from(k)),
             Spread::Angle(a) => 2 * u64::from(k) * u64::from(a.to_bits()) > PI_Q30,
         }
     }
@@ -140,7 +134,7 @@ impl Spread {
     pub fn oversampling(&self, n: u16) -> U16F16 {
         let d = u128::from(self.angle().to_bits());
         let r = ((2 * d * u128::from(n)) << 16) / u128::from(PI_Q30);
-        U16F16::from_bits(r.min(u128::from(u32::MAX)) as u32)
+        U16F16::from_bits(u32::try_from(r).unwrap_or(u32::MAX))
     }
 }
 
@@ -167,7 +161,8 @@ pub fn acos(x: I2F30) -> U2F30 {
     let root = isqrt(((ONE - ax) as u64) << 30) as i64; // √(1−|x|) in Q30
     let r = (p * root) >> 30;
     let r = if x < 0 { PI_Q30 as i64 - r } else { r };
-    U2F30::from_bits(r.clamp(0, PI_Q30 as i64) as u32)
+    // In 0..=π after the clamp, below 2^32: the fallback is never taken.
+    U2F30::from_bits(u32::try_from(r.clamp(0, PI_Q30 as i64)).unwrap_or(0))
 }
 
 #[cfg(test)]

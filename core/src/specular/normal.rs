@@ -42,6 +42,10 @@ impl Normal {
         }
         let (x, y, z) = (x / big, y / big, z / big);
         let len = trig::sqrt(x * x + y * y + z * z);
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "|c| ≤ len, so |r| ≤ 2^30 and `as` only rounds (half away from zero, after the ±½)"
+        )]
         let q = |c: f64| {
             let r = c / len * ONE as f64;
             (if r >= 0.0 { r + 0.5 } else { r - 0.5 }) as i32
@@ -71,17 +75,26 @@ impl Normal {
     /// The dot product, rounded to nearest and clamped to `[−1, 1]`.
     #[inline]
     pub fn dot(&self, other: &Normal) -> I2F30 {
-        let s: i64 = (0..3)
-            .map(|i| i64::from(self.v[i]) * i64::from(other.v[i]))
+        let s: i64 = self
+            .v
+            .iter()
+            .zip(other.v)
+            .map(|(&a, b)| i64::from(a) * i64::from(b))
             .sum();
-        I2F30::from_bits(((s + (1 << 29)) >> 30).clamp(-ONE, ONE) as i32)
+        // Within ±2^30 after the clamp: the fallback is never taken.
+        I2F30::from_bits(i32::try_from(((s + (1 << 29)) >> 30).clamp(-ONE, ONE)).unwrap_or(0))
     }
 
     /// The dot product with a [`Vector`], in units of `|v|`: `N·v` as raw bits scaled like `v`.
     #[inline]
     pub(crate) fn dot_raw(&self, v: &Vector) -> i64 {
         // |v_i| < 2^31 and |n_i| ≤ 2^30: each product < 2^61, the sum < 2^63.
-        (0..3).map(|i| i64::from(self.v[i]) * v.v[i]).sum::<i64>() >> 30
+        self.v
+            .iter()
+            .zip(v.v)
+            .map(|(&n, c)| i64::from(n) * c)
+            .sum::<i64>()
+            >> 30
     }
 }
 
@@ -103,6 +116,10 @@ impl Vector {
         // Place the top bit of `big` at bit 30.
         let top = 127 - big.leading_zeros() as i32;
         let shift = top - 30;
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "|c| ≤ big, whose top bit the shift puts at bit 30: every result is below 2^31"
+        )]
         let s = |c: i128| -> i64 {
             if shift >= 0 {
                 (c >> shift) as i64
@@ -143,7 +160,8 @@ impl Vector {
             } else {
                 (num - len / 2) / len
             };
-            r.clamp(-ONE, ONE) as i32
+            // Within ±2^30 after the clamp: the fallback is never taken.
+            i32::try_from(r.clamp(-ONE, ONE)).unwrap_or(0)
         };
         Some(Normal {
             v: [q(self.v[0]), q(self.v[1]), q(self.v[2])],

@@ -36,9 +36,14 @@ impl Phong {
     /// `[0, 1]`.
     pub fn new(n: u32, k_spec: f64) -> Result<Self, Error> {
         let k = check("k_spec", k_spec, 0.0, 1.0, false)?;
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "k ∈ [0, 1] (checked just above), so `as` only rounds k·2^30 + ½ down"
+        )]
+        let k_spec = U2F30::from_bits((k * ONE as f64 + 0.5) as u32);
         Ok(Self {
             n: clamp_n(n).max(1),
-            k_spec: U2F30::from_bits((k * ONE as f64 + 0.5) as u32),
+            k_spec,
         })
     }
 
@@ -69,7 +74,9 @@ impl Phong {
     pub fn highlight(&self, cos_alpha: I2F30) -> U2F30 {
         let p = cos_pow(cos_alpha, self.n);
         let v = (u64::from(self.k_spec.to_bits()) * u64::from(p.to_bits()) + (1 << 29)) >> 30;
-        U2F30::from_bits(v as u32)
+        // K_spec ≤ 1 (`Phong::new`, `Phong::from_parts`) and c^n ≤ 1: v ≤ 2^30, the fallback is
+        // never taken.
+        U2F30::from_bits(u32::try_from(v).unwrap_or(u32::MAX))
     }
 }
 
@@ -113,7 +120,8 @@ impl Light {
         let n2 = n.norm2_raw() as i128; // |n|²/2^30 ≥ 2^30
         let num = 2 * i128::from(ne) * i128::from(nl);
         let r = (num + n2 / 2).div_euclid(n2) - i128::from(self.el);
-        I2F30::from_bits(r.clamp(-(ONE as i128), ONE as i128) as i32)
+        // Within ±2^30 after the clamp: the fallback is never taken.
+        I2F30::from_bits(i32::try_from(r.clamp(-i128::from(ONE), i128::from(ONE))).unwrap_or(0))
     }
 
     /// `cos α` for a unit normal (no division).
@@ -122,7 +130,8 @@ impl Light {
         let ne = i64::from(n.dot(&self.e).to_bits());
         let nl = i64::from(n.dot(&self.l).to_bits());
         let r = ((2 * ne * nl + (1 << 29)) >> 30) - self.el;
-        I2F30::from_bits(r.clamp(-ONE, ONE) as i32)
+        // Within ±2^30 after the clamp: the fallback is never taken.
+        I2F30::from_bits(i32::try_from(r.clamp(-ONE, ONE)).unwrap_or(0))
     }
 
     /// The diffuse factor `max(N·L, 0)` for a normal direction of any length.
@@ -136,7 +145,8 @@ impl Light {
             return U2F30::ZERO;
         }
         let len = super::normal::isqrt(n.norm2_raw() << 30) as i64; // |n| in raw units
-        U2F30::from_bits(((nl << 30) / len).min(ONE) as u32)
+                                                                    // In 0..=2^30 (nl > 0 and len > 0, then the min): the fallback is never taken.
+        U2F30::from_bits(u32::try_from(((nl << 30) / len).min(ONE)).unwrap_or(0))
     }
 }
 
@@ -161,7 +171,9 @@ pub fn cos_pow(c: I2F30, n: u16) -> U2F30 {
         }
         base = (base * base + (1 << 29)) >> 30;
     }
-    U2F30::from_bits(r as u32)
+    // r starts at 1 and every product is of two values ≤ 1, rounded: r ≤ 2^30, the fallback
+    // is never taken.
+    U2F30::from_bits(u32::try_from(r).unwrap_or(u32::MAX))
 }
 
 #[cfg(test)]

@@ -61,14 +61,23 @@ impl Vertex {
         let x = check("vertex x", x, -MAX_COORD, MAX_COORD, false)?;
         let y = check("vertex y", y, -MAX_COORD, MAX_COORD, false)?;
         let z = check("vertex depth", depth, 0.0, 1.0, false)?;
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "|v| ≤ MAX_COORD (checked just above), so `as` only rounds (half away from zero, after the ±½)"
+        )]
         let q = |v: f64| {
             let r = v * ONE_PX as f64;
             (if r >= 0.0 { r + 0.5 } else { r - 0.5 }) as i64
         };
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "z ∈ [0, 1] (checked just above), so `as` only rounds z·65,535 + ½ down"
+        )]
+        let z = (z * f64::from(u16::MAX) + 0.5) as u16;
         Ok(Self {
             x: q(x),
             y: q(y),
-            z: (z * f64::from(u16::MAX) + 0.5) as u16,
+            z,
             normal,
         })
     }
@@ -178,27 +187,49 @@ struct Setup {
 }
 
 impl Setup {
-    /// `den·e_i(p)` at the point `p = (px, py)/den` pixels: exact.
+    /// `den·e_i(p)` of the three edges at the point `p = (px, py)/den` pixels: exact.
     #[inline]
-    fn edge(&self, i: usize, px: i64, py: i64, den: i64) -> i64 {
-        let j = &self.v[(i + 1) % 3];
-        let (dx, dy) = self.edge[i];
-        dx * (py * ONE_PX - den * j.y) - dy * (px * ONE_PX - den * j.x)
+    fn edges(&self, px: i64, py: i64, den: i64) -> [i64; 3] {
+        // Edge `i` starts at vertex `i + 1`.
+        let e = |(dx, dy): (i64, i64), j: &Vertex| {
+            dx * (py * ONE_PX - den * j.y) - dy * (px * ONE_PX - den * j.x)
+        };
+        let ([a, b, c], [e0, e1, e2]) = (&self.v, self.edge);
+        [e(e0, b), e(e1, c), e(e2, a)]
+    }
+
+    /// `Σ e_i(p)·N_i` at `p = (px, py)/den`, exact in 128 bits.
+    #[inline]
+    fn wide(&self, px: i64, py: i64, den: i64) -> [i128; 3] {
+        let mut s = [0i128; 3];
+        for (e, v) in self.edges(px, py, den).into_iter().zip(&self.v) {
+            let e = i128::from(e);
+            for (s, n) in s.iter_mut().zip(v.normal.bits()) {
+                *s += e * i128::from(n);
+            }
+        }
+        s
     }
 
     /// `Σ e_i(p)·N_i` at `p = (px, py)/den`.
     #[inline]
     fn vector(&self, px: i64, py: i64, den: i64) -> Vector {
-        let e = [0, 1, 2].map(|i| i128::from(self.edge(i, px, py, den)));
-        let mut s = [0i128; 3];
-        for (i, ei) in e.iter().enumerate() {
-            let n = self.v[i].normal.bits();
-            for c in 0..3 {
-                s[c] += ei * i128::from(n[c]);
-            }
-        }
-        Vector::from_wide(s)
+        Vector::from_wide(self.wide(px, py, den))
     }
+}
+
+/// `a + b`, component by component.
+#[inline]
+fn add3(a: &mut [i128; 3], b: [i128; 3]) {
+    for (a, b) in a.iter_mut().zip(b) {
+        *a += b;
+    }
+}
+
+/// `a − b`, component by component.
+#[inline]
+fn sub3([a0, a1, a2]: [i128; 3], [b0, b1, b2]: [i128; 3]) -> [i128; 3] {
+    [a0 - b0, a1 - b1, a2 - b2]
 }
 
 /// One pixel of one triangle, handed to the [`Shader`]: its position, the triangle's tag, and
@@ -259,36 +290,19 @@ impl Fragment<'_> {
         let den = i64::from(2 * s);
         let st = self.setup;
         // V at P = (px, py)/den is Σ_i den·e_i·N_i, affine in (px, py).
-        let wide = |px: i64, py: i64| -> [i128; 3] {
-            let mut acc = [0i128; 3];
-            for i in 0..3 {
-                let e = i128::from(st.edge(i, px, py, den));
-                let n = st.v[i].normal.bits();
-                for c in 0..3 {
-                    acc[c] += e * i128::from(n[c]);
-                }
-            }
-            acc
-        };
         let x0 = i64::from(self.x) * den + 1;
         let y0 = i64::from(self.y) * den + 1;
-        let origin = wide(x0, y0);
-        let right = wide(x0 + 2, y0);
-        let down = wide(x0, y0 + 2);
-        let dx = [0, 1, 2].map(|c| right[c] - origin[c]);
-        let dy = [0, 1, 2].map(|c| down[c] - origin[c]);
+        let origin = st.wide(x0, y0, den);
+        let dx = sub3(st.wide(x0 + 2, y0, den), origin);
+        let dy = sub3(st.wide(x0, y0 + 2, den), origin);
         let mut row = origin;
         for _ in 0..s {
             let mut p = row;
             for _ in 0..s {
                 f(Vector::from_wide(p));
-                for c in 0..3 {
-                    p[c] += dx[c];
-                }
+                add3(&mut p, dx);
             }
-            for c in 0..3 {
-                row[c] += dy[c];
-            }
+            add3(&mut row, dy);
         }
         s * s
     }
@@ -318,10 +332,9 @@ pub fn draw(target: &mut Target<'_>, triangle: &Triangle, shader: &mut impl Shad
     if area < 0 {
         v.swap(1, 2);
     }
-    let edge = [0, 1, 2].map(|i| {
-        let (j, k) = (&v[(i + 1) % 3], &v[(i + 2) % 3]);
-        (k.x - j.x, k.y - j.y)
-    });
+    // Edge `i` runs from vertex `i + 1` to vertex `i + 2`.
+    let [a, b, c] = v;
+    let edge = [(b, c), (c, a), (a, b)].map(|(j, k)| (k.x - j.x, k.y - j.y));
     let setup = Setup { v, edge };
     let owns = edge.map(|(dx, dy)| dy > 0 || (dy == 0 && dx < 0));
 
@@ -332,35 +345,56 @@ pub fn draw(target: &mut Target<'_>, triangle: &Triangle, shader: &mut impl Shad
     let ys = v.map(|p| p.y);
     let (min_x, max_x) = (xs.iter().min().unwrap_or(&0), xs.iter().max().unwrap_or(&0));
     let (min_y, max_y) = (ys.iter().min().unwrap_or(&0), ys.iter().max().unwrap_or(&0));
-    let x0 = lo(*min_x).max(0);
-    let x1 = hi(*max_x).min(i64::from(target.width) - 1);
-    let y0 = lo(*min_y).max(0);
-    let y1 = hi(*max_y).min(i64::from(target.height) - 1);
+    // The target's pixels from `lo` to `hi` (an empty range when `lo` is past its side), or
+    // `None` when `hi` is before the first.
+    let pixels = |lo: i64, hi: i64, side: u32| {
+        let last = u32::try_from(hi.min(i64::from(side) - 1)).ok()?;
+        Some(u32::try_from(lo.max(0)).unwrap_or(u32::MAX)..=last)
+    };
+    let (Some(columns), Some(rows)) = (
+        pixels(lo(*min_x), hi(*max_x), target.width),
+        pixels(lo(*min_y), hi(*max_y), target.height),
+    ) else {
+        return 0;
+    };
     let mut shaded = 0;
-    for y in y0..=y1 {
-        for x in x0..=x1 {
-            let (px, py) = (2 * x + 1, 2 * y + 1);
-            let e = [0, 1, 2].map(|i| setup.edge(i, px, py, 2));
-            let inside = (0..3).all(|i| e[i] > 0 || (e[i] == 0 && owns[i]));
+    for y in rows {
+        for x in columns.clone() {
+            let (px, py) = (2 * i64::from(x) + 1, 2 * i64::from(y) + 1);
+            let e = setup.edges(px, py, 2);
+            let inside = e
+                .iter()
+                .zip(owns)
+                .all(|(&e, owns)| e > 0 || (e == 0 && owns));
             if !inside {
                 continue;
             }
             // Depth: Σ e_i·z_i / Σ e_i, every e_i ≥ 0 here.
             let sum: i128 = e.iter().map(|&a| i128::from(a)).sum();
-            let zs: i128 = (0..3).map(|i| i128::from(e[i]) * i128::from(v[i].z)).sum();
-            let z = (zs / sum.max(1)).clamp(0, i128::from(u16::MAX)) as u16;
-            let idx = (y as u32 * target.width + x as u32) as usize;
-            if z >= target.depth[idx] {
+            let zs: i128 = e
+                .iter()
+                .zip(&v)
+                .map(|(&e, v)| i128::from(e) * i128::from(v.z))
+                .sum();
+            let z = u16::try_from((zs / sum.max(1)).max(0)).unwrap_or(u16::MAX);
+            // Inside the target (x < width, y < height), whose buffers hold width × height
+            // pixels (`Target::new`): neither fallback is taken.
+            let idx = y as usize * target.width as usize + x as usize;
+            let (Some(depth), Some(color)) = (target.depth.get_mut(idx), target.color.get_mut(idx))
+            else {
+                continue;
+            };
+            if z >= *depth {
                 continue;
             }
             let fragment = Fragment {
-                x: x as u32,
-                y: y as u32,
+                x,
+                y,
                 id: triangle.id,
                 setup: &setup,
             };
-            target.color[idx] = shader.shade(&fragment);
-            target.depth[idx] = z;
+            *color = shader.shade(&fragment);
+            *depth = z;
             shaded += 1;
         }
     }

@@ -85,7 +85,11 @@ fn grid_average(fragment: &Fragment<'_>, light: &Light, phong: &Phong, s: u32) -
         sum += u64::from(phong.highlight(light.cos_alpha(&v)).to_bits());
     });
     Specular {
-        value: U2F30::from_bits(((sum + u64::from(shades) / 2) / u64::from(shades.max(1))) as u32),
+        // The mean of `shades` values that are each a U2F30: the fallback is never taken.
+        value: U2F30::from_bits(
+            u32::try_from((sum + u64::from(shades) / 2) / u64::from(shades.max(1)))
+                .unwrap_or(u32::MAX),
+        ),
         shades,
         aliased: false,
     }
@@ -112,7 +116,12 @@ impl Material {
     pub fn new(color: Rgb, ambient: f64, diffuse: f64, phong: Phong) -> Result<Self, crate::Error> {
         let q = |what, w| -> Result<U2F30, crate::Error> {
             let w = crate::error::check(what, w, 0.0, 1.0, false)?;
-            Ok(U2F30::from_bits((w * ONE as f64 + 0.5) as u32))
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "w ∈ [0, 1] (checked just above), so `as` only rounds w·2^30 + ½ down"
+            )]
+            let bits = (w * ONE as f64 + 0.5) as u32;
+            Ok(U2F30::from_bits(bits))
         };
         Ok(Self {
             color,

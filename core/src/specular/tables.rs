@@ -50,7 +50,7 @@ impl Power {
         }
     }
 
-    fn k_table(self) -> &'static [u8] {
+    fn k_table(self) -> &'static [u8; ENTRIES] {
         match self {
             Power::P90 => &K_90,
             Power::P99 => &K_99,
@@ -70,30 +70,43 @@ impl Power {
 /// `n` clamped to the tables' range `0..=N_MAX`.
 #[inline]
 pub fn clamp_n(n: u32) -> u16 {
-    n.min(u32::from(N_MAX)) as u16
+    // At most N_MAX after the `min`, so the fallback is never taken.
+    u16::try_from(n.min(u32::from(N_MAX))).unwrap_or(N_MAX)
+}
+
+/// The entries of a table indexed by `n = 0..=N_MAX`.
+const ENTRIES: usize = N_MAX as usize + 1;
+
+/// Entry `n` of a table indexed by `n = 0..=N_MAX`, `n` clamped to `N_MAX` (the last entry).
+#[inline]
+fn entry<T: Copy>(table: &[T; ENTRIES], n: u32) -> T {
+    let [.., last] = table;
+    *table.get(usize::from(clamp_n(n))).unwrap_or(last)
 }
 
 /// The cosine coefficient `c_m(n)` of cos^n α, the paper's closed forms (Oberhettinger):
 /// `cos^n α = Σ_m c_m·cos(mα)`, so `Σ_m c_m = 1` at α = 0. Zero when `m > n`, when `m` and `n`
 /// differ in parity, or when the coefficient rounds to zero. Error ≤ 2^-32 + 2^-40.
 pub fn coefficient(n: u32, m: u32) -> U1F31 {
-    let n = usize::from(clamp_n(n));
-    if m as usize > n || (m as usize + n) % 2 != 0 {
+    let nc = u32::from(clamp_n(n));
+    if m > nc || (m + nc) % 2 != 0 {
         return U1F31::ZERO;
     }
-    let i = m as usize / 2;
-    let (start, end) = (COEF_START[n] as usize, COEF_START[n + 1] as usize);
-    if start + i < end {
-        U1F31::from_bits(COEF[start + i])
-    } else {
-        U1F31::ZERO
-    }
+    let i = usize::try_from(m / 2).unwrap_or(usize::MAX);
+    coefficients(nc)
+        .get(i)
+        .map_or(U1F31::ZERO, |&c| U1F31::from_bits(c))
 }
 
 /// The stored (non-zero) coefficients of cos^n: element `i` is `c_{2i + n mod 2}(n)`.
 pub fn coefficients(n: u32) -> &'static [u32] {
     let n = usize::from(clamp_n(n));
-    &COEF[COEF_START[n] as usize..COEF_START[n + 1] as usize]
+    let start = |k: usize| COEF_START.get(k).map(|&s| s as usize);
+    // `COEF_START` has N_MAX + 2 entries, increasing up to `COEF.len()`: no fallback is taken.
+    match (start(n), start(n + 1)) {
+        (Some(a), Some(b)) => COEF.get(a..b).unwrap_or(&[]),
+        _ => &[],
+    }
 }
 
 /// `MinDot[n] = cos(π/(2n))`: the smallest `dot_ΔN` at which cos^n is sampled finely enough
@@ -101,7 +114,7 @@ pub fn coefficients(n: u32) -> &'static [u32] {
 /// Increasing in `n`; `MinDot[0] = −1`. Error ≤ 2^-31 + 1e-15.
 #[inline]
 pub fn min_dot(n: u32) -> I2F30 {
-    I2F30::from_bits(MIN_DOT[usize::from(clamp_n(n))])
+    I2F30::from_bits(entry(&MIN_DOT, n))
 }
 
 /// `Maximum[n] = 2^(1−n)·C(n, ⌊n/2⌋)`: the first and largest cosine component of cos^n in
@@ -109,14 +122,14 @@ pub fn min_dot(n: u32) -> I2F30 {
 /// `Maximum[0] = 2`. Error ≤ 2^-31 + 2^-40.
 #[inline]
 pub fn maximum(n: u32) -> U2F30 {
-    U2F30::from_bits(MAXIMUM[usize::from(clamp_n(n))])
+    U2F30::from_bits(entry(&MAXIMUM, n))
 }
 
 /// `K_p(n)`: the smallest frequency whose cumulative power `Σ_{m ≤ K} c_m²` reaches `p` of the
 /// total (Figure 2). `K_p(0) = 0`. Exact (see the module docs).
 #[inline]
 pub fn cutoff(n: u32, p: Power) -> u16 {
-    u16::from(p.k_table()[usize::from(clamp_n(n))])
+    u16::from(entry(p.k_table(), n))
 }
 
 /// `MinDot_p[n] = cos(π/(2·K_p(n)))` = `MinDot[K_p(n)]`: the aggressive detection threshold.
@@ -132,7 +145,10 @@ pub fn min_dot_p(n: u32, p: Power) -> I2F30 {
 #[inline]
 pub fn maxn_allowed(f: u32, p: Power) -> u16 {
     let t = p.maxn_table();
-    t.get(f as usize).copied().unwrap_or(N_MAX)
+    usize::try_from(f)
+        .ok()
+        .and_then(|f| t.get(f).copied())
+        .unwrap_or(N_MAX)
 }
 
 /// The size in bytes of each table, for the documentation and the firmware's flash budget:

@@ -26,7 +26,7 @@ use crate::color::Rgb;
 use crate::error::{check, check_in, Error};
 use crate::num::{
     fixed_from_f64, mul_floor_24, mul_floor_32, Coord, Height, Line, Slope, MAX_COORD,
-    MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE,
+    MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE_BITS,
 };
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
@@ -124,6 +124,10 @@ impl Camera {
 
 /// `⌊x⌋` as an `i64` (saturating), without `f64::floor`, which `core` lacks.
 fn floor_i64(x: f64) -> i64 {
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "`as` truncates toward zero and saturates, the first step of the floor"
+    )]
     let t = x as i64;
     if (t as f64) > x {
         t - 1
@@ -307,13 +311,14 @@ impl<'t> Frame<'t> {
         )?;
 
         // Rows: Eq. 2's slopes, strictly increasing so that each ray lies above the last.
+        let mut below: Option<Coord> = None;
         for (i, row) in rows.iter_mut().enumerate() {
-            *row = fixed_from_f64::<Coord>(camera.row_slope(i));
-        }
-        for i in 1..rows.len() {
-            if rows[i] <= rows[i - 1] {
-                rows[i] = rows[i - 1].saturating_add(Coord::DELTA);
+            let mut slope = fixed_from_f64::<Coord>(camera.row_slope(i));
+            if let Some(below) = below.filter(|&b| slope <= b) {
+                slope = below.saturating_add(Coord::DELTA);
             }
+            *row = slope;
+            below = Some(slope);
         }
 
         // Columns.
@@ -345,7 +350,12 @@ impl<'t> Frame<'t> {
             // The footprint across the column at horizontal distance t is t·δ voxels, with δ
             // the column's angular width; the level is the one nearest in log2 (Sect. 3).
             let delta = pix / k / (1.0 + xc * xc);
-            let lod_base = (2.0 * core::f64::consts::SQRT_2 / (delta * sec)).clamp(2.0, 1e12);
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "clamped to [2, 1e12] here, so `as` drops only the fraction"
+            )]
+            let lod_base =
+                (2.0 * core::f64::consts::SQRT_2 / (delta * sec)).clamp(2.0, 1e12) as i64;
             *col = Column {
                 axis,
                 sign,
@@ -355,7 +365,7 @@ impl<'t> Frame<'t> {
                 dv,
                 n_start,
                 n_far,
-                lod_base: lod_base as i64,
+                lod_base,
                 run,
             };
         }
@@ -414,7 +424,7 @@ impl<'t> Frame<'t> {
         let row = self.rows.get(i).map_or(0, |r| r.to_bits());
         // I32F32 × I32F32 → I32F32 (floor, saturating), then to I40F24 (floor), clamped.
         let q32 = mul_floor_32(row, column.kc.to_bits());
-        let limit = (MAX_SLOPE as i64) << 24;
+        let limit = MAX_SLOPE_BITS;
         let slope = (q32 >> 8).clamp(-limit, limit);
         // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 half-voxels
         // (the eye is within ±MAX_COORD) and |slope| ≤ 2^39 raw (clamped above).

@@ -24,8 +24,9 @@ use crate::num::height;
 use crate::terrain::camera::Frame;
 use crate::terrain::column::{render_frame, ColumnOut};
 use crate::terrain::cost::Cost;
+use crate::terrain::map::mirror_side;
 use crate::terrain::map::Axis;
-use crate::terrain::{mirror, Terrain};
+use crate::terrain::Terrain;
 
 /// Positions are counted in fifths of a half-voxel, so that the description's steps (1 voxel,
 /// then 1.2, 1.4, …) are exact integers: the first step is 10 fifths, and each step grows by 2.
@@ -83,7 +84,7 @@ pub fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
             Axis::X => (u, v),
             Axis::Y => (v, u),
         };
-        let at = mirror(y, rows) as usize * w as usize + mirror(x, w) as usize;
+        let at = mirror_side(y, rows) as usize * w as usize + mirror_side(x, w) as usize;
         let top = height(heights.get(at).copied().unwrap_or(0));
         if top > ray.at(n) {
             let color = map.colors().get(at).copied().unwrap_or_default();

@@ -39,7 +39,7 @@ use crate::color::{to_color16, Color16, Rgb};
 use crate::num::{height, Height};
 use crate::terrain::camera::{Column, Frame};
 use crate::terrain::map::Axis;
-use crate::terrain::map::{fold, Level, Terrain};
+use crate::terrain::map::{fold, period, Level, Terrain};
 use crate::terrain::sampler::Ray;
 
 /// A cursor on the voxel sequence of one column.
@@ -117,7 +117,8 @@ impl<'a, 't> March<'a, 't> {
             forward: column.sign > 0,
             lod: frame.lod(),
             l: 0,
-            top: (terrain.levels().len() - 1) as u32,
+            // At most MAX_LEVELS − 1 = 16; the fallback (no climbing) is never taken.
+            top: u32::try_from(terrain.levels().len().saturating_sub(1)).unwrap_or(0),
             j: (column.n_start - 1) / 2,
             n: column.n_start,
             dn: 2,
@@ -174,9 +175,9 @@ impl<'a, 't> March<'a, 't> {
         } else {
             i64::MAX
         };
-        self.pu = self.u_cell().rem_euclid(2 * i64::from(len_u)) as u32;
+        self.pu = period(self.u_cell(), len_u);
         self.cv = self.v >> (32 + self.l);
-        self.pv = self.cv.rem_euclid(2 * i64::from(len_v)) as u32;
+        self.pv = period(self.cv, len_v);
         self.off_v = self.offset_v(self.pv);
         self.plan_cross();
         self.plan_run();
@@ -208,7 +209,7 @@ impl<'a, 't> March<'a, 't> {
         } else {
             0
         };
-        self.run = run.min(to_far).clamp(0, i64::from(u32::MAX)) as u32;
+        self.run = u32::try_from(run.min(to_far).max(0)).unwrap_or(u32::MAX);
         self.planned = self.run;
     }
 
@@ -451,7 +452,7 @@ impl<'a, 't> March<'a, 't> {
                     let edge = (self.cv - a) << shift;
                     (self.v - edge) / -self.dv_step + 1
                 };
-                s = s.min(inside.clamp(0, i64::from(u32::MAX)) as u32);
+                s = s.min(u32::try_from(inside.max(0)).unwrap_or(u32::MAX));
             }
         }
         if s == 0 {
@@ -527,6 +528,10 @@ impl<'a, 't> March<'a, 't> {
         if inner > 0 {
             let v = self.v + self.dv_step * i64::from(inner);
             let cv = v >> shift;
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "at most one crossing per step (|dv| ≤ ½ in `Frame::new`), and inner < run ≤ u32::MAX steps"
+            )]
             let crossed = (cv - self.cv).unsigned_abs() as u32;
             self.idx = self
                 .idx
@@ -819,10 +824,14 @@ impl Voxel<'_> {
     #[inline(always)]
     pub fn sample_linear(&self) -> Color16 {
         // Position in level cells, 32 fractional bits; centres sit at +½.
-        let frac = ((self.v >> self.l) as u32) as u64; // the fraction of v / 2^l
+        let frac = (self.v >> self.l) as u64 & 0xFFFF_FFFF; // the fraction of v / 2^l
         let (pv, len, stride) = (self.pv, self.len_v, self.stride_v as isize);
         // The neighbour across is one row from the current voxel: the mirrored index moves by
         // one cell, or stays at an edge of the map (where the mirror repeats the edge voxel).
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "frac < 2^32 (masked above), so each weight (frac ± 2^31) >> 24 is below 2^9"
+        )]
         let (near, f) = if frac >= 1 << 31 {
             // The next cell, period position pv + 1.
             let step = if pv + 1 == len || pv + 1 == 2 * len {
@@ -854,11 +863,16 @@ impl Voxel<'_> {
             (f, 256 - f)
         };
         // Red and blue in two 16-bit lanes of one word (each mix is at most 255·256 < 2^16, so
-        // no lane carries into the next), green alone: four multiplies instead of six.
+        // no lane carries into the next, and the masks drop nothing), green alone: four
+        // multiplies instead of six.
         let rb = |c: Rgb| u32::from(c.r) | u32::from(c.b) << 16;
         let mixed = rb(here) * w_here + rb(there) * w_there;
         let g = u32::from(here.g) * w_here + u32::from(there.g) * w_there;
-        [mixed as u16, g as u16, (mixed >> 16) as u16]
+        [
+            (mixed & 0xFFFF) as u16,
+            (g & 0xFFFF) as u16,
+            (mixed >> 16) as u16,
+        ]
     }
 }
 

@@ -44,20 +44,24 @@ pub enum HeightFilter {
 /// The rounded mean of two heights (halves round up).
 #[inline]
 fn mean2(a: u16, b: u16) -> u16 {
-    // The quotient is at most the larger input, so the narrowing is exact.
-    (u32::from(a) + u32::from(b)).div_ceil(2) as u16
+    // The quotient is at most the larger input, so it always fits.
+    u16::try_from((u32::from(a) + u32::from(b)).div_ceil(2)).unwrap_or(u16::MAX)
 }
 
 /// The rounded mean of four heights.
 #[inline]
 fn mean4(q: [u16; 4]) -> u16 {
-    ((q.iter().map(|&h| u32::from(h)).sum::<u32>() + 2) / 4) as u16
+    // At most the largest input, so it always fits.
+    u16::try_from((q.iter().map(|&h| u32::from(h)).sum::<u32>() + 2) / 4).unwrap_or(u16::MAX)
 }
 
 /// The rounded mean of four colours, channel by channel.
 #[inline]
 fn mean_color(q: [Rgb; 4]) -> Rgb {
-    let avg = |f: fn(&Rgb) -> u8| ((q.iter().map(|c| u32::from(f(c))).sum::<u32>() + 2) / 4) as u8;
+    // Each mean is at most the largest input, so it always fits.
+    let avg = |f: fn(&Rgb) -> u8| {
+        u8::try_from((q.iter().map(|c| u32::from(f(c))).sum::<u32>() + 2) / 4).unwrap_or(u8::MAX)
+    };
     Rgb::new(avg(|c| c.r), avg(|c| c.g), avg(|c| c.b))
 }
 
@@ -79,7 +83,9 @@ impl<'a> Level<'a> {
         check_len("heights along x", cells, along_x.len())?;
         check_len("heights along y", cells, along_y.len())?;
         check_len("colors", cells, colors.len())?;
-        let (hx, hy) = (self.heights(Axis::X), self.heights(Axis::Y));
+        let (hx, hy, cs) = (self.heights(Axis::X), self.heights(Axis::Y), self.colors());
+        // The constructors check every length, so no fallback below is ever taken.
+        let height = |grid: &[u16], i: usize| grid.get(i).copied().unwrap_or(0);
         for y in 0..h {
             let (y0, y1) = (2 * y, (2 * y + 1).min(self.height() - 1));
             for x in 0..w {
@@ -92,8 +98,15 @@ impl<'a> Level<'a> {
                     self.index(x1, y1),
                 ];
                 let out = y as usize * w as usize + x as usize;
-                let (qx, qy) = (quad.map(|i| hx[i]), quad.map(|i| hy[i]));
-                (along_x[out], along_y[out]) = match filter {
+                let (Some(out_x), Some(out_y), Some(out_c)) = (
+                    along_x.get_mut(out),
+                    along_y.get_mut(out),
+                    colors.get_mut(out),
+                ) else {
+                    continue;
+                };
+                let (qx, qy) = (quad.map(|i| height(hx, i)), quad.map(|i| height(hy, i)));
+                (*out_x, *out_y) = match filter {
                     HeightFilter::Mean => (mean4(qx), mean4(qy)),
                     HeightFilter::Silhouette => (
                         // Along x: the taller of each row, then the mean of the two rows.
@@ -102,7 +115,7 @@ impl<'a> Level<'a> {
                         mean2(qy[0].max(qy[2]), qy[1].max(qy[3])),
                     ),
                 };
-                colors[out] = mean_color(quad.map(|i| self.colors()[i]));
+                *out_c = mean_color(quad.map(|i| cs.get(i).copied().unwrap_or_default()));
             }
         }
         Level::directional(w, h, along_x, along_y, colors)

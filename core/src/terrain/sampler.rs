@@ -150,6 +150,10 @@ impl<const N: u32> Super<N> {
     }
 
     #[inline(always)]
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "each sum holds N 8.8 colours below 2^16 (`hit` and `sky` add exactly N), so sum >> log2 N < 2^16"
+    )]
     fn finish<C: Cost>(&mut self, cost: &mut C) -> Rgb {
         cost.shifts(3);
         let s = self.sum;
@@ -381,6 +385,10 @@ impl ParallelArea {
     #[inline(always)]
     fn accumulate<C: Cost>(&mut self, to: i64, c: Color16, cost: &mut C) -> u32 {
         cost.as_hit();
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "0 ≤ offset ≤ to ≤ span and span >> shift < 2^16 (`hit` chooses the shift), so w < 2^16"
+        )]
         let w = ((to >> self.shift) - (self.offset >> self.shift)) as u32;
         self.offset = to;
         for (s, c) in self.sum.iter_mut().zip(c) {

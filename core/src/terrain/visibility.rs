@@ -79,9 +79,8 @@ fn below_horizon(horizon: Horizon, eye: Eye, n: i64) -> Option<(i64, i64)> {
             let rise = i128::from(h_top.to_bits()) - i128::from(eye.h.to_bits());
             let slope = (rise << 24).div_euclid(run);
             let h = i128::from(h_top.to_bits()) + slope * i128::from(n - n_top);
-            let limit = |x: i128, l: i64| (-i128::from(l)..=i128::from(l)).contains(&x);
-            (limit(slope, MAX_SKIP_SLOPE) && limit(h, MAX_SKIP_HEIGHT))
-                .then_some((h as i64, slope as i64))
+            let within = |x: i128, l: i64| i64::try_from(x).ok().filter(|x| (-l..=l).contains(x));
+            Some((within(h, MAX_SKIP_HEIGHT)?, within(slope, MAX_SKIP_SLOPE)?))
         }
     }
 }
