@@ -206,7 +206,9 @@ impl Browser {
     /// Waits until `condition` (a JavaScript expression) is true, up to `secs` seconds.
     pub fn wait_for(&mut self, condition: &str, secs: u64) {
         let start = Instant::now();
-        while self.eval(condition) != json!(true) {
+        // Before the page has parsed, `document.body` is null: that is "not yet", not an error.
+        let guarded = format!("(() => {{ try {{ return ({condition}) === true; }} catch (e) {{ return false; }} }})()");
+        while self.eval(&guarded) != json!(true) {
             let message = self.eval("document.getElementById('message')?.textContent ?? ''");
             assert!(
                 start.elapsed() < Duration::from_secs(secs),
