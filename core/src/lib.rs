@@ -1,12 +1,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
-#![deny(
-    missing_docs,
-    missing_debug_implementations,
-    trivial_casts,
-    trivial_numeric_casts,
-    unused_qualifications
-)]
+// The rustc half of the wall (missing_docs, missing_debug_implementations, trivial casts,
+// unused_qualifications, unsafe_code) is `[workspace.lints.rust]` in the workspace Cargo.toml.
 // The clippy half of the lint wall: no silent narrowing, no indexing, no unwrap, no panic. A
 // site that keeps one carries `#[allow(clippy::…, reason = "…")]` on the smallest item, and the
 // reason names where the range is proved.

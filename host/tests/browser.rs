@@ -11,6 +11,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
 
+use base64::Engine as _;
+
 mod common;
 
 use common::browser::{chromium, http_get, Browser, Served};
@@ -187,4 +189,54 @@ fn serve_checks_its_map_before_it_listens() {
     std::fs::write(&bad, "ncols 4\n").unwrap();
     let o = footprint(&["serve", "--port", "0", "--dem", bad.to_str().unwrap()]);
     assert_one_line_error(&o, &["serve", "--dem"], "bad.asc");
+}
+
+/// A PNG of `img` as bytes.
+fn png_bytes<P: image::PixelWithColorType>(img: &image::ImageBuffer<P, Vec<P::Subpixel>>) -> Vec<u8>
+where
+    [P::Subpixel]: image::EncodableLayout,
+{
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png).unwrap();
+    out.into_inner()
+}
+
+#[test]
+fn a_png_height_map_and_its_colour_map_load_from_the_two_pickers() {
+    let Some(exe) = browser_or_warn() else { return };
+    let served = Served::start(&[]);
+    let url = format!("http://127.0.0.1:{}/?size=120x90", served.port);
+    let mut browser = Browser::open(&exe, &url);
+    browser.wait_for("document.body.dataset.ready === '1'", 120);
+    let heights = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_fn(48, 32, |x, y| {
+        image::Luma([((x * 37 + y * 11) % 500) as u16])
+    });
+    let colors =
+        image::RgbImage::from_fn(48, 32, |x, y| image::Rgb([x as u8 * 5, y as u8 * 7, 90]));
+    let b64 = |b: Vec<u8>| base64::engine::general_purpose::STANDARD.encode(b);
+    let pick = |input: &str, name: &str, data: String| {
+        format!(
+            "(() => {{ const bytes = Uint8Array.from(atob('{data}'), (c) => c.charCodeAt(0)); \
+             const dt = new DataTransfer(); dt.items.add(new File([bytes], '{name}')); \
+             const input = document.getElementById('{input}'); input.files = dt.files; \
+             input.dispatchEvent(new Event('change')); return true; }})()"
+        )
+    };
+    // The colour map first: it waits for a height map, then the pair loads.
+    browser.eval(&pick("color-file", "tint.png", b64(png_bytes(&colors))));
+    browser.eval(&pick("files", "height.png", b64(png_bytes(&heights))));
+    browser.wait_for(
+        "document.getElementById('map-info').textContent.includes('48×32')",
+        30,
+    );
+    let info = browser.eval("document.getElementById('map-info').textContent");
+    let info = info.as_str().unwrap();
+    assert!(
+        info.contains("height.png") && info.contains("tint.png"),
+        "{info}"
+    );
+    assert_eq!(
+        browser.eval("document.getElementById('message').textContent"),
+        ""
+    );
 }

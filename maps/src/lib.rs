@@ -1,11 +1,4 @@
 #![forbid(unsafe_code)]
-#![deny(
-    missing_docs,
-    missing_debug_implementations,
-    trivial_casts,
-    trivial_numeric_casts,
-    unused_qualifications
-)]
 //! # footprint-maps
 //!
 //! Terrain map files: reading and writing height/colour PNG pairs, SRTM `.hgt` tiles, ESRI

@@ -1,11 +1,4 @@
 #![forbid(unsafe_code)]
-#![deny(
-    missing_docs,
-    missing_debug_implementations,
-    trivial_casts,
-    trivial_numeric_casts,
-    unused_qualifications
-)]
 //! # footprint-scenes
 //!
 //! What footprint looks at, in `std` Rust over [`footprint_core`] alone, so that both the

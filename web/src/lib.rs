@@ -1,11 +1,3 @@
-#![deny(
-    unsafe_code,
-    missing_docs,
-    missing_debug_implementations,
-    trivial_casts,
-    trivial_numeric_casts,
-    unused_qualifications
-)]
 //! # footprint-web
 //!
 //! footprint in the browser. The core, the built-in terrain and the map readers compile to

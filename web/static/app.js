@@ -200,8 +200,10 @@ canvas.addEventListener('pointermove', (e) => {
   setView(0, 0, 0, dx * 0.2, dy * 0.1);
 });
 
-// Maps: a height map (.png, .asc, .hgt, .tif) and, for a PNG, optionally its colour PNG.
-// Parsed in Rust by the CLI's readers: the same limits, the same one-line errors.
+// Maps: a height map (.png, .asc, .hgt, .tif) and optionally its colour PNG, the height map
+// first (two files dropped at once: the one named like a colour map, `color`/`colour`/`C1W`,
+// is the colour map). Parsed in Rust by the CLI's readers: the same limits, the same one-line
+// errors.
 async function loadFiles(files) {
   if (files.length === 0) return;
   if (files.length > 2) {
@@ -210,7 +212,7 @@ async function loadFiles(files) {
   }
   const isColor = (f) => /colou?r|^c[\d_-]/i.test(f.name);
   let [height, color] = files;
-  if (color && isColor(height) && !isColor(color)) [height, color] = [color, height];
+  if (color && isColor(height) && !isColor(color) && !picked().includes(height)) [height, color] = [color, height];
   put(0, new Uint8Array(await height.arrayBuffer()));
   put(1, new TextEncoder().encode(height.name));
   if (color) {
@@ -223,7 +225,12 @@ async function loadFiles(files) {
     moved();
   }
 }
-$('files').addEventListener('change', (e) => loadFiles([...e.target.files]));
+// The picker: a height map, and a colour PNG for it if one is chosen (before or after).
+const picked = () => [...$('files').files, ...$('color-file').files];
+$('files').addEventListener('change', () => loadFiles(picked()));
+$('color-file').addEventListener('change', () => {
+  if ($('files').files.length > 0) loadFiles(picked());
+});
 document.addEventListener('dragover', (e) => e.preventDefault());
 document.addEventListener('drop', (e) => {
   e.preventDefault();
