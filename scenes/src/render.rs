@@ -409,3 +409,18 @@ fn hidden_and_missed(sampled: &[u32], visible: &[u32]) -> (u64, u64) {
     }
     (hidden, missed)
 }
+
+/// The 64-bit FNV-1a hash of `bytes`: how the firmware, the CLI's tests and the browser page
+/// name a frame.
+pub fn fnv1a64(bytes: impl IntoIterator<Item = u8>) -> u64 {
+    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    bytes
+        .into_iter()
+        .fold(OFFSET, |h, b| (h ^ u64::from(b)).wrapping_mul(PRIME))
+}
+
+/// FNV-1a of an image's bytes: `r, g, b` per pixel, in the order given (row-major from the top).
+pub fn image_hash(image: &[Rgb]) -> u64 {
+    fnv1a64(image.iter().flat_map(|c| [c.r, c.g, c.b]))
+}

@@ -2,13 +2,14 @@
 
 use std::path::Path;
 
-use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Frame, Options};
 use footprint_core::terrain::cost::{NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 use footprint_maps::{memory, LoadOptions};
 use footprint_scenes::flight::{self, bin, luminance};
-use footprint_scenes::render::{count, render_with, Mode};
+use footprint_scenes::render::{count, image_hash, render_with, Mode};
 use footprint_scenes::view::{self, Tables};
 use footprint_scenes::{procedural, Map, Pyramid};
 
@@ -120,7 +121,7 @@ impl Half {
         self.rgba.clear();
         self.rgba
             .extend(image.iter().flat_map(|c| [c.r, c.g, c.b, 255]));
-        self.hash = fnv1a64(image.iter().flat_map(|c| [c.r, c.g, c.b]));
+        self.hash = image_hash(image);
         let luma: Vec<u8> = image.iter().map(|&c| luminance(c)).collect();
         if self.has_previous && self.luma.len() == luma.len() && !luma.is_empty() {
             let mut sum = 0u64;
@@ -139,15 +140,6 @@ impl Half {
         self.luma = luma;
         self.has_previous = true;
     }
-}
-
-/// The 64-bit FNV-1a hash of `bytes` (as `footprint firmware-reference` prints it).
-pub fn fnv1a64(bytes: impl IntoIterator<Item = u8>) -> u64 {
-    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-    const PRIME: u64 = 0x0000_0100_0000_01b3;
-    bytes
-        .into_iter()
-        .fold(OFFSET, |h, b| (h ^ u64::from(b)).wrapping_mul(PRIME))
 }
 
 /// The page's state.
@@ -298,9 +290,12 @@ impl App {
         Ok(())
     }
 
-    /// Renders half `half` (no counting: the time is the render's) and updates its flicker
-    /// meter.
-    pub fn render(&mut self, half: usize) -> Result<(), String> {
+    /// Runs `f` on the current frame's tables, the terrain and half `half`.
+    fn on_frame<R>(
+        &mut self,
+        half: usize,
+        f: impl FnOnce(&Frame<'_>, &Terrain<'_>, &mut Half) -> Result<R, String>,
+    ) -> Result<R, String> {
         let camera = Camera::new(self.params).map_err(|e| format!("camera: {e}"))?;
         let terrain = self
             .pyramid
@@ -314,30 +309,27 @@ impl App {
             .halves
             .get_mut(half)
             .ok_or_else(|| format!("no half {half}"))?;
-        let rendered =
-            render_with(&frame, &terrain, h.mode, &mut NoCost).map_err(|e| e.to_string())?;
-        h.take(&rendered.image);
-        Ok(())
+        f(&frame, &terrain, h)
+    }
+
+    /// Renders half `half` (no counting: the time is the render's) and updates its flicker
+    /// meter.
+    pub fn render(&mut self, half: usize) -> Result<(), String> {
+        self.on_frame(half, |frame, terrain, h| {
+            let rendered =
+                render_with(frame, terrain, h.mode, &mut NoCost).map_err(|e| e.to_string())?;
+            h.take(&rendered.image);
+            Ok(())
+        })
     }
 
     /// Counts half `half`'s frame: every counter, and `V` from the exact visibility pass.
     pub fn count(&mut self, half: usize) -> Result<Counters, String> {
-        let camera = Camera::new(self.params).map_err(|e| format!("camera: {e}"))?;
-        let terrain = self
-            .pyramid
-            .terrain(self.options.lod)
-            .map_err(|e| e.to_string())?;
-        let mut tables = Tables::new(&camera);
-        let frame = tables
-            .frame(&camera, &terrain, self.options)
-            .map_err(|e| format!("camera: {e}"))?;
-        let h = self
-            .halves
-            .get_mut(half)
-            .ok_or_else(|| format!("no half {half}"))?;
-        let (_, measured) = count(&frame, &terrain, h.mode);
-        h.counters = Counters::new(&measured.total, measured.hidden, measured.missed);
-        Ok(h.counters)
+        self.on_frame(half, |frame, terrain, h| {
+            let (_, measured) = count(frame, terrain, h.mode);
+            h.counters = Counters::new(&measured.total, measured.hidden, measured.missed);
+            Ok(h.counters)
+        })
     }
 
     /// Whether the core takes a camera at `params` over this map.
@@ -448,12 +440,5 @@ mod tests {
         );
         app.render(0).unwrap();
         app.render(1).unwrap();
-    }
-
-    #[test]
-    fn the_fnv_hash_is_the_published_one() {
-        // FNV-1a-64 test vectors.
-        assert_eq!(fnv1a64(*b""), 0xcbf2_9ce4_8422_2325);
-        assert_eq!(fnv1a64(*b"a"), 0xaf63_dc4c_8601_ec8c);
     }
 }

@@ -49,6 +49,7 @@ pub use footprint_scenes::firmware::{
     PLATE_MODE, PLATE_SIZE, SEED, WIDTH,
 };
 use footprint_scenes::plates::Scene as PlateScene;
+pub use footprint_scenes::render::{fnv1a64, image_hash};
 
 use crate::pyramid::Pyramid;
 use crate::render::{count, Mode, Rate, Tables};
@@ -62,20 +63,6 @@ pub const SIZE: Size = Size {
 
 /// The modes the firmware renders, in the order it prints them.
 pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(Rate::N8), Mode::AsExact, Mode::As];
-
-/// The 64-bit FNV-1a hash of `bytes`.
-pub fn fnv1a64(bytes: impl IntoIterator<Item = u8>) -> u64 {
-    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-    const PRIME: u64 = 0x0000_0100_0000_01b3;
-    bytes
-        .into_iter()
-        .fold(OFFSET, |h, b| (h ^ u64::from(b)).wrapping_mul(PRIME))
-}
-
-/// FNV-1a of an image's bytes: `r, g, b` per pixel, in the order given (row-major from the top).
-pub fn image_hash(image: &[Rgb]) -> u64 {
-    fnv1a64(image.iter().flat_map(|c| [c.r, c.g, c.b]))
-}
 
 /// One `frame` line.
 pub fn frame_line(mode: Mode, size: Size, hash: u64, t: &Tally) -> String {
