@@ -240,3 +240,40 @@ fn a_png_height_map_and_its_colour_map_load_from_the_two_pickers() {
         ""
     );
 }
+
+#[test]
+fn serve_needs_map_files_it_can_read_again() {
+    let o = footprint(&["serve", "--port", "0", "--dem", "-"]);
+    assert_one_line_error(&o, &["serve", "--dem", "-"], "--dem -");
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    let o = footprint(&["serve", "--port", "0", "--dem", d]);
+    assert_one_line_error(&o, &["serve", "--dem", d], "--dem");
+}
+
+#[test]
+fn the_page_opens_the_map_serve_was_given() {
+    let Some(exe) = browser_or_warn() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("ridge.asc");
+    let mut asc = String::from("ncols 40\nnrows 30\nxllcorner 0\nyllcorner 0\ncellsize 10\n");
+    for y in 0..30 {
+        let row: Vec<String> = (0..40)
+            .map(|x| ((x * 5 + y * 2) % 70).to_string())
+            .collect();
+        asc.push_str(&row.join(" "));
+        asc.push('\n');
+    }
+    std::fs::write(&grid, asc).unwrap();
+    let served = Served::start(&["--dem", grid.to_str().unwrap()]);
+    let url = format!("http://127.0.0.1:{}/?size=120x90&still=1", served.port);
+    let mut browser = Browser::open(&exe, &url);
+    browser.wait_for("document.body.dataset.ready === '1'", 120);
+    let info = browser.eval("document.getElementById('map-info').textContent");
+    let info = info.as_str().unwrap();
+    assert!(
+        info.contains("ridge.asc") && info.contains("40×30"),
+        "{info}"
+    );
+    assert_eq!(browser.eval("document.body.dataset.message"), "");
+}

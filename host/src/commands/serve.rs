@@ -33,9 +33,9 @@ pub struct ServeArgs {
     /// Its colour map (a PNG of the same size).
     #[arg(long, value_name = "COLOR.png", requires = "dem")]
     pub color: Option<PathBuf>,
-    /// Seed of the built-in terrain.
+    /// Seed of the built-in terrain (the page takes seeds up to 2^32 − 1).
     #[arg(long, default_value_t = 1, conflicts_with = "dem")]
-    pub seed: u64,
+    pub seed: u32,
     /// Side of the built-in terrain, voxels.
     #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE, conflicts_with = "dem")]
     pub terrain_size: u32,
@@ -49,13 +49,13 @@ struct Asset {
 
 /// Serves the page until interrupted.
 pub fn serve(args: &ServeArgs) -> Result<()> {
+    let map = map_files(args)?;
     if WASM.is_empty() {
         bail!(
             "serve: this binary was built without the page's WebAssembly: run `rustup target add \
              wasm32-unknown-unknown` and build again (cargo run --release -- serve)"
         );
     }
-    let map = map_files(args)?;
     let addr = SocketAddr::from((Ipv4Addr::LOCALHOST, args.port));
     let listener = TcpListener::bind(addr).map_err(|e| match e.kind() {
         std::io::ErrorKind::AddrInUse => {
@@ -124,6 +124,15 @@ fn map_files(args: &ServeArgs) -> Result<MapFiles> {
             files: Vec::new(),
         });
     };
+    // The page fetches the files when it opens, so they must be files that can be read again.
+    for (option, path) in [("--dem", Some(dem)), ("--color", args.color.as_ref())] {
+        if let Some(p) = path.filter(|p| !p.is_file()) {
+            bail!(
+                "{option} {}: serve needs a regular file (the page reads it again when it opens)",
+                p.display()
+            );
+        }
+    }
     map::load(
         dem,
         &LoadOptions {
