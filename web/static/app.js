@@ -265,13 +265,15 @@ if (bench > 0) {
     for (const half of [0, 1]) all[half].push(state.ms[half].at(-1));
   }
   for (const half of [0, 1]) {
-    const sorted = all[half].slice().sort((a, b) => a - b);
+    const sorted = all[half].filter((t) => t !== undefined).sort((a, b) => a - b);
+    if (sorted.length === 0) continue;
     document.body.dataset[`benchMin${half}`] = sorted[0].toFixed(2);
     document.body.dataset[`benchMedian${half}`] = sorted[Math.floor(sorted.length / 2)].toFixed(2);
   }
 }
 for (const half of [0, 1]) {
-  document.body.dataset[`ms${half}`] = state.ms[half].at(-1).toFixed(2);
+  // NaN if the frame could not be drawn (the message says why).
+  document.body.dataset[`ms${half}`] = (state.ms[half].at(-1) ?? NaN).toFixed(2);
 }
 document.body.dataset.message = $('message').textContent;
 document.body.dataset.ready = '1';
