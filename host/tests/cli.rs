@@ -476,3 +476,40 @@ fn zero_threads_and_zero_repeats_are_refused() {
     let args = ["bench", "--repeats", "0"];
     assert_one_line_error(&footprint(&args), &args, "--repeats");
 }
+
+/// `table --lod off` walks level 0 alone: the same views, more steps (L), and the JSON says so.
+#[test]
+fn table_measures_with_and_without_the_pyramid() {
+    let run = |lod: &str| -> serde_json::Value {
+        let o = footprint(&[
+            "table",
+            "--terrain-size",
+            "128",
+            "--case",
+            "5",
+            "--modes",
+            "ps,as",
+            "--size",
+            "48x36",
+            "--lod",
+            lod,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let (on, off) = (run("on"), run("off"));
+    assert_eq!(
+        (on["lod"].as_bool(), off["lod"].as_bool()),
+        (Some(true), Some(false))
+    );
+    let l = |t: &serde_json::Value| t["cases"][0]["L"].as_f64().unwrap();
+    assert!(
+        l(&off) > l(&on),
+        "L with LOD off {} should exceed L with it {}",
+        l(&off),
+        l(&on)
+    );
+    let o = footprint(&["table", "--lod", "maybe"]);
+    assert_one_line_error(&o, &["table", "--lod", "maybe"], "--lod");
+}

@@ -27,7 +27,8 @@ fn results() -> &'static (Tables15, Fly) {
         let map = procedural(1, DEFAULT_SIZE);
         let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
         let modes = footprint_host::experiment::paper::paper_modes();
-        let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, |_| {}).unwrap();
+        let tables =
+            table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, true, |_| {}).unwrap();
         let spec = FlySpec {
             size: SIZE,
             all_columns: false,

@@ -51,7 +51,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let file = |name: &str| -> PathBuf { folder.file(name) };
 
     // Tables 1–5.
-    let tables = table::run(map, &pyramid, &PAPER_PITCHES, &modes, size, |msg| {
+    let tables = table::run(map, &pyramid, &PAPER_PITCHES, &modes, size, true, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;

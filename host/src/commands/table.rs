@@ -7,7 +7,7 @@ use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes};
 use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table;
 use crate::report::tables;
-use crate::view::MapArgs;
+use crate::view::{MapArgs, Switch};
 
 /// Which case(s) of Table 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -49,6 +49,10 @@ pub struct TableArgs {
     /// CSV, one row per case and mode, then the Table 5 rows.
     #[arg(long, conflicts_with = "json")]
     pub csv: bool,
+    /// Walk the pyramid (on), or level 0 voxel by voxel (off): the RMSE with and without it is
+    /// the pyramid's share of the error.
+    #[arg(long, value_enum, default_value_t = Switch::On)]
+    pub lod: Switch,
 }
 
 impl CaseArg {
@@ -74,10 +78,19 @@ pub fn table(args: &TableArgs) -> Result<()> {
         "steps",
         args.format.json,
     );
-    let result = table::run(map, &pyramid, &pitches, &modes, args.size.size, |msg| {
-        bar.set_message(msg.to_string());
-        bar.inc(1);
-    })?;
+    let lod = args.lod == Switch::On;
+    let result = table::run(
+        map,
+        &pyramid,
+        &pitches,
+        &modes,
+        args.size.size,
+        lod,
+        |msg| {
+            bar.set_message(msg.to_string());
+            bar.inc(1);
+        },
+    )?;
     bar.finish_and_clear();
     if args.format.json {
         println!("{}", serde_json::to_string(&result)?);

@@ -100,6 +100,8 @@ impl std::fmt::Display for Rate {
 /// Tables 1–5.
 #[derive(Clone, Debug, Serialize)]
 pub struct Tables15 {
+    /// Whether the walk used the pyramid (`--lod on`) or level 0 alone.
+    pub lod: bool,
     /// One entry per case.
     pub cases: Vec<Case>,
     /// Table 5.
@@ -111,20 +113,26 @@ pub fn steps(pitches: usize, modes: usize) -> u64 {
     (pitches * (modes + SS_RATES.len() + 2)) as u64
 }
 
-/// Runs the cases at `pitches` with `modes` at `size` (the paper's is 400×400).
+/// Runs the cases at `pitches` with `modes` at `size` (the paper's is 400×400), walking the
+/// pyramid (`lod`) or level 0 alone; the ground truth is the same either way, so the RMSE with
+/// and without `lod` shows the pyramid's share of the error.
 pub fn run(
     map: &Map,
     pyramid: &Pyramid,
     pitches: &[f64],
     modes: &[Mode],
     size: Size,
+    lod: bool,
     mut progress: impl FnMut(&str),
 ) -> Result<Tables15> {
-    let terrain = pyramid.terrain(true)?;
-    let options = Options::default();
+    let terrain = pyramid.terrain(lod)?;
+    let options = Options {
+        lod,
+        ..Options::default()
+    };
     let mut cases = Vec::new();
     for &pitch in pitches {
-        let camera = paper_camera(map, pyramid, pitch, size, true)?;
+        let camera = paper_camera(map, pyramid, pitch, size, lod)?;
         progress(&format!("pitch {pitch}°: ground truth"));
         let truth = reference(&camera, pyramid, options.sky)?;
         let mut tables = Tables::new(&camera);
@@ -193,5 +201,5 @@ pub fn run(
             })
         })
         .collect();
-    Ok(Tables15 { cases, table5 })
+    Ok(Tables15 { lod, cases, table5 })
 }

@@ -4,7 +4,15 @@ use crate::experiment::table::{self, Tables15};
 
 /// Tables 1–5 as Markdown.
 pub fn markdown(t: &Tables15, source: &str) -> String {
-    let mut s = format!("Map: {source}. FOV 10°, fit-first-hit, per-column averages.\n\n");
+    let walk = if t.lod {
+        "the multiresolution pyramid (LOD on)"
+    } else {
+        "level 0 alone (LOD off)"
+    };
+    let mut s = format!(
+        "Map: {source}. FOV 10°, fit-first-hit, per-column averages; the walk steps through \
+         {walk}.\n\n"
+    );
     s += "**Table 1.** The viewing parameters and the attributes of each case.\n\n";
     s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) |\n|---|---|---|---|---|\n";
     for c in &t.cases {
