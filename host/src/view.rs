@@ -143,14 +143,7 @@ impl MapArgs {
                         bail!("{option}: only a --dem map takes it (the built-in terrain has its own scale)");
                     }
                 }
-                if self.terrain_size < map::MIN_SIZE || self.terrain_size > map::MAX_SIDE {
-                    bail!(
-                        "--terrain-size {}: must be {}..={}",
-                        self.terrain_size,
-                        map::MIN_SIZE,
-                        map::MAX_SIDE
-                    );
-                }
+                map::procedural::check_size(self.terrain_size).map_err(anyhow::Error::msg)?;
                 let n = self.terrain_size;
                 crate::memory::check(
                     crate::memory::map_bytes(n, n),

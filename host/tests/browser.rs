@@ -103,12 +103,7 @@ fn a_bad_map_file_shows_the_clis_error_and_keeps_the_map() {
 
     // An ASCII grid whose header is cut short, dropped on the page's file input.
     let bad = "ncols 4\nnrows 3\nxllcorner 0\n";
-    browser.eval(&format!(
-        "(() => {{ const dt = new DataTransfer(); \
-         dt.items.add(new File([{bad:?}], 'bad.asc')); \
-         const input = document.getElementById('files'); input.files = dt.files; \
-         input.dispatchEvent(new Event('change')); return true; }})()"
-    ));
+    choose_file(&mut browser, "files", "bad.asc", bad.as_bytes());
     browser.wait_for("document.getElementById('message').textContent !== ''", 30);
     let shown = browser.eval("document.getElementById('message').textContent");
     let shown = shown.as_str().unwrap();
@@ -191,6 +186,18 @@ fn serve_checks_its_map_before_it_listens() {
     assert_one_line_error(&o, &["serve", "--dem"], "bad.asc");
 }
 
+/// Puts a file named `name` holding `bytes` into the page's file input `input`, as a person
+/// choosing it would (the input's `change` event fires).
+fn choose_file(browser: &mut Browser, input: &str, name: &str, bytes: &[u8]) {
+    let data = base64::engine::general_purpose::STANDARD.encode(bytes);
+    browser.eval(&format!(
+        "(() => {{ const bytes = Uint8Array.from(atob('{data}'), (c) => c.charCodeAt(0)); \
+         const dt = new DataTransfer(); dt.items.add(new File([bytes], '{name}')); \
+         const input = document.getElementById('{input}'); input.files = dt.files; \
+         input.dispatchEvent(new Event('change')); return true; }})()"
+    ));
+}
+
 /// A PNG of `img` as bytes.
 fn png_bytes<P: image::PixelWithColorType>(img: &image::ImageBuffer<P, Vec<P::Subpixel>>) -> Vec<u8>
 where
@@ -213,18 +220,9 @@ fn a_png_height_map_and_its_colour_map_load_from_the_two_pickers() {
     });
     let colors =
         image::RgbImage::from_fn(48, 32, |x, y| image::Rgb([x as u8 * 5, y as u8 * 7, 90]));
-    let b64 = |b: Vec<u8>| base64::engine::general_purpose::STANDARD.encode(b);
-    let pick = |input: &str, name: &str, data: String| {
-        format!(
-            "(() => {{ const bytes = Uint8Array.from(atob('{data}'), (c) => c.charCodeAt(0)); \
-             const dt = new DataTransfer(); dt.items.add(new File([bytes], '{name}')); \
-             const input = document.getElementById('{input}'); input.files = dt.files; \
-             input.dispatchEvent(new Event('change')); return true; }})()"
-        )
-    };
     // The colour map first: it waits for a height map, then the pair loads.
-    browser.eval(&pick("color-file", "tint.png", b64(png_bytes(&colors))));
-    browser.eval(&pick("files", "height.png", b64(png_bytes(&heights))));
+    choose_file(&mut browser, "color-file", "tint.png", &png_bytes(&colors));
+    choose_file(&mut browser, "files", "height.png", &png_bytes(&heights));
     browser.wait_for(
         "document.getElementById('map-info').textContent.includes('48×32')",
         30,
@@ -276,4 +274,14 @@ fn the_page_opens_the_map_serve_was_given() {
         "{info}"
     );
     assert_eq!(browser.eval("document.body.dataset.message"), "");
+}
+
+#[test]
+fn serve_refuses_a_built_in_terrain_of_a_bad_size() {
+    let o = footprint(&["serve", "--port", "0", "--terrain-size", "8"]);
+    assert_one_line_error(
+        &o,
+        &["serve", "--terrain-size", "8"],
+        "--terrain-size 8: must be 16..=65536",
+    );
 }

@@ -37,6 +37,18 @@ const UNITS_PER_M: i64 = 10;
 /// Water level, in height units: everything below is a flat lake surface.
 const WATER: i64 = 140 * UNITS_PER_M;
 
+/// Checks a built-in terrain side given as `--terrain-size`: the message every caller shows (the
+/// CLI, `footprint serve` and the browser page).
+pub fn check_size(size: u32) -> Result<(), String> {
+    if (MIN_SIZE..=MAX_SIDE).contains(&size) {
+        Ok(())
+    } else {
+        Err(format!(
+            "--terrain-size {size}: must be {MIN_SIZE}..={MAX_SIDE}"
+        ))
+    }
+}
+
 /// Generates the built-in `size`×`size` terrain for `seed`.
 ///
 /// The result has `spacing_m` = 30 m and `height_scale_m` = 0.1 m, heights from about 140 m

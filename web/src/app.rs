@@ -187,13 +187,7 @@ impl App {
     /// Replaces the map by the built-in terrain of `seed` and `size`, seen by the paper's camera
     /// at the current pitch and size. On error the map stays as it was.
     pub fn load_builtin(&mut self, seed: u64, size: u32) -> Result<(), String> {
-        if !(procedural::MIN_SIZE..=footprint_core::terrain::MAX_SIDE).contains(&size) {
-            return Err(format!(
-                "--terrain-size {size}: must be {}..={}",
-                procedural::MIN_SIZE,
-                footprint_core::terrain::MAX_SIDE
-            ));
-        }
+        procedural::check_size(size)?;
         memory::check(
             memory::map_bytes(size, size),
             &format!("--terrain-size {size}"),
@@ -296,20 +290,16 @@ impl App {
         half: usize,
         f: impl FnOnce(&Frame<'_>, &Terrain<'_>, &mut Half) -> Result<R, String>,
     ) -> Result<R, String> {
-        let camera = Camera::new(self.params).map_err(|e| format!("camera: {e}"))?;
-        let terrain = self
-            .pyramid
-            .terrain(self.options.lod)
-            .map_err(|e| e.to_string())?;
-        let mut tables = Tables::new(&camera);
-        let frame = tables
-            .frame(&camera, &terrain, self.options)
-            .map_err(|e| format!("camera: {e}"))?;
         let h = self
             .halves
             .get_mut(half)
             .ok_or_else(|| format!("no half {half}"))?;
-        f(&frame, &terrain, h)
+        with_frame(
+            &self.pyramid,
+            self.options,
+            self.params,
+            |frame, terrain| f(frame, terrain, h),
+        )
     }
 
     /// Renders half `half` (no counting: the time is the render's) and updates its flicker
@@ -334,15 +324,7 @@ impl App {
 
     /// Whether the core takes a camera at `params` over this map.
     fn check(&self, params: CameraParams) -> Result<(), String> {
-        let camera = Camera::new(params).map_err(|e| format!("camera: {e}"))?;
-        let terrain = self
-            .pyramid
-            .terrain(self.options.lod)
-            .map_err(|e| e.to_string())?;
-        Tables::new(&camera)
-            .frame(&camera, &terrain, self.options)
-            .map(|_| ())
-            .map_err(|e| format!("camera: {e}"))
+        with_frame(&self.pyramid, self.options, params, |_, _| Ok(()))
     }
 
     /// A new map or size: the flicker meters start again.
@@ -351,6 +333,23 @@ impl App {
             *h = Half::new(h.mode);
         }
     }
+}
+
+/// Runs `f` on the frame of a camera at `params` over `pyramid`: the one place the page builds
+/// a camera, its terrain and its tables (errors said as the core's, prefixed `camera: `).
+fn with_frame<R>(
+    pyramid: &Pyramid,
+    options: Options,
+    params: CameraParams,
+    f: impl FnOnce(&Frame<'_>, &Terrain<'_>) -> Result<R, String>,
+) -> Result<R, String> {
+    let camera = Camera::new(params).map_err(|e| format!("camera: {e}"))?;
+    let terrain = pyramid.terrain(options.lod).map_err(|e| e.to_string())?;
+    let mut tables = Tables::new(&camera);
+    let frame = tables
+        .frame(&camera, &terrain, options)
+        .map_err(|e| format!("camera: {e}"))?;
+    f(&frame, &terrain)
 }
 
 /// The pyramid of `map`, with the CLI's default height filter.
@@ -418,6 +417,17 @@ mod tests {
                 .replace(&on_disk.display().to_string(), "bad.asc")
         );
         assert_eq!(app.map().source, before);
+    }
+
+    #[test]
+    fn a_built_in_terrain_of_a_bad_size_is_refused_and_the_map_stays() {
+        let mut app = small();
+        let before = app.map().source.clone();
+        let e = app.load_builtin(1, 8).unwrap_err();
+        assert_eq!(e, "--terrain-size 8: must be 16..=65536");
+        assert_eq!(app.map().source, before);
+        app.load_builtin(2, 64).unwrap();
+        assert_eq!((app.map().width, app.map().height), (64, 64));
     }
 
     #[test]

@@ -110,14 +110,7 @@ struct MapFiles {
 /// Checks `--dem` (and `--color`) with the CLI's readers and lists them for the page.
 fn map_files(args: &ServeArgs) -> Result<MapFiles> {
     let Some(dem) = &args.dem else {
-        if args.terrain_size < map::MIN_SIZE || args.terrain_size > map::MAX_SIDE {
-            bail!(
-                "--terrain-size {}: must be {}..={}",
-                args.terrain_size,
-                map::MIN_SIZE,
-                map::MAX_SIDE
-            );
-        }
+        map::procedural::check_size(args.terrain_size).map_err(anyhow::Error::msg)?;
         let json = serde_json::json!({ "seed": args.seed, "terrain_size": args.terrain_size });
         return Ok(MapFiles {
             json: json.to_string(),
