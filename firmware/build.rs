@@ -98,12 +98,13 @@ fn main() {
         "/// The camera, eye height fitted by the paper's rule.\n\
          pub const PARAMS: CameraParams = CameraParams {{\n    \
          x_m: {},\n    y_m: {},\n    eye_m: {},\n    heading_deg: {},\n    pitch_deg: {},\n    \
-         fov_deg: {},\n    width: {},\n    height: {},\n    far_m: {},\n}};",
+         roll_deg: {},\n    fov_deg: {},\n    width: {},\n    height: {},\n    far_m: {},\n}};",
         f64_const(p.x_m),
         f64_const(p.y_m),
         f64_const(p.eye_m),
         f64_const(p.heading_deg),
         f64_const(p.pitch_deg),
+        f64_const(p.roll_deg),
         f64_const(p.fov_deg),
         p.width,
         p.height,

@@ -61,7 +61,7 @@
 //! let level0 = Level::new(16, 16, &heights, &colors)?;
 //! let terrain = Terrain::new(level0, Scale::new(30.0, 0.1)?);
 //! let camera = Camera::new(CameraParams {
-//!     x_m: 240.0, y_m: 240.0, eye_m: 100.0, heading_deg: 0.0, pitch_deg: 20.0,
+//!     x_m: 240.0, y_m: 240.0, eye_m: 100.0, heading_deg: 0.0, pitch_deg: 20.0, roll_deg: 0.0,
 //!     fov_deg: 10.0, width: 8, height: 8, far_m: 30_000.0,
 //! })?;
 //! let (mut rows, mut cols) = ([Coord::ZERO; 9], [Column::default(); 8]);

@@ -82,6 +82,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         eye_m: input.eye,
         heading_deg: input.heading,
         pitch_deg: input.pitch,
+        roll_deg: 0.0,
         fov_deg: input.fov,
         width: u32::from(input.image.0 % 13),
         height: u32::from(input.image.1 % 13),

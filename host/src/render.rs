@@ -27,16 +27,13 @@ pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> 
             out
         })
         .collect();
-    let mut image = vec![Rgb::default(); w * h];
+    let mut grid = vec![Rgb::default(); w * h];
     for (x, col) in columns.iter().enumerate() {
         for (i, px) in col.iter().enumerate() {
-            image[(h - 1 - i) * w + x] = *px;
+            grid[(h - 1 - i) * w + x] = *px;
         }
     }
-    Ok(Rendered {
-        image,
-        size: (w as u32, h as u32),
-    })
+    Ok(footprint_scenes::render::finish(frame, grid)?)
 }
 
 /// Renders one column (rows from the bottom) without counting.
@@ -96,5 +93,5 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
         .into_par_iter()
         .map(|x| footprint_scenes::render::count_column(frame, terrain, mode, x))
         .collect();
-    Ok(footprint_scenes::render::assemble(frame, columns))
+    Ok(footprint_scenes::render::assemble(frame, columns)?)
 }

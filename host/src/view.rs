@@ -241,6 +241,7 @@ pub fn resolve_camera(pyramid: &Pyramid, cam: &CameraArgs, options: Options) -> 
         eye_m: 0.0,
         heading_deg: cam.heading,
         pitch_deg: cam.pitch,
+        roll_deg: 0.0,
         fov_deg: cam.fov,
         width: cam.size.width,
         height: cam.size.height,

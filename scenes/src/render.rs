@@ -210,7 +210,8 @@ impl fmt::Debug for Rendered {
     }
 }
 
-/// Renders one frame with cost `cost` into a new image.
+/// Renders one frame with cost `cost` into a new image: the walk's grid, resampled when the
+/// projection is exact ([`finish`]).
 pub fn render_with<C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
@@ -218,9 +219,24 @@ pub fn render_with<C: Cost>(
     cost: &mut C,
 ) -> Result<Rendered, Error> {
     let (w, h) = (frame.width(), frame.height());
-    let mut image = vec![Rgb::default(); w * h];
-    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut image),
-        classic => classic::render(frame, terrain, cost, &mut image))?;
+    let mut grid = vec![Rgb::default(); w * h];
+    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut grid),
+        classic => classic::render(frame, terrain, cost, &mut grid))?;
+    finish(frame, grid)
+}
+
+/// The image from the walked grid (row-major from the top): the grid itself with the paper's
+/// projection, the fan resampled with the exact one ([`Frame::resample`]).
+pub fn finish(frame: &Frame<'_>, grid: Vec<Rgb>) -> Result<Rendered, Error> {
+    let image = if frame.fan().is_some() {
+        let (w, h) = frame.image_size();
+        let mut image = vec![Rgb::default(); w * h];
+        frame.resample(&grid, &mut image)?;
+        image
+    } else {
+        grid
+    };
+    let (w, h) = frame.image_size();
     Ok(Rendered {
         image,
         size: (w as u32, h as u32),
@@ -237,10 +253,11 @@ pub fn walk_mode<C: Cost>(
     cost: &mut C,
     out: &mut [Rgb],
 ) {
-    let h = frame.height();
+    let rows = frame.column(x).map_or(0..0, |c| c.rows());
+    let first = rows.start.min(out.len());
     with_sampler!(mode, s => {
         let mut s = s;
-        walk(frame, terrain, x, 0..h, &mut s, cost, out)
+        walk(frame, terrain, x, rows, &mut s, cost, &mut out[first..])
     }, classic => classic::walk(frame, terrain, x, cost, out));
 }
 
@@ -297,10 +314,13 @@ pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usi
     }
 }
 
-/// The frame from its counted columns, in order (`columns[x]` is column `x`): the image, the
-/// totals, the per-column tallies, and the hidden and missed voxels summed. The same for any
-/// order the columns were counted in.
-pub fn assemble(frame: &Frame<'_>, columns: Vec<ColumnCount>) -> (Rendered, Measured) {
+/// The frame from its counted columns, in order (`columns[x]` is column `x`): the image (the
+/// grid [`finish`]ed), the totals, the per-column tallies, and the hidden and missed voxels
+/// summed. The same for any order the columns were counted in.
+pub fn assemble(
+    frame: &Frame<'_>,
+    columns: Vec<ColumnCount>,
+) -> Result<(Rendered, Measured), Error> {
     let (w, h) = (frame.width(), frame.height());
     let mut image = vec![Rgb::default(); w * h];
     let mut total = Tally::default();
@@ -314,22 +334,23 @@ pub fn assemble(frame: &Frame<'_>, columns: Vec<ColumnCount>) -> (Rendered, Meas
         tallies.push(column.tally);
         (hidden, missed) = (hidden + column.hidden, missed + column.missed);
     }
-    (
-        Rendered {
-            image,
-            size: (w as u32, h as u32),
-        },
+    Ok((
+        finish(frame, image)?,
         Measured {
             total,
             columns: tallies,
             hidden,
             missed,
         },
-    )
+    ))
 }
 
 /// [`count_column`] for every column, one after the other, and [`assemble`]d.
-pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> (Rendered, Measured) {
+pub fn count(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+) -> Result<(Rendered, Measured), Error> {
     let columns = (0..frame.width())
         .map(|x| count_column(frame, terrain, mode, x))
         .collect();

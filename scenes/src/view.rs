@@ -45,8 +45,9 @@ impl Tables {
         terrain: &Terrain<'_>,
         options: Options,
     ) -> Result<Frame<'t>, Error> {
-        let columns = camera.width() * options.columns_per_pixel.max(1) as usize;
+        let (columns, rows) = Frame::grid_size(camera, options)?;
         self.columns.resize(columns, Column::default());
+        self.rows.resize(rows + 1, Coord::ZERO);
         Frame::new(camera, terrain, options, &mut self.rows, &mut self.columns)
     }
 }
@@ -81,6 +82,7 @@ pub fn paper_params(map: &Map, pitch_deg: f64, width: u32, height: u32) -> Camer
         eye_m: 0.0,
         heading_deg: 0.0,
         pitch_deg,
+        roll_deg: 0.0,
         fov_deg: PAPER_FOV_DEG,
         width,
         height,

@@ -1035,6 +1035,7 @@ fn params() -> CameraParams {
         eye_m: 30.0,
         heading_deg: 0.0,
         pitch_deg: 20.0,
+        roll_deg: 0.0,
         fov_deg: 30.0,
         width: 4,
         height: 4,

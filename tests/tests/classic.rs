@@ -5,7 +5,7 @@
 //!
 //! **Tolerance.** Both walk the same sample positions (an integer sequence: fifths of a
 //! half-voxel, steps of 10, 12, 14, …). The float reference takes the ray slopes from
-//! `Camera::row_slope`, the cross coordinate from the camera's heading and the projection in
+//! `Camera::row_slope` (times `cos φ`, the pinhole's slope in the column's plane), the cross coordinate from the camera's heading and the projection in
 //! `f64`; the core rounds the slopes to 24 fractional bits and the cross coordinate to 32. A pixel can only differ where a voxel top
 //! and a row's ray are within that rounding of each other, so the test allows at most 1 % of
 //! the pixels to differ, and requires the rest to be identical (measured: none differ, on
@@ -74,7 +74,9 @@ fn float_reference(
                 };
                 let top_m = f64::from(map.height_at(axis, x as i64, y as i64)) * HEIGHT_SCALE_M;
                 let t_m = (n_int - n_eye) / 2.0 * sec * SPACING_M;
-                while i < h && top_m > p.eye_m + slopes[i] * t_m {
+                // The pinhole's slope in the column's plane: Eq. 2 times cos φ.
+                let cos_phi = 1.0 / (1.0 + xc * xc).sqrt();
+                while i < h && top_m > p.eye_m + slopes[i] * cos_phi * t_m {
                     out[i] = map.color_at(x as i64, y as i64);
                     i += 1;
                 }

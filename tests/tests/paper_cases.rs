@@ -112,6 +112,7 @@ fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
             eye_m: 1.5 * top_m,
             heading_deg: 30.0,
             pitch_deg: 0.0,
+            roll_deg: 0.0,
             fov_deg: 10.0,
             width: 32,
             height: 32,

@@ -92,6 +92,7 @@ fn case() -> impl Strategy<Value = Case> {
                             eye_m,
                             heading_deg,
                             pitch_deg,
+                            roll_deg: 0.0,
                             fov_deg,
                             width,
                             height,
@@ -148,7 +149,7 @@ fn with_case<R>(case: &Case, f: impl FnOnce(&Terrain<'_>, &Frame<'_>) -> R) -> O
     let options = Options {
         sky: SKY,
         lod: case.lod,
-        columns_per_pixel: 1,
+        ..Options::default()
     };
     let frame = Frame::new(&camera, &terrain, options, &mut rows, &mut cols).ok()?;
     Some(f(&terrain, &frame))

@@ -316,7 +316,7 @@ impl App {
     /// Counts half `half`'s frame: every counter, and `V` from the exact visibility pass.
     pub fn count(&mut self, half: usize) -> Result<Counters, String> {
         self.on_frame(half, |frame, terrain, h| {
-            let (_, measured) = count(frame, terrain, h.mode);
+            let (_, measured) = count(frame, terrain, h.mode).map_err(|e| e.to_string())?;
             h.counters = Counters::new(&measured.total, measured.hidden, measured.missed);
             Ok(h.counters)
         })

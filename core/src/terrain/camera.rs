@@ -1,19 +1,24 @@
 //! The camera and its per-frame tables.
 //!
-//! The camera has a position, an eye height, a heading, a pitch and a vertical field of view,
-//! square pixels and no roll (Sect. 3). As in the paper, every image column is a vertical
-//! plane through the eye, and the rays of one column differ only in their slope; this is what
-//! lets each ray resume where the one below it hit (Fig. 3).
+//! The camera has a position, an eye height, a heading, a pitch, a roll and a vertical field of
+//! view, and square pixels (Sect. 3). The walk's columns are vertical planes through the eye,
+//! and the rays of one column differ only in their slope; this is what lets each ray resume
+//! where the one below it hit (Fig. 3). With the paper's projection ([`Projection::Paper`]) the
+//! columns are the image's columns, as in the paper; with [`Projection::Exact`] they are the
+//! fan of vertical planes of a pinhole camera at any pitch and roll ([`crate::terrain::fan`]),
+//! resampled into the image.
 //!
 //! **Projection.** Let `pix = 2·tan(fov/2)/H` be the pixel size on an image plane at unit
-//! distance. Column `c` is the vertical plane at azimuth `atan(x_c)` from the heading, with
-//! `x_c = (c + ½ − W/2)·pix`. Within it, the ray through the *lower edge* of row `i`
-//! (`i = 0` at the bottom, `i = H` the top edge of the top row) passes through the point
-//! `P_i` of an image line pitched by `pitch`, so its slope is Eq. 2 exactly:
-//! `s(R_i) = (P_i.h − COP.h)/(P_i.x − COP.x) = (y_i·cos p − sin p)/(cos p + y_i·sin p)`,
-//! `y_i = (i − H/2)·pix`, for every pixel and any pitch. The image is therefore the paper's
-//! column-plane projection: at pitch 0 it is the pinhole image, and at other pitches vertical
-//! edges stay vertical (no keystone), because each column is its own pitched pinhole.
+//! distance. Column `c` is the vertical plane at azimuth `φ_c = atan(x_c)` from the heading,
+//! with `x_c = (c + ½ − W/2)·pix`. Within it, the ray through the *lower edge* of row `i`
+//! (`i = 0` at the bottom, `i = H` the top edge of the top row) passes through the point of the
+//! pitched image plane at height `y_i = (i − H/2)·pix` where the column's plane cuts it, so its
+//! slope is Eq. 2 times `cos φ_c`:
+//! `s(R_i) = cos φ_c·(y_i·cos p − sin p)/(cos p + y_i·sin p)`, for every pixel and any pitch
+//! (the `cos φ_c` is the plane's longer way to the image plane off the centre column). At pitch
+//! 0 this is the pinhole image. At other pitches the paper's projection draws the plane at
+//! `φ_c` as image column `c` although a pinhole sees it along the line
+//! `x = x_c·(cos p + y·sin p)` (no keystone); [`Projection::Exact`] puts it there.
 //!
 //! **Tables.** [`Frame::new`] does all the trigonometry once (in `f64`, see [`crate::trig`])
 //! and stores per row the slope `s(R_i)` ([`Coord`]) and per column a [`Column`] of fixed-point
@@ -28,6 +33,7 @@ use crate::num::{
     fixed_from_f64, mul_floor_24, mul_floor_32, Coord, Height, Line, Slope, MAX_COORD,
     MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE_BITS,
 };
+use crate::terrain::fan::Fan;
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
 
@@ -47,6 +53,9 @@ pub struct CameraParams {
     pub heading_deg: f64,
     /// Pitch, degrees, positive looking down; must lie in (−90, 90).
     pub pitch_deg: f64,
+    /// Roll, degrees, positive banking right (the horizon rises to the right); any finite
+    /// angle, wrapped into (−180, 180]. Only [`Projection::Exact`] renders a roll.
+    pub roll_deg: f64,
     /// Vertical field of view, degrees; must lie in (0, 180).
     pub fov_deg: f64,
     /// Image width in pixels, 1..=[`MAX_IMAGE_SIDE`].
@@ -65,8 +74,10 @@ pub struct Camera {
 
 impl Camera {
     /// Validates the parameters: every number finite, `0 < fov < 180`, `−90 < pitch < 90`,
-    /// sides in `1..=MAX_IMAGE_SIDE`, `far > 0`.
+    /// sides in `1..=MAX_IMAGE_SIDE`, `far > 0`; wraps the roll into (−180, 180].
     pub fn new(params: CameraParams) -> Result<Self, Error> {
+        let mut params = params;
+        params.roll_deg = wrap_deg(check("roll", params.roll_deg, -1e9, 1e9, false)?);
         check("x", params.x_m, -1e12, 1e12, false)?;
         check("y", params.y_m, -1e12, 1e12, false)?;
         check("height", params.eye_m, -1e12, 1e12, false)?;
@@ -90,6 +101,11 @@ impl Camera {
         &self.params
     }
 
+    /// The roll, degrees in (−180, 180].
+    pub fn roll_deg(&self) -> f64 {
+        self.params.roll_deg
+    }
+
     /// Image width in pixels.
     pub fn width(&self) -> usize {
         self.params.width as usize
@@ -110,8 +126,14 @@ impl Camera {
     /// Slope (rise per horizontal distance) of the ray through the lower edge of row `i`,
     /// counted from the bottom, `0..=H` (Eq. 2), in `f64`.
     pub fn row_slope(&self, i: usize) -> f64 {
+        self.slope_at(i as f64 - self.params.height as f64 / 2.0)
+    }
+
+    /// Eq. 2's slope of the ray through height `y` pixels above the image's centre on the
+    /// centre column (of the unrolled image), in `f64`.
+    pub fn slope_at(&self, y_pixels: f64) -> f64 {
         let (sp, cp) = sin_cos_deg(self.params.pitch_deg);
-        let y = (i as f64 - self.params.height as f64 / 2.0) * self.pixel_angle();
+        let y = y_pixels * self.pixel_angle();
         let den = cp + y * sp;
         if den <= 1e-12 {
             // The ray points past the vertical: it goes straight down.
@@ -136,8 +158,35 @@ fn floor_i64(x: f64) -> i64 {
     }
 }
 
+/// `deg` wrapped into (−180, 180].
+fn wrap_deg(deg: f64) -> f64 {
+    let turns = floor_i64(deg / 360.0 + 0.5);
+    let r = deg - turns as f64 * 360.0;
+    if r <= -180.0 {
+        r + 360.0
+    } else if r > 180.0 {
+        r - 360.0
+    } else {
+        r
+    }
+}
+
 /// The largest `|tan|` of a row's elevation kept in the row table.
 const MAX_TAN: f64 = 1.0e6;
+
+/// How the image's pixels map to the walk's vertical planes (Sect. 3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Projection {
+    /// The paper's: image column `c` is the vertical plane at azimuth `atan(x_c)`. A pinhole
+    /// image at pitch 0; at other pitches the planes are drawn as columns although a pinhole
+    /// sees them converge (see the module docs). No roll.
+    #[default]
+    Paper,
+    /// A pinhole camera at any pitch and roll: the walk runs along the fan of vertical planes
+    /// and the fan is resampled into the image ([`crate::terrain::fan`]). At pitch 0 and roll 0
+    /// the same image as [`Projection::Paper`], bit for bit.
+    Exact,
+}
 
 /// Frame options that are not part of the camera.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -149,6 +198,8 @@ pub struct Options {
     /// Columns walked per image pixel, 1..=64: with `k > 1` the frame has `W·k` columns, each
     /// `1/k` of a pixel wide, for a horizontally supersampled reference image.
     pub columns_per_pixel: u32,
+    /// The projection: the paper's image columns, or the exact fan.
+    pub projection: Projection,
 }
 
 impl Default for Options {
@@ -157,6 +208,7 @@ impl Default for Options {
             sky: Rgb::new(150, 190, 235),
             lod: true,
             columns_per_pixel: 1,
+            projection: Projection::Paper,
         }
     }
 }
@@ -187,6 +239,9 @@ pub struct Column {
     pub(crate) lod_base: i64,
     /// Voxels of horizontal distance per half-voxel step, `sec(φ)/2`, for reports.
     pub(crate) run: f64,
+    /// The rows walked, `first_row..end_row` from the bottom ([`Column::rows`]).
+    pub(crate) first_row: u32,
+    pub(crate) end_row: u32,
 }
 
 impl Column {
@@ -238,15 +293,18 @@ pub struct Frame<'t> {
     eye: Height,
     sky: Rgb,
     lod: bool,
+    fan: Option<Fan>,
 }
 
 impl<'t> Frame<'t> {
-    /// Builds the tables into `rows` (`H + 1` entries) and `columns` (`W·k` entries, `k` =
-    /// [`Options::columns_per_pixel`]).
+    /// Builds the tables into `rows` and `columns`. With the paper's projection they hold
+    /// `H + 1` and `W·k` entries (`k` = [`Options::columns_per_pixel`]); with the exact one,
+    /// the fan's rows + 1 and lines ([`Frame::grid_size`] says how many, before any buffer is
+    /// lent).
     ///
-    /// Errors: buffers of the wrong length, or a camera outside the core's fixed-point range
-    /// for this terrain (see [`crate::num`]): `|x|, |y| ≤ 2^21` voxels, `|eye| ≤ 2^22` height
-    /// units, `far ≤ 2^21` voxels.
+    /// Errors: buffers of the wrong length, a roll with the paper's projection, or a camera
+    /// outside the core's fixed-point range for this terrain (see [`crate::num`]):
+    /// `|x|, |y| ≤ 2^21` voxels, `|eye| ≤ 2^22` height units, `far ≤ 2^21` voxels.
     pub fn new(
         camera: &Camera,
         terrain: &Terrain<'_>,
@@ -255,13 +313,6 @@ impl<'t> Frame<'t> {
         columns: &'t mut [Column],
     ) -> Result<Self, Error> {
         let p = camera.params();
-        if rows.len() != camera.height() + 1 {
-            return Err(Error::SliceLength {
-                what: "rows",
-                expected: camera.height() + 1,
-                actual: rows.len(),
-            });
-        }
         let k = check(
             "columns-per-pixel",
             f64::from(options.columns_per_pixel),
@@ -269,10 +320,37 @@ impl<'t> Frame<'t> {
             64.0,
             false,
         )?;
-        if columns.len() != camera.width() * options.columns_per_pixel as usize {
+        let fan = match options.projection {
+            Projection::Paper if camera.roll_deg() != 0.0 => {
+                return Err(Error::OutOfRange {
+                    what: "roll",
+                    value: camera.roll_deg(),
+                    min: 0.0,
+                    max: 0.0,
+                    unit: "° (the paper's projection has no roll)",
+                })
+            }
+            Projection::Paper => None,
+            Projection::Exact => Some(Fan::new(camera, options.columns_per_pixel)?),
+        };
+        let (grid_w, grid_h) = fan.map_or(
+            (
+                camera.width() * options.columns_per_pixel as usize,
+                camera.height(),
+            ),
+            |f| (f.lines(), f.rows()),
+        );
+        if rows.len() != grid_h + 1 {
+            return Err(Error::SliceLength {
+                what: "rows",
+                expected: grid_h + 1,
+                actual: rows.len(),
+            });
+        }
+        if columns.len() != grid_w {
             return Err(Error::SliceLength {
                 what: "columns",
-                expected: camera.width() * options.columns_per_pixel as usize,
+                expected: grid_w,
                 actual: columns.len(),
             });
         }
@@ -313,7 +391,8 @@ impl<'t> Frame<'t> {
         // Rows: Eq. 2's slopes, strictly increasing so that each ray lies above the last.
         let mut below: Option<Coord> = None;
         for (i, row) in rows.iter_mut().enumerate() {
-            let mut slope = fixed_from_f64::<Coord>(camera.row_slope(i));
+            let y = fan.map_or(i as f64 - f64::from(p.height) / 2.0, |f| f.row_y(i));
+            let mut slope = fixed_from_f64::<Coord>(camera.slope_at(y));
             if let Some(below) = below.filter(|&b| slope <= b) {
                 slope = below.saturating_add(Coord::DELTA);
             }
@@ -328,8 +407,9 @@ impl<'t> Frame<'t> {
         let (rx, ry) = (ch, sh);
         let w = p.width as f64;
         let height_per_voxel = scale.spacing_m / scale.height_scale_m;
+        let spacing = fan.map_or(1.0 / k, |f| f.line_spacing());
         for (c, col) in columns.iter_mut().enumerate() {
-            let xc = ((c as f64 + 0.5) / k - w / 2.0) * pix;
+            let xc = fan.map_or((c as f64 + 0.5) / k - w / 2.0, |f| f.line_a(c)) * pix;
             let (dx, dy) = (fx + xc * rx, fy + xc * ry);
             let (axis, major, minor, u_eye, v_eye) = if dx.abs() >= dy.abs() {
                 (Axis::X, dx, dy, ex, ey)
@@ -349,7 +429,7 @@ impl<'t> Frame<'t> {
             let n_far = floor_i64(n_eye.to_num::<f64>() + far / run);
             // The footprint across the column at horizontal distance t is t·δ voxels, with δ
             // the column's angular width; the level is the one nearest in log2 (Sect. 3).
-            let delta = pix / k / (1.0 + xc * xc);
+            let delta = pix * spacing / (1.0 + xc * xc);
             #[allow(
                 clippy::cast_possible_truncation,
                 reason = "clamped to [2, 1e12] here, so `as` drops only the fraction"
@@ -359,7 +439,8 @@ impl<'t> Frame<'t> {
             *col = Column {
                 axis,
                 sign,
-                kc: fixed_from_f64(run * height_per_voxel),
+                // Eq. 2's row slope times cos φ (see the module docs).
+                kc: fixed_from_f64(run * height_per_voxel / sqrt(1.0 + xc * xc)),
                 n_eye,
                 v_base,
                 dv,
@@ -367,7 +448,16 @@ impl<'t> Frame<'t> {
                 n_far,
                 lod_base,
                 run,
+                first_row: 0,
+                #[allow(
+                    clippy::cast_possible_truncation,
+                    reason = "the rows are at most √2·MAX_IMAGE_SIDE + 1"
+                )]
+                end_row: grid_h as u32,
             };
+        }
+        if let Some(fan) = &fan {
+            fan.set_line_rows(rows, columns);
         }
         Ok(Self {
             rows,
@@ -375,7 +465,61 @@ impl<'t> Frame<'t> {
             eye: fixed_from_f64(eye),
             sky: options.sky,
             lod: options.lod,
+            fan,
         })
+    }
+
+    /// The walk's grid for `camera` with `options`: (columns, rows). The image's `W·k × H`
+    /// with the paper's projection, the fan's lines and rows with the exact one.
+    pub fn grid_size(camera: &Camera, options: Options) -> Result<(usize, usize), Error> {
+        Ok(match options.projection {
+            Projection::Paper => (
+                camera.width() * options.columns_per_pixel as usize,
+                camera.height(),
+            ),
+            Projection::Exact => {
+                let fan = Fan::new(camera, options.columns_per_pixel)?;
+                (fan.lines(), fan.rows())
+            }
+        })
+    }
+
+    /// The fan of an exact frame (`None` with the paper's projection, where the grid is the
+    /// image).
+    pub fn fan(&self) -> Option<&Fan> {
+        self.fan.as_ref()
+    }
+
+    /// The image this frame draws, `(W, H)`: the camera's size (with the paper's projection and
+    /// `k` columns per pixel, `W·k` wide, the grid itself).
+    pub fn image_size(&self) -> (usize, usize) {
+        self.fan
+            .map_or((self.width(), self.height()), |f| f.output_size())
+    }
+
+    /// The image from the walked grid `grid` (row-major from the top, [`Frame::width`] ×
+    /// [`Frame::height`]): the fan resampled ([`Fan::resample`]) or, with the paper's
+    /// projection, the grid copied.
+    ///
+    /// Errors: slices of the wrong length.
+    pub fn resample(&self, grid: &[Rgb], image: &mut [Rgb]) -> Result<(), Error> {
+        match &self.fan {
+            Some(fan) => fan.resample(self.rows, self.columns, grid, self.sky, image),
+            None if grid.len() == image.len() => {
+                image.copy_from_slice(grid);
+                Ok(())
+            }
+            None => Err(Error::SliceLength {
+                what: "image",
+                expected: grid.len(),
+                actual: image.len(),
+            }),
+        }
+    }
+
+    /// The frame's row slopes (`rows + 1` entries, Eq. 2 at each row's lower edge).
+    pub fn row_slopes(&self) -> &[Coord] {
+        self.rows
     }
 
     /// Image width.

@@ -66,6 +66,16 @@ impl core::fmt::Debug for ImageColumn<'_> {
     }
 }
 
+impl ImageColumn<'_> {
+    /// Makes row `first` (from the bottom) the column's pixel 0, for a walk of the rows from
+    /// `first` up ([`walk`] writes row `i` to pixel `i − first`).
+    pub fn start_at(&mut self, first: usize) {
+        let first = first.min(self.h);
+        self.h -= first;
+        self.bottom = self.bottom.wrapping_sub(first.wrapping_mul(self.w));
+    }
+}
+
 impl ColumnOut for ImageColumn<'_> {
     #[inline(always)]
     fn rows(&self) -> usize {
@@ -336,10 +346,11 @@ pub fn render<S: Sampler + Clone, C: Cost>(
     cost: &mut C,
     image: &mut [Rgb],
 ) -> Result<(), Error> {
-    let h = frame.height();
     render_frame(frame, image, |x, out| {
+        let rows = frame.column(x).map_or(0..0, Column::rows);
+        out.start_at(rows.start);
         let mut s = sampler.clone();
-        walk_into(frame, terrain, x, 0..h, &mut s, cost, out);
+        walk_into(frame, terrain, x, rows, &mut s, cost, out);
     })
 }
 

@@ -12,6 +12,7 @@ pub mod camera;
 pub mod classic;
 pub mod column;
 pub mod cost;
+pub mod fan;
 pub mod map;
 pub mod march;
 pub mod pyramid;

@@ -65,6 +65,7 @@ pub fn classic_camera(map: &Map, size: Size) -> Result<Camera> {
         eye_m: top_m + 20.0 * map.spacing_m,
         heading_deg: 0.0,
         pitch_deg: 5.0,
+        roll_deg: 0.0,
         fov_deg: 10.0,
         width: size.width,
         height: size.height,

@@ -3,9 +3,11 @@
 //! The reference is exact area sampling at pyramid level 0 (no LOD) with 16 columns walked per
 //! pixel, box-filtered horizontally: area sampling is exact along each column, and 16
 //! columns per pixel make the naive horizontal sampling the paper leaves (Sect. 8) negligible.
+//! With the exact projection the 16 columns per pixel are fan lines, and the fan's own
+//! resampling is the box filter.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options};
+use footprint_core::terrain::camera::{Camera, Options, Projection};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;
@@ -14,17 +16,26 @@ use crate::render::{render_parallel, Mode, Tables};
 /// Columns walked per pixel in the reference.
 pub const REFERENCE_COLUMNS: u32 = 16;
 
-/// Renders the reference image of `camera`'s view (row-major from the top).
-pub fn reference(camera: &Camera, pyramid: &Pyramid, sky: Rgb) -> Result<Vec<Rgb>> {
+/// Renders the reference image of `camera`'s view in `projection` (row-major from the top).
+pub fn reference(
+    camera: &Camera,
+    pyramid: &Pyramid,
+    sky: Rgb,
+    projection: Projection,
+) -> Result<Vec<Rgb>> {
     let terrain = pyramid.terrain(false)?;
     let options = Options {
         sky,
         lod: false,
         columns_per_pixel: REFERENCE_COLUMNS,
+        projection,
     };
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
     let wide = render_parallel(&frame, &terrain, Mode::AsExact)?;
+    if projection == Projection::Exact {
+        return Ok(wide.image);
+    }
     let k = REFERENCE_COLUMNS as usize;
     let (w, h) = (camera.width(), camera.height());
     let mut out = Vec::with_capacity(w * h);

@@ -134,7 +134,7 @@ pub fn run(
     for &pitch in pitches {
         let camera = paper_camera(map, pyramid, pitch, size, lod)?;
         progress(&format!("pitch {pitch}°: ground truth"));
-        let truth = reference(&camera, pyramid, options.sky)?;
+        let truth = reference(&camera, pyramid, options.sky, options.projection)?;
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;
         let cols = camera.width() as f64;

@@ -236,6 +236,7 @@ pub fn camera_far(pose: Pose, pitch_deg: f64, size: u32, far_m: f64) -> Camera {
         eye_m: pose.eye_m,
         heading_deg: pose.heading_deg,
         pitch_deg,
+        roll_deg: 0.0,
         fov_deg: 30.0,
         width: size,
         height: size,
@@ -259,7 +260,7 @@ pub fn with_frame<R>(
         Options {
             sky: SKY,
             lod,
-            columns_per_pixel: 1,
+            ..Options::default()
         },
         &mut rows,
         &mut cols,

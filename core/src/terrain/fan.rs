@@ -1,0 +1,395 @@
+//! The exact projection: a pinhole camera at any pitch and roll, walked along the fan of
+//! vertical planes through the eye and resampled into the image.
+//!
+//! **Why a fan.** Vertical coherence (Sect. 3, Fig. 3) holds exactly along an image line that
+//! is the projection of a vertical plane through the eye. With pitch or roll those lines are not
+//! the image columns: they all pass through the image of the vertical's vanishing point (the
+//! nadir when looking down), as Sect. 3 warns for pitch ≠ 0 (citing Lee and Shin; Wright and
+//! Hsieh). The paper's projection ([`super::camera::Projection::Paper`]) draws each vertical
+//! plane as an image column anyway, which at pitch 40° and a 10° field of view puts a corner
+//! pixel of a 400² image about 15 pixels from where a pinhole camera puts it.
+//!
+//! **The fan.** Undo the roll: an image point `(X, Y)` (pixels from the centre, `Y` up) lies at
+//! `x = X·cos ρ + Y·sin ρ`, `y = −X·sin ρ + Y·cos ρ` in the unrolled image (roll `ρ` positive
+//! banks right: the horizon rises to the right). In the unrolled image of a camera pitched by
+//! `p`, the vertical plane at azimuth `φ` from the heading is the straight line
+//! `x = tan φ · k̂(y)` with `k̂(y) = 1 + y·pix·tan p` (`pix` the pixel's size on the unit image
+//! plane), and along it the ray through row `y` has the slope of Eq. 2 times `cos φ`. So the
+//! walk renders a grid of *fan lines* (columns at `a = tan φ / pix`, evenly spaced in `a`) by
+//! *fan rows* (row edges evenly spaced in `y`, one pixel apart), every fan column an ordinary
+//! column of the paper's walk, and the image takes its pixels from that grid.
+//!
+//! **Resampling.** Output pixel `(X, Y)` maps to the point `(a, y) = (x / k̂(y), y)` of the grid.
+//! Its value is the average of the grid cells that overlap a box centred there, weighted by
+//! the overlap: the box is one fan row high and `1/k̂(y)` wide in `a`, which is exactly the
+//! pixel's own extent in the unrolled image when the roll is 0, and a box of the pixel's area
+//! turned by `ρ` against the pixel otherwise. The fan lines are spaced so that the box is
+//! never narrower than one fan line and the rows are one pixel apart, so every output pixel
+//! overlaps at least one grid cell. With area sampling each grid cell holds the exact average
+//! of the terrain over its own footprint, so an output pixel is the exact area average over its
+//! box, blurred by at most one grid cell; with point sampling it is a weighted average of the
+//! point samples in its box. At pitch 0 and roll 0 the grid is the image's own pixel grid and
+//! the resampling copies it, bit for bit.
+//!
+//! **Limits.** `k̂(y) ≤ 0` means the vanishing point of the vertical is in the image (the nadir
+//! or zenith is visible): the rays there point past the vertical, behind the fan. Those pixels
+//! take the fan line nearest the vertical, and [`Fan::vertical_in_view`] says so, so that the
+//! caller can warn. `k̂` is floored at 1/16 of its largest value in the image for the same reason.
+//!
+//! All of this is computed once per frame in `f64`; per pixel the resampling is integer
+//! (16 fractional bits), so the firmware and the host resample bit for bit alike.
+
+use core::ops::Range;
+
+use crate::color::Rgb;
+use crate::error::Error;
+use crate::num::Coord;
+use crate::terrain::camera::{Camera, Column};
+use crate::trig::sin_cos_deg;
+
+/// Fractional bits of the resampling's fixed point.
+const FRAC: u32 = 16;
+/// One, in the resampling's fixed point.
+const ONE: i64 = 1 << FRAC;
+/// The smallest `k̂` kept, as a fraction of the largest in the image (see the module's limits).
+const K_RATIO: f64 = 16.0;
+/// The most fan lines a frame may have: 16 times the widest image, at 64 columns per pixel.
+pub const MAX_FAN_LINES: u32 = 1 << 24;
+/// A bound on line coordinates (in the fixed point) that keeps every sum below 2^63.
+const SPAN: i64 = 1 << 44;
+
+/// `⌊x⌋` as an `i64`, saturating, in `core` (which has no `f64::floor`).
+fn floor_i64(x: f64) -> i64 {
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "`as` truncates toward zero and saturates, the first step of the floor"
+    )]
+    let t = x as i64;
+    if (t as f64) > x {
+        t - 1
+    } else {
+        t
+    }
+}
+
+/// `⌈x⌉` as an `i64`, saturating.
+fn ceil_i64(x: f64) -> i64 {
+    -floor_i64(-x)
+}
+
+/// `x` in the resampling's fixed point, rounded to nearest.
+fn fixed(x: f64) -> i64 {
+    floor_i64(x * ONE as f64 + 0.5)
+}
+
+/// The geometry of one frame's fan (see the module docs): the grid the walk renders and the
+/// per-pixel map from the image into it. Built by [`Fan::new`]; [`super::camera::Frame`] keeps
+/// it when the projection is exact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Fan {
+    /// The output image's width and height.
+    width: u32,
+    height: u32,
+    /// Fan lines and fan rows of the grid.
+    lines: u32,
+    rows: u32,
+    /// `cos ρ`, `sin ρ`.
+    cr: i64,
+    sr: i64,
+    /// The unrolled `(x, y)` of the top-left output pixel's centre, pixels.
+    x00: i64,
+    y00: i64,
+    /// The unrolled `y` of fan row 0's lower edge.
+    y_lo: i64,
+    /// The `a` of fan line 0's left edge.
+    a_lo: i64,
+    /// Fan lines per unit of `a`.
+    per_line: i64,
+    /// `1/k̂ = inv_a − s′·inv_b` for a row edge of slope `s′` (Eq. 2's row slope).
+    inv_a: i64,
+    inv_b: i64,
+    /// The largest `1/k̂` kept.
+    inv_max: i64,
+    /// Whether the vertical's vanishing point lies within the image's rows (`k̂ ≤ 0` there).
+    vertical: bool,
+}
+
+/// One grid cell an output pixel takes from, with its weight (`2^32` = the whole box).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tap {
+    /// The fan line.
+    pub line: usize,
+    /// The fan row, counted from the bottom.
+    pub row: usize,
+    /// The overlap of the pixel's box with the cell, in units of `2^−32` of the box.
+    pub weight: u64,
+}
+
+impl Fan {
+    /// The fan of `camera` with `columns_per_pixel` fan lines at least per output pixel (the
+    /// supersampled reference walks `k` times as many). At pitch 0 and roll 0 the fan is the
+    /// image's own grid: `W·k` lines and `H` rows.
+    ///
+    /// Errors: a frame that would need more than [`MAX_FAN_LINES`] lines.
+    pub fn new(camera: &Camera, columns_per_pixel: u32) -> Result<Self, Error> {
+        let p = camera.params();
+        let (w, h) = (f64::from(p.width), f64::from(p.height));
+        let k = f64::from(columns_per_pixel.max(1));
+        let pix = camera.pixel_angle();
+        let (sp, cp) = sin_cos_deg(p.pitch_deg);
+        let (sr, cr) = sin_cos_deg(camera.roll_deg());
+        let q = pix * sp / cp;
+        let identity = p.pitch_deg == 0.0 && camera.roll_deg() == 0.0;
+
+        // Rows: the unrolled image's extent in y, one pixel apart, centred.
+        let ey = (w * sr.abs() + h * cr.abs()) / 2.0;
+        let rows = if identity {
+            h
+        } else {
+            ceil_i64(2.0 * ey - 1e-6).max(1) as f64
+        };
+        let y_lo = -rows / 2.0;
+        let (k1, k2) = (1.0 + q * y_lo, 1.0 + q * (y_lo + rows));
+        let k_hi = k1.max(k2).max(1.0);
+        let k_floor = k_hi / K_RATIO;
+        let vertical = k1.min(k2) <= 0.0;
+        let khat = |y: f64| (1.0 + q * y).max(k_floor);
+
+        // Lines: spaced so that no output pixel is narrower than one line (in any row), over
+        // the range of `a` the image's corners reach (x/k̂ is extreme at the corners of a
+        // convex region where k̂ > 0), with a line of margin for the box.
+        let da = 1.0 / (k_hi * k);
+        let (a_lo, lines) = if identity {
+            (-w / 2.0, w * k)
+        } else {
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for (cx, cy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                let (xx, yy) = (cx * (w / 2.0 + 1.0), cy * (h / 2.0 + 1.0));
+                let (x, y) = (xx * cr + yy * sr, -xx * sr + yy * cr);
+                let a = x / khat(y);
+                lo = lo.min(a);
+                hi = hi.max(a);
+            }
+            // Where k̂ is floored, x/k̂ grows with |x| alone: the corners bound it too.
+            let lo = lo - da;
+            let n = ceil_i64((hi + da - lo) / da).max(1);
+            (lo, n as f64)
+        };
+        if lines > f64::from(MAX_FAN_LINES) {
+            return Err(Error::OutOfRange {
+                what: "fan lines",
+                value: lines,
+                min: 1.0,
+                max: f64::from(MAX_FAN_LINES),
+                unit: "",
+            });
+        }
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "lines ≤ MAX_FAN_LINES (checked above); rows ≤ √2·MAX_IMAGE_SIDE + 1"
+        )]
+        let (lines, rows) = (lines as u32, rows as u32);
+        let x0 = 0.5 - w / 2.0;
+        let y0 = h / 2.0 - 0.5;
+        Ok(Self {
+            width: p.width,
+            height: p.height,
+            lines,
+            rows,
+            cr: fixed(cr),
+            sr: fixed(sr),
+            x00: fixed(x0 * cr + y0 * sr),
+            y00: fixed(-x0 * sr + y0 * cr),
+            y_lo: fixed(y_lo),
+            a_lo: fixed(a_lo),
+            per_line: fixed(1.0 / da),
+            inv_a: fixed(cp * cp),
+            inv_b: fixed(sp * cp),
+            inv_max: fixed(1.0 / k_floor),
+            vertical,
+        })
+    }
+
+    /// Fan lines: the walk's columns.
+    pub fn lines(&self) -> usize {
+        self.lines as usize
+    }
+
+    /// Fan rows: the walk's rows.
+    pub fn rows(&self) -> usize {
+        self.rows as usize
+    }
+
+    /// The output image's width and height.
+    pub fn output_size(&self) -> (usize, usize) {
+        (self.width as usize, self.height as usize)
+    }
+
+    /// The unrolled `y`, in pixels from the image's centre, of fan row `i`'s lower edge.
+    pub fn row_y(&self, i: usize) -> f64 {
+        (self.y_lo as f64 + i as f64 * ONE as f64) / ONE as f64
+    }
+
+    /// `tan φ / pix` of fan line `j`'s centre: its azimuth from the heading, in pixels of the
+    /// unit image plane.
+    pub fn line_a(&self, j: usize) -> f64 {
+        self.a_lo as f64 / ONE as f64 + (j as f64 + 0.5) * ONE as f64 / self.per_line as f64
+    }
+
+    /// The spacing of the fan lines in `a`, pixels.
+    pub fn line_spacing(&self) -> f64 {
+        ONE as f64 / self.per_line as f64
+    }
+
+    /// Whether the vanishing point of the vertical (nadir or zenith) falls within the image's
+    /// rows: there the pixels beyond it take the fan line nearest the vertical.
+    pub fn vertical_in_view(&self) -> bool {
+        self.vertical
+    }
+
+    /// `1/k̂` at fan row edge `i` (clamped to the grid), from the row's slope.
+    fn inv_at(&self, slopes: &[Coord], i: i64) -> i64 {
+        let last = slopes.len().saturating_sub(1);
+        let at = usize::try_from(i.max(0)).map_or(last, |i| i.min(last));
+        let s = slopes.get(at).map_or(0, |s| s.to_bits() >> (32 - FRAC));
+        // |s| ≤ 2^36 (slopes are clamped to ±10^6), |inv_b| ≤ 2^16: the product fits.
+        (self.inv_a - (s.saturating_mul(self.inv_b) >> FRAC)).clamp(0, self.inv_max)
+    }
+
+    /// Calls `tap` for every grid cell output pixel `(c, t)` (column, row from the top) takes
+    /// from; the weights sum to `2^32` (less where the box leaves the grid). `slopes` are the
+    /// frame's row slopes (`rows + 1` entries).
+    pub fn taps(&self, slopes: &[Coord], c: usize, t: usize, mut tap: impl FnMut(Tap)) {
+        let (c, t) = (c as i64, t as i64);
+        let x = self.x00 + c * self.cr - t * self.sr;
+        let y = self.y00 - c * self.sr - t * self.cr;
+        let u = y - self.y_lo;
+        // 1/k̂ at u, linear between the row edges around it.
+        let (i, fu) = (u >> FRAC, u & (ONE - 1));
+        let (lo, hi) = (self.inv_at(slopes, i), self.inv_at(slopes, i + 1));
+        let inv = lo + (((hi - lo) * fu) >> FRAC);
+        let a = x.saturating_mul(inv) >> FRAC;
+        let s = a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC;
+        let half = (inv.saturating_mul(self.per_line) >> FRAC) / 2;
+        let (s, half) = (s.clamp(-SPAN, SPAN), half.min(SPAN));
+        let (s_lo, s_hi) = (s - half, s + half);
+        let b = u - ONE / 2;
+        let (r0, fr) = (b >> FRAC, b & (ONE - 1));
+        let row_weights = [(r0, ONE - fr), (r0 + 1, fr)];
+        let (lines, rows) = (i64::from(self.lines), i64::from(self.rows));
+        let first = (s_lo >> FRAC).max(0);
+        let last = ((s_hi - 1) >> FRAC).min(lines - 1);
+        for j in first..=last {
+            let Ok(line) = usize::try_from(j) else {
+                continue;
+            };
+            let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
+            if overlap <= 0 {
+                continue;
+            }
+            for (r, wr) in row_weights {
+                if wr > 0 && (0..rows).contains(&r) {
+                    // Both factors are at most 2^16 here: the product is at most 2^32.
+                    let weight = (wr as u64) * (overlap.min(ONE) as u64);
+                    let Ok(row) = usize::try_from(r) else {
+                        continue;
+                    };
+                    tap(Tap { line, row, weight });
+                }
+            }
+        }
+    }
+
+    /// Sets each fan line's rows (in `columns`) to the rows some output pixel takes from it,
+    /// so that the walk draws nothing the image does not use.
+    pub(crate) fn set_line_rows(&self, slopes: &[Coord], columns: &mut [Column]) {
+        for col in columns.iter_mut() {
+            col.first_row = u32::MAX;
+            col.end_row = 0;
+        }
+        for t in 0..self.height as usize {
+            for c in 0..self.width as usize {
+                self.taps(slopes, c, t, |tap| {
+                    if let Some(col) = columns.get_mut(tap.line) {
+                        #[allow(
+                            clippy::cast_possible_truncation,
+                            reason = "tap rows are below the fan's rows, a u32"
+                        )]
+                        let row = tap.row as u32;
+                        col.first_row = col.first_row.min(row);
+                        col.end_row = col.end_row.max(row + 1);
+                    }
+                });
+            }
+        }
+        for col in columns.iter_mut() {
+            if col.first_row > col.end_row {
+                (col.first_row, col.end_row) = (0, 0);
+            }
+        }
+    }
+
+    /// Resamples the walked grid `grid` (`lines × rows`, row-major from the top) into `image`
+    /// (`W × H`, row-major from the top): each pixel the overlap-weighted average of its taps
+    /// (see the module docs), rounded; `sky` where a pixel's box meets no walked cell.
+    ///
+    /// Errors: slices of the wrong length.
+    pub fn resample(
+        &self,
+        slopes: &[Coord],
+        columns: &[Column],
+        grid: &[Rgb],
+        sky: Rgb,
+        image: &mut [Rgb],
+    ) -> Result<(), Error> {
+        let (lines, rows) = (self.lines(), self.rows());
+        let (w, h) = self.output_size();
+        for (what, expected, actual) in [
+            ("grid", lines * rows, grid.len()),
+            ("image", w * h, image.len()),
+            ("columns", lines, columns.len()),
+            ("rows", rows + 1, slopes.len()),
+        ] {
+            if expected != actual {
+                return Err(Error::SliceLength {
+                    what,
+                    expected,
+                    actual,
+                });
+            }
+        }
+        for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
+            for (c, px) in out_row.iter_mut().enumerate() {
+                let mut acc = [0u64; 4];
+                self.taps(slopes, c, t, |tap| {
+                    let walked = columns
+                        .get(tap.line)
+                        .is_some_and(|col| col.rows().contains(&tap.row));
+                    let at = (rows - 1 - tap.row) * lines + tap.line;
+                    if let (true, Some(cell)) = (walked, grid.get(at)) {
+                        let wt = tap.weight >> 8;
+                        acc[0] += wt * u64::from(cell.r);
+                        acc[1] += wt * u64::from(cell.g);
+                        acc[2] += wt * u64::from(cell.b);
+                        acc[3] += wt;
+                    }
+                });
+                *px = if acc[3] == 0 {
+                    sky
+                } else {
+                    let ch = |v: u64| u8::try_from((v + acc[3] / 2) / acc[3]).unwrap_or(u8::MAX);
+                    Rgb::new(ch(acc[0]), ch(acc[1]), ch(acc[2]))
+                };
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Column {
+    /// The fan rows this column is walked for, counted from the bottom (every row of the frame
+    /// with the paper's projection).
+    pub fn rows(&self) -> Range<usize> {
+        self.first_row as usize..self.end_row as usize
+    }
+}
