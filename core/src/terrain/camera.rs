@@ -407,9 +407,14 @@ impl<'t> Frame<'t> {
         let (rx, ry) = (ch, sh);
         let w = p.width as f64;
         let height_per_voxel = scale.spacing_m / scale.height_scale_m;
-        let spacing = fan.map_or(1.0 / k, |f| f.line_spacing());
+        // A fan line at `a` is the plane at `tan φ = a·pix / cos p` (see `fan`).
+        let (_, cos_pitch) = sin_cos_deg(p.pitch_deg);
+        let (line_pix, spacing) = match &fan {
+            Some(f) => (pix / cos_pitch, f.line_spacing()),
+            None => (pix, 1.0 / k),
+        };
         for (c, col) in columns.iter_mut().enumerate() {
-            let xc = fan.map_or((c as f64 + 0.5) / k - w / 2.0, |f| f.line_a(c)) * pix;
+            let xc = fan.map_or((c as f64 + 0.5) / k - w / 2.0, |f| f.line_a(c)) * line_pix;
             let (dx, dy) = (fx + xc * rx, fy + xc * ry);
             let (axis, major, minor, u_eye, v_eye) = if dx.abs() >= dy.abs() {
                 (Axis::X, dx, dy, ex, ey)
@@ -429,7 +434,7 @@ impl<'t> Frame<'t> {
             let n_far = floor_i64(n_eye.to_num::<f64>() + far / run);
             // The footprint across the column at horizontal distance t is t·δ voxels, with δ
             // the column's angular width; the level is the one nearest in log2 (Sect. 3).
-            let delta = pix * spacing / (1.0 + xc * xc);
+            let delta = line_pix * spacing / (1.0 + xc * xc);
             #[allow(
                 clippy::cast_possible_truncation,
                 reason = "clamped to [2, 1e12] here, so `as` drops only the fraction"

@@ -13,9 +13,10 @@
 //! `x = X·cos ρ + Y·sin ρ`, `y = −X·sin ρ + Y·cos ρ` in the unrolled image (roll `ρ` positive
 //! banks right: the horizon rises to the right). In the unrolled image of a camera pitched by
 //! `p`, the vertical plane at azimuth `φ` from the heading is the straight line
-//! `x = tan φ · k̂(y)` with `k̂(y) = 1 + y·pix·tan p` (`pix` the pixel's size on the unit image
-//! plane), and along it the ray through row `y` has the slope of Eq. 2 times `cos φ`. So the
-//! walk renders a grid of *fan lines* (columns at `a = tan φ / pix`, evenly spaced in `a`) by
+//! `x = a·k̂(y)` with `a = tan φ·cos p / pix` and `k̂(y) = 1 + y·pix·tan p` (`pix` the pixel's
+//! size on the unit image plane, `x` and `y` in pixels), and along it the ray through row `y`
+//! has the slope of Eq. 2 times `cos φ`. So the
+//! walk renders a grid of *fan lines* (columns at evenly spaced `a`) by
 //! *fan rows* (row edges evenly spaced in `y`, one pixel apart), every fan column an ordinary
 //! column of the paper's walk, and the image takes its pixels from that grid.
 //!
@@ -230,8 +231,8 @@ impl Fan {
         (self.y_lo as f64 + i as f64 * ONE as f64) / ONE as f64
     }
 
-    /// `tan φ / pix` of fan line `j`'s centre: its azimuth from the heading, in pixels of the
-    /// unit image plane.
+    /// `a = tan φ·cos p / pix` of fan line `j`'s centre, where `φ` is its azimuth from the
+    /// heading: the line's `x` in the unrolled image at the centre row, pixels.
     pub fn line_a(&self, j: usize) -> f64 {
         self.a_lo as f64 / ONE as f64 + (j as f64 + 0.5) * ONE as f64 / self.per_line as f64
     }
