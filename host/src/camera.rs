@@ -78,6 +78,15 @@ pub fn place(
     Ok(camera)
 }
 
+/// Prints a one-line warning for each way the view is degenerate
+/// ([`footprint_scenes::view::degenerate`]): the image is what the geometry gives, but not what
+/// the user may expect.
+pub fn warn_degenerate(pyramid: &Pyramid, camera: &Camera, options: Options) {
+    for d in view::degenerate(pyramid.map(), camera, options) {
+        eprintln!("warning: {d}");
+    }
+}
+
 /// The core's range error `e` for a camera or frame on `map`, said as the option the user gave,
 /// in metres or degrees. `eye` is how the eye height was chosen, once it has been.
 pub fn explain(e: impl Into<anyhow::Error>, map: &Map, eye: Option<Eye>) -> anyhow::Error {
@@ -92,6 +101,12 @@ pub fn explain(e: impl Into<anyhow::Error>, map: &Map, eye: Option<Eye>) -> anyh
     else {
         return e.context("camera");
     };
+    if what == "roll" && min == 0.0 && max == 0.0 {
+        return anyhow!(
+            "--roll {}°: the paper's projection has no roll; use --projection exact",
+            Shown(value)
+        );
+    }
     // From the core's unit to the user's: metres for positions and distances, metres above the
     // datum for the eye; degrees and pixels pass through.
     let (scale, offset, user_unit) = match unit {
@@ -102,7 +117,7 @@ pub fn explain(e: impl Into<anyhow::Error>, map: &Map, eye: Option<Eye>) -> anyh
         _ => (
             1.0,
             0.0,
-            if what == "fov" || what == "pitch" || what == "heading" {
+            if what == "fov" || what == "pitch" || what == "heading" || what == "roll" {
                 "°"
             } else {
                 ""

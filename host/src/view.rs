@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
 use footprint_core::terrain::pyramid::HeightFilter;
 
 use crate::camera::{place, Eye};
@@ -62,6 +62,27 @@ impl From<HeightFilterArg> for HeightFilter {
         match a {
             HeightFilterArg::Silhouette => HeightFilter::Silhouette,
             HeightFilterArg::Mean => HeightFilter::Mean,
+        }
+    }
+}
+
+/// How image pixels map to the walk's vertical planes (`footprint_core::terrain::camera::Projection`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum ProjectionArg {
+    /// A pinhole camera at any pitch and roll: the walk runs along the fan of vertical planes
+    /// through the eye and the fan is resampled into the image.
+    #[default]
+    Exact,
+    /// The paper's: each image column is a vertical plane through the eye. A pinhole image at
+    /// pitch 0; at other pitches the planes stay vertical in the image; no roll.
+    Paper,
+}
+
+impl From<ProjectionArg> for Projection {
+    fn from(a: ProjectionArg) -> Self {
+        match a {
+            ProjectionArg::Exact => Projection::Exact,
+            ProjectionArg::Paper => Projection::Paper,
         }
     }
 }
@@ -178,6 +199,15 @@ pub struct CameraArgs {
     /// Pitch, degrees, positive looking down; in (-90, 90).
     #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
     pub pitch: f64,
+    /// Roll, degrees, positive banking right (the horizon rises to the right); any finite
+    /// angle, wrapped into (-180, 180]. Needs --projection exact.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub roll: f64,
+    /// How pixels map to the walk's vertical planes: exact (a pinhole camera at any pitch and
+    /// roll, walked along the fan of vertical planes and resampled) or paper (each image
+    /// column a vertical plane, as the paper renders: exact at pitch 0 only, no roll).
+    #[arg(long, value_enum, default_value_t = ProjectionArg::Exact)]
+    pub projection: ProjectionArg,
     /// Vertical field of view, degrees; in (0, 180).
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub fov: f64,
@@ -220,9 +250,11 @@ impl View {
         let pyramid = map_args.pyramid()?;
         let options = Options {
             lod: cam.lod == Switch::On,
+            projection: cam.projection.into(),
             ..Options::default()
         };
         let camera = resolve_camera(&pyramid, cam, options)?;
+        crate::camera::warn_degenerate(&pyramid, &camera, options);
         Ok(Self {
             pyramid,
             camera,
@@ -241,7 +273,7 @@ pub fn resolve_camera(pyramid: &Pyramid, cam: &CameraArgs, options: Options) -> 
         eye_m: 0.0,
         heading_deg: cam.heading,
         pitch_deg: cam.pitch,
-        roll_deg: 0.0,
+        roll_deg: cam.roll,
         fov_deg: cam.fov,
         width: cam.size.width,
         height: cam.size.height,

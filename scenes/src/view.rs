@@ -9,9 +9,11 @@
 use std::fmt;
 
 use footprint_core::num::{Coord, MAX_EYE_HEIGHT, MAX_FAR};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Projection};
 use footprint_core::terrain::column::walk;
 use footprint_core::terrain::cost::NoCost;
+use footprint_core::terrain::fan::Fan;
+use footprint_core::terrain::mirror;
 use footprint_core::terrain::sampler::FirstHit;
 use footprint_core::terrain::Terrain;
 use footprint_core::{Error, Rgb};
@@ -183,6 +185,16 @@ pub fn fit_first_hit(
     terrain: &Terrain<'_>,
     options: Options,
 ) -> Result<f64, FitError> {
+    // The rule looks along the middle column's lowest ray, which is the same vertical plane
+    // in both projections without roll: fit the unrolled camera's paper frame.
+    let params = CameraParams {
+        roll_deg: 0.0,
+        ..params
+    };
+    let options = Options {
+        projection: Projection::Paper,
+        ..options
+    };
     let camera = Camera::new(params)?;
     let target = 1.0 / camera.pixel_angle();
     let scale = terrain.scale();
@@ -226,4 +238,87 @@ pub fn fit_first_hit(
         }
     }
     Ok(hi)
+}
+
+/// A view that renders, but not as a user may expect (the geometry's honest limits).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Degenerate {
+    /// The eye is below the terrain under it: every ray starts inside the ground.
+    EyeBelowGround {
+        /// The eye, metres above the datum.
+        eye_m: f64,
+        /// The terrain under the eye, metres above the datum.
+        ground_m: f64,
+    },
+    /// The vanishing point of the vertical (the nadir looking down, the zenith looking up)
+    /// lies in the image.
+    VerticalInView {
+        /// The camera's pitch, degrees.
+        pitch_deg: f64,
+        /// The field of view, degrees.
+        fov_deg: f64,
+        /// The projection the frame uses.
+        projection: Projection,
+    },
+}
+
+impl fmt::Display for Degenerate {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Degenerate::EyeBelowGround { eye_m, ground_m } => write!(
+                f,
+                "the eye, {eye_m:.1} m above the datum, is below the terrain under it \
+                 ({ground_m:.1} m): every ray starts inside the ground; raise --height"
+            ),
+            Degenerate::VerticalInView {
+                pitch_deg,
+                fov_deg,
+                projection,
+            } => {
+                let which = if pitch_deg > 0.0 { "nadir" } else { "zenith" };
+                let past = match projection {
+                    Projection::Exact => {
+                        "the pixels past it take the fan line nearest the vertical"
+                    }
+                    Projection::Paper => "the rows past it look straight along the vertical",
+                };
+                write!(
+                    f,
+                    "the {which} is in the image (--pitch {pitch_deg}° with --fov {fov_deg}°): \
+                     {past}, not the terrain behind the camera"
+                )
+            }
+        }
+    }
+}
+
+/// The ways `camera`'s view of `map` with `options` is degenerate (see [`Degenerate`]).
+pub fn degenerate(map: &Map, camera: &Camera, options: Options) -> Vec<Degenerate> {
+    let p = camera.params();
+    let mut out = Vec::new();
+    let cell = |m: f64, n: u32| mirror((m / map.spacing_m).floor() as i64, n) as usize;
+    let at = cell(p.y_m, map.height) * map.width as usize + cell(p.x_m, map.width);
+    if let Some(&h) = map.heights.get(at) {
+        let ground_m = f64::from(h) * map.height_scale_m;
+        if p.eye_m < ground_m {
+            out.push(Degenerate::EyeBelowGround {
+                eye_m: p.eye_m + map.base_m,
+                ground_m: ground_m + map.base_m,
+            });
+        }
+    }
+    let vertical = match options.projection {
+        Projection::Exact => Fan::new(camera, options.columns_per_pixel)
+            .map(|f| f.vertical_in_view())
+            .unwrap_or(false),
+        Projection::Paper => p.pitch_deg.abs() + p.fov_deg / 2.0 >= 90.0,
+    };
+    if vertical {
+        out.push(Degenerate::VerticalInView {
+            pitch_deg: p.pitch_deg,
+            fov_deg: p.fov_deg,
+            projection: options.projection,
+        });
+    }
+    out
 }

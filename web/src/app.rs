@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use footprint_core::terrain::camera::{Camera, CameraParams, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Frame, Options, Projection};
 use footprint_core::terrain::cost::{NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::Terrain;
@@ -153,12 +153,15 @@ pub struct App {
 
 impl App {
     /// The page as it opens: the built-in terrain ([`DEFAULT_SEED`], [`DEFAULT_SIZE`]) seen by
-    /// the paper's camera at pitch 20°, 400×400 (the CLI's `render` defaults), PS left and AS
-    /// right.
+    /// the paper's camera at pitch 20°, 400×400, in the exact projection (the CLI's `render`
+    /// defaults), PS left and AS right.
     pub fn new() -> Result<Self, String> {
         memory::set_budget(BUDGET_BYTES);
         let pyramid = build(procedural::procedural(DEFAULT_SEED, DEFAULT_SIZE))?;
-        let options = Options::default();
+        let options = Options {
+            projection: Projection::Exact,
+            ..Options::default()
+        };
         let camera = view::paper_camera(&pyramid, 20.0, 400, 400, options)
             .map_err(|e| format!("camera: {e}"))?;
         Ok(Self {

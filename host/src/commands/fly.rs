@@ -8,11 +8,12 @@ use footprint_core::Rgb;
 
 use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::fly::{self, FlySpec};
+use crate::experiment::path::FlightPath;
 use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
-use crate::view::MapArgs;
+use crate::view::{MapArgs, ProjectionArg};
 
 /// The modes of `--animation`, left to right.
 const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
@@ -32,6 +33,15 @@ pub struct FlyArgs {
     /// Metres the camera moves forward per frame.
     #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     pub step: f64,
+    /// Heading, pitch and roll per key frame, interpolated: a CSV file with the header
+    /// frame,heading,pitch,roll (or a JSON array of such objects). Without it, the paper's
+    /// straight flight at pitch 5°.
+    #[arg(long, value_name = "FILE")]
+    pub path: Option<PathBuf>,
+    /// How pixels map to the walk's vertical planes [default: paper for the paper's flight,
+    /// exact with --path].
+    #[arg(long, value_enum)]
+    pub projection: Option<ProjectionArg>,
     /// The column of Table 6 and of the cut-in-time image [default: the middle one].
     #[arg(long)]
     pub column: Option<usize>,
@@ -85,7 +95,26 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
             );
         }
     }
+    let path = args.path.as_deref().map(FlightPath::load).transpose()?;
+    let projection = args.projection.unwrap_or(if path.is_some() {
+        ProjectionArg::Exact
+    } else {
+        ProjectionArg::Paper
+    });
+    if projection == ProjectionArg::Paper {
+        let rolled = path.iter().flat_map(|p| &p.keys).find(|k| k.roll != 0.0);
+        if let Some(k) = rolled {
+            bail!(
+                "--path: key frame {} rolls {}°, and the paper's projection has no roll; use \
+                 --projection exact",
+                k.frame,
+                k.roll
+            );
+        }
+    }
     let spec = FlySpec {
+        path,
+        projection: projection.into(),
         frames: args.frames,
         step_m: args.step,
         column: args.column,

@@ -3,7 +3,7 @@
 //! draw one column over time (Fig. 14).
 
 use anyhow::{bail, Result};
-use footprint_core::terrain::camera::{Camera, CameraParams, Options};
+use footprint_core::terrain::camera::{Camera, Options, Projection};
 use footprint_core::Rgb;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -11,6 +11,7 @@ use serde::Serialize;
 pub use footprint_scenes::flight::{self, bin, luminance, Histogram, BINS};
 
 use super::paper::paper_camera;
+use super::path::FlightPath;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column, render_with, Mode, Tables};
@@ -34,6 +35,11 @@ pub struct FlySpec {
     /// Keep Fig. 14's cut-in-time image of each mode (`H × frames` pixels); without it, the
     /// flight's memory does not grow with the frames.
     pub keep_cut: bool,
+    /// Heading, pitch and roll per frame (`--path`); without it, the paper's straight flight
+    /// at pitch 5°.
+    pub path: Option<FlightPath>,
+    /// The projection of every frame.
+    pub projection: Projection,
 }
 
 impl FlySpec {
@@ -88,13 +94,13 @@ pub struct Fly {
     pub step: f64,
     /// The starting eye height (fit-first-hit at pitch 5°), metres above sea level.
     pub height: f64,
+    /// `exact` or `paper`.
+    pub projection: &'static str,
+    /// The key frames flown, if a path was given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path: Option<FlightPath>,
     /// Every mode.
     pub modes: Vec<ModeFly>,
-}
-
-/// The camera of frame `t`: the start moved `t·step` metres along the heading.
-fn camera_at(start: &CameraParams, t: usize, step: f64) -> Result<Camera> {
-    Ok(Camera::new(flight::moved(start, t, step))?)
 }
 
 /// Flies `spec` over `map`, rendering frames on all cores; calls `progress` once per frame.
@@ -136,7 +142,17 @@ pub fn run_with_frames(
     spec.check_memory(panels.len())?;
     let chunk = 4 * rayon::current_num_threads().max(1);
     let terrain = pyramid.terrain(true)?;
-    let options = Options::default();
+    let options = Options {
+        projection: spec.projection,
+        ..Options::default()
+    };
+    // Every frame's camera: the paper's straight flight, or the path's.
+    let cameras = match &spec.path {
+        Some(path) => path.cameras(&start, spec.frames, spec.step_m),
+        None => (0..spec.frames)
+            .map(|t| flight::moved(&start, t, spec.step_m))
+            .collect(),
+    };
     // Each frame: per mode of `spec.modes`, the chosen column (bottom to top) and, if asked,
     // the luminance of the whole image; then the whole image of each panel.
     struct Rendered {
@@ -144,7 +160,7 @@ pub fn run_with_frames(
         panels: Vec<Vec<Rgb>>,
     }
     let render_frame = |t: usize| -> Result<Rendered> {
-        let camera = camera_at(&start, t, spec.step_m)?;
+        let camera = Camera::new(cameras[t]).map_err(|e| anyhow::anyhow!("frame {t}: {e}"))?;
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;
         let whole = |mode: Mode| -> Result<Vec<Rgb>> {
@@ -160,7 +176,9 @@ pub fn run_with_frames(
         let mut measured = Vec::with_capacity(spec.modes.len());
         for &mode in &spec.modes {
             let panel = panels.iter().position(|&p| p == mode);
-            measured.push(if spec.all_columns || panel.is_some() {
+            // A fan's walked columns are not image columns: take the column from the image.
+            let whole_frame = spec.all_columns || panel.is_some() || frame.fan().is_some();
+            measured.push(if whole_frame {
                 let img = whole(mode)?;
                 let col = (0..h).map(|i| img[(h - 1 - i) * w + column]).collect();
                 let lum = spec
@@ -222,6 +240,11 @@ pub fn run_with_frames(
         frames: spec.frames,
         step: spec.step_m,
         height: start.eye_m + map.base_m,
+        projection: match spec.projection {
+            Projection::Exact => "exact",
+            Projection::Paper => "paper",
+        },
+        path: spec.path.clone(),
         modes: spec
             .modes
             .iter()

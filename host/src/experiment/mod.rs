@@ -7,6 +7,7 @@ pub mod fly;
 pub mod heights;
 pub mod inspect;
 pub mod paper;
+pub mod path;
 pub mod reference;
 pub mod specular;
 pub mod table;

@@ -3,7 +3,7 @@
 //! no CLI types.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options};
+use footprint_core::terrain::camera::{Camera, Options, Projection};
 use footprint_scenes::view;
 
 use crate::camera::{place, Eye};
@@ -43,6 +43,8 @@ pub fn paper_flight(frames: usize) -> FlySpec {
             height: 400,
         },
         all_columns: true,
+        path: None,
+        projection: Projection::Paper,
         keep_cut: true,
     }
 }

@@ -21,9 +21,16 @@ pub fn markdown(f: &fly::Fly) -> String {
         }
         s
     };
+    let flown = match &f.path {
+        Some(p) => format!(
+            "along a path of {} key frames (heading, pitch, roll interpolated)",
+            p.keys.len()
+        ),
+        None => "straight ahead at pitch 5°".to_owned(),
+    };
     let mut s = format!(
-        "**Table 6.** Changes in the 8-bit luminance of the pixels of column {}, between consecutive frames of {} ({} m per frame).\n\n",
-        f.column, f.frames, f.step
+        "**Table 6.** Changes in the 8-bit luminance of the pixels of column {}, between consecutive frames of {} ({} m per frame, {flown}, {} projection).\n\n",
+        f.column, f.frames, f.step, f.projection
     );
     s += &table(&|m| Some(m.histogram));
     if f.modes.iter().any(|m| m.all_columns.is_some()) {
