@@ -257,13 +257,30 @@ impl Fan {
         (self.inv_a - (s.saturating_mul(self.inv_b) >> FRAC)).clamp(0, self.inv_max)
     }
 
+    /// The unrolled `(x, y)` of output pixel `(c, t)`'s centre (column, row from the top).
+    #[inline(always)]
+    fn centre(&self, c: usize, t: usize) -> (i64, i64) {
+        let (c, t) = (c as i64, t as i64);
+        (
+            self.x00 + c * self.cr - t * self.sr,
+            self.y00 - c * self.sr - t * self.cr,
+        )
+    }
+
     /// Calls `tap` for every grid cell output pixel `(c, t)` (column, row from the top) takes
     /// from; the weights sum to `2^32` (less where the box leaves the grid). `slopes` are the
     /// frame's row slopes (`rows + 1` entries).
     pub fn taps(&self, slopes: &[Coord], c: usize, t: usize, mut tap: impl FnMut(Tap)) {
-        let (c, t) = (c as i64, t as i64);
-        let x = self.x00 + c * self.cr - t * self.sr;
-        let y = self.y00 - c * self.sr - t * self.cr;
+        let (x, y) = self.centre(c, t);
+        self.taps_at(slopes, x, y, |line, row, weight| {
+            tap(Tap { line, row, weight });
+        });
+    }
+
+    /// [`Fan::taps`] of the pixel centred at unrolled `(x, y)` (fixed point), as
+    /// `tap(line, row, weight)`.
+    #[inline(always)]
+    fn taps_at(&self, slopes: &[Coord], x: i64, y: i64, mut tap: impl FnMut(usize, usize, u64)) {
         let u = y - self.y_lo;
         // 1/k̂ at u, linear between the row edges around it.
         let (i, fu) = (u >> FRAC, u & (ONE - 1));
@@ -276,26 +293,28 @@ impl Fan {
         let (s_lo, s_hi) = (s - half, s + half);
         let b = u - ONE / 2;
         let (r0, fr) = (b >> FRAC, b & (ONE - 1));
+        let rows = i64::from(self.rows);
+        // The box's two rows (the upper one empty when the box sits on a row, as without roll).
         let row_weights = [(r0, ONE - fr), (r0 + 1, fr)];
-        let (lines, rows) = (i64::from(self.lines), i64::from(self.rows));
         let first = (s_lo >> FRAC).max(0);
-        let last = ((s_hi - 1) >> FRAC).min(lines - 1);
+        let last = ((s_hi - 1) >> FRAC).min(i64::from(self.lines) - 1);
         for j in first..=last {
+            let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
             let Ok(line) = usize::try_from(j) else {
                 continue;
             };
-            let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
             if overlap <= 0 {
                 continue;
             }
             for (r, wr) in row_weights {
-                if wr > 0 && (0..rows).contains(&r) {
+                if wr > 0 && r >= 0 && r < rows {
                     // Both factors are at most 2^16 here: the product is at most 2^32.
                     let weight = (wr as u64) * (overlap.min(ONE) as u64);
-                    let Ok(row) = usize::try_from(r) else {
-                        continue;
-                    };
-                    tap(Tap { line, row, weight });
+                    #[allow(
+                        clippy::cast_possible_truncation,
+                        reason = "0 ≤ r < rows, a u32 (checked just above)"
+                    )]
+                    tap(line, r as usize, weight);
                 }
             }
         }
@@ -303,29 +322,46 @@ impl Fan {
 
     /// Sets each fan line's rows (in `columns`) to the rows some output pixel takes from it,
     /// so that the walk draws nothing the image does not use.
+    ///
+    /// Only the image's border pixels are scanned: the pixels whose boxes overlap one fan line
+    /// form a band across the image (the line is straight in the unrolled image), and the fan
+    /// row, linear along the band, is extreme where the band meets the border. One row of
+    /// margin on each side covers the boxes' discreteness; the tests check the result against a
+    /// scan of every pixel.
     pub(crate) fn set_line_rows(&self, slopes: &[Coord], columns: &mut [Column]) {
         for col in columns.iter_mut() {
             col.first_row = u32::MAX;
             col.end_row = 0;
         }
-        for t in 0..self.height as usize {
-            for c in 0..self.width as usize {
-                self.taps(slopes, c, t, |tap| {
-                    if let Some(col) = columns.get_mut(tap.line) {
-                        #[allow(
-                            clippy::cast_possible_truncation,
-                            reason = "tap rows are below the fan's rows, a u32"
-                        )]
-                        let row = tap.row as u32;
-                        col.first_row = col.first_row.min(row);
-                        col.end_row = col.end_row.max(row + 1);
-                    }
-                });
-            }
+        let (w, h) = self.output_size();
+        let mut note = |c: usize, t: usize| {
+            let (x, y) = self.centre(c, t);
+            self.taps_at(slopes, x, y, |line, row, _| {
+                if let Some(col) = columns.get_mut(line) {
+                    #[allow(
+                        clippy::cast_possible_truncation,
+                        reason = "tap rows are below the fan's rows, a u32"
+                    )]
+                    let row = row as u32;
+                    col.first_row = col.first_row.min(row);
+                    col.end_row = col.end_row.max(row + 1);
+                }
+            });
+        };
+        for c in 0..w {
+            note(c, 0);
+            note(c, h - 1);
+        }
+        for t in 0..h {
+            note(0, t);
+            note(w - 1, t);
         }
         for col in columns.iter_mut() {
             if col.first_row > col.end_row {
                 (col.first_row, col.end_row) = (0, 0);
+            } else {
+                col.first_row = col.first_row.saturating_sub(1);
+                col.end_row = col.end_row.saturating_add(1).min(self.rows);
             }
         }
     }
@@ -359,32 +395,112 @@ impl Fan {
                 });
             }
         }
+        if self.sr == 0 {
+            self.resample_rows(slopes, grid, sky, image);
+            return Ok(());
+        }
         for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
-            for (c, px) in out_row.iter_mut().enumerate() {
+            let (mut x, mut y) = self.centre(0, t);
+            for px in out_row.iter_mut() {
                 let mut acc = [0u64; 4];
-                self.taps(slopes, c, t, |tap| {
-                    let walked = columns
-                        .get(tap.line)
-                        .is_some_and(|col| col.rows().contains(&tap.row));
-                    let at = (rows - 1 - tap.row) * lines + tap.line;
-                    if let (true, Some(cell)) = (walked, grid.get(at)) {
-                        let wt = tap.weight >> 8;
-                        acc[0] += wt * u64::from(cell.r);
-                        acc[1] += wt * u64::from(cell.g);
-                        acc[2] += wt * u64::from(cell.b);
-                        acc[3] += wt;
+                // Every cell a pixel taps is walked: `set_line_rows` walks at least the rows
+                // these same taps reach.
+                self.taps_at(slopes, x, y, |line, row, weight| {
+                    if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
+                        accumulate(&mut acc, weight >> 8, *cell);
                     }
                 });
-                *px = if acc[3] == 0 {
-                    sky
-                } else {
-                    let ch = |v: u64| u8::try_from((v + acc[3] / 2) / acc[3]).unwrap_or(u8::MAX);
-                    Rgb::new(ch(acc[0]), ch(acc[1]), ch(acc[2]))
-                };
+                *px = average(&acc, sky);
+                x += self.cr;
+                y -= self.sr;
             }
         }
         Ok(())
     }
+}
+
+impl Fan {
+    /// [`Fan::resample`] without roll: an output row lies on one fan row (its box's upper row
+    /// has weight 0), so `1/k̂`, the box's width and the fan row are the row's, and the box
+    /// moves along the fan row by a constant step per pixel. The same taps and weights as
+    /// [`Fan::taps`], computed once per row instead of per pixel.
+    fn resample_rows(&self, slopes: &[Coord], grid: &[Rgb], sky: Rgb, image: &mut [Rgb]) {
+        let (lines, rows) = (self.lines(), self.rows());
+        let (w, _) = self.output_size();
+        for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
+            let (x0, y) = self.centre(0, t);
+            let u = y - self.y_lo;
+            let (i, fu) = (u >> FRAC, u & (ONE - 1));
+            let (lo, hi) = (self.inv_at(slopes, i), self.inv_at(slopes, i + 1));
+            let inv = lo + (((hi - lo) * fu) >> FRAC);
+            let half = ((inv.saturating_mul(self.per_line) >> FRAC) / 2).min(SPAN);
+            let b = u - ONE / 2;
+            let (r0, fr) = (b >> FRAC, b & (ONE - 1));
+            let base = usize::try_from(r0)
+                .ok()
+                .filter(|&r| r < rows && fr == 0)
+                .map(|r| (rows - 1 - r) * lines);
+            let Some(base) = base else {
+                // Not on a fan row (never without roll): the general path.
+                for (c, px) in out_row.iter_mut().enumerate() {
+                    let mut acc = [0u64; 4];
+                    let (x, y) = self.centre(c, t);
+                    self.taps_at(slopes, x, y, |line, row, weight| {
+                        if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
+                            accumulate(&mut acc, weight >> 8, *cell);
+                        }
+                    });
+                    *px = average(&acc, sky);
+                }
+                continue;
+            };
+            let cells = grid.get(base..base + lines).unwrap_or(&[]);
+            let last_line = i64::try_from(cells.len()).unwrap_or(0) - 1;
+            let mut x = x0;
+            for px in out_row.iter_mut() {
+                let a = x.saturating_mul(inv) >> FRAC;
+                let s = (a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC)
+                    .clamp(-SPAN, SPAN);
+                let (s_lo, s_hi) = (s - half, s + half);
+                let mut acc = [0u64; 4];
+                let first = (s_lo >> FRAC).max(0);
+                let last = ((s_hi - 1) >> FRAC).min(last_line);
+                for j in first..=last {
+                    let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
+                    let cell = usize::try_from(j).ok().and_then(|j| cells.get(j));
+                    if let (true, Some(cell)) = (overlap > 0, cell) {
+                        // The tap's weight is ONE·overlap, `>> 8` as in the general path.
+                        accumulate(&mut acc, (overlap.min(ONE) as u64) << (FRAC - 8), *cell);
+                    }
+                }
+                *px = average(&acc, sky);
+                x += self.cr;
+            }
+        }
+    }
+}
+
+/// Adds `cell` with weight `wt` to the sums `acc` (red, green, blue, weight).
+#[inline(always)]
+fn accumulate(acc: &mut [u64; 4], wt: u64, cell: Rgb) {
+    acc[0] += wt * u64::from(cell.r);
+    acc[1] += wt * u64::from(cell.g);
+    acc[2] += wt * u64::from(cell.b);
+    acc[3] += wt;
+}
+
+/// The weighted average of the sums `acc`, rounded (one division: a 2^40 reciprocal of the
+/// total weight, which is below 2^30, so each product stays below 2^64); `sky` for no weight.
+#[inline(always)]
+fn average(acc: &[u64; 4], sky: Rgb) -> Rgb {
+    if acc[3] == 0 {
+        return sky;
+    }
+    let recip = (1u64 << 40) / acc[3];
+    // Rounded to nearest: exact when a single cell has all the weight (recip·total = 2^40 − ε
+    // with ε < total, and the half added covers it).
+    let ch = |v: u64| u8::try_from((v * recip + (1 << 39)) >> 40).unwrap_or(u8::MAX);
+    Rgb::new(ch(acc[0]), ch(acc[1]), ch(acc[2]))
 }
 
 impl Column {
@@ -392,5 +508,91 @@ impl Column {
     /// with the paper's projection).
     pub fn rows(&self) -> Range<usize> {
         self.first_row as usize..self.end_row as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::camera::CameraParams;
+    use std::vec;
+    use std::vec::Vec;
+
+    fn camera(pitch: f64, roll: f64, fov: f64, w: u32, h: u32) -> Camera {
+        Camera::new(CameraParams {
+            x_m: 0.0,
+            y_m: 0.0,
+            eye_m: 100.0,
+            heading_deg: 17.0,
+            pitch_deg: pitch,
+            roll_deg: roll,
+            fov_deg: fov,
+            width: w,
+            height: h,
+            far_m: 1000.0,
+        })
+        .unwrap()
+    }
+
+    /// Eq. 2's slopes at the fan's row edges, as `Frame::new` builds them (unclamped).
+    fn slopes(cam: &Camera, fan: &Fan) -> Vec<Coord> {
+        (0..=fan.rows())
+            .map(|i| Coord::from_num(cam.slope_at(fan.row_y(i)).clamp(-1e6, 1e6)))
+            .collect()
+    }
+
+    #[test]
+    fn the_border_scan_covers_every_pixels_taps() {
+        for (pitch, roll, fov, w, h) in [
+            (20.0, 0.0, 10.0, 64, 48),
+            (5.0, 15.0, 10.0, 40, 40),
+            (40.0, 45.0, 30.0, 33, 57),
+            (60.0, 30.0, 10.0, 48, 48),
+            (85.0, 30.0, 5.0, 48, 48),
+            (-30.0, 120.0, 20.0, 31, 17),
+            (80.0, -170.0, 10.0, 24, 64),
+        ] {
+            let cam = camera(pitch, roll, fov, w, h);
+            let fan = Fan::new(&cam, 1).unwrap();
+            let s = slopes(&cam, &fan);
+            let mut cols = vec![Column::default(); fan.lines()];
+            fan.set_line_rows(&s, &mut cols);
+            for t in 0..h as usize {
+                for c in 0..w as usize {
+                    fan.taps(&s, c, t, |tap| {
+                        assert!(
+                            cols[tap.line].rows().contains(&tap.row),
+                            "pitch {pitch} roll {roll}: pixel ({c}, {t}) taps line {} row {} \
+                             outside the walked rows {:?}",
+                            tap.line,
+                            tap.row,
+                            cols[tap.line].rows()
+                        );
+                    });
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn without_pitch_and_roll_each_pixel_takes_its_own_cell() {
+        let cam = camera(0.0, 0.0, 10.0, 16, 12);
+        let fan = Fan::new(&cam, 1).unwrap();
+        assert_eq!((fan.lines(), fan.rows()), (16, 12));
+        let s = slopes(&cam, &fan);
+        for t in 0..12 {
+            for c in 0..16 {
+                let mut taps = Vec::new();
+                fan.taps(&s, c, t, |tap| taps.push(tap));
+                assert_eq!(
+                    taps,
+                    [Tap {
+                        line: c,
+                        row: 11 - t,
+                        weight: 1 << 32
+                    }]
+                );
+            }
+        }
     }
 }

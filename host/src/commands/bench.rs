@@ -30,6 +30,15 @@ pub struct BenchArgs {
     /// Multiresolution traversal.
     #[arg(long, value_enum, default_value_t = Switch::On)]
     pub lod: Switch,
+    /// Also time each paper case in the exact projection at these rolls (degrees, comma
+    /// separated, e.g. 0,15,45), each against the case in the paper's projection at roll 0.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        value_name = "DEG,..."
+    )]
+    pub roll: Vec<f64>,
     #[command(flatten)]
     /// `--json`.
     pub format: OutputFormat,
@@ -46,8 +55,11 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
             modes.insert(0, base);
         }
     }
+    if let Some(r) = args.roll.iter().find(|r| !r.is_finite()) {
+        anyhow::bail!("--roll {r}: not a finite angle");
+    }
     let total = modes.len() as u64
-        * (crate::experiment::paper::PAPER_PITCHES.len() as u64 + 1)
+        * (crate::experiment::paper::PAPER_PITCHES.len() as u64 * (1 + args.roll.len() as u64) + 1)
         * args.repeats;
     let bar = super::progress(total, "frames·modes", args.format.json);
     let cases = bench::run(
@@ -56,6 +68,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         &modes,
         args.size.size,
         args.lod == Switch::On,
+        &args.roll,
         args.repeats as usize,
         || bar.inc(1),
     )?;
@@ -77,16 +90,19 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     );
     for case in &cases {
         println!(
-            "{} view, pitch {}°, eye {:.1} m, far {:.0} voxels",
-            case.view, case.pitch, case.height, case.far_voxels
+            "{} view, pitch {}°, roll {}°, {} projection, eye {:.1} m, far {:.0} voxels",
+            case.view, case.pitch, case.roll, case.projection, case.height, case.far_voxels
         );
         println!(
-            "  {:>8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}",
-            "mode", "1 thread ms", "all ms", "speedup", "×classic", "×PS", "steps"
+            "  {:>8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}  {:>10}",
+            "mode", "1 thread ms", "all ms", "speedup", "×classic", "×PS", "×unrolled", "steps"
         );
         for m in &case.modes {
+            let unrolled = m
+                .ratio_to_unrolled
+                .map_or_else(|| "-".to_owned(), |r| format!("{r:.2}"));
             println!(
-                "  {:>8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}",
+                "  {:>8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>10}",
                 m.mode,
                 m.ms,
                 m.ms_median,
@@ -94,6 +110,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
                 m.speedup,
                 m.ratio_to_classic,
                 m.ratio_to_ps,
+                unrolled,
                 m.steps
             );
         }

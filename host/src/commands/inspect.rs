@@ -10,6 +10,7 @@ use crate::experiment::inspect;
 use crate::render::Mode;
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, View};
+use footprint_core::terrain::camera::Options;
 
 /// A pixel `ROW,COL`, counted from the top-left.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,6 +94,10 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         let pic = inspect::zoom(
             view.camera.params(),
             &view.pyramid,
+            Options {
+                lod: true,
+                ..view.options
+            },
             args.mode,
             args.zoom_factor,
             48,
@@ -104,6 +109,10 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         let (samples, color, pic) = inspect::pixel(
             &view.camera,
             &view.pyramid,
+            Options {
+                lod: true,
+                ..view.options
+            },
             args.mode,
             p.row,
             p.col,
@@ -132,7 +141,16 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         }
     }
     if args.footprint {
-        let (counts, pic) = inspect::footprint(&view.camera, &view.pyramid, args.mode, 1024)?;
+        let (counts, pic) = inspect::footprint(
+            &view.camera,
+            &view.pyramid,
+            Options {
+                lod: true,
+                ..view.options
+            },
+            args.mode,
+            1024,
+        )?;
         write_png(&path_for("footprint"), pic.width, pic.height, &pic.pixels)?;
         json.insert("footprint".into(), serde_json::to_value(counts)?);
         if !args.format.json {

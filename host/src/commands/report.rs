@@ -112,14 +112,21 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     // Diagnostic pictures.
     bar.set_message("pictures");
     let five = *paper_camera(map, &pyramid, 5.0, size, true)?.params();
-    let zoom = inspect::zoom(&five, &pyramid, Mode::Li, 16.0, 48, 6)?;
+    let zoom = inspect::zoom(&five, &pyramid, Options::default(), Mode::Li, 16.0, 48, 6)?;
     write_png(&file("zoom.png"), zoom.width, zoom.height, &zoom.pixels)?;
     let camera5 = footprint_core::terrain::camera::Camera::new(five)?;
     let (px_row, px_col) = (size.height as usize * 3 / 10, size.width as usize / 2);
     let mut pixel_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
-        let (samples, color, pic) =
-            inspect::pixel(&camera5, &pyramid, mode, px_row, px_col, (64, 256))?;
+        let (samples, color, pic) = inspect::pixel(
+            &camera5,
+            &pyramid,
+            Options::default(),
+            mode,
+            px_row,
+            px_col,
+            (64, 256),
+        )?;
         write_png(
             &file(&format!("pixel_{mode}.png")),
             pic.width,
@@ -137,7 +144,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let small = footprint_core::terrain::camera::Camera::new(CameraParams { ..*small.params() })?;
     let mut fp_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
-        let (counts, pic) = inspect::footprint(&small, &pyramid, mode, 600)?;
+        let (counts, pic) = inspect::footprint(&small, &pyramid, Options::default(), mode, 600)?;
         write_png(
             &file(&format!("footprint_{mode}.png")),
             pic.width,

@@ -1,11 +1,13 @@
 //! `footprint bench`: the three paper cases (pitch 40°, 20°, 5°; 400×400; FOV 10°;
 //! fit-first-hit) and the classic renderer's own setting, in every mode: ms per frame on one
-//! thread and on all, the ratios to `classic` and to PS, and the traversal steps.
+//! thread and on all, the ratios to `classic` and to PS, and the traversal steps. With rolls
+//! (`--roll`), each paper case is also rendered in the exact projection at each roll, and
+//! timed against the same case in the paper's projection (today's renderer, roll 0).
 
 use std::time::Instant;
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, CameraParams};
+use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
 use footprint_core::terrain::cost::NoCost;
 use serde::Serialize;
 
@@ -32,6 +34,10 @@ pub struct ModeTime {
     pub ratio_to_ps: f64,
     /// `ms / ms(classic)`, fastest against fastest.
     pub ratio_to_classic: f64,
+    /// `ms / ms` of the same mode and pitch in the paper's projection without roll, fastest
+    /// against fastest (for the rolled views of `--roll`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ratio_to_unrolled: Option<f64>,
     /// Traversal steps per frame (term `a`, from a counted render of the same frame).
     pub steps: u64,
 }
@@ -43,6 +49,10 @@ pub struct CaseTime {
     pub view: String,
     /// Pitch, degrees.
     pub pitch: f64,
+    /// Roll, degrees.
+    pub roll: f64,
+    /// `paper` or `exact`.
+    pub projection: &'static str,
     /// Eye height, metres above sea level.
     pub height: f64,
     /// Far distance, voxels.
@@ -77,30 +87,46 @@ pub fn classic_camera(map: &Map, size: Size) -> Result<Camera> {
 /// each of the `repeats` rounds renders every view in every mode once on one thread and once
 /// on every thread of the pool, so that a slow moment of a shared machine touches all modes
 /// alike; the fastest and the median frame are reported.
+#[allow(clippy::too_many_arguments)]
 pub fn run(
     map: &Map,
     pyramid: &Pyramid,
     modes: &[Mode],
     size: Size,
     lod: bool,
+    rolls: &[f64],
     repeats: usize,
     mut progress: impl FnMut(),
 ) -> Result<Vec<CaseTime>> {
-    let options = footprint_core::terrain::camera::Options {
+    let paper = Options {
         lod,
-        ..Default::default()
+        ..Options::default()
+    };
+    let exact = Options {
+        projection: Projection::Exact,
+        ..paper
     };
     let terrain = pyramid.terrain(lod)?;
+    // (view, camera, options, index of the unrolled paper view it is timed against)
     let mut views = Vec::new();
     for pitch in PAPER_PITCHES {
-        views.push(("paper", paper_camera(map, pyramid, pitch, size, lod)?));
+        let camera = paper_camera(map, pyramid, pitch, size, lod)?;
+        let unrolled = views.len();
+        views.push(("paper", camera, paper, None));
+        for &roll_deg in rolls {
+            let rolled = Camera::new(CameraParams {
+                roll_deg,
+                ..*camera.params()
+            })?;
+            views.push(("paper", rolled, exact, Some(unrolled)));
+        }
     }
-    views.push(("classic", classic_camera(map, size)?));
-    let mut tables: Vec<Tables> = views.iter().map(|(_, c)| Tables::new(c)).collect();
+    views.push(("classic", classic_camera(map, size)?, paper, None));
+    let mut tables: Vec<Tables> = views.iter().map(|(_, c, _, _)| Tables::new(c)).collect();
     let frames = views
         .iter()
         .zip(tables.iter_mut())
-        .map(|((_, c), t)| t.frame(c, &terrain, options))
+        .map(|((_, c, o, _), t)| t.frame(c, &terrain, *o))
         .collect::<Result<Vec<_>, _>>()?;
     // [view][mode] → (one-thread samples, all-thread samples)
     let mut samples = vec![vec![(Vec::new(), Vec::new()); modes.len()]; views.len()];
@@ -124,13 +150,14 @@ pub fn run(
         x[x.len() / 2]
     };
     let mut cases = Vec::new();
-    for (v, ((view, camera), frame)) in views.iter().zip(&frames).enumerate() {
-        let best = |mode: Mode| {
+    for (v, ((view, camera, options, unrolled), frame)) in views.iter().zip(&frames).enumerate() {
+        let best_in = |v: usize, mode: Mode| {
             modes
                 .iter()
                 .position(|&m| m == mode)
                 .map_or(f64::NAN, |i| min(&samples[v][i].0))
         };
+        let best = |mode: Mode| best_in(v, mode);
         let (ps, classic) = (best(Mode::Ps), best(Mode::Classic));
         let mut times = Vec::new();
         for (m, &mode) in modes.iter().enumerate() {
@@ -144,6 +171,7 @@ pub fn run(
                 speedup: min(one) / min(all),
                 ratio_to_ps: min(one) / ps,
                 ratio_to_classic: min(one) / classic,
+                ratio_to_unrolled: unrolled.map(|u| min(one) / best_in(u, mode)),
                 steps: measured.total.a,
             });
         }
@@ -151,6 +179,11 @@ pub fn run(
         cases.push(CaseTime {
             view: view.to_string(),
             pitch: p.pitch_deg,
+            roll: p.roll_deg,
+            projection: match options.projection {
+                Projection::Exact => "exact",
+                Projection::Paper => "paper",
+            },
             height: p.eye_m + map.base_m,
             far_voxels: p.far_m / map.spacing_m,
             modes: times,

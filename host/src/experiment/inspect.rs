@@ -44,6 +44,7 @@ fn magnify(w: usize, h: usize, pixels: &[Rgb], k: usize) -> Vec<Rgb> {
 pub fn zoom(
     view: &CameraParams,
     pyramid: &Pyramid,
+    options: Options,
     mode: Mode,
     zoom: f64,
     size: u32,
@@ -62,7 +63,7 @@ pub fn zoom(
     })?;
     let terrain = pyramid.terrain(true)?;
     let mut tables = Tables::new(&camera);
-    let frame = tables.frame(&camera, &terrain, Options::default())?;
+    let frame = tables.frame(&camera, &terrain, options)?;
     let (s, k) = (size as usize, scale as usize);
     let gap = 8;
     let (w, h) = (2 * s * k + gap, s * k);
@@ -144,10 +145,12 @@ impl Cost for Trace {
 
 /// Fig. 13: the samples of pixel (`row` from the top, `col`) and a `width × height` picture in
 /// which each sample, bottom to top in the order taken, fills a band as tall as its share of
-/// the pixel's weight.
+/// the pixel's weight. With the exact projection the samples are those of the fan cell that
+/// weighs most in the pixel (`footprint_core::terrain::fan`).
 pub fn pixel(
     camera: &Camera,
     pyramid: &Pyramid,
+    options: Options,
     mode: Mode,
     row: usize,
     col: usize,
@@ -159,9 +162,21 @@ pub fn pixel(
     }
     let terrain = pyramid.terrain(true)?;
     let mut tables = Tables::new(camera);
-    let frame = tables.frame(camera, &terrain, Options::default())?;
+    let frame = tables.frame(camera, &terrain, options)?;
+    let target = match frame.fan() {
+        None => (col, h - 1 - row),
+        Some(fan) => {
+            let mut best = (0, (col, h - 1 - row));
+            fan.taps(frame.row_slopes(), col, row, |tap| {
+                if tap.weight > best.0 {
+                    best = (tap.weight, (tap.line, tap.row));
+                }
+            });
+            best.1
+        }
+    };
     let mut trace = Trace {
-        target: (col, h - 1 - row),
+        target,
         ..Trace::default()
     };
     let img = render_with(&frame, &terrain, mode, &mut trace)?;
@@ -210,12 +225,13 @@ pub struct FootprintCounts {
 pub fn footprint(
     camera: &Camera,
     pyramid: &Pyramid,
+    options: Options,
     mode: Mode,
     max_side: u32,
 ) -> Result<(FootprintCounts, Picture)> {
     let terrain = pyramid.terrain(true)?;
     let mut tables = Tables::new(camera);
-    let frame = tables.frame(camera, &terrain, Options::default())?;
+    let frame = tables.frame(camera, &terrain, options)?;
     let mut trace = Trace {
         target: (usize::MAX, usize::MAX),
         ..Trace::default()
