@@ -115,6 +115,20 @@ fn main() {
         scene.options == footprint_core::terrain::camera::Options::default(),
         "the firmware renders with Options::default()"
     );
+    let rolled = footprint_core::terrain::camera::Camera::new(scene.rolled()).expect("rolled");
+    let (fan_lines, fan_rows) =
+        footprint_core::terrain::camera::Frame::grid_size(&rolled, scene.rolled_options())
+            .expect("the rolled frame's fan");
+    writeln!(
+        s,
+        "/// The rolled frame's roll, degrees.\npub const ROLL_DEG: f64 = {};\n\
+         /// Its fan: lines (the walk's columns).\npub const FAN_LINES: usize = {fan_lines};\n\
+         /// Its fan: rows.\npub const FAN_ROWS: usize = {fan_rows};\n\
+         /// Its name in the `frame` lines.\npub const ROLLED_NAME: &str = {:?};",
+        f64_const(scene.rolled().roll_deg),
+        footprint_scenes::firmware::ROLLED_NAME
+    )
+    .unwrap();
 
     s.push_str("/// Level-0 heights, row-major.\n#[link_section = \".scene\"]\npub static HEIGHTS: [u16; CELLS] = [");
     for (i, v) in map.heights.iter().enumerate() {

@@ -42,6 +42,12 @@ pub fn frame<'t>(
     Frame::new(camera, terrain, options, rows, columns)
 }
 
+/// `Frame::resample`: the exact projection's fan resampled into the image.
+#[inline(never)]
+pub fn resample(frame: &Frame<'_>, grid: &[Rgb], image: &mut [Rgb]) -> Result<(), Error> {
+    frame.resample(grid, image)
+}
+
 /// `visibility::count_visible`: the exact visible-voxel count `V` of every column.
 #[inline(never)]
 pub fn count_visible(frame: &Frame<'_>, terrain: &Terrain<'_>, counts: &mut Counts<'_>) {

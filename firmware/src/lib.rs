@@ -22,7 +22,7 @@ use footprint_core::terrain::camera::Column;
 use footprint_core::Rgb;
 
 use footprint_core::specular::raster::Vertex;
-use scene::{HEIGHT, PLATE_PIXELS, PLATE_VERTEX_COUNT, PYRAMID_CELLS, WIDTH};
+use scene::{FAN_LINES, FAN_ROWS, HEIGHT, PLATE_PIXELS, PLATE_VERTEX_COUNT, PYRAMID_CELLS, WIDTH};
 
 pub mod core_calls;
 
@@ -182,6 +182,34 @@ pub struct Buffers {
     pub columns: &'static mut [Column; WIDTH],
     /// The image, row-major from the top.
     pub image: &'static mut [Rgb; WIDTH * HEIGHT],
+}
+
+/// The rolled frame's buffers (the exact projection's fan), in `.bss`.
+pub struct FanBuffers {
+    /// The fan's row table, `FAN_ROWS + 1` slopes.
+    pub rows: &'static mut [Coord; FAN_ROWS + 1],
+    /// The fan's lines, the walk's columns.
+    pub columns: &'static mut [Column; FAN_LINES],
+    /// The walked grid, row-major from the top, before it is resampled into the image.
+    pub grid: &'static mut [Rgb; FAN_LINES * FAN_ROWS],
+}
+
+impl FanBuffers {
+    /// Takes the buffers: `Some` the first time only.
+    #[inline(never)]
+    pub fn take() -> Option<Self> {
+        Some(Self {
+            rows: cortex_m::singleton!(
+                FAN_ROW_TABLE: [Coord; FAN_ROWS + 1] = [Coord::ZERO; FAN_ROWS + 1]
+            )?,
+            columns: cortex_m::singleton!(
+                FAN_COLUMNS: [Column; FAN_LINES] = [Column::default(); FAN_LINES]
+            )?,
+            grid: cortex_m::singleton!(
+                FAN_GRID: [Rgb; FAN_LINES * FAN_ROWS] = [Rgb::new(0, 0, 0); FAN_LINES * FAN_ROWS]
+            )?,
+        })
+    }
 }
 
 impl Buffers {

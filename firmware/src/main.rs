@@ -35,7 +35,7 @@ use panic_semihosting as _;
 use footprint_core::num::Coord;
 use footprint_core::specular::raster::Target;
 use footprint_core::specular::{Light, Material, Normal, Phong};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Projection};
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
@@ -45,10 +45,10 @@ use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
     COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT,
     PLATE_BACKGROUND, PLATE_COLORS, PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD,
-    PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, SPACING_M,
-    WIDTH,
+    PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME,
+    ROLL_DEG, SPACING_M, WIDTH,
 };
-use footprint_firmware::{core_calls, image_hash, stack, Buffers, PlateBuffers, Ratio};
+use footprint_firmware::{core_calls, image_hash, stack, Buffers, FanBuffers, PlateBuffers, Ratio};
 
 #[exception]
 fn SysTick() {
@@ -104,6 +104,60 @@ fn run_mode<S: Sampler + Clone>(
         return Ok(None);
     }
     Ok(Some(render))
+}
+
+/// Renders the rolled frame: the scene banked by `ROLL_DEG` in the exact projection, the
+/// paper's AS walked along the fan of vertical planes and resampled into the image; prints the
+/// `frame` line (the host's `rolled_line`) and the `#` instruction line.
+fn run_rolled(terrain: &Terrain<'_>, fan: FanBuffers, image: &mut [Rgb]) -> Result<(), Error> {
+    let FanBuffers {
+        rows,
+        columns,
+        grid,
+    } = fan;
+    let camera = Camera::new(CameraParams {
+        roll_deg: ROLL_DEG,
+        ..PARAMS
+    })?;
+    let options = Options {
+        projection: Projection::Exact,
+        ..Options::default()
+    };
+    let (tables, frame) = instructions(|| {
+        core_calls::frame(&camera, terrain, options, &mut rows[..], &mut columns[..])
+    });
+    let frame = frame?;
+    let (render, result) = instructions(|| {
+        core_calls::render(
+            &frame,
+            terrain,
+            &ParallelArea::new(),
+            &mut NoCost,
+            &mut grid[..],
+        )
+    });
+    result?;
+    let (resample, result) = instructions(|| core_calls::resample(&frame, &grid[..], image));
+    result?;
+    hprintln!(
+        "frame {} {}x{} fnv1a={:016x} lines={} rows={}",
+        ROLLED_NAME,
+        WIDTH,
+        HEIGHT,
+        image_hash(image),
+        frame.width(),
+        frame.height()
+    );
+    let pixels = (WIDTH * HEIGHT) as u64;
+    hprintln!(
+        "# icount {}: walk {} + resample {} instructions, {} per pixel; with the fan's tables {} per pixel (instructions, not cycles)",
+        ROLLED_NAME,
+        render,
+        resample,
+        Ratio::tenths(render + resample, pixels),
+        Ratio::tenths(render + resample + tables, pixels)
+    );
+    Ok(())
 }
 
 /// Renders the specular plate: decodes the baked vertices into the core's form (soft double,
@@ -290,6 +344,10 @@ fn run() -> Result<bool, Error> {
         hprintln!("FAIL: the plate's buffers were taken twice");
         return Ok(false);
     };
+    let Some(fan_buffers) = FanBuffers::take() else {
+        hprintln!("FAIL: the fan's buffers were taken twice");
+        return Ok(false);
+    };
     if let Some(bytes) = stack::used() {
         hprintln!(
             "# stack: {} bytes at most while taking the buffers (painted)",
@@ -350,6 +408,7 @@ fn run() -> Result<bool, Error> {
         }
         _ => ok = false,
     }
+    run_rolled(&terrain, fan_buffers, image)?;
     run_plate(plate_buffers)?;
     ok &= error_paths(&terrain, &camera, rows, columns, image)?;
     Ok(ok)

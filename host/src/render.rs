@@ -10,7 +10,7 @@ use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 
 pub use footprint_scenes::render::{
-    render_with, walk_mode, ColumnCount, Measured, Mode, Rate, Rendered, SS_RATES,
+    count_column, render_with, walk_mode, ColumnCount, Measured, Mode, Rate, Rendered, SS_RATES,
 };
 pub use footprint_scenes::view::{first_hit_distance, Tables};
 

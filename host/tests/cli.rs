@@ -105,12 +105,29 @@ fn render_json_alone_prints_the_counters() {
         "64",
         "--size",
         "32x24",
+        "--projection",
+        "paper",
         "--json",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
     assert_eq!(v["mode"], "as");
     assert_eq!(v["counts"]["P"], 32 * 24);
+    assert_eq!(v["grid"]["columns"], 32);
+    // The exact projection (the default) walks the fan: its grid and its cells are counted.
+    let o = footprint(&[
+        "render",
+        "--terrain-size",
+        "64",
+        "--size",
+        "32x24",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+    assert_eq!(v["projection"], "exact");
+    let cells = v["grid"]["columns"].as_u64().unwrap() * v["grid"]["rows"].as_u64().unwrap();
+    let p = v["counts"]["P"].as_u64().unwrap();
+    assert!(p > 0 && p <= cells, "{v}");
 }
 
 #[test]
@@ -416,7 +433,16 @@ fn fly_animation_starts_with_the_rendered_view() {
     // on the right, pixel for pixel what `footprint render` draws.
     for (mode, x0) in [("ps", 0), ("as", 42)] {
         let out = dir.path().join(format!("{mode}.png"));
-        let mut render = vec!["render", "--pitch", "5", "--fit-first-hit", "--mode", mode];
+        let mut render = vec![
+            "render",
+            "--pitch",
+            "5",
+            "--fit-first-hit",
+            "--projection",
+            "paper",
+            "--mode",
+            mode,
+        ];
         render.extend(view);
         render.extend(["--out", out.to_str().unwrap()]);
         let o = footprint(&render);

@@ -12,7 +12,7 @@ use std::fmt;
 
 use footprint_core::specular::raster::Vertex;
 use footprint_core::specular::Normal;
-use footprint_core::terrain::camera::{CameraParams, Options};
+use footprint_core::terrain::camera::{CameraParams, Options, Projection};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::{Error, Rgb};
 
@@ -34,6 +34,13 @@ pub const HEIGHT: u32 = 120;
 
 /// The firmware's pitch, degrees (the README's default view; FOV 10°, fit-first-hit).
 pub const PITCH_DEG: f64 = 20.0;
+
+/// The roll of the firmware's rolled frame, degrees: the same view banked, drawn in the exact
+/// projection (the fan of vertical planes, resampled) with the paper's AS.
+pub const ROLL_DEG: f64 = 30.0;
+
+/// The name of the rolled frame in the firmware's `frame` lines.
+pub const ROLLED_NAME: &str = "as-roll30";
 
 /// The firmware's terrain scene: the map and the camera, with the eye height fitted.
 #[derive(Debug)]
@@ -59,6 +66,24 @@ pub fn scene() -> Result<Scene, FitError> {
         map,
         options,
     })
+}
+
+impl Scene {
+    /// The camera of the rolled frame: [`Scene::params`] banked by [`ROLL_DEG`].
+    pub fn rolled(&self) -> CameraParams {
+        CameraParams {
+            roll_deg: ROLL_DEG,
+            ..self.params
+        }
+    }
+
+    /// The options of the rolled frame: [`Scene::options`] in the exact projection.
+    pub fn rolled_options(&self) -> Options {
+        Options {
+            projection: Projection::Exact,
+            ..self.options
+        }
+    }
 }
 
 /// Why the plate could not be baked.

@@ -170,6 +170,10 @@ fn firmware_output_equals_the_host_reference() {
             "no instruction count for {mode}:\n{text}"
         );
     }
+    assert!(
+        text.contains("# icount as-roll30: walk "),
+        "no instruction count for the rolled frame:\n{text}"
+    );
     assert!(text.contains("# calibration: "), "{text}");
 
     // The smallest embedding draws the same area-sampled image.
@@ -209,7 +213,7 @@ fn the_reference_is_consistent() {
             .unwrap()
     };
     let frames: Vec<&String> = lines.iter().filter(|l| l.starts_with("frame ")).collect();
-    assert_eq!(frames.len(), 5, "{lines:#?}");
+    assert_eq!(frames.len(), 6, "{lines:#?}");
     let (ps, ss8, area, paper) = (frames[0], frames[1], frames[2], frames[3]);
     assert!(paper.starts_with("frame as 160x120 "), "{paper}");
     assert_eq!(
@@ -236,7 +240,16 @@ fn the_reference_is_consistent() {
     // The specular plate, after the terrain frames (`plate_reference_line` has already checked
     // it against `footprint specular`'s own render of the same plate): one shade per fragment
     // (clamping), the cylinders alias at 64×64, and every flagged pixel was drawn.
-    let specular = frames[4];
+    // The rolled frame: the exact projection's fan is wider than the image (the banked image
+    // spans more azimuth) and taller (more elevation), and the banked image is not the level one.
+    let rolled = frames[4];
+    assert!(rolled.starts_with("frame as-roll30 160x120 "), "{rolled}");
+    assert!(
+        field(rolled, "lines") > 160 && field(rolled, "rows") > 120,
+        "{rolled}"
+    );
+    assert_ne!(hash(rolled), hash(paper));
+    let specular = frames[5];
     assert!(
         specular.starts_with(&format!(
             "frame {} {PLATE_SIZE}x{PLATE_SIZE} ",
@@ -252,5 +265,5 @@ fn the_reference_is_consistent() {
     assert!(baked.triangles.len() > 1000 && baked.vertices.len() < baked.triangles.len() * 3);
     let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
     assert_eq!(errors, 10, "{lines:#?}");
-    assert_eq!(lines.len(), 15);
+    assert_eq!(lines.len(), 16);
 }

@@ -360,3 +360,28 @@ fn roll_is_wrapped_and_must_be_finite() {
     })
     .is_err());
 }
+
+#[test]
+fn exact_area_sampling_samples_every_visible_voxel_of_the_fan() {
+    // M′ = V voxel for voxel, as with the paper's projection: the visibility pass bounds each
+    // fan line by the rows it is walked for (and finds nothing in a line walked for none).
+    let map = common::random();
+    let terrain = map.terrain();
+    for (pitch, roll) in [(20.0, 0.0), (20.0, 30.0), (60.0, -75.0)] {
+        let camera =
+            Camera::new(params(common::pose_for(&map), pitch, roll, 30.0, 48)).expect("camera");
+        let options = Options {
+            projection: Projection::Exact,
+            ..Options::default()
+        };
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options).expect("frame");
+        let (_, m) = footprint_host::render::count(&frame, &terrain, Mode::AsExact).expect("count");
+        assert!(m.total.v > 0, "pitch {pitch} roll {roll}");
+        assert_eq!(
+            (m.total.m, m.hidden, m.missed),
+            (m.total.v, 0, 0),
+            "pitch {pitch} roll {roll}"
+        );
+    }
+}

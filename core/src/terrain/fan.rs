@@ -115,15 +115,16 @@ pub struct Fan {
     vertical: bool,
 }
 
-/// One grid cell an output pixel takes from, with its weight (`2^32` = the whole box).
+/// One grid cell an output pixel takes from, with its weight (`2^16` = the whole box).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Tap {
     /// The fan line.
     pub line: usize,
     /// The fan row, counted from the bottom.
     pub row: usize,
-    /// The overlap of the pixel's box with the cell, in units of `2^−32` of the box.
-    pub weight: u64,
+    /// The overlap of the pixel's box with the cell, in units of `2^−16` of the box: the
+    /// product of its overlaps across and along the fan rows, each to 8 bits.
+    pub weight: u32,
 }
 
 impl Fan {
@@ -252,9 +253,14 @@ impl Fan {
     fn inv_at(&self, slopes: &[Coord], i: i64) -> i64 {
         let last = slopes.len().saturating_sub(1);
         let at = usize::try_from(i.max(0)).map_or(last, |i| i.min(last));
-        let s = slopes.get(at).map_or(0, |s| s.to_bits() >> (32 - FRAC));
-        // |s| ≤ 2^36 (slopes are clamped to ±10^6), |inv_b| ≤ 2^16: the product fits.
-        (self.inv_a - (s.saturating_mul(self.inv_b) >> FRAC)).clamp(0, self.inv_max)
+        // The slope to 16 fractional bits, within ±2^15: beyond, 1/k̂ is clamped anyway
+        // (|inv_b| ≥ 2^−16 unless the pitch is 0, where it is 0). Then one 32×32 → 64-bit
+        // product (one instruction on a Cortex-M4).
+        let s = slopes
+            .get(at)
+            .map_or(0, |s| s.to_bits() >> (32 - FRAC))
+            .clamp(-(1 << 31) + 1, (1 << 31) - 1);
+        (self.inv_a - ((s * self.inv_b) >> FRAC)).clamp(0, self.inv_max)
     }
 
     /// The unrolled `(x, y)` of output pixel `(c, t)`'s centre (column, row from the top).
@@ -268,7 +274,7 @@ impl Fan {
     }
 
     /// Calls `tap` for every grid cell output pixel `(c, t)` (column, row from the top) takes
-    /// from; the weights sum to `2^32` (less where the box leaves the grid). `slopes` are the
+    /// from; the weights sum to about `2^16` (less where the box leaves the grid). `slopes` are the
     /// frame's row slopes (`rows + 1` entries).
     pub fn taps(&self, slopes: &[Coord], c: usize, t: usize, mut tap: impl FnMut(Tap)) {
         let (x, y) = self.centre(c, t);
@@ -280,13 +286,15 @@ impl Fan {
     /// [`Fan::taps`] of the pixel centred at unrolled `(x, y)` (fixed point), as
     /// `tap(line, row, weight)`.
     #[inline(always)]
-    fn taps_at(&self, slopes: &[Coord], x: i64, y: i64, mut tap: impl FnMut(usize, usize, u64)) {
+    fn taps_at(&self, slopes: &[Coord], x: i64, y: i64, mut tap: impl FnMut(usize, usize, u32)) {
         let u = y - self.y_lo;
         // 1/k̂ at u, linear between the row edges around it.
         let (i, fu) = (u >> FRAC, u & (ONE - 1));
         let (lo, hi) = (self.inv_at(slopes, i), self.inv_at(slopes, i + 1));
         let inv = lo + (((hi - lo) * fu) >> FRAC);
-        let a = x.saturating_mul(inv) >> FRAC;
+        // |x| < 2^31 (the image is at most 16,384 pixels a side) and 0 ≤ inv ≤ 2^20: the
+        // product fits in 64 bits.
+        let a = (x * inv) >> FRAC;
         let s = a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC;
         let half = (inv.saturating_mul(self.per_line) >> FRAC) / 2;
         let (s, half) = (s.clamp(-SPAN, SPAN), half.min(SPAN));
@@ -296,6 +304,7 @@ impl Fan {
         let rows = i64::from(self.rows);
         // The box's two rows (the upper one empty when the box sits on a row, as without roll).
         let row_weights = [(r0, ONE - fr), (r0 + 1, fr)];
+        let per_box = box_scale(s_hi - s_lo);
         let first = (s_lo >> FRAC).max(0);
         let last = ((s_hi - 1) >> FRAC).min(i64::from(self.lines) - 1);
         for j in first..=last {
@@ -306,10 +315,10 @@ impl Fan {
             if overlap <= 0 {
                 continue;
             }
+            let across = share8(overlap, per_box);
             for (r, wr) in row_weights {
                 if wr > 0 && r >= 0 && r < rows {
-                    // Both factors are at most 2^16 here: the product is at most 2^32.
-                    let weight = (wr as u64) * (overlap.min(ONE) as u64);
+                    let weight = weight8(wr) * across;
                     #[allow(
                         clippy::cast_possible_truncation,
                         reason = "0 ≤ r < rows, a u32 (checked just above)"
@@ -402,12 +411,12 @@ impl Fan {
         for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
             let (mut x, mut y) = self.centre(0, t);
             for px in out_row.iter_mut() {
-                let mut acc = [0u64; 4];
+                let mut acc = [0u32; 4];
                 // Every cell a pixel taps is walked: `set_line_rows` walks at least the rows
                 // these same taps reach.
                 self.taps_at(slopes, x, y, |line, row, weight| {
                     if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
-                        accumulate(&mut acc, weight >> 8, *cell);
+                        accumulate(&mut acc, weight, *cell);
                     }
                 });
                 *px = average(&acc, sky);
@@ -443,11 +452,11 @@ impl Fan {
             let Some(base) = base else {
                 // Not on a fan row (never without roll): the general path.
                 for (c, px) in out_row.iter_mut().enumerate() {
-                    let mut acc = [0u64; 4];
+                    let mut acc = [0u32; 4];
                     let (x, y) = self.centre(c, t);
                     self.taps_at(slopes, x, y, |line, row, weight| {
                         if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
-                            accumulate(&mut acc, weight >> 8, *cell);
+                            accumulate(&mut acc, weight, *cell);
                         }
                     });
                     *px = average(&acc, sky);
@@ -458,19 +467,20 @@ impl Fan {
             let last_line = i64::try_from(cells.len()).unwrap_or(0) - 1;
             let mut x = x0;
             for px in out_row.iter_mut() {
-                let a = x.saturating_mul(inv) >> FRAC;
+                let a = (x * inv) >> FRAC;
                 let s = (a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC)
                     .clamp(-SPAN, SPAN);
                 let (s_lo, s_hi) = (s - half, s + half);
-                let mut acc = [0u64; 4];
+                let mut acc = [0u32; 4];
+                let per_box = box_scale(s_hi - s_lo);
                 let first = (s_lo >> FRAC).max(0);
                 let last = ((s_hi - 1) >> FRAC).min(last_line);
                 for j in first..=last {
                     let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
                     let cell = usize::try_from(j).ok().and_then(|j| cells.get(j));
                     if let (true, Some(cell)) = (overlap > 0, cell) {
-                        // The tap's weight is ONE·overlap, `>> 8` as in the general path.
-                        accumulate(&mut acc, (overlap.min(ONE) as u64) << (FRAC - 8), *cell);
+                        // The tap's weight, as the general path's with a row weight of ONE.
+                        accumulate(&mut acc, weight8(ONE) * share8(overlap, per_box), *cell);
                     }
                 }
                 *px = average(&acc, sky);
@@ -480,26 +490,60 @@ impl Fan {
     }
 }
 
-/// Adds `cell` with weight `wt` to the sums `acc` (red, green, blue, weight).
+/// A fraction of the box (`0..=ONE`) to 8 bits, `0..=256`, rounded so that a whole box stays
+/// whole.
 #[inline(always)]
-fn accumulate(acc: &mut [u64; 4], wt: u64, cell: Rgb) {
-    acc[0] += wt * u64::from(cell.r);
-    acc[1] += wt * u64::from(cell.g);
-    acc[2] += wt * u64::from(cell.b);
+fn weight8(f: i64) -> u32 {
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "clamped to 0..=ONE (2^16) first, so the result is at most 256"
+    )]
+    let w = ((f.clamp(0, ONE) + 128) >> 8) as u32;
+    w
+}
+
+/// `2^24 / width` for a box `width` wide in fan lines (fixed point), the scale of
+/// [`share8`]; one 32-bit division per pixel. The width is at most `K_RATIO·64` lines, below
+/// 2^27.
+#[inline(always)]
+fn box_scale(width: i64) -> u32 {
+    let width = u32::try_from(width.max(1)).unwrap_or(u32::MAX);
+    (1u32 << 24) / width
+}
+
+/// The share of the box that `overlap` (fixed point, at most the box's width) covers, to 8
+/// bits: `overlap·scale / 2^16`, at most 256, so that however many lines a wide box covers,
+/// the weights of a pixel sum to about 2^16.
+#[inline(always)]
+fn share8(overlap: i64, scale: u32) -> u32 {
+    let overlap = u64::try_from(overlap.clamp(0, 1 << 40)).unwrap_or(0);
+    u32::try_from((overlap * u64::from(scale) + (1 << 15)) >> 16)
+        .unwrap_or(256)
+        .min(256)
+}
+
+/// Adds `cell` with weight `wt` (at most 2^16) to the sums `acc` (red, green, blue, weight).
+/// A pixel's weights sum to about 2^16 (its two rows' shares times its lines' shares of the
+/// box, each to 8 bits, plus one rounding unit per tap), so each sum stays far below 2^32: in
+/// 32-bit arithmetic, which a Cortex-M4 multiplies in one instruction.
+#[inline(always)]
+fn accumulate(acc: &mut [u32; 4], wt: u32, cell: Rgb) {
+    acc[0] += wt * u32::from(cell.r);
+    acc[1] += wt * u32::from(cell.g);
+    acc[2] += wt * u32::from(cell.b);
     acc[3] += wt;
 }
 
-/// The weighted average of the sums `acc`, rounded (one division: a 2^40 reciprocal of the
-/// total weight, which is below 2^30, so each product stays below 2^64); `sky` for no weight.
+/// The weighted average of the sums `acc`, rounded to nearest (32-bit divisions, one
+/// instruction each on a Cortex-M4); `sky` for no weight. A single cell with all the weight
+/// comes back exactly.
 #[inline(always)]
-fn average(acc: &[u64; 4], sky: Rgb) -> Rgb {
-    if acc[3] == 0 {
+fn average(acc: &[u32; 4], sky: Rgb) -> Rgb {
+    let total = acc[3];
+    if total == 0 {
         return sky;
     }
-    let recip = (1u64 << 40) / acc[3];
-    // Rounded to nearest: exact when a single cell has all the weight (recip·total = 2^40 − ε
-    // with ε < total, and the half added covers it).
-    let ch = |v: u64| u8::try_from((v * recip + (1 << 39)) >> 40).unwrap_or(u8::MAX);
+    let ch = |v: u32| u8::try_from((v + total / 2) / total).unwrap_or(u8::MAX);
     Rgb::new(ch(acc[0]), ch(acc[1]), ch(acc[2]))
 }
 
@@ -589,7 +633,7 @@ mod tests {
                     [Tap {
                         line: c,
                         row: 11 - t,
-                        weight: 1 << 32
+                        weight: 1 << 16
                     }]
                 );
             }

@@ -4,7 +4,8 @@
 //! the walk ([`March`]) and keeps the *horizon*: at first the column's lowest ray `R_0`, and
 //! after a visible voxel the ray from the eye through that voxel's top. A voxel is visible when
 //! some part of it is seen between the lowest ray `R_0` and the highest ray `R_H`: its top is
-//! strictly above the horizon and the horizon is still strictly below `R_H`. Every comparison
+//! strictly above the horizon and the horizon is still strictly below `R_H`. (For a fan line of
+//! the exact projection, the rays that bound the rows it is walked for.) Every comparison
 //! with a horizon through a top is exact (cross-multiplied in 128-bit integers), so the
 //! coverage `M/V` measures the sampler against the geometry, not against itself.
 
@@ -101,8 +102,14 @@ fn pass(
         h: frame.eye(),
         n: column.n_eye,
     };
-    let lowest = frame.ray(column, 0);
-    let highest = frame.ray(column, frame.height());
+    // The rays that bound the column's walked rows (all of them with the paper's projection;
+    // a fan line's own rows with the exact one).
+    let rows = column.rows();
+    if rows.is_empty() {
+        return;
+    }
+    let lowest = frame.ray(column, rows.start);
+    let highest = frame.ray(column, rows.end);
     let max_h = terrain.max_height();
     let mut march = March::new(frame, terrain, column);
     // Only the visible voxels are wanted: the pass may stop early and skip blocks.

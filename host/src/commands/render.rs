@@ -10,6 +10,7 @@ use crate::render::{count, render_timed, render_timed_parallel, Mode, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, View};
+use footprint_core::terrain::camera::Projection;
 
 /// `footprint render`.
 #[derive(Args, Debug)]
@@ -61,6 +62,11 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             camera: *view.camera.params(),
             base_m: view.map().base_m,
             lod: view.options.lod,
+            projection: match view.options.projection {
+                Projection::Exact => "exact",
+                Projection::Paper => "paper",
+            },
+            grid: (frame.width(), frame.height()),
             measured: &measured,
             per_column: args.per_column,
             ms,

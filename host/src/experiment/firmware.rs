@@ -46,7 +46,7 @@ use footprint_core::specular::{self, Light, Material, Normal, Phong};
 
 pub use footprint_scenes::firmware::{
     plate, plate_mode_name, scene, Plate, PlateVertex, Scene, HEIGHT, MAP_SIDE, PITCH_DEG, PLATE,
-    PLATE_MODE, PLATE_SIZE, SEED, WIDTH,
+    PLATE_MODE, PLATE_SIZE, ROLLED_NAME, ROLL_DEG, SEED, WIDTH,
 };
 use footprint_scenes::plates::Scene as PlateScene;
 pub use footprint_scenes::render::{fnv1a64, image_hash};
@@ -160,7 +160,8 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
 }
 
 /// Every line the firmware prints that must match the host: one `frame` line per mode of
-/// [`MODES`], the specular plate's `frame` line, then the `error` lines.
+/// [`MODES`], the rolled frame's ([`rolled_line`]), the specular plate's `frame` line, then the
+/// `error` lines.
 pub fn reference_lines() -> Result<Vec<String>> {
     let scene = scene()?;
     let pyramid = Pyramid::build(scene.map.clone(), HeightFilter::default())?;
@@ -174,9 +175,30 @@ pub fn reference_lines() -> Result<Vec<String>> {
         let hash = image_hash(&rendered.image);
         lines.push(frame_line(mode, SIZE, hash, &measured.total));
     }
+    lines.push(rolled_line(&scene, &terrain)?);
     lines.push(plate_reference_line()?);
     lines.extend(error_lines(&scene)?);
     Ok(lines)
+}
+
+/// The rolled frame's `frame` line: [`Scene::rolled`] in the exact projection, the paper's AS
+/// (`frame as-roll30 160x120 fnv1a=… lines=… rows=…`, the fan's size).
+pub fn rolled_line(
+    scene: &Scene,
+    terrain: &footprint_core::terrain::Terrain<'_>,
+) -> Result<String> {
+    let camera = Camera::new(scene.rolled())?;
+    let mut tables = Tables::new(&camera);
+    let frame = tables.frame(&camera, terrain, scene.rolled_options())?;
+    let rendered = crate::render::render_with(&frame, terrain, Mode::As, &mut NoCost)?;
+    Ok(format!(
+        "frame {ROLLED_NAME} {}x{} fnv1a={:016x} lines={} rows={}",
+        SIZE.width,
+        SIZE.height,
+        image_hash(&rendered.image),
+        frame.width(),
+        frame.height()
+    ))
 }
 
 /// The reference as the firmware prints it: every line followed by `\n`.

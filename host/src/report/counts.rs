@@ -21,6 +21,11 @@ pub struct RenderSummary<'a> {
     pub base_m: f64,
     /// Multiresolution traversal on.
     pub lod: bool,
+    /// `paper` or `exact`.
+    pub projection: &'static str,
+    /// The walk's grid: columns and rows (the image's own with the paper's projection, the
+    /// fan's with the exact one; the counters count the grid's cells as pixels).
+    pub grid: (usize, usize),
     /// The counters, per frame and per column.
     pub measured: &'a Measured,
     /// Include every column's counters in the JSON.
@@ -81,8 +86,16 @@ struct CameraJson {
     height: f64,
     heading: f64,
     pitch: f64,
+    roll: f64,
     fov: f64,
     far: f64,
+}
+
+/// The walk's grid.
+#[derive(Serialize)]
+struct GridJson {
+    columns: usize,
+    rows: usize,
 }
 
 #[derive(Serialize)]
@@ -97,6 +110,8 @@ struct RenderJson {
     ms_threads: f64,
     threads: usize,
     lod: bool,
+    projection: &'static str,
+    grid: GridJson,
     camera: CameraJson,
     map: String,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -118,7 +133,7 @@ struct ColumnAverage {
 pub fn json(s: &RenderSummary<'_>) -> Result<String> {
     let t = &s.measured.total;
     let p = &s.camera;
-    let cols = f64::from(p.width);
+    let cols = s.grid.0 as f64;
     let json = RenderJson {
         mode: s.mode,
         width: p.width,
@@ -136,12 +151,18 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
         ms_threads: s.ms_threads,
         threads: s.threads,
         lod: s.lod,
+        projection: s.projection,
+        grid: GridJson {
+            columns: s.grid.0,
+            rows: s.grid.1,
+        },
         camera: CameraJson {
             x: p.x_m,
             y: p.y_m,
             height: p.eye_m + s.base_m,
             heading: p.heading_deg,
             pitch: p.pitch_deg,
+            roll: p.roll_deg,
             fov: p.fov_deg,
             far: p.far_m,
         },
@@ -157,17 +178,21 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
 pub fn text(s: &RenderSummary<'_>) -> String {
     let t = &s.measured.total;
     let p = &s.camera;
-    let cols = f64::from(p.width);
+    let cols = s.grid.0 as f64;
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "mode {}  {}x{}  height {:.1} m  pitch {}°  lod {}",
+        "mode {}  {}x{}  height {:.1} m  pitch {}°  roll {}°  lod {}  {} projection ({}x{} walked)",
         s.mode,
         p.width,
         p.height,
         p.eye_m + s.base_m,
         p.pitch_deg,
-        if s.lod { "on" } else { "off" }
+        p.roll_deg,
+        if s.lod { "on" } else { "off" },
+        s.projection,
+        s.grid.0,
+        s.grid.1
     );
     let _ = writeln!(
         out,

@@ -1,0 +1,252 @@
+//! The flight camera on the command line: `--roll`, `--projection`, the warnings of degenerate
+//! views, `fly --path` and `bench --roll`.
+
+use std::path::Path;
+
+mod common;
+
+use common::{assert_one_line_error, fails_writing, footprint};
+
+fn render_to(dir: &Path, name: &str, args: &[&str]) -> (std::process::Output, Vec<u8>) {
+    let out = dir.join(name);
+    let mut all = vec!["render", "--terrain-size", "128", "--size", "48x40"];
+    all.extend_from_slice(args);
+    all.extend(["--out", out.to_str().unwrap()]);
+    let o = footprint(&all);
+    let png = std::fs::read(&out).unwrap_or_default();
+    (o, png)
+}
+
+#[test]
+fn roll_renders_a_different_image_and_pitch_0_roll_0_is_the_papers() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, level) = render_to(dir.path(), "a.png", &["--roll", "0", "--pitch", "20"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let (o, rolled) = render_to(dir.path(), "b.png", &["--roll", "30", "--pitch", "20"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_ne!(level, rolled, "a roll of 30° changes the image");
+    // 390° is 30°.
+    let (_, wrapped) = render_to(dir.path(), "c.png", &["--roll", "390", "--pitch", "20"]);
+    assert_eq!(wrapped, rolled, "roll wraps");
+    // At pitch 0 and roll 0 the exact projection is the paper's, bit for bit.
+    let flat = ["--pitch", "0", "--height", "3000"];
+    let (_, exact) = render_to(dir.path(), "d.png", &flat);
+    let mut paper_args = flat.to_vec();
+    paper_args.extend(["--projection", "paper"]);
+    let (_, paper) = render_to(dir.path(), "e.png", &paper_args);
+    assert!(!exact.is_empty() && exact == paper);
+}
+
+#[test]
+fn bad_rolls_name_the_option() {
+    let render = ["render", "--terrain-size", "64"];
+    for bad in ["nan", "inf", "-inf"] {
+        fails_writing(&render, &["--roll", bad], "--roll");
+    }
+    fails_writing(&render, &["--roll", "x"], "--roll");
+    fails_writing(
+        &render,
+        &["--roll", "10", "--projection", "paper"],
+        "--projection exact",
+    );
+    fails_writing(&render, &["--projection", "fisheye"], "--projection");
+}
+
+#[test]
+fn degenerate_views_render_with_a_one_line_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, args, says) in [
+        (
+            "below.png",
+            &["--height", "1"][..],
+            "below the terrain under it",
+        ),
+        (
+            "nadir.png",
+            &["--pitch", "89.9", "--fov", "30", "--height", "3000"][..],
+            "the nadir is in the image",
+        ),
+        (
+            "nadir-paper.png",
+            &[
+                "--pitch",
+                "89.9",
+                "--fov",
+                "30",
+                "--height",
+                "3000",
+                "--projection",
+                "paper",
+            ][..],
+            "the nadir is in the image",
+        ),
+    ] {
+        let (o, png) = render_to(dir.path(), name, args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{args:?}: {stderr}");
+        assert!(!png.is_empty(), "{args:?}: the image is written");
+        let warnings: Vec<&str> = stderr
+            .lines()
+            .filter(|l| l.starts_with("warning: "))
+            .collect();
+        assert_eq!(warnings.len(), 1, "{args:?}: {stderr}");
+        assert!(warnings[0].contains(says), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
+fn fly_takes_a_banked_path_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("turn.csv");
+    std::fs::write(
+        &csv,
+        "frame,heading,pitch,roll\n0,0,5,0\n4,20,8,25\n8,45,5,30\n",
+    )
+    .unwrap();
+    let json = dir.path().join("turn.json");
+    std::fs::write(
+        &json,
+        r#"[{"frame":0,"heading":0,"pitch":5,"roll":0},{"frame":4,"heading":20,"pitch":8,"roll":25},{"frame":8,"heading":45,"pitch":5,"roll":30}]"#,
+    )
+    .unwrap();
+    let fly = |path: &Path| {
+        let o = footprint(&[
+            "fly",
+            "--terrain-size",
+            "128",
+            "--size",
+            "32x32",
+            "--frames",
+            "10",
+            "--modes",
+            "ps,as",
+            "--path",
+            path.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let (a, b) = (fly(&csv), fly(&json));
+    assert_eq!(a, b, "the CSV and the JSON path fly the same");
+    assert_eq!(a["projection"], "exact");
+    assert_eq!(a["path"]["keys"].as_array().unwrap().len(), 3);
+    // A straight flight at pitch 5° changes less between frames than the banked turn.
+    let straight = footprint(&[
+        "fly",
+        "--terrain-size",
+        "128",
+        "--size",
+        "32x32",
+        "--frames",
+        "10",
+        "--modes",
+        "ps,as",
+        "--json",
+    ]);
+    let s: serde_json::Value = serde_json::from_slice(&straight.stdout).unwrap();
+    assert_eq!(s["projection"], "paper");
+    let unchanged = |v: &serde_json::Value| v["modes"][0]["all_columns"]["0"].as_u64().unwrap();
+    assert!(unchanged(&s) > unchanged(&a), "{s} vs {a}");
+}
+
+#[test]
+fn bad_paths_name_the_file_and_the_key_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (
+            "order.csv",
+            "frame,heading,pitch,roll\n5,0,5,0\n2,0,5,0\n",
+            "key frame 2",
+        ),
+        (
+            "pitch.csv",
+            "frame,heading,pitch,roll\n0,0,95,0\n",
+            "pitch 95",
+        ),
+        ("columns.csv", "frame,heading\n0,0\n", "columns.csv"),
+        ("empty.json", "[]", "no key frames"),
+        ("broken.json", "[{\"frame\":0}", "broken.json"),
+    ];
+    for (name, text, says) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let args = [
+            "fly",
+            "--terrain-size",
+            "64",
+            "--frames",
+            "4",
+            "--path",
+            path.to_str().unwrap(),
+        ];
+        let o = footprint(&args);
+        assert_one_line_error(&o, &args, says);
+    }
+    let args = [
+        "fly",
+        "--terrain-size",
+        "64",
+        "--frames",
+        "4",
+        "--path",
+        "/nonexistent/p.csv",
+    ];
+    assert_one_line_error(&footprint(&args), &args, "--path");
+    // A rolled path with the paper's projection is refused, naming the key frame.
+    let path = dir.path().join("rolled.csv");
+    std::fs::write(&path, "frame,heading,pitch,roll\n0,0,5,0\n3,0,5,10\n").unwrap();
+    let args = [
+        "fly",
+        "--terrain-size",
+        "64",
+        "--frames",
+        "4",
+        "--projection",
+        "paper",
+        "--path",
+        path.to_str().unwrap(),
+    ];
+    assert_one_line_error(&footprint(&args), &args, "key frame 3");
+}
+
+#[test]
+fn bench_times_rolls_against_the_unrolled_paper_frame() {
+    let o = footprint(&[
+        "bench",
+        "--terrain-size",
+        "128",
+        "--size",
+        "32x32",
+        "--modes",
+        "ps",
+        "--repeats",
+        "1",
+        "--roll",
+        "0,45",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let cases = v["cases"].as_array().unwrap();
+    // Three paper pitches × (paper + two rolls) + the classic view.
+    assert_eq!(cases.len(), 10);
+    let rolled: Vec<&serde_json::Value> = cases
+        .iter()
+        .filter(|c| c["projection"] == "exact")
+        .collect();
+    assert_eq!(rolled.len(), 6);
+    for c in rolled {
+        for m in c["modes"].as_array().unwrap() {
+            assert!(m["ratio_to_unrolled"].as_f64().unwrap() > 0.0, "{c}");
+            assert!(m["steps"].as_u64().unwrap() > 0, "{c}");
+        }
+    }
+    let args = ["bench", "--terrain-size", "64", "--roll", "nan"];
+    assert_one_line_error(&footprint(&args), &args, "--roll");
+}
