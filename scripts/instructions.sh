@@ -4,7 +4,7 @@
 #
 # For each mode and each of the paper's three views (pitch 40°, 20°, 5°; 400×400; FOV 10°;
 # fit-first-hit; built-in terrain), `footprint render` runs under callgrind, which collects only
-# inside the one-thread frame renders (`footprint_host::render::render_with`). `footprint render --counts` gives the same frames'
+# inside the one-thread frame renders (`footprint_scenes::render::render_with`). `footprint render --counts` gives the same frames'
 # traversal steps `a`, so the script prints instructions per frame (the three views together),
 # per traversal step and per pixel (3 × 400 × 400 pixels).
 #
@@ -31,7 +31,7 @@ for m in "${modes[@]}"; do
     # `column::render` or `classic::render`), which callgrind counts; everything else (the map, the pyramid, the
     # fit-first-hit probe, the parallel render) is not collected.
     valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
-      --toggle-collect='footprint_host::render::render_with*' \
+      --toggle-collect='footprint_scenes::render::render_with*' \
       "$bin" render "${args[@]}" --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
       >/dev/null 2>"$tmp/cg.err"
     i=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err")

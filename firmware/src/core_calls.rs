@@ -10,6 +10,7 @@ use footprint_core::specular::{self, Light, Material, Method, Normal};
 use footprint_core::terrain::camera::{Camera, Column, Frame, Options};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts};
+use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::Sampler;
 use footprint_core::terrain::visibility;
@@ -42,10 +43,11 @@ pub fn frame<'t>(
     Frame::new(camera, terrain, options, rows, columns)
 }
 
-/// `Frame::resample`: the exact projection's fan resampled into the image.
+/// `Frame::resample`: the exact projection's fan resampled into the image (the area
+/// samplers' box).
 #[inline(never)]
 pub fn resample(frame: &Frame<'_>, grid: &[Rgb], image: &mut [Rgb]) -> Result<(), Error> {
-    frame.resample(grid, image)
+    frame.resample(grid, Filter::Box, image)
 }
 
 /// `visibility::count_visible`: the exact visible-voxel count `V` of every column.

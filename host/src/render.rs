@@ -33,7 +33,7 @@ pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> 
             grid[(h - 1 - i) * w + x] = *px;
         }
     }
-    Ok(footprint_scenes::render::finish(frame, grid)?)
+    Ok(footprint_scenes::render::finish(frame, grid, mode)?)
 }
 
 /// Renders one column (rows from the bottom) without counting.
@@ -93,5 +93,5 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
         .into_par_iter()
         .map(|x| footprint_scenes::render::count_column(frame, terrain, mode, x))
         .collect();
-    Ok(footprint_scenes::render::assemble(frame, columns)?)
+    Ok(footprint_scenes::render::assemble(frame, mode, columns)?)
 }

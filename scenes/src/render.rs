@@ -12,6 +12,7 @@ use footprint_core::terrain::camera::Frame;
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, Tally};
+use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Super};
 use footprint_core::terrain::visibility::visit_visible;
@@ -121,6 +122,18 @@ impl serde::Serialize for Mode {
     }
 }
 
+impl Mode {
+    /// How the exact projection's fan is resampled for this mode: the cell under each pixel's
+    /// centre for the point-sampling modes (PS, LI, classic), the pixel's box for the
+    /// area-sampling ones (SS_N, AS), whose cells are averages over their footprints.
+    pub fn filter(self) -> Filter {
+        match self {
+            Mode::Ps | Mode::Li | Mode::Classic => Filter::Nearest,
+            Mode::Ss(_) | Mode::As | Mode::AsExact => Filter::Box,
+        }
+    }
+}
+
 impl fmt::Display for Mode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -222,16 +235,17 @@ pub fn render_with<C: Cost>(
     let mut grid = vec![Rgb::default(); w * h];
     with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut grid),
         classic => classic::render(frame, terrain, cost, &mut grid))?;
-    finish(frame, grid)
+    finish(frame, grid, mode)
 }
 
 /// The image from the walked grid (row-major from the top): the grid itself with the paper's
-/// projection, the fan resampled with the exact one ([`Frame::resample`]).
-pub fn finish(frame: &Frame<'_>, grid: Vec<Rgb>) -> Result<Rendered, Error> {
+/// projection, the fan resampled with the exact one ([`Frame::resample`], with `mode`'s
+/// [`Mode::filter`]).
+pub fn finish(frame: &Frame<'_>, grid: Vec<Rgb>, mode: Mode) -> Result<Rendered, Error> {
     let image = if frame.fan().is_some() {
         let (w, h) = frame.image_size();
         let mut image = vec![Rgb::default(); w * h];
-        frame.resample(&grid, &mut image)?;
+        frame.resample(&grid, mode.filter(), &mut image)?;
         image
     } else {
         grid
@@ -319,6 +333,7 @@ pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usi
 /// summed. The same for any order the columns were counted in.
 pub fn assemble(
     frame: &Frame<'_>,
+    mode: Mode,
     columns: Vec<ColumnCount>,
 ) -> Result<(Rendered, Measured), Error> {
     let (w, h) = (frame.width(), frame.height());
@@ -335,7 +350,7 @@ pub fn assemble(
         (hidden, missed) = (hidden + column.hidden, missed + column.missed);
     }
     Ok((
-        finish(frame, image)?,
+        finish(frame, image, mode)?,
         Measured {
             total,
             columns: tallies,
@@ -354,7 +369,7 @@ pub fn count(
     let columns = (0..frame.width())
         .map(|x| count_column(frame, terrain, mode, x))
         .collect();
-    assemble(frame, columns)
+    assemble(frame, mode, columns)
 }
 
 /// Every counter of [`Counts`], and the step index of every voxel a sampler samples.

@@ -33,7 +33,7 @@ use crate::num::{
     fixed_from_f64, mul_floor_24, mul_floor_32, Coord, Height, Line, Slope, MAX_COORD,
     MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE_BITS,
 };
-use crate::terrain::fan::Fan;
+use crate::terrain::fan::{Fan, Filter};
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
 
@@ -503,13 +503,13 @@ impl<'t> Frame<'t> {
     }
 
     /// The image from the walked grid `grid` (row-major from the top, [`Frame::width`] ×
-    /// [`Frame::height`]): the fan resampled ([`Fan::resample`]) or, with the paper's
-    /// projection, the grid copied.
+    /// [`Frame::height`]): the fan resampled with `filter` ([`Fan::resample`]) or, with the
+    /// paper's projection, the grid copied.
     ///
     /// Errors: slices of the wrong length.
-    pub fn resample(&self, grid: &[Rgb], image: &mut [Rgb]) -> Result<(), Error> {
+    pub fn resample(&self, grid: &[Rgb], filter: Filter, image: &mut [Rgb]) -> Result<(), Error> {
         match &self.fan {
-            Some(fan) => fan.resample(self.rows, self.columns, grid, self.sky, image),
+            Some(fan) => fan.resample(self.rows, self.columns, grid, self.sky, filter, image),
             None if grid.len() == image.len() => {
                 image.copy_from_slice(grid);
                 Ok(())

@@ -127,6 +127,18 @@ pub struct Tap {
     pub weight: u32,
 }
 
+/// How an output pixel takes its value from the fan's grid.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Filter {
+    /// The overlap-weighted average of the cells under the pixel's box (see the module docs):
+    /// for the area-sampling modes (SS_N, AS), whose cells are averages over their footprints.
+    #[default]
+    Box,
+    /// The cell under the pixel's centre: for the point-sampling modes (PS, LI, classic), so
+    /// that a point sample stays one point sample (and costs one fetch per pixel).
+    Nearest,
+}
+
 impl Fan {
     /// The fan of `camera` with `columns_per_pixel` fan lines at least per output pixel (the
     /// supersampled reference walks `k` times as many). At pitch 0 and roll 0 the fan is the
@@ -286,12 +298,17 @@ impl Fan {
     /// [`Fan::taps`] of the pixel centred at unrolled `(x, y)` (fixed point), as
     /// `tap(line, row, weight)`.
     #[inline(always)]
-    fn taps_at(&self, slopes: &[Coord], x: i64, y: i64, mut tap: impl FnMut(usize, usize, u32)) {
+    fn taps_at(&self, slopes: &[Coord], x: i64, y: i64, tap: impl FnMut(usize, usize, u32)) {
         let u = y - self.y_lo;
         // 1/k̂ at u, linear between the row edges around it.
-        let (i, fu) = (u >> FRAC, u & (ONE - 1));
-        let (lo, hi) = (self.inv_at(slopes, i), self.inv_at(slopes, i + 1));
-        let inv = lo + (((hi - lo) * fu) >> FRAC);
+        let i = u >> FRAC;
+        let inv = lerp_inv(self.inv_at(slopes, i), self.inv_at(slopes, i + 1), u);
+        self.taps_with(x, u, inv, tap);
+    }
+
+    /// [`Fan::taps_at`] with `u = y − y_lo` and `1/k̂` at `u` already known.
+    #[inline(always)]
+    fn taps_with(&self, x: i64, u: i64, inv: i64, mut tap: impl FnMut(usize, usize, u32)) {
         // |x| < 2^31 (the image is at most 16,384 pixels a side) and 0 ≤ inv ≤ 2^20: the
         // product fits in 64 bits.
         let a = (x * inv) >> FRAC;
@@ -301,9 +318,13 @@ impl Fan {
         let (s_lo, s_hi) = (s - half, s + half);
         let b = u - ONE / 2;
         let (r0, fr) = (b >> FRAC, b & (ONE - 1));
-        let rows = i64::from(self.rows);
-        // The box's two rows (the upper one empty when the box sits on a row, as without roll).
-        let row_weights = [(r0, ONE - fr), (r0 + 1, fr)];
+        // The box's two rows with their 8-bit shares (0 for a row outside the grid; the upper
+        // one has none when the box sits on a row, as without roll).
+        let row = |r: i64, share: i64| match usize::try_from(r) {
+            Ok(r) if r < self.rows() => (r, weight8(share)),
+            _ => (0, 0),
+        };
+        let row_taps = [row(r0, ONE - fr), row(r0 + 1, fr)];
         let per_box = box_scale(s_hi - s_lo);
         let first = (s_lo >> FRAC).max(0);
         let last = ((s_hi - 1) >> FRAC).min(i64::from(self.lines) - 1);
@@ -316,14 +337,9 @@ impl Fan {
                 continue;
             }
             let across = share8(overlap, per_box);
-            for (r, wr) in row_weights {
-                if wr > 0 && r >= 0 && r < rows {
-                    let weight = weight8(wr) * across;
-                    #[allow(
-                        clippy::cast_possible_truncation,
-                        reason = "0 ≤ r < rows, a u32 (checked just above)"
-                    )]
-                    tap(line, r as usize, weight);
+            for (r, wr) in row_taps {
+                if wr > 0 {
+                    tap(line, r, wr * across);
                 }
             }
         }
@@ -376,8 +392,9 @@ impl Fan {
     }
 
     /// Resamples the walked grid `grid` (`lines × rows`, row-major from the top) into `image`
-    /// (`W × H`, row-major from the top): each pixel the overlap-weighted average of its taps
-    /// (see the module docs), rounded; `sky` where a pixel's box meets no walked cell.
+    /// (`W × H`, row-major from the top): with [`Filter::Box`] each pixel the overlap-weighted
+    /// average of its taps (see the module docs), rounded; with [`Filter::Nearest`] the cell
+    /// under its centre; `sky` where a pixel meets no walked cell.
     ///
     /// Errors: slices of the wrong length.
     pub fn resample(
@@ -386,6 +403,7 @@ impl Fan {
         columns: &[Column],
         grid: &[Rgb],
         sky: Rgb,
+        filter: Filter,
         image: &mut [Rgb],
     ) -> Result<(), Error> {
         let (lines, rows) = (self.lines(), self.rows());
@@ -404,17 +422,28 @@ impl Fan {
                 });
             }
         }
+        if filter == Filter::Nearest {
+            self.nearest(slopes, grid, sky, image);
+            return Ok(());
+        }
         if self.sr == 0 {
             self.resample_rows(slopes, grid, sky, image);
             return Ok(());
         }
         for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
             let (mut x, mut y) = self.centre(0, t);
+            // 1/k̂ at the row edges around the pixel, kept while the pixels stay between them.
+            let (mut edge, mut lo, mut hi) = (i64::MIN, 0, 0);
             for px in out_row.iter_mut() {
                 let mut acc = [0u32; 4];
+                let u = y - self.y_lo;
+                if u >> FRAC != edge {
+                    edge = u >> FRAC;
+                    (lo, hi) = (self.inv_at(slopes, edge), self.inv_at(slopes, edge + 1));
+                }
                 // Every cell a pixel taps is walked: `set_line_rows` walks at least the rows
                 // these same taps reach.
-                self.taps_at(slopes, x, y, |line, row, weight| {
+                self.taps_with(x, u, lerp_inv(lo, hi, u), |line, row, weight| {
                     if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
                         accumulate(&mut acc, weight, *cell);
                     }
@@ -439,9 +468,8 @@ impl Fan {
         for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
             let (x0, y) = self.centre(0, t);
             let u = y - self.y_lo;
-            let (i, fu) = (u >> FRAC, u & (ONE - 1));
-            let (lo, hi) = (self.inv_at(slopes, i), self.inv_at(slopes, i + 1));
-            let inv = lo + (((hi - lo) * fu) >> FRAC);
+            let i = u >> FRAC;
+            let inv = lerp_inv(self.inv_at(slopes, i), self.inv_at(slopes, i + 1), u);
             let half = ((inv.saturating_mul(self.per_line) >> FRAC) / 2).min(SPAN);
             let b = u - ONE / 2;
             let (r0, fr) = (b >> FRAC, b & (ONE - 1));
@@ -465,6 +493,8 @@ impl Fan {
             };
             let cells = grid.get(base..base + lines).unwrap_or(&[]);
             let last_line = i64::try_from(cells.len()).unwrap_or(0) - 1;
+            // The box is as wide in every pixel of the row.
+            let per_box = box_scale(2 * half);
             let mut x = x0;
             for px in out_row.iter_mut() {
                 let a = (x * inv) >> FRAC;
@@ -472,7 +502,6 @@ impl Fan {
                     .clamp(-SPAN, SPAN);
                 let (s_lo, s_hi) = (s - half, s + half);
                 let mut acc = [0u32; 4];
-                let per_box = box_scale(s_hi - s_lo);
                 let first = (s_lo >> FRAC).max(0);
                 let last = ((s_hi - 1) >> FRAC).min(last_line);
                 for j in first..=last {
@@ -488,6 +517,44 @@ impl Fan {
             }
         }
     }
+}
+
+impl Fan {
+    /// [`Fan::resample`] with [`Filter::Nearest`]: the cell containing each pixel's centre,
+    /// which is the cell its box overlaps most (the box is centred there), so it is always a
+    /// walked cell.
+    fn nearest(&self, slopes: &[Coord], grid: &[Rgb], sky: Rgb, image: &mut [Rgb]) {
+        let (lines, rows) = (self.lines(), self.rows());
+        let (w, _) = self.output_size();
+        for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
+            let (mut x, mut y) = self.centre(0, t);
+            let (mut edge, mut lo, mut hi) = (i64::MIN, 0, 0);
+            for px in out_row.iter_mut() {
+                let u = y - self.y_lo;
+                if u >> FRAC != edge {
+                    edge = u >> FRAC;
+                    (lo, hi) = (self.inv_at(slopes, edge), self.inv_at(slopes, edge + 1));
+                }
+                let a = (x * lerp_inv(lo, hi, u)) >> FRAC;
+                let s = a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC;
+                let cell = match (usize::try_from(s >> FRAC), usize::try_from(edge)) {
+                    (Ok(line), Ok(row)) if line < lines && row < rows => {
+                        grid.get((rows - 1 - row) * lines + line)
+                    }
+                    _ => None,
+                };
+                *px = cell.copied().unwrap_or(sky);
+                x += self.cr;
+                y -= self.sr;
+            }
+        }
+    }
+}
+
+/// `1/k̂` at `u`, linear between its values `lo` and `hi` at the row edges below and above.
+#[inline(always)]
+fn lerp_inv(lo: i64, hi: i64, u: i64) -> i64 {
+    lo + (((hi - lo) * (u & (ONE - 1))) >> FRAC)
 }
 
 /// A fraction of the box (`0..=ONE`) to 8 bits, `0..=256`, rounded so that a whole box stays
@@ -516,10 +583,15 @@ fn box_scale(width: i64) -> u32 {
 /// the weights of a pixel sum to about 2^16.
 #[inline(always)]
 fn share8(overlap: i64, scale: u32) -> u32 {
-    let overlap = u64::try_from(overlap.clamp(0, 1 << 40)).unwrap_or(0);
-    u32::try_from((overlap * u64::from(scale) + (1 << 15)) >> 16)
-        .unwrap_or(256)
-        .min(256)
+    // 0 < overlap ≤ ONE here (a line is one unit wide), so the product is below 2^41.
+    let overlap = overlap.clamp(0, ONE).unsigned_abs();
+    let share = (overlap * u64::from(scale) + (1 << 15)) >> 16;
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "overlap ≤ the box's width, so the share is at most 256 (+1 for the rounding)"
+    )]
+    let share = share.min(256) as u32;
+    share
 }
 
 /// Adds `cell` with weight `wt` (at most 2^16) to the sums `acc` (red, green, blue, weight).
