@@ -104,8 +104,9 @@ pub struct MapArgs {
     /// Metres per voxel of --dem [default: from the file; 30 for PNG].
     #[arg(long, allow_hyphen_values = true, requires = "dem")]
     pub spacing: Option<f64>,
-    /// Metres per height unit of --dem [default: 0.1 for PNG; chosen to fit the heights for
-    /// other formats].
+    /// Metres per height unit of --dem [default: for an 8-bit PNG the spacing (voxel-space
+    /// units, as game height maps); 0.1 for a 16-bit PNG; chosen to fit the heights for other
+    /// formats].
     #[arg(long = "height-scale", allow_hyphen_values = true, requires = "dem")]
     pub height_scale: Option<f64>,
     /// Seed of the built-in terrain.
@@ -148,6 +149,9 @@ impl MapArgs {
                         dem.display(),
                         loaded.voids_filled
                     );
+                }
+                if let Some(hint) = map::relief_hint(&loaded.map, loaded.range_m) {
+                    eprintln!("hint: {}: {hint}", dem.display());
                 }
                 Ok(loaded.map)
             }

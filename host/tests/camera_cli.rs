@@ -250,3 +250,57 @@ fn bench_times_rolls_against_the_unrolled_paper_frame() {
     let args = ["bench", "--terrain-size", "64", "--roll", "nan"];
     assert_one_line_error(&footprint(&args), &args, "--roll");
 }
+
+#[test]
+fn an_8_bit_height_png_is_read_in_voxel_space_units_and_flat_maps_get_a_hint() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = dir.path().join("game.png");
+    image::GrayImage::from_fn(64, 64, |x, y| image::Luma([((x * 3 + y) % 120) as u8]))
+        .save(&dem)
+        .unwrap();
+    let o = footprint(&["map", "info", dem.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["height_scale_m"], v["spacing_m"], "{v}");
+    assert!(
+        v["height_note"].as_str().unwrap().contains("voxel-space"),
+        "{v}"
+    );
+    assert!(v["relief_hint"].is_null(), "{v}");
+    // Given a height scale, it is used; a 1 mm scale makes the map flat, and says so.
+    let o = footprint(&[
+        "map",
+        "info",
+        dem.to_str().unwrap(),
+        "--height-scale",
+        "0.001",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["height_scale_m"], 0.001);
+    assert!(
+        v["relief_hint"].as_str().unwrap().contains("under 1 %"),
+        "{v}"
+    );
+    let out = dir.path().join("flat.png");
+    let o = footprint(&[
+        "render",
+        "--dem",
+        dem.to_str().unwrap(),
+        "--height-scale",
+        "0.001",
+        "--size",
+        "16x16",
+        "--height",
+        "100",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert_eq!(
+        stderr.lines().filter(|l| l.starts_with("hint: ")).count(),
+        1,
+        "{stderr}"
+    );
+}

@@ -119,8 +119,10 @@ pub struct LoadOptions<'a> {
     /// `--spacing`: metres per voxel. `None`: the file's own (hgt: from the name; asc:
     /// `cellsize`; TIFF: `ModelPixelScale`), else [`DEFAULT_SPACING_M`].
     pub spacing_m: Option<f64>,
-    /// `--height-scale`: metres per height unit. `None`: PNG [`DEFAULT_PNG_HEIGHT_SCALE_M`];
-    /// other formats, chosen to fit the heights (see [`Grid::into_heights`]).
+    /// `--height-scale`: metres per height unit. `None`: for an 8-bit PNG the spacing (one
+    /// height unit per voxel, as game height maps), for a 16-bit PNG
+    /// [`DEFAULT_PNG_HEIGHT_SCALE_M`] ([`png::default_height_scale`]); other formats, chosen to
+    /// fit the heights (see [`Grid::into_heights`]).
     pub height_scale_m: Option<f64>,
     /// Files already in memory (the height map, the colour map, or both), read from there
     /// instead of the file system: the browser page's dropped files.
@@ -138,6 +140,8 @@ pub struct Loaded {
     pub detail: String,
     /// Where the spacing came from.
     pub spacing_note: String,
+    /// Where the height scale came from.
+    pub height_note: String,
     /// Voids filled from their neighbours.
     pub voids_filled: u64,
     /// Lowest and highest heights in metres, after void filling and before rounding to height
@@ -174,21 +178,40 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     let (grid, detail, file_spacing) = match format {
         Format::Png => {
             let spacing = opts.spacing_m.unwrap_or(DEFAULT_SPACING_M);
-            let scale = opts.height_scale_m.unwrap_or(DEFAULT_PNG_HEIGHT_SCALE_M);
-            check_scale(
-                &what,
+            let spacing_from = spacing_note(
+                opts.spacing_m,
+                "the default for PNG; give --spacing for the map's own",
+            );
+            if let Some(scale) = opts.height_scale_m {
+                check_scale(&what, spacing, &spacing_from, scale)?;
+            }
+            let (map, bits) = png::load_pair(
+                input,
+                opts.color,
+                opts.in_memory,
                 spacing,
-                &spacing_note(opts.spacing_m, "the default for PNG"),
-                scale,
+                opts.height_scale_m,
             )?;
-            let map = png::load_pair(input, opts.color, opts.in_memory, spacing, scale)?;
+            let scale = map.height_scale_m;
+            check_scale(&what, spacing, &spacing_from, scale)?;
+            let height_note = match (opts.height_scale_m, bits <= 8) {
+                (Some(_), _) => "--height-scale".to_owned(),
+                (None, true) => format!(
+                    "voxel-space units, one height unit per voxel spacing: the default for an \
+                     {bits}-bit PNG, as game height maps are drawn; give --height-scale to change it"
+                ),
+                (None, false) => format!(
+                    "the default for a {bits}-bit PNG; give --height-scale to change it"
+                ),
+            };
             let (lo, hi) = map.height_range();
             let range_m = (f64::from(lo) * scale, f64::from(hi) * scale);
             return Ok(Loaded {
                 map,
                 format,
-                detail: "PNG greyscale height units".to_owned(),
-                spacing_note: spacing_note(opts.spacing_m, "the default for PNG"),
+                detail: format!("PNG {bits}-bit greyscale height units"),
+                spacing_note: spacing_from,
+                height_note,
                 voids_filled: 0,
                 range_m,
             });
@@ -306,6 +329,12 @@ fn from_grid(
         format,
         detail,
         spacing_note: spacing.note,
+        height_note: match opts.height_scale_m {
+            Some(_) => "--height-scale".to_owned(),
+            None => "chosen to fit the file's heights into 16-bit units; give --height-scale to \
+                     change it"
+                .to_owned(),
+        },
         voids_filled: h.voids_filled,
         range_m: (h.min_m, h.max_m),
     })
@@ -370,4 +399,22 @@ fn hint(e: MapError, looks: Option<&'static str>) -> MapError {
         }
         other => other,
     }
+}
+
+/// A one-line hint when `map`'s relief is under 1 % of its extent (the longer side): such a
+/// map renders flat, and the usual cause is a height scale or spacing that does not match the
+/// file (an 8-bit height map read in metres, say).
+pub fn relief_hint(map: &Map, range_m: (f64, f64)) -> Option<String> {
+    let extent_m = f64::from(map.width.max(map.height)) * map.spacing_m;
+    let relief_m = range_m.1 - range_m.0;
+    (relief_m < 0.01 * extent_m).then(|| {
+        format!(
+            "the relief, {relief_m:.1} m, is under 1 % of the map's extent ({:.1} km): it will \
+             look flat; if it should not, give --height-scale (metres per height unit, now {}) \
+             or --spacing (metres per voxel, now {})",
+            extent_m / 1000.0,
+            map.height_scale_m,
+            map.spacing_m
+        )
+    })
 }

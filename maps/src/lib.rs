@@ -34,7 +34,7 @@ pub use footprint_scenes::Map;
 /// too); re-exported here, where the loaders and the CLI look for them.
 pub use footprint_scenes::{procedural, tint};
 
-pub use self::format::{load, Format, LoadOptions, Loaded};
+pub use self::format::{load, relief_hint, Format, LoadOptions, Loaded};
 pub use self::grid::Grid;
 pub use self::png::load_png_pair;
 pub use self::procedural::{procedural, DEFAULT_SIZE, MIN_SIZE};

@@ -38,25 +38,44 @@ pub fn load_png_pair(
         color,
         &[],
         spacing_m,
-        height_scale_m,
+        Some(height_scale_m),
     )
+    .map(|(map, _)| map)
+}
+
+/// The height scale of a PNG height map with `bit_depth` bits per sample when none is given:
+/// an 8-bit (or shallower) map is read in voxel-space units, one height unit per voxel
+/// spacing (the convention of game height maps: `spacing_m`); a 16-bit one in
+/// [`crate::format::DEFAULT_PNG_HEIGHT_SCALE_M`] (0.1 m).
+pub fn default_height_scale(bit_depth: u8, spacing_m: f64) -> f64 {
+    if bit_depth <= 8 {
+        spacing_m
+    } else {
+        crate::format::DEFAULT_PNG_HEIGHT_SCALE_M
+    }
 }
 
 /// [`load_png_pair`] on a height map already opened (`dem`), the colour map read from
-/// `in_memory` if it is there.
+/// `in_memory` if it is there; without a height scale, [`default_height_scale`]. Returns the
+/// map and the height map's bits per sample.
 pub fn load_pair(
     dem: Input,
     color: Option<&Path>,
     in_memory: InMemory<'_>,
     spacing_m: f64,
-    height_scale_m: f64,
-) -> Result<Map, MapError> {
+    height_scale_m: Option<f64>,
+) -> Result<(Map, u8), MapError> {
     check_parameter("--spacing", spacing_m)?;
-    check_parameter("--height-scale", height_scale_m)?;
+    if let Some(scale) = height_scale_m {
+        check_parameter("--height-scale", scale)?;
+    }
 
     let dem_path = dem.path().to_owned();
     let dem_what = dem.what().to_owned();
     let dem_png = PngFile::open(dem)?;
+    let bit_depth = dem_png.bit_depth;
+    let height_scale_m =
+        height_scale_m.unwrap_or_else(|| default_height_scale(bit_depth, spacing_m));
     let (width, height) = (dem_png.width, dem_png.height);
     let color_png = match color {
         Some(path) => Some(open_color(path, in_memory, width, height, &dem_what)?),
@@ -72,16 +91,19 @@ pub fn load_pair(
         Some(c) => format!("{} (colours {})", dem_path.display(), c.display()),
         None => dem_path.display().to_string(),
     };
-    Ok(Map {
-        width,
-        height,
-        heights,
-        colors,
-        spacing_m,
-        height_scale_m,
-        base_m: 0.0,
-        source,
-    })
+    Ok((
+        Map {
+            width,
+            height,
+            heights,
+            colors,
+            spacing_m,
+            height_scale_m,
+            base_m: 0.0,
+            source,
+        },
+        bit_depth,
+    ))
 }
 
 /// Loads a colour map `path` (RGB, RGBA, palette or greyscale PNG) that must be
@@ -142,6 +164,8 @@ struct PngFile {
     width: u32,
     /// Height from the IHDR chunk.
     height: u32,
+    /// Bits per sample from the IHDR chunk (1, 2, 4, 8 or 16).
+    bit_depth: u8,
 }
 
 impl PngFile {
@@ -157,7 +181,7 @@ impl PngFile {
         let len = reader.len();
 
         // Signature (8) + IHDR length (4) + "IHDR" (4) + width (4) + height (4).
-        let mut head = [0u8; 24];
+        let mut head = [0u8; 25];
         let got = read_up_to(&mut reader, &mut head).map_err(io_err)?;
         let head = &head[..got];
         if !head.starts_with(&SIGNATURE) {
@@ -173,7 +197,7 @@ impl PngFile {
                 detail,
             });
         }
-        if head.len() < 24 || &head[12..16] != b"IHDR" {
+        if head.len() < 25 || &head[12..16] != b"IHDR" {
             return Err(MapError::Corrupt {
                 what: what.to_owned(),
                 detail: "truncated or missing IHDR header".to_owned(),
@@ -193,12 +217,14 @@ impl PngFile {
             });
         }
         validate_memory(width, height, what)?;
+        let bit_depth = head[24];
         reader.seek(SeekFrom::Start(0)).map_err(io_err)?;
         Ok(Self {
             what: what.to_owned(),
             reader,
             width,
             height,
+            bit_depth,
         })
     }
 

@@ -105,6 +105,9 @@ struct InfoJson {
     max_m: f64,
     base_m: f64,
     height_scale_m: f64,
+    height_note: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    relief_hint: Option<String>,
     min_unit: u16,
     max_unit: u16,
     voids_filled: u64,
@@ -142,6 +145,8 @@ fn info(args: &InfoArgs) -> Result<()> {
         max_m: loaded.range_m.1,
         base_m: m.base_m,
         height_scale_m: m.height_scale_m,
+        height_note: loaded.height_note.clone(),
+        relief_hint: map::relief_hint(m, loaded.range_m),
         min_unit: lo,
         max_unit: hi,
         voids_filled: loaded.voids_filled,
@@ -165,6 +170,13 @@ fn info(args: &InfoArgs) -> Result<()> {
         "stored    height units of {} m above {} m: {lo} to {hi}",
         m.height_scale_m, m.base_m
     );
+    println!(
+        "scale     {} m per height unit ({})",
+        m.height_scale_m, json.height_note
+    );
+    if let Some(hint) = &json.relief_hint {
+        println!("hint      {hint}");
+    }
     println!(
         "voids     {} filled from their neighbours",
         loaded.voids_filled
