@@ -145,7 +145,7 @@ impl Camera {
 }
 
 /// `⌊x⌋` as an `i64` (saturating), without `f64::floor`, which `core` lacks.
-fn floor_i64(x: f64) -> i64 {
+pub(crate) fn floor_i64(x: f64) -> i64 {
     #[allow(
         clippy::cast_possible_truncation,
         reason = "`as` truncates toward zero and saturates, the first step of the floor"

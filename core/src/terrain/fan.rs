@@ -45,7 +45,7 @@ use core::ops::Range;
 use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::Coord;
-use crate::terrain::camera::{Camera, Column};
+use crate::terrain::camera::{floor_i64, Camera, Column};
 use crate::trig::sin_cos_deg;
 
 /// Fractional bits of the resampling's fixed point.
@@ -58,20 +58,6 @@ const K_RATIO: f64 = 16.0;
 pub const MAX_FAN_LINES: u32 = 1 << 24;
 /// A bound on line coordinates (in the fixed point) that keeps every sum below 2^63.
 const SPAN: i64 = 1 << 44;
-
-/// `⌊x⌋` as an `i64`, saturating, in `core` (which has no `f64::floor`).
-fn floor_i64(x: f64) -> i64 {
-    #[allow(
-        clippy::cast_possible_truncation,
-        reason = "`as` truncates toward zero and saturates, the first step of the floor"
-    )]
-    let t = x as i64;
-    if (t as f64) > x {
-        t - 1
-    } else {
-        t
-    }
-}
 
 /// `⌈x⌉` as an `i64`, saturating.
 fn ceil_i64(x: f64) -> i64 {

@@ -89,15 +89,17 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             bail!("--pixel {},{}: outside the {w}x{h} image", p.row, p.col);
         }
     }
+    // The paper's pictures walk the pyramid, in the view's projection.
+    let pictures = Options {
+        lod: true,
+        ..view.options
+    };
     let mut json = serde_json::Map::new();
     if args.zoom {
         let pic = inspect::zoom(
             view.camera.params(),
             &view.pyramid,
-            Options {
-                lod: true,
-                ..view.options
-            },
+            pictures,
             args.mode,
             args.zoom_factor,
             48,
@@ -109,10 +111,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         let (samples, color, pic) = inspect::pixel(
             &view.camera,
             &view.pyramid,
-            Options {
-                lod: true,
-                ..view.options
-            },
+            pictures,
             args.mode,
             p.row,
             p.col,
@@ -141,16 +140,8 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         }
     }
     if args.footprint {
-        let (counts, pic) = inspect::footprint(
-            &view.camera,
-            &view.pyramid,
-            Options {
-                lod: true,
-                ..view.options
-            },
-            args.mode,
-            1024,
-        )?;
+        let (counts, pic) =
+            inspect::footprint(&view.camera, &view.pyramid, pictures, args.mode, 1024)?;
         write_png(&path_for("footprint"), pic.width, pic.height, &pic.pixels)?;
         json.insert("footprint".into(), serde_json::to_value(counts)?);
         if !args.format.json {
