@@ -130,16 +130,117 @@ fn measure_json_has_one_record_per_scene_and_mode() {
     }
 }
 
-/// `--json` prints only `--measure`'s records; elsewhere it is refused, not silently ignored.
+/// `--json` prints `--measure`'s records and a plate's record; with `--figure` it is refused,
+/// not silently ignored.
 #[test]
-fn json_without_measure_is_refused() {
-    for args in [
-        &["specular", "--figure", "2", "--json"][..],
-        &["specular", "--scene", "plate1", "--mode", "clamp", "--json"][..],
-    ] {
-        let o = footprint(args);
-        assert_one_line_error(&o, args, "--json");
+fn json_with_a_figure_is_refused() {
+    let args = &["specular", "--figure", "2", "--json"];
+    let o = footprint(args);
+    assert_one_line_error(&o, args, "--json");
+}
+
+/// Issue 16: `--scene plate4` without `--mode` is Plate 4 (the aggressive 99.9 % clamp), the
+/// same image as `plate2 --mode clamp99.9`; with a mode, plate4 is plate2's scene. The other
+/// scenes still need a mode.
+#[test]
+fn plate4_without_a_mode_is_plate_4() {
+    let dir = tempfile::tempdir().unwrap();
+    let render = |args: &[&str], file: &str| {
+        let out = dir.path().join(file);
+        let mut all = vec!["specular", "--size", "64", "--out", out.to_str().unwrap()];
+        all.extend_from_slice(args);
+        let o = footprint(&all);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        (
+            std::fs::read(&out).unwrap(),
+            String::from_utf8_lossy(&o.stdout).into_owned(),
+        )
+    };
+    let (plate4, stdout) = render(&["--scene", "plate4"], "plate4.png");
+    assert!(stdout.starts_with("plate4 clamp99.9 "), "{stdout}");
+    let (plate2, _) = render(&["--scene", "plate2", "--mode", "clamp99.9"], "plate2.png");
+    assert_eq!(plate4, plate2, "Plate 4 is Plate 2's scene with clamp99.9");
+    let (plate2_none, _) = render(&["--scene", "plate2", "--mode", "none"], "p2none.png");
+    assert_ne!(plate4, plate2_none);
+    let (plate4_none, _) = render(&["--scene", "plate4", "--mode", "none"], "p4none.png");
+    assert_eq!(
+        plate4_none, plate2_none,
+        "plate4 with a mode is plate2's scene"
+    );
+    for scene in ["plate1", "plate2", "plate5"] {
+        fails(&["--scene", scene], "--mode");
     }
+    // The help names the conservative and aggressive tables and plate4's default.
+    let help = footprint(&["specular", "--help"]);
+    let help = String::from_utf8_lossy(&help.stdout);
+    for words in ["conservative", "aggressive", "Plate 4", "--crow-max"] {
+        assert!(help.contains(words), "--help should say {words:?}: {help}");
+    }
+}
+
+/// Issue 16: `--crow-max N` caps Crow's grid, and the grid is reported per pixel (`--json`'s
+/// `grid`, `--rate-out`'s grey image).
+#[test]
+fn crow_max_caps_the_grid_reported_per_pixel() {
+    let dir = tempfile::tempdir().unwrap();
+    let rate = dir.path().join("rate.png");
+    let json = |cap: &str| -> serde_json::Value {
+        let o = footprint(&[
+            "specular",
+            "--scene",
+            "plate2",
+            "--mode",
+            "crow",
+            "--size",
+            "64",
+            "--crow-max",
+            cap,
+            "--json",
+            "--rate-out",
+            rate.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    for (cap, max) in [("6", 6), ("40", 40)] {
+        let v = json(cap);
+        assert_eq!(v["crow_max"].as_u64(), Some(max));
+        let grid: Vec<u64> = v["grid"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|g| g.as_u64().unwrap())
+            .collect();
+        assert_eq!(grid.len(), 64 * 64);
+        assert_eq!(grid.iter().max(), Some(&max), "cap {cap}");
+        assert!(grid.contains(&0) && grid.iter().any(|&g| g >= 2));
+        let histogram = v["grid_histogram"].as_array().unwrap();
+        let covered: u64 = histogram.iter().map(|p| p[1].as_u64().unwrap()).sum();
+        assert_eq!(covered, grid.iter().filter(|&&g| g > 0).count() as u64);
+        assert_eq!(png_size(&rate), (64, 64));
+    }
+    // Out of range, or given where nothing uses it: one line naming the option, exit code 2.
+    fails(
+        &["--scene", "plate2", "--mode", "crow", "--crow-max", "65"],
+        "--crow-max",
+    );
+    fails(
+        &["--scene", "plate2", "--mode", "crow", "--crow-max", "1"],
+        "--crow-max",
+    );
+    fails(
+        &["--scene", "plate2", "--mode", "crow", "--crow-max", "x"],
+        "--crow-max",
+    );
+    fails(
+        &["--scene", "plate2", "--mode", "clamp", "--crow-max", "8"],
+        "--crow-max",
+    );
+    fails(&["--scene", "plate4", "--crow-max", "8"], "--crow-max");
+    let args = &["specular", "--figure", "2", "--crow-max", "8"];
+    assert_one_line_error(&footprint(args), args, "--crow-max");
+    let args = &["specular", "--measure", "--rate-out", "r.png"];
+    assert_one_line_error(&footprint(args), args, "--rate-out");
 }
 
 /// Before (issue 14): `--csv` with `--scene` or `--measure`, `--size` with `--figure`,

@@ -125,25 +125,28 @@ fn the_papers_cutoffs_at_n_500() {
     assert_eq!((row.n, row.p99, row.p999), (500, 40, 52));
 }
 
-/// `K_p(n)` with exact integers (`4^n·c_m²` in `u128`), for every `n ≤ 56`.
+/// `K_p(n)` with exact integers in `u128`, for every `n ≤ 56`, through the public API (the
+/// core's own tests check every `n ≤ N_MAX` with big integers). Parseval's weights: the power
+/// of `c_0` is `c_0²`, of `c_m` (m > 0) `c_m²/2`; here `2·4^n` times that.
 #[test]
 fn cutoffs_match_exact_integer_arithmetic() {
     for n in 1..=56u32 {
-        let mut c: Vec<u128> = Vec::new(); // 2^n·c_m for m = n mod 2, +2, …
+        let mut w: Vec<u128> = Vec::new(); // 2·4^n·P_m for m = n mod 2, +2, …
         for m in (n % 2..=n).step_by(2) {
             let k = (n - m) / 2;
             let mut b: u128 = 1;
             for i in 0..k {
                 b = b * u128::from(n - i) / u128::from(i + 1);
             }
-            c.push(if m == 0 { b } else { 2 * b });
+            // 2^n·c_m is b at m = 0 and 2b above.
+            w.push(if m == 0 { 2 * b * b } else { 4 * b * b });
         }
-        let total: u128 = c.iter().map(|x| x * x).sum();
+        let total: u128 = w.iter().sum();
         for (p, per_mille) in [(Power::P90, 900u128), (Power::P99, 990), (Power::P999, 999)] {
             let mut cum = 0u128;
             let mut k = n;
-            for (i, x) in c.iter().enumerate() {
-                cum += x * x;
+            for (i, x) in w.iter().enumerate() {
+                cum += x;
                 if cum * 1000 >= per_mille * total {
                     k = n % 2 + 2 * i as u32;
                     break;
@@ -468,6 +471,7 @@ fn clamping_beats_none_on_the_plates_at_one_shade_per_pixel() {
         frames: 8,
         step_deg: 0.4,
         reference_grid: 16,
+        crow_max: 16,
     };
     let records = exp::measure(&SceneName::DISTINCT, &cfg, &|| ()).unwrap();
     assert_eq!(records.len(), 3 * 6);
@@ -529,5 +533,69 @@ fn clamping_beats_none_on_the_plates_at_one_shade_per_pixel() {
         );
         // Detection catches most of the visibly wrong pixels.
         assert!(clamp.flagged_where_differs.unwrap() > 0.8, "{scene}");
+    }
+}
+
+/// Crow's method at the CLI's default size and cap (issue 16): before, its grid was capped at
+/// 32 × 32, the reference's, and the detected rate exceeded 32 in almost every pixel, so `crow`
+/// equalled `reference` byte for byte on plates 1 and 2. Now the cap is a parameter (64 by
+/// default), the grid it used is reported per pixel, and where the detected rate is below the
+/// cap the pixel is sampled more coarsely than at the cap: the images differ, and only where
+/// the grid is not the reference's.
+#[test]
+fn crow_samples_at_the_detected_rate_and_differs_from_the_reference() {
+    for name in [SceneName::Plate1, SceneName::Plate2] {
+        let s = scene::Scene::new(name);
+        let grids = scene::Grids::default();
+        assert_eq!((grids.crow_max, grids.reference), (64, 32));
+        let crow = scene::render_with(&s, 256, 0.0, scene::Mode::Crow, grids).unwrap();
+        let reference = scene::render_with(&s, 256, 0.0, scene::Mode::Reference, grids).unwrap();
+        let covered: Vec<usize> = (0..crow.grid.len()).filter(|&i| crow.covered[i]).collect();
+        let mut below_cap = 0;
+        let mut differ = 0;
+        for &i in &covered {
+            let g = crow.grid[i];
+            assert!((1..=64).contains(&g), "{name}: grid {g}");
+            // Flagged pixels are supersampled (side ≥ 2), the rest evaluated once.
+            assert_eq!(g >= 2, crow.flagged[i], "{name}: pixel {i}");
+            assert_eq!(reference.grid[i], 32);
+            if (2..64).contains(&g) {
+                below_cap += 1;
+            }
+            if crow.image[i] != reference.image[i] {
+                differ += 1;
+                assert_ne!(
+                    g, 32,
+                    "{name}: the same 32 × 32 grid must give the same pixel"
+                );
+            }
+        }
+        for i in 0..crow.grid.len() {
+            assert_eq!(crow.grid[i] == 0, !crow.covered[i]);
+        }
+        println!(
+            "{name}: {} covered, {below_cap} below the cap, {differ} differ from the reference",
+            covered.len()
+        );
+        assert!(
+            below_cap > 0,
+            "{name}: the detected rate is below the cap somewhere"
+        );
+        assert!(differ > 0, "{name}: crow differs from the reference");
+        // A lower cap binds: no grid above it, and the image changes with it.
+        let capped = scene::render_with(
+            &s,
+            256,
+            0.0,
+            scene::Mode::Crow,
+            scene::Grids {
+                crow_max: 8,
+                ..grids
+            },
+        )
+        .unwrap();
+        assert!(capped.grid.iter().all(|&g| g <= 8));
+        assert!(capped.grid.contains(&8));
+        assert_ne!(capped.image, crow.image);
     }
 }

@@ -37,7 +37,7 @@ pub use detect::{acos, Spread};
 pub use normal::{isqrt, Normal, Vector};
 pub use phong::{cos_pow, Light, Phong};
 pub use policy::Clamp;
-pub use shade::{shade, specular, Material, Method, Specular};
+pub use shade::{crow_grid, shade, specular, Material, Method, Specular};
 pub use tables::{
     clamp_n, coefficient, coefficients, cutoff, maximum, maxn_allowed, min_dot, min_dot_p,
     table_sizes, Power, N_MAX,

@@ -18,10 +18,11 @@
 //! pixel corner outside the triangle the same plane is extrapolated. Interpolation is affine
 //! in screen space (the scenes are orthographic; Phong shading of the era was too).
 //!
-//! **Ranges.** With `|x|, |y| ≤ 2^13` pixels in Q8 and sub-pixel denominators up to
-//! `2·MAX_GRID = 64`, every edge function is below 2^51, every product with a Q30 normal below
-//! 2^81, and every sum fits `i128`; depth sums stay below 2^63. Nothing can overflow and no
-//! input can panic.
+//! **Ranges.** With `|x|, |y| ≤ 2^13` pixels in Q8 (edge vectors below 2^22), pixel rows and
+//! columns below [`MAX_SIDE`] = 2^12 and sub-pixel denominators up to `2·MAX_GRID = 128`, each
+//! of the two products of an edge function is below 2^22·2^29, so every edge function is below
+//! 2^52, every product with a Q30 normal below 2^82, and every sum fits `i128`; depth sums stay
+//! below 2^63. Nothing can overflow and no input can panic.
 
 use crate::color::Rgb;
 use crate::error::{check, Error};
@@ -36,8 +37,9 @@ pub const MAX_COORD: f64 = 8192.0;
 /// The largest width or height of a [`Target`].
 pub const MAX_SIDE: u32 = 4096;
 
-/// The largest supersampling grid per pixel side ([`Fragment::grid`]): 32 × 32.
-pub const MAX_GRID: u32 = 32;
+/// The largest supersampling grid per pixel side ([`Fragment::grid`]): 64 × 64, the cap of
+/// Crow's method by default (the reference of the plates uses 32 × 32).
+pub const MAX_GRID: u32 = 64;
 
 const ONE_PX: i64 = 1 << SUB_BITS;
 

@@ -23,10 +23,12 @@ pub enum Method {
     Point,
     /// Detection and clamping, one evaluation at the centre (Plates 3 and 4).
     Clamp(Clamp),
-    /// Crow's method: conservative detection at the corners; in a detected pixel the specular
-    /// term is averaged over an `s × s` grid with `s = ⌈Δα_ΔN/Δα_n⌉`, the detection's
-    /// oversampling rate, capped at [`MAX_GRID`].
-    Crow,
+    /// Crow's method (the paper's "Solution 1", with the threshold the paper derives in
+    /// "Detecting Specular Aliasing"): conservative detection at the corners; in a detected
+    /// pixel the specular term is averaged over an `s × s` grid with `s = ⌈Δα_ΔN/Δα_n⌉`, the
+    /// detection's oversampling rate, at least 2 and at most the cap this carries (itself
+    /// clamped to `2..=`[`MAX_GRID`]); see [`crow_grid`].
+    Crow(u8),
     /// An `s × s` grid in every pixel (`s` clamped to `1..=MAX_GRID`): 32 is the reference.
     Supersample(u8),
 }
@@ -59,24 +61,36 @@ pub fn specular(fragment: &Fragment<'_>, light: &Light, phong: &Phong, method: M
                 aliased: c.aliased,
             }
         }
-        Method::Crow => {
+        Method::Crow(max) => {
             let spread = Spread::from_corners(&fragment.corners());
-            if !spread.aliases(phong.n(), Clamp::Conservative) {
-                return Specular {
+            match crow_grid(spread, phong.n(), max) {
+                None => Specular {
                     value: centre(phong),
                     shades: 1,
                     aliased: false,
-                };
+                },
+                Some(side) => {
+                    let s = grid_average(fragment, light, phong, side);
+                    Specular { aliased: true, ..s }
+                }
             }
-            let rate = spread
-                .oversampling(phong.n())
-                .saturating_ceil()
-                .to_num::<u32>();
-            let s = grid_average(fragment, light, phong, rate.clamp(2, MAX_GRID));
-            Specular { aliased: true, ..s }
         }
         Method::Supersample(s) => grid_average(fragment, light, phong, u32::from(s)),
     }
+}
+
+/// The side of Crow's supersampling grid in a pixel whose normals spread by `spread`, for
+/// exponent `n`: `None` when the conservative detection (`dot_ΔN ≥ MinDot[n]`, "Detecting
+/// Specular Aliasing") finds no aliasing, else the paper's oversampling rate
+/// `⌈Δα_ΔN/Δα_n⌉` ("we … use the resultant ratio to indicate the oversampling rate"), at
+/// least 2 and at most `max` (`max` clamped to `2..=`[`MAX_GRID`]).
+pub fn crow_grid(spread: Spread, n: u16, max: u8) -> Option<u32> {
+    if !spread.aliases(n, Clamp::Conservative) {
+        return None;
+    }
+    let rate = spread.oversampling(n).saturating_ceil().to_num::<u32>();
+    let cap = u32::from(max).clamp(2, MAX_GRID);
+    Some(rate.clamp(2, cap))
 }
 
 fn grid_average(fragment: &Fragment<'_>, light: &Light, phong: &Phong, s: u32) -> Specular {

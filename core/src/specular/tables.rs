@@ -6,7 +6,7 @@
 //! | cosine coefficients `c_m(n)` | `2^(1−n)·C(n,(n−m)/2)`, `c_0 = 2^(−n)·C(n,n/2)` | `U1F31` | 67,937 (+ 1,026 `u32` row starts) | 271,748 + 4,104 | 2^-32 + 2^-40 |
 //! | `MinDot[n]` | `cos(π/(2n))` | `I2F30` | 1,025 | 4,100 | 2^-31 + 1e-15 |
 //! | `Maximum[n]` | `2^(1−n)·C(n,⌊n/2⌋)` | `U2F30` | 1,025 | 4,100 | 2^-31 + 2^-40 |
-//! | `K_p(n)`, p = 90 %, 99 %, 99.9 % | smallest `K` with `Σ_{m≤K} c_m² ≥ p·Σ c_m²` | `u8` | 3 × 1,025 | 3 × 1,025 | exact |
+//! | `K_p(n)`, p = 90 %, 99 %, 99.9 % | smallest `K` with `Σ_{m≤K} P_m ≥ p·Σ P_m`, `P_0 = c_0²`, `P_m = c_m²/2` | `u8` | 3 × 1,025 | 3 × 1,025 | exact |
 //! | `MaxnAllowed_p[f]`, p = 90 %, 99 %, 99.9 % | largest `n` with `K_p(n) ≤ f` | `u16` | 39, 60, 76 | 78, 120, 152 | exact |
 //!
 //! `MinDot_p[n] = cos(π/(2·K_p(n)))` is not a table of its own: it is `MinDot[K_p(n)]`, one
@@ -21,9 +21,21 @@
 //! an exponent above [`N_MAX`] is treated as `N_MAX`. [`super::Phong::new`] also clamps `n = 0`
 //! up to 1, because cos^0 has no highlight to alias.
 //!
+//! **The power convention (Figure 2).** The paper's Figure 2 plots the frequency below which a
+//! fraction of "the power in the power spectrum of cos^n" lies. The power of a frequency is
+//! taken by Parseval's theorem: the mean square over a period of `Σ_m c_m·cos(mα)` is
+//! `c_0² + Σ_{m>0} c_m²/2` (the constant term is not halved, every cosine is), so frequency 0
+//! weighs `P_0 = c_0²` and frequency `m > 0` weighs `P_m = c_m²/2`. (Weighing every frequency
+//! by `c_m²`, as this crate did before issue 16, counts the constant term half as heavily and
+//! gives a `K_p(n)` 2 higher at some even `n`: 48 of the 90 % table's entries for `n ≤ 1000`,
+//! 34 of the 99 % table's and 28 of the 99.9 % table's, the first at `n` = 6, 68 and 32.
+//! Odd `n` have no constant term and are the same either way, and so is the paper's example
+//! `K_99.9(500) = 52`.)
+//!
 //! **Exact power cutoffs.** `K_p` is computed in `f64` and a tie is decided in favour of "the
-//! power reaches p" to a relative tolerance of 1e-12; the nearest non-tie for `n ≤ 1024` is
-//! 4.4e-7 away, and the tests recompute `K_p(n)` for `n ≤ 56` with exact integers.
+//! power reaches p" to a relative tolerance of 1e-12; the one exact tie is `n = 3` at 90 %
+//! (`P_1/(P_1 + P_3) = 9/10`), the nearest non-tie for `n ≤ 1024` is 7.4e-9 away, and the tests
+//! recompute every `K_p(n)`, `n ≤ N_MAX`, in exact integer arithmetic.
 
 use fixed::types::{I2F30, U1F31, U2F30};
 
@@ -125,8 +137,9 @@ pub fn maximum(n: u32) -> U2F30 {
     U2F30::from_bits(entry(&MAXIMUM, n))
 }
 
-/// `K_p(n)`: the smallest frequency whose cumulative power `Σ_{m ≤ K} c_m²` reaches `p` of the
-/// total (Figure 2). `K_p(0) = 0`. Exact (see the module docs).
+/// `K_p(n)`: the smallest frequency `K` whose cumulative power `Σ_{m ≤ K} P_m` reaches `p` of
+/// the total, with Parseval's weights `P_0 = c_0²` and `P_m = c_m²/2` for `m > 0` (Figure 2;
+/// the convention is in the module docs). `K_p(0) = 0`. Exact.
 #[inline]
 pub fn cutoff(n: u32, p: Power) -> u16 {
     u16::from(entry(p.k_table(), n))
@@ -167,4 +180,155 @@ pub fn table_sizes() -> [(&'static str, usize); 10] {
         ("MaxnAllowed_99", size_of_val(&MAXN_ALLOWED_99)),
         ("MaxnAllowed_99.9", size_of_val(&MAXN_ALLOWED_999)),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    //! `K_p(n)` against exact integer arithmetic, every `n ≤ N_MAX`, every table.
+
+    use super::*;
+    use core::cmp::Ordering;
+    use std::vec;
+    use std::vec::Vec;
+
+    /// A non-negative integer in little-endian base-2^64 limbs, no high zero limbs: just enough
+    /// arithmetic for `C(n, k)²` sums at `n ≤ 1024` (about 2^2040).
+    #[derive(Clone, Debug, PartialEq, Eq)]
+    struct Big(Vec<u64>);
+
+    impl Big {
+        fn from_u64(v: u64) -> Self {
+            Big(if v == 0 { vec![] } else { vec![v] })
+        }
+
+        fn add(&self, o: &Big) -> Big {
+            let (a, b) = if self.0.len() >= o.0.len() {
+                (self, o)
+            } else {
+                (o, self)
+            };
+            let mut out = Vec::with_capacity(a.0.len() + 1);
+            let mut carry = 0u128;
+            for (i, &x) in a.0.iter().enumerate() {
+                let s = u128::from(x) + u128::from(*b.0.get(i).unwrap_or(&0)) + carry;
+                out.push(s as u64);
+                carry = s >> 64;
+            }
+            if carry > 0 {
+                out.push(carry as u64);
+            }
+            Big(out)
+        }
+
+        fn mul(&self, o: &Big) -> Big {
+            if self.0.is_empty() || o.0.is_empty() {
+                return Big(vec![]);
+            }
+            let mut out = vec![0u64; self.0.len() + o.0.len()];
+            for (i, &x) in self.0.iter().enumerate() {
+                let mut carry = 0u128;
+                for (j, &y) in o.0.iter().enumerate() {
+                    let t = u128::from(x) * u128::from(y) + u128::from(out[i + j]) + carry;
+                    out[i + j] = t as u64;
+                    carry = t >> 64;
+                }
+                out[i + o.0.len()] = carry as u64;
+            }
+            while out.last() == Some(&0) {
+                out.pop();
+            }
+            Big(out)
+        }
+
+        fn mul_small(&self, k: u64) -> Big {
+            self.mul(&Big::from_u64(k))
+        }
+    }
+
+    impl PartialOrd for Big {
+        fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+            Some(self.cmp(o))
+        }
+    }
+
+    impl Ord for Big {
+        fn cmp(&self, o: &Self) -> Ordering {
+            self.0
+                .len()
+                .cmp(&o.0.len())
+                .then_with(|| self.0.iter().rev().cmp(o.0.iter().rev()))
+        }
+    }
+
+    #[test]
+    fn big_arithmetic_is_right() {
+        let a = Big::from_u64(u64::MAX);
+        let b = a.mul(&a).add(&a.add(&a)).add(&Big::from_u64(1)); // (2^64 − 1 + 1)² = 2^128
+        assert_eq!(b, Big(vec![0, 0, 1]));
+        assert!(b > a.mul(&a) && a < b && Big::from_u64(3).mul_small(7) == Big::from_u64(21));
+    }
+
+    /// The smallest frequency `m` of `powers` (`(m, power)` in increasing `m`, any common scale)
+    /// at which `1000·cumulative ≥ per_mille·total`.
+    fn exact_cutoff(powers: &[(u32, Big)], per_mille: u64) -> u32 {
+        let total = powers.iter().fold(Big::from_u64(0), |s, (_, p)| s.add(p));
+        let target = total.mul_small(per_mille);
+        let mut cum = Big::from_u64(0);
+        // The whole spectrum holds all the power, so some m is found.
+        powers
+            .iter()
+            .find_map(|(m, p)| {
+                cum = cum.add(p);
+                (cum.mul_small(1000) >= target).then_some(*m)
+            })
+            .unwrap()
+    }
+
+    /// Every `K_p(n)`, `n ≤ N_MAX`, p = 90, 99, 99.9 %, equals the exact cutoff with Parseval's
+    /// weights: with `b_k = C(n, k)`, `2^n·c_m = b_k` at `m = 0` and `2b_k` at `m = n − 2k > 0`,
+    /// so `4^n·P_0 = b²` and `4^n·P_m = (2b)²/2 = 2b²`. The old convention (`c_m²` at every
+    /// `m`, `4^n·c_m² = b²` or `4b²`) differs exactly where issue 16 says.
+    #[test]
+    fn cutoffs_are_exact_with_parsevals_weights() {
+        const P: [(Power, u64); 3] = [(Power::P90, 900), (Power::P99, 990), (Power::P999, 999)];
+        // Pascal's row n, C(n, 0..=n).
+        let mut row = vec![Big::from_u64(1)];
+        // Per table: the n ≤ 1000 where the old convention's K differs from Parseval's.
+        let mut differ: [Vec<u32>; 3] = [vec![], vec![], vec![]];
+        for (p, _) in P {
+            assert_eq!(cutoff(0, p), 0);
+        }
+        for n in 1..=u32::from(N_MAX) {
+            let mut next = vec![Big::from_u64(1)];
+            for k in 1..row.len() {
+                next.push(row[k - 1].add(&row[k]));
+            }
+            next.push(Big::from_u64(1));
+            row = next;
+            // Frequencies m = n − 2k in increasing order: k = ⌊n/2⌋ down to 0.
+            let (mut parseval, mut old) = (Vec::new(), Vec::new());
+            for k in (0..=n / 2).rev() {
+                let m = n - 2 * k;
+                let b2 = row[k as usize].mul(&row[k as usize]);
+                let (w_parseval, w_old) = if m == 0 { (1, 1) } else { (2, 4) };
+                parseval.push((m, b2.mul_small(w_parseval)));
+                old.push((m, b2.mul_small(w_old)));
+            }
+            for (i, (p, per_mille)) in P.into_iter().enumerate() {
+                let k = exact_cutoff(&parseval, per_mille);
+                assert_eq!(u32::from(cutoff(n, p)), k, "K_{per_mille}‰({n})");
+                let k_old = exact_cutoff(&old, per_mille);
+                if k_old != k && n <= 1000 {
+                    assert!(n % 2 == 0 && k_old == k + 2, "n {n}: {k_old} vs {k}");
+                    differ[i].push(n);
+                }
+            }
+        }
+        let counts = differ.each_ref().map(Vec::len);
+        let firsts = differ.each_ref().map(|d| d[0]);
+        assert_eq!(counts, [48, 34, 28], "entries that differ, n ≤ 1000");
+        assert_eq!(firsts, [6, 68, 32], "first differences");
+        assert_eq!(cutoff(500, Power::P999), 52, "the paper's example");
+        assert_eq!(cutoff(3, Power::P90), 1, "the exact tie 9/10 reaches 90 %");
+    }
 }

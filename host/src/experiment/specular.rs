@@ -101,6 +101,60 @@ pub fn figure3() -> Figure3 {
     Figure3 { m, curves }
 }
 
+/// One plate rendered in one mode (`footprint specular --scene … --json`): what it cost and, per
+/// pixel, the side of the grid its highlight was sampled on, which for `crow` is the detected
+/// rate `⌈Δα_ΔN/Δα_n⌉` up to the cap (the paper's "use the resultant ratio to indicate the
+/// oversampling rate").
+#[derive(Clone, Debug, Serialize)]
+pub struct PlateRecord {
+    /// The scene.
+    pub scene: SceneName,
+    /// The mode.
+    pub mode: Mode,
+    /// Image side, pixels.
+    pub size: u32,
+    /// Crow's cap on the grid side (only `crow` uses it).
+    pub crow_max: u8,
+    /// The reference's grid side (only `reference` uses it).
+    pub reference_grid: u8,
+    /// Fragments shaded (pixels drawn, counting overdraw).
+    pub fragments: u64,
+    /// Pixels detection flagged.
+    pub flagged: u64,
+    /// Highlight evaluations per shaded fragment.
+    pub shades_per_pixel: f64,
+    /// Of the covered pixels, how many were sampled on a grid of each side: `[side, pixels]`,
+    /// increasing in side.
+    pub grid_histogram: Vec<[u64; 2]>,
+    /// Per pixel, row-major from the top: the grid side (`s × s` evaluations of the highlight),
+    /// 0 where nothing is drawn.
+    pub grid: Vec<u8>,
+}
+
+impl PlateRecord {
+    /// The record of `frame`, rendered from `scene` in `mode` with `grids`.
+    pub fn new(scene: SceneName, mode: Mode, grids: scene::Grids, frame: &scene::Frame) -> Self {
+        let mut counts = std::collections::BTreeMap::<u8, u64>::new();
+        for (&g, &c) in frame.grid.iter().zip(&frame.covered) {
+            if c {
+                *counts.entry(g).or_default() += 1;
+            }
+        }
+        Self {
+            scene,
+            mode,
+            size: frame.size,
+            crow_max: grids.crow_max,
+            reference_grid: grids.reference,
+            fragments: frame.fragments,
+            flagged: frame.flagged.iter().filter(|&&f| f).count() as u64,
+            shades_per_pixel: frame.shades as f64 / frame.fragments.max(1) as f64,
+            grid_histogram: counts.into_iter().map(|(g, n)| [u64::from(g), n]).collect(),
+            grid: frame.grid.clone(),
+        }
+    }
+}
+
 /// What `--measure` runs.
 #[derive(Clone, Copy, Debug)]
 pub struct MeasureConfig {
@@ -112,6 +166,8 @@ pub struct MeasureConfig {
     pub step_deg: f64,
     /// The reference's grid side (32 for the paper's ground truth).
     pub reference_grid: u8,
+    /// Crow's cap on the grid side (`--crow-max`, 64 by default).
+    pub crow_max: u8,
 }
 
 impl Default for MeasureConfig {
@@ -120,7 +176,8 @@ impl Default for MeasureConfig {
             size: 256,
             frames: 64,
             step_deg: 0.1,
-            reference_grid: 32,
+            reference_grid: scene::REFERENCE_GRID,
+            crow_max: scene::CROW_MAX,
         }
     }
 }
@@ -174,7 +231,13 @@ fn measure_frame(scene: &Scene, cfg: &MeasureConfig, t: u32) -> Result<FrameResu
     let angle = f64::from(t) * cfg.step_deg;
     let frames: Vec<scene::Frame> = Mode::ALL
         .iter()
-        .map(|&m| scene::render(scene, cfg.size, angle, m, cfg.reference_grid))
+        .map(|&m| {
+            let grids = scene::Grids {
+                reference: cfg.reference_grid,
+                crow_max: cfg.crow_max,
+            };
+            scene::render_with(scene, cfg.size, angle, m, grids)
+        })
         .collect::<Result<_, _>>()?;
     let reference = &frames[Mode::ALL.len() - 1];
     let none = &frames[0];

@@ -11,7 +11,7 @@
 //! | scene | objects | the paper |
 //! |---|---|---|
 //! | `plate1` | two cylinders (radius 0.1), the right one tilted 8° | Plate 1 |
-//! | `plate2`, `plate4` | four cylinders of radius 0.12, 0.06, 0.03 and 0.012 at four angles | Plates 2–4 (the same scene; the plates differ by mode) |
+//! | `plate2`, `plate4` | four cylinders of radius 0.12, 0.06, 0.03 and 0.012 at four angles | Plates 2–4 (the same scene; the plates differ by mode: Plate 2 is `none`, Plate 3 `clamp`, Plate 4 `clamp99.9`, [`SceneName::default_mode`]) |
 //! | `plate5` | two cones (base radius 0.2, height 1.6), apex up, leaning 6°; the left one is always shaded without antialiasing (the paper's control), in every mode, the reference included | Plate 5 |
 //!
 //! Every surface has `n = 1000`, `K_spec = 0.9`: "very shiny", near the tables' `N_MAX` of
@@ -43,9 +43,11 @@ pub const BACKGROUND: Rgb = Rgb::new(16, 16, 24);
 pub enum SceneName {
     /// Two very shiny cylinders, one slightly tilted (Plate 1).
     Plate1,
-    /// Four cylinders of one surface, different sizes and orientations (Plates 2–4).
+    /// Four cylinders of one surface, different sizes and orientations (Plates 2–4); needs a
+    /// mode, and with a mode is the same scene and image as plate4.
     Plate2,
-    /// The same scene as `plate2` (Plate 4 is Plate 2's scene with 99.9 % clamping).
+    /// Plate 2's scene; without a mode, Plate 4: the aggressive 99.9 % clamp (clamp99.9, its
+    /// default mode).
     Plate4,
     /// Two cones, the right one antialiased (Plate 5).
     Plate5,
@@ -62,6 +64,17 @@ impl SceneName {
         }
     }
 
+    /// The mode that makes this scene the paper's plate when no mode is given: Plate 4 is
+    /// Plate 2's scene with the aggressive 99.9 % clamp ("Plate 4 shows the same scene rendered
+    /// with more aggressive clamping (99.9 percent power)"), so `plate4` has [`Mode::Clamp999`];
+    /// the other scenes' plates need a mode to be named.
+    pub fn default_mode(self) -> Option<Mode> {
+        match self {
+            SceneName::Plate4 => Some(Mode::Clamp999),
+            SceneName::Plate1 | SceneName::Plate2 | SceneName::Plate5 => None,
+        }
+    }
+
     /// The distinct scenes (`plate4` is `plate2`'s scene), as `--measure` runs them.
     pub const DISTINCT: [SceneName; 3] = [SceneName::Plate1, SceneName::Plate2, SceneName::Plate5];
 }
@@ -70,16 +83,19 @@ impl SceneName {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Mode {
-    /// One highlight evaluation at the pixel's centre (Plate 2).
+    /// One highlight evaluation at the pixel's centre, no antialiasing (Plate 2).
     None,
-    /// Conservative detection and clamping, `MinDot[n]` (Plate 3).
+    /// The conservative table: detection by MinDot[n], n′ = ⌊π/Δα_N⌋ (Plate 3).
     Clamp,
-    /// Aggressive clamping at 99 % of the power.
+    /// An aggressive table, 99 % of the power: MinDot[K_99(n)], n′ = MaxnAllowed_99.
     Clamp99,
-    /// Aggressive clamping at 99.9 % of the power (Plate 4).
+    /// An aggressive table, 99.9 % of the power: MinDot[K_99.9(n)], n′ = MaxnAllowed_99.9
+    /// (Plate 4).
     #[cfg_attr(feature = "cli", value(name = "clamp99.9"))]
     Clamp999,
-    /// Crow's method: supersample the highlight in detected pixels at the detection's rate.
+    /// Crow's method: supersample the highlight in detected pixels at the detection's rate
+    /// `⌈Δα_ΔN/Δα_n⌉` per side, capped at --crow-max (the paper's "Solution 1" with its
+    /// detection).
     Crow,
     /// Ground truth: the highlight supersampled 32 × 32 in every pixel.
     Reference,
@@ -108,16 +124,64 @@ impl Mode {
         }
     }
 
-    /// The core's method, with the reference grid `reference_grid × reference_grid`.
+    /// Which of the paper's tables the mode clamps by ("Our table of minimum dot products could
+    /// be computed more aggressively"): `conservative` (`MinDot[n]`), `aggressive 99%` or
+    /// `aggressive 99.9%` (`MinDot_p[n]`, `MaxnAllowed_p`); `—` for the modes that do not clamp
+    /// (Crow's detection is the conservative one).
+    pub fn table(self) -> &'static str {
+        match self {
+            Mode::Clamp => "conservative",
+            Mode::Clamp99 => "aggressive 99%",
+            Mode::Clamp999 => "aggressive 99.9%",
+            Mode::None | Mode::Crow | Mode::Reference => "—",
+        }
+    }
+
+    /// The core's method, with the reference grid `reference_grid × reference_grid` and Crow's
+    /// default cap [`CROW_MAX`].
     pub fn method(self, reference_grid: u8) -> Method {
+        self.method_with(Grids {
+            reference: reference_grid,
+            crow_max: CROW_MAX,
+        })
+    }
+
+    /// The core's method, with the grids of `grids`.
+    pub fn method_with(self, grids: Grids) -> Method {
         use footprint_core::specular::{Clamp, Power};
         match self {
             Mode::None => Method::Point,
             Mode::Clamp => Method::Clamp(Clamp::Conservative),
             Mode::Clamp99 => Method::Clamp(Clamp::Aggressive(Power::P99)),
             Mode::Clamp999 => Method::Clamp(Clamp::Aggressive(Power::P999)),
-            Mode::Crow => Method::Crow,
-            Mode::Reference => Method::Supersample(reference_grid),
+            Mode::Crow => Method::Crow(grids.crow_max),
+            Mode::Reference => Method::Supersample(grids.reference),
+        }
+    }
+}
+
+/// Crow's default cap on the grid side: the detected rate is used up to 64 × 64 samples
+/// ([`footprint_core::specular::raster::MAX_GRID`]).
+pub const CROW_MAX: u8 = 64;
+
+/// The reference's default grid side: 32 × 32 samples in every pixel.
+pub const REFERENCE_GRID: u8 = 32;
+
+/// The supersampling grids of the modes that supersample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Grids {
+    /// The side of the reference's grid, in every pixel.
+    pub reference: u8,
+    /// The largest side of Crow's grid (`--crow-max`): a detected pixel is sampled on
+    /// `min(⌈Δα_ΔN/Δα_n⌉, crow_max)` per side (at least 2).
+    pub crow_max: u8,
+}
+
+impl Default for Grids {
+    fn default() -> Self {
+        Self {
+            reference: REFERENCE_GRID,
+            crow_max: CROW_MAX,
         }
     }
 }
@@ -256,6 +320,11 @@ pub struct Frame {
     pub flagged: Vec<bool>,
     /// Per pixel: some fragment was drawn there.
     pub covered: Vec<bool>,
+    /// Per pixel: the side `s` of the grid on which the highlight of the last fragment drawn
+    /// there was sampled (`s × s` evaluations): 1 for one evaluation, Crow's detected rate (up
+    /// to its cap) in the pixels Crow supersamples, the reference's side everywhere in
+    /// `reference`; 0 where nothing is drawn.
+    pub grid: Vec<u8>,
     /// Fragments shaded (pixels drawn, counting overdraw).
     pub fragments: u64,
     /// Highlight evaluations spent on them.
@@ -269,7 +338,8 @@ pub fn material(color: Rgb) -> Result<Material, Error> {
 
 /// Renders `scene` turned by `angle_deg` about the view axis into a `size × size` image with
 /// the core's tiler, shading every object by `mode` (a control object always by
-/// [`Method::Point`]); the reference uses a `reference_grid²` grid.
+/// [`Method::Point`]); the reference uses a `reference_grid²` grid, Crow's method its default
+/// cap [`CROW_MAX`].
 pub fn render(
     scene: &Scene,
     size: u32,
@@ -277,11 +347,27 @@ pub fn render(
     mode: Mode,
     reference_grid: u8,
 ) -> Result<Frame, Error> {
+    let grids = Grids {
+        reference: reference_grid,
+        crow_max: CROW_MAX,
+    };
+    render_with(scene, size, angle_deg, mode, grids)
+}
+
+/// [`render`] with the supersampling grids of `grids` (the reference's side and Crow's cap).
+pub fn render_with(
+    scene: &Scene,
+    size: u32,
+    angle_deg: f64,
+    mode: Mode,
+    grids: Grids,
+) -> Result<Frame, Error> {
     let n_px = (size * size) as usize;
     let mut color = vec![BACKGROUND; n_px];
     let mut depth = vec![u16::MAX; n_px];
     let mut flagged = vec![false; n_px];
     let mut covered = vec![false; n_px];
+    let mut grid = vec![0u8; n_px];
     let mut target = Target::new(size, size, &mut color, &mut depth)?;
     target.clear(BACKGROUND);
     let l = scene.light;
@@ -295,13 +381,15 @@ pub fn render(
         let method = if object.control {
             Method::Point
         } else {
-            mode.method(reference_grid)
+            mode.method_with(grids)
         };
         let mut shader = |f: &raster::Fragment<'_>| {
             let (rgb, spec) = specular::shade(f, &light, &material, method);
             let i = (f.y() * size + f.x()) as usize;
             flagged[i] = spec.aliased;
             covered[i] = true;
+            // s × s evaluations, s ≤ MAX_GRID = 64.
+            grid[i] = u8::try_from(spec.shades.isqrt()).unwrap_or(u8::MAX);
             shades += u64::from(spec.shades);
             rgb
         };
@@ -331,6 +419,7 @@ pub fn render(
         image: color,
         flagged,
         covered,
+        grid,
         fragments,
         shades,
     })
