@@ -1,13 +1,15 @@
 //! `footprint report --out DIR`: every experiment of the terrain paper on the built-in terrain
-//! (or `--dem`), written as `REPORT.md`, `index.html`, `report.json`, images and plots.
+//! (or `--dem`), written as `REPORT.md`, `index.html`, `report.json`, images and plots, with
+//! the command line that regenerates it.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
-use clap::Args;
+use clap::{Args, ValueEnum};
 use footprint_core::terrain::camera::{CameraParams, Options};
 use serde_json::json;
 
+use crate::experiment::differences;
 use crate::experiment::fly::{self, BINS};
 use crate::experiment::heights;
 use crate::experiment::inspect;
@@ -15,8 +17,8 @@ use crate::experiment::paper::{paper_camera, paper_flight, PAPER_PITCHES};
 use crate::experiment::table;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
-use crate::report::{document, html, plot, png::write_png, write_atomic};
-use crate::view::{MapArgs, Size};
+use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
+use crate::view::{MapArgs, Size, Switch};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -30,6 +32,81 @@ pub struct ReportArgs {
     /// Frames of the flight (the paper's is 400).
     #[arg(long, default_value_t = 400)]
     pub frames: usize,
+    /// Walk the pyramid (on), or level 0 voxel by voxel (off), in the tables, the views and the
+    /// diagnostic pictures (the flight walks the pyramid either way): the RMSE with and without
+    /// it is the pyramid's share of the error.
+    #[arg(long, value_enum, default_value_t = Switch::On)]
+    pub lod: Switch,
+}
+
+/// The name a `clap` value is given by on the command line.
+fn value_name(v: &impl ValueEnum) -> String {
+    v.to_possible_value()
+        .map_or_else(String::new, |p| p.get_name().to_owned())
+}
+
+/// The words of the command that regenerates the report of `args`: `footprint report`, every
+/// option that changes what the report says (the map's, as given: --dem, --format, --color,
+/// --spacing, --height-scale, or the built-in terrain's --seed and --terrain-size; then
+/// --height-filter, --lod and --frames, always, so that a change of default does not change
+/// the report), and --out. --threads and --max-memory are left out: images are the same for
+/// any number of threads, and the budget only refuses runs.
+pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
+    let mut w: Vec<String> = vec!["footprint".into(), "report".into()];
+    let mut push = |flag: &str, value: String| {
+        w.push(flag.to_owned());
+        w.push(value);
+    };
+    let path = |p: &Path| p.to_string_lossy().into_owned();
+    let m = &args.map;
+    match &m.dem {
+        Some(dem) => {
+            push("--dem", path(dem));
+            if let Some(f) = &m.format {
+                push("--format", value_name(f));
+            }
+            if let Some(c) = &m.color {
+                push("--color", path(c));
+            }
+            if let Some(s) = m.spacing {
+                push("--spacing", s.to_string());
+            }
+            if let Some(h) = m.height_scale {
+                push("--height-scale", h.to_string());
+            }
+        }
+        None => {
+            push("--seed", m.seed.to_string());
+            push("--terrain-size", m.terrain_size.to_string());
+        }
+    }
+    push("--height-filter", value_name(&m.height_filter));
+    push("--lod", value_name(&args.lod));
+    push("--frames", args.frames.to_string());
+    push("--out", path(&args.out));
+    w
+}
+
+/// The folder that the relative paths of `args` (--dem, --color, --out; not `-`, standard
+/// input) are relative to, `cwd`, if any is relative; `None` if every path is absolute.
+pub fn relative_to<'a>(args: &ReportArgs, cwd: &'a Path) -> Option<&'a Path> {
+    let m = &args.map;
+    let relative = [
+        m.dem.as_deref(),
+        m.color.as_deref(),
+        Some(args.out.as_path()),
+    ]
+    .into_iter()
+    .flatten()
+    .any(|p| p != Path::new("-") && p.is_relative());
+    relative.then_some(cwd)
+}
+
+/// The command line that regenerates the report of `args`, run from `cwd`: shell-quoted, with
+/// `cd CWD &&` first when a path in it is relative.
+pub fn regenerate_command(args: &ReportArgs, cwd: &Path) -> String {
+    let cd = relative_to(args, cwd).map(|d| d.to_string_lossy().into_owned());
+    shell::line(&regenerate_words(args), cd.as_deref())
 }
 
 /// Runs `footprint report`.
@@ -46,12 +123,20 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let pyramid = args.map.pyramid()?;
     let map = pyramid.map();
     let modes = crate::experiment::paper::paper_modes();
-    let steps = table::steps(3, modes.len()) + args.frames as u64 + 12;
+    let lod = args.lod == Switch::On;
+    let options = Options {
+        lod,
+        ..Options::default()
+    };
+    let cwd = std::env::current_dir()
+        .map_err(|e| anyhow::anyhow!("--out: the current folder is unreadable: {e}"))?;
+    let command = regenerate_command(args, &cwd);
+    let steps = table::steps(3, modes.len()) + args.frames as u64 + 14;
     let bar = super::progress(steps, "steps", false);
     let file = |name: &str| -> PathBuf { folder.file(name) };
 
     // Tables 1–5.
-    let tables = table::run(map, &pyramid, &PAPER_PITCHES, &modes, size, true, |msg| {
+    let tables = table::run(map, &pyramid, &PAPER_PITCHES, &modes, size, lod, |msg| {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;
@@ -63,12 +148,12 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     plot::coverage_vs_rate(&file("coverage.png"), &series)?;
 
     // The three views.
-    let terrain = pyramid.terrain(true)?;
+    let terrain = pyramid.terrain(lod)?;
     let mut views = String::new();
     for pitch in PAPER_PITCHES {
-        let camera = paper_camera(map, &pyramid, pitch, size, true)?;
+        let camera = paper_camera(map, &pyramid, pitch, size, lod)?;
         let mut t = Tables::new(&camera);
-        let frame = t.frame(&camera, &terrain, Options::default())?;
+        let frame = t.frame(&camera, &terrain, options)?;
         for mode in [Mode::Ps, Mode::As] {
             bar.set_message(format!("view {pitch}° {mode}"));
             let img = render_parallel(&frame, &terrain, mode)?;
@@ -111,20 +196,23 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
     // Diagnostic pictures.
     bar.set_message("pictures");
-    let five = *paper_camera(map, &pyramid, 5.0, size, true)?.params();
-    let zoom = inspect::zoom(&five, &pyramid, Options::default(), Mode::Li, 16.0, 48, 6)?;
+    let camera5 = paper_camera(map, &pyramid, 5.0, size, lod)?;
+    let five = *camera5.params();
+    let zoom = inspect::zoom(&five, &pyramid, options, Mode::Li, 16.0, 48, 6)?;
     write_png(&file("zoom.png"), zoom.width, zoom.height, &zoom.pixels)?;
-    let camera5 = footprint_core::terrain::camera::Camera::new(five)?;
-    let (px_row, px_col) = (size.height as usize * 3 / 10, size.width as usize / 2);
+    // Fig. 13's pixel: where SS4 and AS differ most at pitch 5°.
+    let choice =
+        inspect::most_different_pixel(&camera5, &pyramid, options, Mode::Ss(Rate::N4), Mode::As)?;
+    bar.inc(1);
     let mut pixel_json = Vec::new();
-    for mode in [Mode::Ss(Rate::N4), Mode::As] {
+    for mode in [choice.modes.0, choice.modes.1] {
         let (samples, color, pic) = inspect::pixel(
             &camera5,
             &pyramid,
-            Options::default(),
+            options,
             mode,
-            px_row,
-            px_col,
+            choice.row,
+            choice.col,
             (64, 256),
         )?;
         write_png(
@@ -140,11 +228,11 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         width: 32,
         height: 32,
     };
-    let small = paper_camera(map, &pyramid, 20.0, window, true)?;
+    let small = paper_camera(map, &pyramid, 20.0, window, lod)?;
     let small = footprint_core::terrain::camera::Camera::new(CameraParams { ..*small.params() })?;
     let mut fp_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
-        let (counts, pic) = inspect::footprint(&small, &pyramid, Options::default(), mode, 600)?;
+        let (counts, pic) = inspect::footprint(&small, &pyramid, options, mode, 600)?;
         write_png(
             &file(&format!("footprint_{mode}.png")),
             pic.width,
@@ -157,19 +245,26 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
     bar.set_message("pyramid height filters");
     let study = heights::compare(map, args.map.height_filter.into(), 5.0, &modes, size)?;
-    let md = document::markdown(
-        &map.source,
-        &tables,
-        &views,
-        &flight,
-        &cuts,
-        (px_row, px_col),
-        &study,
-    );
+    bar.set_message("differences");
+    let diffs = differences::differences(&pyramid, &tables, &flight, &study, size)?;
+    bar.inc(1);
+    let md = document::markdown(&document::Document {
+        source: &map.source,
+        command: &command,
+        tables: &tables,
+        views: &views,
+        flight: &flight,
+        cuts: &cuts,
+        pixel: &choice,
+        study: &study,
+        differences: &diffs,
+    });
     write_text(&file("REPORT.md"), &md)?;
     write_text(&file("index.html"), &html::page("footprint report", &md))?;
-    let data = json!({"tables": tables, "fly": flight, "pixel": pixel_json, "footprint": fp_json,
-        "pyramid_heights_pitch5": study});
+    let data = json!({"command": command, "command_words": regenerate_words(args),
+        "lod": value_name(&args.lod), "tables": tables, "fly": flight,
+        "fig13_pixel": choice, "pixel": pixel_json, "footprint": fp_json,
+        "pyramid_heights_pitch5": study, "differences": diffs});
     write_text(&file("report.json"), &serde_json::to_string_pretty(&data)?)?;
     folder.finish()?;
     bar.finish_and_clear();

@@ -61,7 +61,7 @@ pub fn zoom(
         height: size,
         ..*view
     })?;
-    let terrain = pyramid.terrain(true)?;
+    let terrain = pyramid.terrain(options.lod)?;
     let mut tables = Tables::new(&camera);
     let frame = tables.frame(&camera, &terrain, options)?;
     let (s, k) = (size as usize, scale as usize);
@@ -160,7 +160,7 @@ pub fn pixel(
     if row >= h || col >= w {
         bail!("--pixel {row},{col}: outside the {w}x{h} image");
     }
-    let terrain = pyramid.terrain(true)?;
+    let terrain = pyramid.terrain(options.lod)?;
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
     let target = match frame.fan() {
@@ -208,6 +208,86 @@ pub fn pixel(
     ))
 }
 
+/// The pixel of Fig. 13, chosen from the images: where two modes differ most.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PixelChoice {
+    /// Row, from the top.
+    pub row: usize,
+    /// Column.
+    pub col: usize,
+    /// The two modes compared.
+    pub modes: (Mode, Mode),
+    /// The sum over R, G and B of the squared differences of the two modes' colours there
+    /// (0 if the images are the same everywhere; the centre pixel is then chosen).
+    pub squared_difference: u32,
+    /// The two colours there.
+    #[serde(serialize_with = "hex_pair")]
+    pub colors: (Rgb, Rgb),
+}
+
+fn hex_pair<S: serde::Serializer>(c: &(Rgb, Rgb), s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeTuple;
+    let h = |c: Rgb| format!("#{:02x}{:02x}{:02x}", c.r, c.g, c.b);
+    let mut t = s.serialize_tuple(2)?;
+    t.serialize_element(&h(c.0))?;
+    t.serialize_element(&h(c.1))?;
+    t.end()
+}
+
+/// The sum over R, G and B of the squared differences of two colours.
+pub fn squared_difference(a: Rgb, b: Rgb) -> u32 {
+    let d = |x: u8, y: u8| (i32::from(x) - i32::from(y)).unsigned_abs().pow(2);
+    d(a.r, b.r) + d(a.g, b.g) + d(a.b, b.b)
+}
+
+/// The pixel `(row, col)` of two `width`-wide images (row-major from the top) where they differ
+/// most ([`squared_difference`]), the first in reading order (top row first, then leftmost)
+/// among equals; `None` if the images are the same everywhere (or empty).
+pub fn most_different(a: &[Rgb], b: &[Rgb], width: usize) -> Option<(usize, usize, u32)> {
+    let mut best: Option<(usize, u32)> = None;
+    for (i, (&p, &q)) in a.iter().zip(b).enumerate() {
+        let d = squared_difference(p, q);
+        if d > best.map_or(0, |b| b.1) {
+            best = Some((i, d));
+        }
+    }
+    best.map(|(i, d)| (i / width.max(1), i % width.max(1), d))
+}
+
+/// Fig. 13's pixel: renders `camera`'s view in modes `a` and `b` and picks the pixel where they
+/// differ most ([`most_different`]); the centre pixel if they agree everywhere.
+pub fn most_different_pixel(
+    camera: &Camera,
+    pyramid: &Pyramid,
+    options: Options,
+    a: Mode,
+    b: Mode,
+) -> Result<PixelChoice> {
+    let terrain = pyramid.terrain(options.lod)?;
+    let mut tables = Tables::new(camera);
+    let frame = tables.frame(camera, &terrain, options)?;
+    let image = |m: Mode| -> Result<Vec<Rgb>> {
+        Ok(render_with(
+            &frame,
+            &terrain,
+            m,
+            &mut footprint_core::terrain::cost::NoCost,
+        )?
+        .image)
+    };
+    let (ia, ib) = (image(a)?, image(b)?);
+    let w = camera.width();
+    let (row, col, squared_difference) =
+        most_different(&ia, &ib, w).unwrap_or((camera.height() / 2, w / 2, 0));
+    Ok(PixelChoice {
+        row,
+        col,
+        modes: (a, b),
+        squared_difference,
+        colors: (ia[row * w + col], ib[row * w + col]),
+    })
+}
+
 /// Counts of the footprint map.
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
 pub struct FootprintCounts {
@@ -229,7 +309,7 @@ pub fn footprint(
     mode: Mode,
     max_side: u32,
 ) -> Result<(FootprintCounts, Picture)> {
-    let terrain = pyramid.terrain(true)?;
+    let terrain = pyramid.terrain(options.lod)?;
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
     let mut trace = Trace {
@@ -322,4 +402,74 @@ pub fn footprint(
             pixels: magnify(w, h, &pixels, grow),
         },
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::experiment::paper::paper_camera;
+    use crate::render::Rate;
+    use crate::view::Size;
+    use footprint_core::terrain::pyramid::HeightFilter;
+
+    #[test]
+    fn the_most_different_pixel_is_the_first_of_the_largest() {
+        let g = |v: u8| Rgb::new(v, v, v);
+        let a = vec![g(10), g(10), g(10), g(10), g(10), g(10)];
+        let mut b = a.clone();
+        assert_eq!(most_different(&a, &b, 3), None, "the same images");
+        b[1] = g(13); // 3 · 3² = 27
+        b[4] = g(20); // 3 · 10² = 300
+        b[5] = g(0); // 300 too, later in reading order
+        assert_eq!(most_different(&a, &b, 3), Some((1, 1, 300)));
+        b[2] = Rgb::new(10, 10, 31); // 21² = 441 in one channel
+        assert_eq!(most_different(&a, &b, 3), Some((0, 2, 441)));
+    }
+
+    /// Fig. 13's pixel on a real view is where SS4 and AS differ most: no pixel of the two
+    /// images, rendered again here, differs more, and none before it in reading order as much.
+    #[test]
+    fn the_fig13_pixel_is_where_the_modes_differ_most() {
+        let map = crate::map::procedural(3, 64);
+        let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+        let size = Size {
+            width: 96,
+            height: 96,
+        };
+        let camera = paper_camera(&map, &pyramid, 5.0, size, true).unwrap();
+        let options = Options::default();
+        let (a, b) = (Mode::Ss(Rate::N4), Mode::As);
+        let choice = most_different_pixel(&camera, &pyramid, options, a, b).unwrap();
+        let terrain = pyramid.terrain(true).unwrap();
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options).unwrap();
+        let render = |m: Mode| {
+            render_with(
+                &frame,
+                &terrain,
+                m,
+                &mut footprint_core::terrain::cost::NoCost,
+            )
+            .unwrap()
+            .image
+        };
+        let (ia, ib) = (render(a), render(b));
+        let w = camera.width();
+        let at = choice.row * w + choice.col;
+        let chosen = squared_difference(ia[at], ib[at]);
+        assert_eq!(chosen, choice.squared_difference);
+        assert_eq!((ia[at], ib[at]), choice.colors);
+        assert!(chosen > 0, "the modes differ somewhere in this view");
+        for (i, (&p, &q)) in ia.iter().zip(&ib).enumerate() {
+            let d = squared_difference(p, q);
+            assert!(d <= chosen, "pixel {i} differs more: {d} > {chosen}");
+            assert!(
+                i >= at || d < chosen,
+                "pixel {i} differs as much and comes first"
+            );
+        }
+        // Not the fixed pixel of before (row 3/10 down, middle column), which differs less.
+        let old = (96 * 3 / 10) * w + w / 2;
+        assert!(squared_difference(ia[old], ib[old]) < chosen);
+    }
 }

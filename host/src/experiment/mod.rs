@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod claims;
+pub mod differences;
 pub mod firmware;
 pub mod fly;
 pub mod heights;

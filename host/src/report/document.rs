@@ -3,15 +3,18 @@
 //! filters and where our numbers differ from the paper's.
 
 use crate::experiment::claims::claims;
+use crate::experiment::differences::{Differences, PAPER_TABLE6, PAPER_V_L_5};
 use crate::experiment::fly;
 use crate::experiment::heights::Variant;
+use crate::experiment::inspect::PixelChoice;
 use crate::experiment::table::Tables15;
 
 /// The paper's numbers that the report compares against (Tables 1, 4 and 6).
 const PAPER_NOTES: &str = "The paper's Table 1 reads P = 400, 400, 324; L = 847, 1350, 4555; \
 V = 847, 1347, 4217 at pitch 40°, 20°, 5°. Its Table 4 (pitch 5°) reads coverage 0.07 (PS), \
 0.49 (SS8), 0.61 (SS16), 0.67 (SS32) and M′ = 4271 for AS; its Table 6 counts 52 (AS), \
-5,432 (PS), 953 (SS8) and 203 (SS16) changes of 6–60.";
+5,432 (PS), 953 (SS8) and 203 (SS16) changes of 6–60. The paper gives neither its terrain's \
+spacing nor its units.";
 
 /// `M1 e1, M2 e2, …` with upper-case mode names.
 fn list(v: &[(String, f64)]) -> String {
@@ -57,21 +60,300 @@ fn pyramid_section(study: &[Variant]) -> String {
     s
 }
 
-/// The whole report as Markdown, from the experiments' results (`views` and `cuts` are the
-/// image tables the command wrote; `pixel` is the Fig. 13 pixel).
-pub fn markdown(
-    source: &str,
-    t: &Tables15,
-    views: &str,
-    f: &fly::Fly,
-    cuts: &str,
-    pixel: (usize, usize),
-    study: &[Variant],
-) -> String {
+/// What the report's Markdown is made of: the experiments' results and the image tables the
+/// command wrote.
+#[derive(Debug)]
+pub struct Document<'a> {
+    /// The map's source.
+    pub source: &'a str,
+    /// The command line that regenerates the report, shell-quoted.
+    pub command: &'a str,
+    /// Tables 1–5.
+    pub tables: &'a Tables15,
+    /// The three views' image table rows.
+    pub views: &'a str,
+    /// The flight.
+    pub flight: &'a fly::Fly,
+    /// The cut-in-time images.
+    pub cuts: &'a str,
+    /// The Fig. 13 pixel.
+    pub pixel: &'a PixelChoice,
+    /// The pyramid height filters.
+    pub study: &'a [Variant],
+    /// The numbers of "where our numbers differ".
+    pub differences: &'a Differences,
+}
+
+/// A distance or height in metres, in km from 1 km up.
+fn dist(m: f64) -> String {
+    if m.abs() >= 10_000.0 {
+        format!("{:.0} km", m / 1000.0)
+    } else if m.abs() >= 1000.0 {
+        format!("{:.1} km", m / 1000.0)
+    } else {
+        format!("{m:.0} m")
+    }
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn and_list(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// A number with its shortest exact decimal form (`30`, `0.1`, `12.5`).
+fn num(v: f64) -> String {
+    format!("{v}")
+}
+
+/// The Fig. 13 paragraph: which pixel, and how it was chosen.
+fn pixel_paragraph(p: &PixelChoice) -> String {
+    let (a, b) = (
+        p.modes.0.to_string().to_uppercase(),
+        p.modes.1.to_string().to_uppercase(),
+    );
+    let hex = |c: footprint_core::Rgb| format!("#{:02x}{:02x}{:02x}", c.r, c.g, c.b);
+    let why = if p.squared_difference == 0 {
+        format!(
+            "{a} and {b} agree on every pixel of the pitch-5° view, so the centre pixel is shown"
+        )
+    } else {
+        format!(
+            "the pixel where {a} and {b} differ most: of all pixels of the pitch-5° view, the \
+             largest sum of squared R, G and B differences between the two images ({}: {a} {}, \
+             {b} {}), the first in reading order among equals",
+            p.squared_difference,
+            hex(p.colors.0),
+            hex(p.colors.1)
+        )
+    };
+    format!(
+        "Fig. 13, the samples of pixel ({},{}) (row from the top, column) at pitch 5°, {why}; \
+         each sample fills a band as tall as its weight: {a} (left) and {b} (right).\n\n\
+         ![{a}](pixel_{}.png) ![{b}](pixel_{}.png)\n\n",
+        p.row, p.col, p.modes.0, p.modes.1
+    )
+}
+
+/// "Where our numbers differ from the paper's, and why", from the numbers measured on the map.
+pub fn differences_section(d: &Differences) -> String {
+    let m = &d.map;
+    let mut s = String::from("## Where our numbers differ from the paper's, and why\n\n");
+    s += PAPER_NOTES;
+    s += "\n\n";
+    s += &format!(
+        "- **This map** ({}) is {}×{} voxels of {} m, {} east to west and {} north to south, \
+         with ground from {:.1} to {:.1} m above the datum: a relief of {:.1} m ({:.2} % of its \
+         longer side) and a mean slope of {:.1}°; a height unit is {} m.\n",
+        m.source,
+        m.width,
+        m.height,
+        num(m.spacing_m),
+        dist(m.extent_m.0),
+        dist(m.extent_m.1),
+        m.ground_m.0,
+        m.ground_m.1,
+        m.relief_m,
+        100.0 * m.relief_over_extent,
+        m.mean_slope_deg,
+        num(m.height_scale_m),
+    );
+    if !d.views.is_empty() {
+        let eyes = d
+            .views
+            .iter()
+            .map(|v| format!("{} ({}°)", dist(v.eye_m), v.pitch))
+            .collect::<Vec<_>>();
+        s += &format!(
+            "- **Eye heights** are in metres over this map's {} m voxels: the fit-first-hit rule \
+             puts the first hit 1/pixel-angle ≈ {:.0} voxels ({}) away, so the eye is up at {}.",
+            num(m.spacing_m),
+            d.target_voxels,
+            dist(d.target_m),
+            and_list(&eyes)
+        );
+        let off: Vec<_> = d.views.iter().filter(|v| !v.first_hit_on_map).collect();
+        if off.is_empty() {
+            s += " Every view's first hit is on the map itself.\n";
+        } else {
+            // Views with the same distances, said once: "at 40° and 20° the first hit is …".
+            let mut groups: Vec<(String, Vec<String>)> = Vec::new();
+            for v in &off {
+                let what = match v.first_hit_m {
+                    Some(h) => format!(
+                        "the first hit is {} away and the edge {} ahead",
+                        dist(h),
+                        dist(v.to_edge_m)
+                    ),
+                    None => "the lowest ray hits nothing".to_owned(),
+                };
+                let pitch = format!("{}°", v.pitch);
+                match groups.iter_mut().find(|(w, _)| *w == what) {
+                    Some((_, pitches)) => pitches.push(pitch),
+                    None => groups.push((what, vec![pitch])),
+                }
+            }
+            let which: Vec<String> = groups
+                .iter()
+                .map(|(what, pitches)| format!("at {} {what}", and_list(pitches)))
+                .collect();
+            s += &format!(
+                " The map repeats, mirrored, beyond its edges, and {} of the {} views first hit \
+                 the ground beyond the map's edge ({}): they measure mirrored copies of the \
+                 map, not the map itself.\n",
+                off.len(),
+                d.views.len(),
+                which.join("; ")
+            );
+        }
+    }
+    if let Some(f) = &d.footprint5 {
+        let walk = if d.lod {
+            "the multiresolution walk counts one step per pyramid voxel, not per map voxel"
+        } else {
+            "the walk steps through level 0 voxel by voxel (`--lod off`), as the paper counts"
+        };
+        let hidden = if f.visible_per_step < f.paper_visible_per_step {
+            "more of each footprint is hidden here than in the paper's"
+        } else {
+            "less of each footprint is hidden here than in the paper's"
+        };
+        s += &format!(
+            "- **Footprint length.** At 5° our columns see V = {:.0} visible voxels of L = {:.0} \
+             steps (V/L = {:.2}), against the paper's {:.0} of {:.0} ({:.2}): {hidden} (this map's \
+             relief is {:.2} % of its extent, its mean slope {:.1}°), and {walk}.",
+            f.V,
+            f.L,
+            f.visible_per_step,
+            PAPER_V_L_5.0,
+            PAPER_V_L_5.1,
+            f.paper_visible_per_step,
+            100.0 * m.relief_over_extent,
+            m.mean_slope_deg
+        );
+        if !f.ss_coverage.is_empty() {
+            let list = f
+                .ss_coverage
+                .iter()
+                .map(|(n, ours, paper)| format!("SS{n} {ours:.2} (paper {paper:.2})"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let higher = f.ss_coverage.iter().all(|(_, o, p)| o > p);
+            let lower = f.ss_coverage.iter().all(|(_, o, p)| o < p);
+            let then = if higher {
+                "higher at each N than in the paper's Table 4, so Table 5 asks for smaller rates"
+            } else if lower {
+                "lower at each N than in the paper's Table 4, so Table 5 asks for larger rates"
+            } else {
+                "neither always higher nor always lower than in the paper's Table 4"
+            };
+            s += &format!(" SS coverage at 5° is {list}: {then}.");
+        }
+        s += "\n";
+    }
+    let fl = &d.flight;
+    let step = if fl.step_voxels < 1.0 {
+        format!(
+            "1/{:.0} of this map's {} m voxel",
+            1.0 / fl.step_voxels,
+            num(m.spacing_m)
+        )
+    } else {
+        format!(
+            "{:.1} of this map's {} m voxels",
+            fl.step_voxels,
+            num(m.spacing_m)
+        )
+    };
+    let counts = fl
+        .table6
+        .iter()
+        .map(|(mode, ours, paper)| format!("{} {ours} (paper {paper})", mode.to_uppercase()))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let order = PAPER_TABLE6
+        .iter()
+        .map(|(mode, _)| mode.to_string().to_uppercase())
+        .collect::<Vec<_>>()
+        .join(" < ");
+    s += &format!(
+        "- **Table 6.** The flight moves {} m per frame, {step}; {:.1} % of the column's \
+         changes between frames are 0. Changes of 6–60 in column {} over {} frames (the \
+         paper's 400): {counts}; the modes {} in the paper's order ({order}).\n",
+        num(fl.step_m),
+        100.0 * fl.unchanged,
+        fl.column,
+        fl.frames,
+        if fl.paper_order {
+            "come"
+        } else {
+            "do not come"
+        }
+    );
+    if let Some(t) = &d.time5 {
+        let ratio = t.as_ms / t.ps_ms;
+        let verdict = if ratio > 1.25 {
+            "more than the paper's \"marginal increase\" over PS: each AS hit leaves the walk's \
+             inner loop, does Eq. 4's interpolation and, in `as-exact`, one exact division for \
+             the ray through the voxel's top; the paper's `as` divides once per pixel"
+        } else {
+            "the paper's \"marginal increase\" over PS"
+        };
+        s += &format!(
+            "- **Time.** At 5°, AS takes {:.2} ms per frame against PS's {:.2} ms ({ratio:.1}×), \
+             {verdict}.\n",
+            t.as_ms, t.ps_ms
+        );
+    }
+    if !d.rmse5.is_empty() {
+        let why = if !d.lod {
+            "These views walk level 0 (`--lod off`), as the ground truth does, so what is left is \
+             each sampler's own error; run the same command with `--lod on` for the pyramid's \
+             share."
+                .to_owned()
+        } else {
+            let of = |v: &[(String, f64)], m: &str| v.iter().find(|(n, _)| n == m).map(|e| e.1);
+            let pyramid = match (of(&d.rmse5, "as"), of(&d.level0_rmse5, "as")) {
+                (Some(with), Some(without)) => format!(
+                    " On the same view walked through level 0 alone (*Pyramid heights*' `level 0` \
+                     row), AS's RMSE is {without:.2} against {with:.2} through the pyramid \
+                     ({:.2}×).",
+                    with / without
+                ),
+                _ => String::new(),
+            };
+            format!(
+                "Every LOD mode samples coarse pyramid voxels at a distance while the ground \
+                 truth walks level 0.{pyramid} Run the same command with `--lod off` for every \
+                 table without the pyramid."
+            )
+        };
+        s += &format!(
+            "- **Error against the ground truth** at 5° (RMSE, 8-bit levels): {}. The paper has \
+             no such measure. {why}\n",
+            list(&d.rmse5)
+        );
+    }
+    s
+}
+
+/// The whole report as Markdown.
+pub fn markdown(doc: &Document<'_>) -> String {
+    let (t, f) = (doc.tables, doc.flight);
+    let walk = if t.lod {
+        "the multiresolution pyramid (`--lod on`)"
+    } else {
+        "pyramid level 0 alone (`--lod off`); the flight (Table 6, Fig. 14) walks the pyramid"
+    };
     let mut s = String::from("# footprint: exact antialiasing of textured terrain, reproduced\n\n");
     s += &format!(
-        "Cohen-Or's experiments (Sects. 4–7) on {source}, 400×400, FOV 10°, the eye at the \
-         fit-first-hit height. Regenerate with `footprint report --out DIR`.\n\n"
+        "Cohen-Or's experiments (Sects. 4–7) on {}, 400×400, FOV 10°, the eye at the \
+         fit-first-hit height; the views walk {walk}. Regenerate this report with:\n\n\
+         ```sh\n{}\n```\n\n",
+        doc.source, doc.command
     );
     s += "## The paper's claims\n\n| Claim | Holds | Measured |\n|---|---|---|\n";
     for (claim, holds, evidence) in claims(t, f) {
@@ -81,12 +363,13 @@ pub fn markdown(
         );
     }
     s += "\n## The three views (Figs. 15–17)\n\n| Pitch | PS | AS |\n|---|---|---|\n";
-    s += views;
+    s += doc.views;
     s += "\n## Tables 1–5\n\n";
-    s += &crate::report::tables::markdown(t, source);
+    s += &crate::report::tables::markdown(t, doc.source);
     s += "\n![Coverage against N](coverage.png)\n\n## Table 6 and Fig. 14: the flight\n\n";
     s += &crate::report::flight::markdown(f);
-    s += "\n![Table 6 as bars](table6.png)\n\nColumn ";
+    s += "\n![Table 6 as bars](table6.png)\n\nThe bars start at ½ on the log axis, so a count \
+          of 1 shows; a count of 0 has none.\n\nColumn ";
     s += &format!(
         "{} over time (one image column per frame; left to right: ",
         f.column
@@ -98,49 +381,11 @@ pub fn markdown(
         .collect::<Vec<_>>()
         .join(", ");
     s += "):\n\n";
-    s += cuts;
+    s += doc.cuts;
     s += "\n\n## Diagnostic pictures\n\nFig. 5, the zoom-in image: a tiny window at the pitch-5° view, point sampling left, linear interpolation right.\n\n![zoom](zoom.png)\n\n";
-    s += &format!(
-        "Fig. 13, the samples of pixel ({},{}) at pitch 5°, each filling a band as tall as its weight: SS4 (left) and AS (right).\n\n![SS4](pixel_ss4.png) ![AS](pixel_as.png)\n\n",
-        pixel.0, pixel.1
-    );
+    s += &pixel_paragraph(doc.pixel);
     s += "Fig. 9, the ground under a 32×32 window at pitch 20°: sampled voxels blue, visible but unsampled red, hidden green; SS4 (left) and AS (right).\n\n![SS4](footprint_ss4.png) ![AS](footprint_as.png)\n\n";
-    s += &pyramid_section(study);
-    s += "## Where our numbers differ from the paper's, and why\n\n";
-    s += PAPER_NOTES;
-    s += "\n\n";
-    if let Some(c) = t.cases.iter().find(|c| c.pitch == 5.0) {
-        s += &format!(
-            "- **Footprint length.** At 5° our columns see V = {:.0} visible voxels of L = {:.0} \
-             steps, against the paper's 4217 of 4555: the built-in terrain is rougher (more \
-             of each footprint is hidden) and the multiresolution walk counts one step per \
-             pyramid voxel, not per map voxel. With shorter visible footprints, SS reaches a \
-             higher coverage at each N than in the paper's Table 4, so Table 5 asks for smaller rates.\n",
-            c.V, c.L
-        );
-    }
-    s += "- **Eye heights** are in metres over 30 m voxels: the fit-first-hit rule puts the first hit \
-          1/pixel-angle ≈ 2,290 voxels (69 km) away, so the eye is tens of kilometres up. The \
-          paper does not give its units or spacing.\n";
-    s += "- **Table 6** counts are smaller: 0.5 m per frame is 1/60 of our 30 m voxel, so most \
-          pixels do not change at all between frames; the ordering of the modes is the paper's.\n";
-    s += "- **Time.** AS costs more than the paper's \"marginal increase\" over PS (see the ms rows): \
-          each AS hit leaves the walk's inner loop, does Eq. 4's interpolation and, in `as-exact`, \
-          one exact division for the ray through the voxel's top; the paper's `as` divides once \
-          per pixel.\n";
-    if let Some(c) = t.cases.iter().find(|c| c.pitch == 5.0) {
-        let with: Vec<(String, f64)> = c
-            .modes
-            .iter()
-            .map(|r| (r.mode.to_string(), r.rmse))
-            .collect();
-        s += &format!(
-            "- **Error against the ground truth** at 5° (RMSE, 8-bit levels): {}. The paper has \
-             no such measure. Every LOD mode samples coarse pyramid voxels at a distance while \
-             the ground truth walks level 0, and that shared error is most of each number; see \
-             *Pyramid heights* above for how much of it the pyramid's height filter decides.\n",
-            list(&with)
-        );
-    }
+    s += &pyramid_section(doc.study);
+    s += &differences_section(doc.differences);
     s
 }

@@ -9,6 +9,7 @@ pub mod flight;
 pub mod html;
 pub mod plot;
 pub mod png;
+pub mod shell;
 pub mod specular_figures;
 pub mod tables;
 
