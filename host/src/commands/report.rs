@@ -103,10 +103,16 @@ pub fn relative_to<'a>(args: &ReportArgs, cwd: &'a Path) -> Option<&'a Path> {
 }
 
 /// The command line that regenerates the report of `args`, run from `cwd`: shell-quoted, with
-/// `cd CWD &&` first when a path in it is relative.
+/// `cd CWD &&` first when a path in it is relative, and a comment last when a map was read
+/// from standard input (`-`), which the command cannot hold.
 pub fn regenerate_command(args: &ReportArgs, cwd: &Path) -> String {
     let cd = relative_to(args, cwd).map(|d| d.to_string_lossy().into_owned());
-    shell::line(&regenerate_words(args), cd.as_deref())
+    let mut line = shell::line(&regenerate_words(args), cd.as_deref());
+    let stdin = Some(Path::new("-"));
+    if args.map.dem.as_deref() == stdin || args.map.color.as_deref() == stdin {
+        line += "  # the map was read from standard input: pipe the same file into it";
+    }
+    line
 }
 
 /// Runs `footprint report`.
@@ -274,4 +280,95 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
 fn write_text(path: &Path, text: &str) -> Result<()> {
     write_atomic(path, |w| Ok(w.write_all(text.as_bytes())?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cli::{parse, Command};
+
+    fn report_args(words: &[&str]) -> ReportArgs {
+        let cli = parse(words.iter().copied()).unwrap_or_else(|(e, _)| panic!("{words:?}: {e}"));
+        match cli.command {
+            Command::Report(args) => *args,
+            c => panic!("{c:?}"),
+        }
+    }
+
+    /// The words parse back into a run that gives the same words, with every option that
+    /// was given, defaults made explicit.
+    #[test]
+    fn the_command_holds_every_option_that_changes_the_report() {
+        let cwd = Path::new("/w d");
+        for (given, want) in [
+            (
+                &["footprint", "report", "--out", "/r"][..],
+                "footprint report --seed 1 --terrain-size 1024 --height-filter silhouette \
+                 --lod on --frames 400 --out /r",
+            ),
+            (
+                &[
+                    "footprint",
+                    "report",
+                    "--terrain-size",
+                    "128",
+                    "--seed",
+                    "7",
+                    "--lod",
+                    "off",
+                    "--height-filter",
+                    "mean",
+                    "--frames",
+                    "9",
+                    "--threads",
+                    "1",
+                    "--out",
+                    "r",
+                ][..],
+                "cd '/w d' && footprint report --seed 7 --terrain-size 128 --height-filter mean \
+                 --lod off --frames 9 --out r",
+            ),
+            (
+                &[
+                    "footprint",
+                    "report",
+                    "--dem",
+                    "/m/a b.dat",
+                    "--format",
+                    "asc",
+                    "--color",
+                    "/m/c.png",
+                    "--spacing",
+                    "12.5",
+                    "--height-scale",
+                    "0.05",
+                    "--out",
+                    "/r",
+                ][..],
+                "footprint report --dem '/m/a b.dat' --format asc --color /m/c.png --spacing 12.5 \
+                 --height-scale 0.05 --height-filter silhouette --lod on --frames 400 --out /r",
+            ),
+            (
+                &[
+                    "footprint",
+                    "report",
+                    "--dem",
+                    "-",
+                    "--format",
+                    "hgt",
+                    "--out",
+                    "/r",
+                ][..],
+                "footprint report --dem - --format hgt --height-filter silhouette --lod on \
+                 --frames 400 --out /r  # the map was read from standard input: pipe the same \
+                 file into it",
+            ),
+        ] {
+            let args = report_args(given);
+            assert_eq!(regenerate_command(&args, cwd), want, "{given:?}");
+            let words = regenerate_words(&args);
+            let again = report_args(&words.iter().map(String::as_str).collect::<Vec<_>>());
+            assert_eq!(regenerate_words(&again), words, "{given:?}");
+        }
+    }
 }
