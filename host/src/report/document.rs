@@ -311,7 +311,8 @@ pub fn differences_section(d: &Differences) -> String {
     if !d.rmse5.is_empty() {
         let why = if !d.lod {
             "These views walk level 0 (`--lod off`), as the ground truth does, so what is left is \
-             each sampler's own error; run the same command with `--lod on` for the pyramid's \
+             each sampler's own error: along the column, and across it (one column per pixel \
+             against the truth's 16); run the same command with `--lod on` for the pyramid's \
              share."
                 .to_owned()
         } else {
