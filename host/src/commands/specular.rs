@@ -25,8 +25,8 @@ pub struct SpecularArgs {
     #[arg(long, value_enum)]
     pub scene: Option<SceneName>,
     /// How the highlight is shaded. The clamps differ by table: `clamp` is the paper's
-    /// conservative table (MinDot[n], n′ = ⌊π/Δα_N⌋, Plate 3), `clamp99` and `clamp99.9` its
-    /// aggressive ones (MinDot[K_p(n)], n′ = MaxnAllowed_p; Plate 4 is clamp99.9).
+    /// conservative table (`MinDot[n]`, `n′ = ⌊π/Δα_N⌋`, Plate 3), `clamp99` and `clamp99.9` its
+    /// aggressive ones (`MinDot[K_p(n)]`, `n′ = MaxnAllowed_p`; Plate 4 is clamp99.9).
     #[arg(long, value_enum, requires = "scene")]
     pub mode: Option<Mode>,
     /// Crow's cap on the supersampling grid per pixel side, 2–64: a detected pixel is sampled

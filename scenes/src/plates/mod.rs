@@ -85,12 +85,12 @@ impl SceneName {
 pub enum Mode {
     /// One highlight evaluation at the pixel's centre, no antialiasing (Plate 2).
     None,
-    /// The conservative table: detection by MinDot[n], n′ = ⌊π/Δα_N⌋ (Plate 3).
+    /// The conservative table: detection by `MinDot[n]`, `n′ = ⌊π/Δα_N⌋` (Plate 3).
     Clamp,
-    /// An aggressive table, 99 % of the power: MinDot[K_99(n)], n′ = MaxnAllowed_99.
+    /// An aggressive table, 99 % of the power: `MinDot[K_99(n)]`, `n′ = MaxnAllowed_99`.
     Clamp99,
-    /// An aggressive table, 99.9 % of the power: MinDot[K_99.9(n)], n′ = MaxnAllowed_99.9
-    /// (Plate 4).
+    /// An aggressive table, 99.9 % of the power: `MinDot[K_99.9(n)]`,
+    /// `n′ = MaxnAllowed_99.9` (Plate 4).
     #[cfg_attr(feature = "cli", value(name = "clamp99.9"))]
     Clamp999,
     /// Crow's method: supersample the highlight in detected pixels at the detection's rate
