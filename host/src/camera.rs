@@ -23,6 +23,9 @@ pub enum Eye {
     Height(f64),
     /// `--fit-first-hit`: the paper's rule (see [`fit_first_hit`]).
     FitFirstHit,
+    /// Already placed (by [`footprint_scenes::view::place_on_map`]): metres above height
+    /// unit 0, the camera's own `eye_m`.
+    Placed(f64),
 }
 
 /// The default far distance in voxels for `map`
@@ -70,6 +73,7 @@ pub fn place(
         // --height is metres above the datum; the camera counts from height unit 0.
         Eye::Height(h) => h - map.base_m,
         Eye::FitFirstHit => fit_first_hit(params, &terrain, options, far_m.is_some())?,
+        Eye::Placed(eye_m) => eye_m,
     };
     let camera = Camera::new(params).map_err(|e| explain(e, map, Some(eye)))?;
     Tables::new(&camera)
@@ -85,6 +89,158 @@ pub fn warn_degenerate(pyramid: &Pyramid, camera: &Camera, options: Options) {
     for d in view::degenerate(pyramid.map(), camera, options) {
         eprintln!("warning: {d}");
     }
+}
+
+/// A percentage for a message: `87 %`, `0.4 %`.
+fn percent(share: f64) -> String {
+    let p = 100.0 * share;
+    if p > 0.0 && p < 1.0 {
+        format!("{p:.1} %")
+    } else {
+        format!("{p:.0} %")
+    }
+}
+
+/// A distance in metres for a message: `880 m`, `68.8 km`.
+fn distance(m: f64) -> String {
+    if m < 10_000.0 {
+        format!("{m:.0} m")
+    } else {
+        format!("{:.1} km", m / 1000.0)
+    }
+}
+
+/// Why a view shows mostly mirrored terrain, for [`mirrored_warning`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Why {
+    /// The built-in terrain keeps the paper's view ([`view::Placement::Paper`]).
+    PapersDistances,
+    /// [`view::place_on_map`] found no view mostly on the map.
+    MapTooSmall,
+    /// The user's camera (`render`, `inspect`).
+    UsersCamera,
+}
+
+/// The one-line warning (without `warning: `) for `view` (named as the user knows it: `the
+/// view at pitch 40°`, `the view`) when more than half of the terrain it shows is mirrored
+/// copies of `map` ([`view::Coverage::mostly_mirrored`]); `None` otherwise.
+pub fn mirrored_warning(view: &str, map: &Map, placed: &view::Placed, why: Why) -> Option<String> {
+    if !placed.coverage.mostly_mirrored() {
+        return None;
+    }
+    let first = distance(placed.first_hit_voxels * map.spacing_m);
+    let size = format!("{}×{}-voxel", map.width, map.height);
+    let reason = match why {
+        Why::PapersDistances => format!(
+            "the built-in terrain keeps the paper's view, its first hit {first} away beyond the \
+             {size} map, as the paper's own terrain is mirrored to infinity (Sect. 7); give \
+             --dem for a view placed on a map"
+        ),
+        Why::MapTooSmall => format!(
+            "the {size} map is too small for this view even with the first hit {first} away"
+        ),
+        Why::UsersCamera => format!(
+            "the first hit is {first} away and the {size} map spans {} × {}; aim over the map \
+             with --x, --y and --heading, or give a lower --height",
+            distance(f64::from(map.width) * map.spacing_m),
+            distance(f64::from(map.height) * map.spacing_m)
+        ),
+    };
+    Some(format!(
+        "{view}: {} of the terrain it shows is mirrored copies of the map beyond its edges, \
+         not the map: {reason}",
+        percent(placed.coverage.mirrored_fraction())
+    ))
+}
+
+/// The one-line note (without `note: `) that says what [`view::place_on_map`] changed in the
+/// paper's `view` on `map` and why; `None` when the view is the paper's.
+pub fn placement_note(view: &str, map: &Map, placed: &view::Placed) -> Option<String> {
+    if placed.is_papers() {
+        return None;
+    }
+    let m = |voxels: f64| distance(voxels * map.spacing_m);
+    let before = match placed.paper_mirrored {
+        Some(f) => format!(" shows {} mirrored terrain", percent(f)),
+        None => " cannot be fitted".to_owned(),
+    };
+    let p = &placed.params;
+    let mut what = format!(
+        "the eye moved to ({}, {}) m, heading {:.1}° along the diagonal from the north-west \
+         corner",
+        p.x_m.round(),
+        p.y_m.round(),
+        p.heading_deg
+    );
+    if placed.first_hit_voxels < placed.paper_voxels {
+        what += &format!(
+            ", the first hit brought to {:.0} voxels ({}) from the paper's {:.0}, where a pixel \
+             is {:.2} voxel wide",
+            placed.first_hit_voxels,
+            m(placed.first_hit_voxels),
+            placed.paper_voxels,
+            placed.first_hit_voxels / placed.paper_voxels
+        );
+    } else {
+        what += ", the first hit kept at the paper's distance";
+    }
+    Some(format!(
+        "{view}: the paper's view from the centre of this {}×{} map (first hit {:.0} voxels, {} \
+         away){before}, so {what}: {} of the terrain shown is the map",
+        map.width,
+        map.height,
+        placed.paper_voxels,
+        m(placed.paper_voxels),
+        percent(1.0 - placed.coverage.mirrored_fraction())
+    ))
+}
+
+/// Where the view of `camera` with `options` hits the map of `pyramid`
+/// ([`view::measure`]), its eye as placed; `first_hit_voxels` is the distance aimed for.
+pub fn measure(
+    pyramid: &Pyramid,
+    camera: &Camera,
+    options: Options,
+    first_hit_voxels: f64,
+) -> Result<view::Placed> {
+    let terrain = pyramid.terrain(options.lod)?;
+    let paper = 1.0
+        / Camera::new(CameraParams {
+            roll_deg: 0.0,
+            ..*camera.params()
+        })?
+        .pixel_angle();
+    Ok(view::measure(
+        pyramid.map(),
+        &terrain,
+        *camera.params(),
+        first_hit_voxels,
+        paper,
+        false,
+        options,
+    )?)
+}
+
+/// Prints a one-line warning when more than half of the terrain that `camera`'s view (its eye
+/// fitted by the paper's rule, so its first hit is `1/pixel_angle` voxels away) shows of the
+/// map of `pyramid` is mirrored copies ([`mirrored_warning`]).
+pub fn warn_mirrored(pyramid: &Pyramid, camera: &Camera, options: Options) -> Result<()> {
+    let p = camera.params();
+    let paper = 1.0
+        / Camera::new(CameraParams {
+            roll_deg: 0.0,
+            ..*p
+        })?
+        .pixel_angle();
+    let placed = measure(pyramid, camera, options, paper)?;
+    let name = format!(
+        "the view (--pitch {}°, --fit-first-hit)",
+        Shown(p.pitch_deg)
+    );
+    if let Some(w) = mirrored_warning(&name, pyramid.map(), &placed, Why::UsersCamera) {
+        eprintln!("warning: {w}");
+    }
+    Ok(())
 }
 
 /// The core's range error `e` for a camera or frame on `map`, said as the option the user gave,

@@ -267,6 +267,19 @@ impl View {
     }
 }
 
+impl View {
+    /// With the eye fitted by the paper's rule (no `--height` in `cam`), prints a one-line
+    /// warning when the view shows mostly mirrored copies of the map
+    /// ([`crate::camera::warn_mirrored`]). Called once the command has succeeded, so that an
+    /// error stays one line.
+    pub fn warn_mirrored(&self, cam: &CameraArgs) -> Result<()> {
+        if cam.height.is_none() {
+            crate::camera::warn_mirrored(&self.pyramid, &self.camera, self.options)?;
+        }
+        Ok(())
+    }
+}
+
 /// Turns the camera options into a validated camera for the map of `pyramid`.
 pub fn resolve_camera(pyramid: &Pyramid, cam: &CameraArgs, options: Options) -> Result<Camera> {
     let map = pyramid.map();

@@ -253,11 +253,12 @@ fn the_differences_are_the_maps_own() {
     assert!((28_000.0..29_000.0).contains(&target), "{target}");
     assert_eq!(d["lod"], false);
     assert_eq!(d["flight"]["step_voxels"], 0.5 / 12.5);
-    // The map is 500 m north to south, seen from its middle: every first hit is on a
-    // mirrored copy, and the report says so.
+    // The map is 500 m north to south: seen from its middle, every first hit would be on a
+    // mirrored copy, so each view is placed on the map, and the report says so.
     for v in d["views"].as_array().unwrap() {
-        assert_eq!(v["to_edge_m"], 250.0, "{v}");
-        assert_eq!(v["first_hit_on_map"], false, "{v}");
+        assert_eq!(v["first_hit_on_map"], true, "{v}");
+        assert!(v["mirrored_fraction"].as_f64().unwrap() <= 0.25, "{v}");
+        assert!(v["placement_note"].is_string(), "{v}");
     }
     let section = &r.md[r.md.find("## Where our numbers differ").unwrap()..];
     for said in [
@@ -266,7 +267,9 @@ fn the_differences_are_the_maps_own() {
         &format!("a relief of {relief:.1} m"),
         "over this map's 12.5 m voxels",
         "(29 km) away",
-        "the edge 250 m ahead",
+        "so they are placed on the map",
+        "the first hit brought to",
+        "Every view's first hit is on the map itself",
         "mirrored copies of the map",
         "1/25 of this map's 12.5 m voxel",
         "the walk steps through level 0 voxel by voxel (`--lod off`)",
@@ -281,6 +284,8 @@ fn the_differences_are_the_maps_own() {
     assert!(r.md.contains("level 0 alone (`--lod off`)"));
     assert_eq!(r.json["lod"], "off");
     assert_eq!(r.json["tables"]["lod"], false);
+    // The flight walks level 0 too.
+    assert_eq!(r.json["fly"]["lod"], false);
 }
 
 /// The Fig. 13 pixel is chosen from the data, and the report says how.

@@ -2,19 +2,24 @@
 //!
 //! The paper looks at its terrain from the map's centre with a 10° field of view, and puts the
 //! eye at the height where the pixel footprint at the first hit is one voxel wide
-//! ([`fit_first_hit`]). The far distance defaults to [`default_far_voxels`]. The host's
+//! ([`fit_first_hit`]). The far distance defaults to [`default_far_voxels`]. On a map file
+//! too small for the paper's distances, [`place_on_map`] moves the view over the map and, if
+//! need be, brings its first hit nearer; [`coverage`] measures how much of what a view shows is
+//! the map and how much its mirrored copies. The host's
 //! `footprint` CLI and the firmware's baked scene ([`crate::firmware`]) both place their
 //! cameras with these functions, so the rule is written once.
 
 use std::fmt;
 
+use footprint_core::num::Height;
 use footprint_core::num::{Coord, MAX_EYE_HEIGHT, MAX_FAR};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Projection};
 use footprint_core::terrain::column::walk;
-use footprint_core::terrain::cost::NoCost;
+use footprint_core::terrain::cost::{Cost, NoCost};
 use footprint_core::terrain::fan::Fan;
+use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::mirror;
-use footprint_core::terrain::sampler::FirstHit;
+use footprint_core::terrain::sampler::{FirstHit, Hit, Pixel, Ray, Sampler};
 use footprint_core::terrain::Terrain;
 use footprint_core::{Error, Rgb};
 
@@ -111,6 +116,337 @@ pub fn paper_camera(
     Ok(Camera::new(params)?)
 }
 
+/// A view whose terrain pixels are more than this share mirrored copies of the map (beyond its
+/// edges, [`mirror`]) measures the mirror rather than the map ([`Coverage::mostly_mirrored`]).
+pub const MOSTLY_MIRRORED: f64 = 0.5;
+
+/// The largest share of mirrored terrain pixels [`place_on_map`] accepts before it moves the
+/// camera or brings the first hit nearer: at least three quarters of what a view shows of the
+/// terrain is the map itself.
+pub const ON_MAP_GOAL: f64 = 0.25;
+
+/// The nearest first hit [`place_on_map`] tries, voxels.
+pub const MIN_FIRST_HIT_VOXELS: f64 = 8.0;
+
+/// Where a frame's terrain pixels first hit: on the map itself, or on a mirrored copy beyond
+/// its edges. Each pixel counts once, where its lowest ray first hits (the voxel point sampling
+/// shows); sky pixels are not counted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Coverage {
+    /// Terrain pixels whose first hit is on the map.
+    pub on_map: u64,
+    /// Terrain pixels whose first hit is on a mirrored copy.
+    pub mirrored: u64,
+}
+
+impl Coverage {
+    /// Terrain pixels.
+    pub fn terrain(&self) -> u64 {
+        self.on_map + self.mirrored
+    }
+
+    /// The share of the terrain pixels that show a mirrored copy (0 when no terrain is seen).
+    pub fn mirrored_fraction(&self) -> f64 {
+        if self.terrain() == 0 {
+            0.0
+        } else {
+            self.mirrored as f64 / self.terrain() as f64
+        }
+    }
+
+    /// Whether more than [`MOSTLY_MIRRORED`] of the terrain pixels show a mirrored copy.
+    pub fn mostly_mirrored(&self) -> bool {
+        self.mirrored_fraction() > MOSTLY_MIRRORED
+    }
+}
+
+/// A sampler that finishes each pixel at its first hit and notes whether that voxel lies on a
+/// `width × height` map or on a mirrored copy.
+#[derive(Debug)]
+struct WhereHit {
+    width: i64,
+    height: i64,
+    coverage: Coverage,
+    /// The first hit's level-0 cell in the infinite grid.
+    first: Option<(i64, i64)>,
+}
+
+impl WhereHit {
+    fn new(map: &Map) -> Self {
+        Self {
+            width: i64::from(map.width),
+            height: i64::from(map.height),
+            coverage: Coverage::default(),
+            first: None,
+        }
+    }
+}
+
+impl Sampler for WhereHit {
+    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
+        // A level-L voxel covers level-0 cells x·2^L .. (x+1)·2^L: take its middle one.
+        let l = voxel.level().min(31);
+        let (x, y) = voxel.cell_unmirrored();
+        let centre = |c: i64| (c << l) + ((1i64 << l) >> 1);
+        let (x, y) = (centre(x), centre(y));
+        self.first.get_or_insert((x, y));
+        if (0..self.width).contains(&x) && (0..self.height).contains(&y) {
+            self.coverage.on_map += 1;
+        } else {
+            self.coverage.mirrored += 1;
+        }
+        Hit::Done(Rgb::default())
+    }
+    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+        None
+    }
+}
+
+/// Where the terrain pixels of `frame` (on the terrain of `map`) first hit: every walked pixel
+/// of every column, each counted once ([`Coverage`]).
+pub fn coverage(map: &Map, frame: &Frame<'_>, terrain: &Terrain<'_>) -> Coverage {
+    let mut probe = WhereHit::new(map);
+    let mut out = Vec::new();
+    for col in 0..frame.width() {
+        let rows = frame.column(col).map_or(0..0, |c| c.rows());
+        out.resize(rows.len(), Rgb::default());
+        walk(frame, terrain, col, rows, &mut probe, &mut NoCost, &mut out);
+    }
+    probe.coverage
+}
+
+/// The level-0 cell (in the infinite, unmirrored grid) where the lowest ray of the middle
+/// column first hits, or `None` if it hits nothing within the far distance.
+pub fn first_hit_cell(map: &Map, frame: &Frame<'_>, terrain: &Terrain<'_>) -> Option<(i64, i64)> {
+    let mut probe = WhereHit::new(map);
+    let mut out = [Rgb::default()];
+    walk(
+        frame,
+        terrain,
+        frame.width() / 2,
+        0..1,
+        &mut probe,
+        &mut NoCost,
+        &mut out,
+    );
+    probe.first
+}
+
+/// Whether the level-0 cell `(x, y)` of the infinite grid lies on `map` itself.
+pub fn on_map(map: &Map, (x, y): (i64, i64)) -> bool {
+    (0..i64::from(map.width)).contains(&x) && (0..i64::from(map.height)).contains(&y)
+}
+
+/// How the paper's views are placed on a map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Placement {
+    /// As the paper: from the map's centre, heading north, the first hit `1/pixel_angle`
+    /// voxels away, wherever that is. The built-in terrain's: it stands in for the paper's
+    /// DTM, which the paper mirrors into an infinite terrain (Sect. 7) so that a column
+    /// footprint holds up to 5000 voxels, and Table 1's distances are kept.
+    Paper,
+    /// On the map itself ([`place_on_map`]): a map file is one place, and its mirrored copies
+    /// are not that place.
+    OnMap,
+}
+
+impl Placement {
+    /// The placement of `map`'s views: [`Placement::Paper`] for the built-in terrain (its
+    /// source is `built-in (seed N)`), [`Placement::OnMap`] for a map read from a file.
+    pub fn for_map(map: &Map) -> Self {
+        if map.source.starts_with("built-in (seed ") {
+            Placement::Paper
+        } else {
+            Placement::OnMap
+        }
+    }
+}
+
+/// A paper view placed on a map ([`place_on_map`]): the camera, where it first hits and how
+/// much of what it shows of the terrain is the map itself.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placed {
+    /// The camera, its eye fitted so that the first hit is `first_hit_voxels` away.
+    pub params: CameraParams,
+    /// The paper's first-hit distance, `1/pixel_angle` voxels (the pixel footprint one voxel
+    /// wide there).
+    pub paper_voxels: f64,
+    /// The first-hit distance aimed for, voxels: the paper's, or nearer on a small map.
+    pub first_hit_voxels: f64,
+    /// Whether the eye was moved from the map's centre and the heading from north (along the
+    /// map's diagonal from its north-west corner to its south-east one).
+    pub moved: bool,
+    /// The first hit's level-0 cell in the infinite grid, if any.
+    pub first_hit: Option<(i64, i64)>,
+    /// Whether that cell is on the map itself.
+    pub first_hit_on_map: bool,
+    /// Where the frame's terrain pixels first hit.
+    pub coverage: Coverage,
+    /// The share of mirrored terrain pixels in the paper's own view (from the map's centre,
+    /// heading north), when [`place_on_map`] tried it and it could be fitted.
+    pub paper_mirrored: Option<f64>,
+}
+
+impl Placed {
+    /// Whether the view is the paper's, unchanged: from the map's centre, heading north, the
+    /// first hit at the paper's distance.
+    pub fn is_papers(&self) -> bool {
+        !self.moved && self.first_hit_voxels == self.paper_voxels
+    }
+
+    /// Whether the view meets [`place_on_map`]'s goal: the first hit on the map and at most
+    /// [`ON_MAP_GOAL`] of the terrain pixels mirrored.
+    pub fn meets_goal(&self) -> bool {
+        self.first_hit_on_map && self.coverage.mirrored_fraction() <= ON_MAP_GOAL
+    }
+}
+
+/// Where [`place_on_map`]'s camera would be on a map `width × height` voxels, for a first hit
+/// `d` voxels away: heading along the diagonal from the north-west corner to the south-east
+/// one, the first hit aimed `s0` voxels along it from the corner, where the footprint's near
+/// edge (`d · tan(hfov/2)` voxels to each side) just fits between the map's edges, but no
+/// further than half the diagonal. The eye is `d` voxels before the first hit, off the map
+/// when `d > s0`. Returns `(x, y, heading_deg)` in voxels and degrees.
+pub fn diagonal_eye(width: u32, height: u32, d: f64, half_hfov: f64) -> (f64, f64, f64) {
+    let (w, h) = (f64::from(width), f64::from(height));
+    let diag = w.hypot(h);
+    let (ux, uy) = (w / diag, h / diag);
+    // Perpendicular to the diagonal, the map is s·min(w/h, h/w) wide to each side at s voxels
+    // from the corner.
+    let spread = (w / h).min(h / w);
+    let s0 = (d * half_hfov.tan() / spread).max(1.0).min(diag / 2.0);
+    let back = s0 - d;
+    // Heading clockwise from north (−y): the direction is (sin h, −cos h) = (ux, uy).
+    (back * ux, back * uy, ux.atan2(-uy).to_degrees())
+}
+
+/// One candidate of [`place_on_map`]: `params` with the eye fitted for a first hit `d` voxels
+/// away, and where the view hits.
+fn try_place(
+    map: &Map,
+    terrain: &Terrain<'_>,
+    params: CameraParams,
+    d: f64,
+    paper_voxels: f64,
+    moved: bool,
+    options: Options,
+) -> Result<Placed, FitError> {
+    let eye_m = fit_first_hit_at(params, terrain, options, d)?;
+    let params = CameraParams { eye_m, ..params };
+    Ok(measure(
+        map,
+        terrain,
+        params,
+        d,
+        paper_voxels,
+        moved,
+        options,
+    )?)
+}
+
+/// The [`Placed`] of a camera `params` whose eye is already placed, aimed at a first hit `d`
+/// voxels away (the paper's is `paper_voxels`; `moved` says whether the eye and heading are
+/// not the paper's): where its frame with `options` hits the terrain of `map`.
+pub fn measure(
+    map: &Map,
+    terrain: &Terrain<'_>,
+    params: CameraParams,
+    d: f64,
+    paper_voxels: f64,
+    moved: bool,
+    options: Options,
+) -> Result<Placed, Error> {
+    let camera = Camera::new(params)?;
+    let mut tables = Tables::new(&camera);
+    let frame = tables.frame(&camera, terrain, options)?;
+    let first_hit = first_hit_cell(map, &frame, terrain);
+    Ok(Placed {
+        params,
+        paper_voxels,
+        first_hit_voxels: d,
+        moved,
+        first_hit,
+        first_hit_on_map: first_hit.is_some_and(|c| on_map(map, c)),
+        coverage: coverage(map, &frame, terrain),
+        paper_mirrored: None,
+    })
+}
+
+/// The paper's view `params` (from [`paper_params`], with its far distance set) placed so that
+/// it measures the map of `pyramid`, not its mirrored copies. Deterministic, in this order:
+///
+/// 1. The paper's view (from the map's centre, heading north, the first hit `1/pixel_angle`
+///    voxels away), if its first hit is on the map and at most [`ON_MAP_GOAL`] of its terrain
+///    pixels are mirrored.
+/// 2. Else, heading along the map's diagonal from the north-west corner with the eye placed by
+///    [`diagonal_eye`], the first hit at the paper's distance, then nearer by factors of
+///    `2^(1/4)` down to [`MIN_FIRST_HIT_VOXELS`]: the first (the farthest) that meets the goal.
+/// 3. If none does, the candidate with the fewest mirrored pixels among those whose first hit
+///    is on the map (the farthest among equals), else the paper's view.
+///
+/// The eye is fitted at each distance as [`fit_first_hit_at`] does, on the pyramid with
+/// `options`; the returned [`Placed`] says what was changed.
+pub fn place_on_map(
+    pyramid: &Pyramid,
+    params: CameraParams,
+    options: Options,
+) -> Result<Placed, FitError> {
+    let map = pyramid.map();
+    let terrain = pyramid.terrain(options.lod)?;
+    let camera = Camera::new(CameraParams {
+        roll_deg: 0.0,
+        ..params
+    })?;
+    let paper_voxels = 1.0 / camera.pixel_angle();
+    let paper = try_place(
+        map,
+        &terrain,
+        params,
+        paper_voxels,
+        paper_voxels,
+        false,
+        options,
+    );
+    let paper_mirrored = paper.as_ref().ok().map(|p| p.coverage.mirrored_fraction());
+    let with_paper = |p: Placed| Placed {
+        paper_mirrored,
+        ..p
+    };
+    if paper.as_ref().is_ok_and(Placed::meets_goal) {
+        return paper.map(with_paper);
+    }
+    // The horizontal half field of view: the paper's columns are one pixel angle apart.
+    let half_hfov = 0.5 * camera.pixel_angle() * f64::from(params.width);
+    let step = 2f64.powf(0.25);
+    let mut best: Option<Placed> = paper.as_ref().ok().copied().filter(|p| p.first_hit_on_map);
+    let mut d = paper_voxels;
+    while d >= MIN_FIRST_HIT_VOXELS {
+        let (x, y, heading_deg) = diagonal_eye(map.width, map.height, d, half_hfov);
+        let candidate = CameraParams {
+            x_m: x * map.spacing_m,
+            y_m: y * map.spacing_m,
+            heading_deg,
+            ..params
+        };
+        if let Ok(p) = try_place(map, &terrain, candidate, d, paper_voxels, true, options) {
+            if p.meets_goal() {
+                return Ok(with_paper(p));
+            }
+            let fewer =
+                |b: &Placed| p.coverage.mirrored_fraction() < b.coverage.mirrored_fraction();
+            if p.first_hit_on_map && best.as_ref().is_none_or(fewer) {
+                best = Some(p);
+            }
+        }
+        d /= step;
+    }
+    match best {
+        Some(b) => Ok(with_paper(b)),
+        None => paper.map(with_paper),
+    }
+}
+
 /// Why [`fit_first_hit`] found no eye height. Distances and heights are in metres.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FitError {
@@ -185,6 +521,25 @@ pub fn fit_first_hit(
     terrain: &Terrain<'_>,
     options: Options,
 ) -> Result<f64, FitError> {
+    let target = 1.0
+        / Camera::new(CameraParams {
+            roll_deg: 0.0,
+            ..params
+        })?
+        .pixel_angle();
+    fit_first_hit_at(params, terrain, options, target)
+}
+
+/// [`fit_first_hit`] for a first hit `target` voxels away instead of the paper's
+/// `1/pixel_angle` (the pixel footprint there is `target · pixel_angle` voxels wide): the
+/// eye height, metres above height unit 0, at which the lowest ray of the middle column first
+/// hits the terrain `target` voxels away.
+pub fn fit_first_hit_at(
+    params: CameraParams,
+    terrain: &Terrain<'_>,
+    options: Options,
+    target: f64,
+) -> Result<f64, FitError> {
     // The rule looks along the middle column's lowest ray, which is the same vertical plane
     // in both projections without roll: fit the unrolled camera's paper frame.
     let params = CameraParams {
@@ -196,7 +551,6 @@ pub fn fit_first_hit(
         ..options
     };
     let camera = Camera::new(params)?;
-    let target = 1.0 / camera.pixel_angle();
     let scale = terrain.scale();
     let target_m = target * scale.spacing_m;
     if target > params.far_m / scale.spacing_m {
@@ -321,4 +675,79 @@ pub fn degenerate(map: &Map, camera: &Camera, options: Options) -> Vec<Degenerat
         });
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::procedural::procedural;
+    use footprint_core::terrain::pyramid::HeightFilter;
+
+    #[test]
+    fn the_diagonal_eye_looks_from_the_north_west_corner() {
+        // A square map: heading 135°, the first hit `s0 = d·tan(half)` along the diagonal.
+        let (d, half) = (100.0, 5f64.to_radians());
+        let (x, y, heading) = diagonal_eye(64, 64, d, half);
+        assert!((heading - 135.0).abs() < 1e-9, "{heading}");
+        let s0 = d * half.tan();
+        let back = (s0 - d) / 2f64.sqrt();
+        assert!(
+            (x - back).abs() < 1e-9 && (y - back).abs() < 1e-9,
+            "({x}, {y})"
+        );
+        // A wide map: heading between east and south-east, never past half the diagonal.
+        let (x, y, heading) = diagonal_eye(200, 20, 1000.0, half);
+        assert!(heading > 90.0 && heading < 135.0, "{heading}");
+        let diag = 200f64.hypot(20.0);
+        let (hx, hy) = (x + 1000.0 * 200.0 / diag, y + 1000.0 * 20.0 / diag);
+        assert!((hx.hypot(hy) - diag / 2.0).abs() < 1e-6, "({hx}, {hy})");
+    }
+
+    #[test]
+    fn the_built_in_terrain_keeps_the_papers_placement() {
+        let mut map = procedural(1, 32);
+        assert_eq!(Placement::for_map(&map), Placement::Paper);
+        map.source = "dem.asc".into();
+        assert_eq!(Placement::for_map(&map), Placement::OnMap);
+    }
+
+    /// The paper's view of a 32² map shows only mirrored copies; placed on the map, its first
+    /// hit is on the map and at most a quarter of what it shows is mirrored.
+    #[test]
+    fn a_small_map_is_measured_on_the_map() {
+        let mut map = procedural(3, 32);
+        map.source = "small".into();
+        let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+        let options = Options::default();
+        let mut params = paper_params(&map, 20.0, 64, 64);
+        let probe = Camera::new(params).unwrap();
+        params.far_m = default_far_voxels(32, 32, probe.pixel_angle()) * map.spacing_m;
+        let terrain = pyramid.terrain(true).unwrap();
+        let paper_eye = fit_first_hit(params, &terrain, options).unwrap();
+        let paper = measure(
+            &map,
+            &terrain,
+            CameraParams {
+                eye_m: paper_eye,
+                ..params
+            },
+            0.0,
+            0.0,
+            false,
+            options,
+        )
+        .unwrap();
+        assert!(!paper.first_hit_on_map);
+        assert_eq!(paper.coverage.mirrored_fraction(), 1.0);
+        assert!(paper.coverage.mostly_mirrored());
+        let placed = place_on_map(&pyramid, params, options).unwrap();
+        assert!(placed.moved && placed.first_hit_on_map, "{placed:?}");
+        assert!(placed.meets_goal(), "{placed:?}");
+        assert!(placed.first_hit_voxels < placed.paper_voxels);
+        assert_eq!(placed.paper_mirrored, Some(1.0));
+        let (x, y) = placed.first_hit.unwrap();
+        assert!((0..32).contains(&x) && (0..32).contains(&y), "({x}, {y})");
+        // Deterministic.
+        assert_eq!(place_on_map(&pyramid, params, options).unwrap(), placed);
+    }
 }

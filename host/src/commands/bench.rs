@@ -73,6 +73,13 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         || bar.inc(1),
     )?;
     bar.finish_and_clear();
+    // The paper's views the bench timed: say where they are placed and what they show.
+    for pitch in crate::experiment::paper::PAPER_PITCHES {
+        let lod = args.lod == Switch::On;
+        crate::experiment::paper::paper_view(map, &pyramid, pitch, args.size.size, lod)?
+            .placement
+            .print();
+    }
     if args.format.json {
         println!(
             "{}",

@@ -122,6 +122,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         size: args.size.size,
         all_columns: !args.column_only,
         keep_cut: args.out.is_some(),
+        lod: true,
     };
     spec.check_memory(if args.animation { PANELS.len() } else { 0 })?;
     let pyramid = args.map.pyramid()?;
@@ -167,6 +168,10 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         fly::run(map, &pyramid, &spec, || bar.inc(1))?
     };
     bar.finish_and_clear();
+    // The flight starts from the paper's pitch-5° view: say where it is placed.
+    crate::experiment::paper::paper_view(map, &pyramid, 5.0, spec.size, spec.lod)?
+        .placement
+        .print();
     if let Some(dir) = &args.out {
         for m in &result.modes {
             let path = dir.join(format!("cut_{}.png", m.mode));

@@ -154,5 +154,5 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
     if args.format.json {
         println!("{}", serde_json::Value::Object(json));
     }
-    Ok(())
+    view.warn_mirrored(&args.camera)
 }

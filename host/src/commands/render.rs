@@ -82,5 +82,5 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     } else if args.out.is_none() {
         eprintln!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");
     }
-    Ok(())
+    view.warn_mirrored(&args.camera)
 }

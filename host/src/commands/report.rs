@@ -10,7 +10,7 @@ use footprint_core::terrain::camera::{CameraParams, Options};
 use serde_json::json;
 
 use crate::experiment::differences;
-use crate::experiment::fly::{self, BINS};
+use crate::experiment::fly::{self, FlySpec, BINS};
 use crate::experiment::heights;
 use crate::experiment::inspect;
 use crate::experiment::paper::{paper_camera, paper_flight, PAPER_PITCHES};
@@ -32,9 +32,9 @@ pub struct ReportArgs {
     /// Frames of the flight (the paper's is 400).
     #[arg(long, default_value_t = 400)]
     pub frames: usize,
-    /// Walk the pyramid (on), or level 0 voxel by voxel (off), in the tables, the views and the
-    /// diagnostic pictures (the flight walks the pyramid either way): the RMSE with and without
-    /// it is the pyramid's share of the error.
+    /// Walk the pyramid (on), or level 0 voxel by voxel (off), in the tables, the views, the
+    /// flight and the diagnostic pictures: the RMSE with and without it is the pyramid's share
+    /// of the error.
     #[arg(long, value_enum, default_value_t = Switch::On)]
     pub lod: Switch,
 }
@@ -123,13 +123,16 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     // Built in a temporary folder next to --out and moved into place at the end: a failed or
     // interrupted run leaves nothing behind.
     let folder = Folder::create("--out", &args.out)?;
-    let fly_spec = paper_flight(args.frames);
+    let lod = args.lod == Switch::On;
+    let fly_spec = FlySpec {
+        lod,
+        ..paper_flight(args.frames)
+    };
     fly_spec.check_memory(0)?;
     let size = fly_spec.size;
     let pyramid = args.map.pyramid()?;
     let map = pyramid.map();
     let modes = crate::experiment::paper::paper_modes();
-    let lod = args.lod == Switch::On;
     let options = Options {
         lod,
         ..Options::default()
@@ -146,6 +149,11 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         bar.set_message(msg.to_string());
         bar.inc(1);
     })?;
+    bar.suspend(|| {
+        for case in &tables.cases {
+            case.view.print();
+        }
+    });
     let series: Vec<(String, Vec<(u32, f64)>)> = tables
         .cases
         .iter()

@@ -92,6 +92,9 @@ pub fn table(args: &TableArgs) -> Result<()> {
         },
     )?;
     bar.finish_and_clear();
+    for case in &result.cases {
+        case.view.print();
+    }
     if args.format.json {
         println!("{}", serde_json::to_string(&result)?);
     } else if args.csv {

@@ -72,6 +72,11 @@ pub struct ViewFacts {
     pub to_edge_m: f64,
     /// Whether the first hit is on the map itself (not on a mirrored copy beyond its edge).
     pub first_hit_on_map: bool,
+    /// The share of the view's terrain pixels that show mirrored copies of the map.
+    pub mirrored_fraction: f64,
+    /// What placing the view on this map changed from the paper's, and why (`None`: the
+    /// paper's view).
+    pub placement_note: Option<String>,
 }
 
 /// The pitch-5° footprint beside the paper's (Tables 1 and 4).
@@ -238,7 +243,9 @@ pub fn differences(
             eye_m: p.eye_m + map.base_m,
             first_hit_m,
             to_edge_m: to_edge,
-            first_hit_on_map: first_hit_m.is_some_and(|d| d <= to_edge),
+            first_hit_on_map: c.view.first_hit_on_map,
+            mirrored_fraction: c.view.mirrored_fraction,
+            placement_note: c.view.note.clone(),
         });
     }
     if t.cases.is_empty() {

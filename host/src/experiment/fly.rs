@@ -40,6 +40,9 @@ pub struct FlySpec {
     pub path: Option<FlightPath>,
     /// The projection of every frame.
     pub projection: Projection,
+    /// Walk the multiresolution pyramid (`true`), or level 0 voxel by voxel (`false`): the
+    /// start's fitted eye height and every frame.
+    pub lod: bool,
 }
 
 impl FlySpec {
@@ -96,6 +99,8 @@ pub struct Fly {
     pub height: f64,
     /// `exact` or `paper`.
     pub projection: &'static str,
+    /// Whether the frames walked the pyramid (`--lod on`) or level 0 alone.
+    pub lod: bool,
     /// The key frames flown, if a path was given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path: Option<FlightPath>,
@@ -133,7 +138,7 @@ pub fn run_with_frames(
     if !spec.step_m.is_finite() {
         bail!("--step {}: not a finite number", spec.step_m);
     }
-    let start = *paper_camera(map, pyramid, 5.0, spec.size, true)?.params();
+    let start = *paper_camera(map, pyramid, 5.0, spec.size, spec.lod)?.params();
     let (w, h) = (start.width as usize, start.height as usize);
     let column = spec.column.unwrap_or(w / 2);
     if column >= w {
@@ -141,8 +146,9 @@ pub fn run_with_frames(
     }
     spec.check_memory(panels.len())?;
     let chunk = 4 * rayon::current_num_threads().max(1);
-    let terrain = pyramid.terrain(true)?;
+    let terrain = pyramid.terrain(spec.lod)?;
     let options = Options {
+        lod: spec.lod,
         projection: spec.projection,
         ..Options::default()
     };
@@ -244,6 +250,7 @@ pub fn run_with_frames(
             Projection::Exact => "exact",
             Projection::Paper => "paper",
         },
+        lod: spec.lod,
         path: spec.path.clone(),
         modes: spec
             .modes

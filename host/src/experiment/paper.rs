@@ -4,9 +4,10 @@
 
 use anyhow::Result;
 use footprint_core::terrain::camera::{Camera, Options, Projection};
-use footprint_scenes::view;
+use footprint_scenes::view::{self, Placement};
+use serde::Serialize;
 
-use crate::camera::{place, Eye};
+use crate::camera::{default_far_voxels, mirrored_warning, place, placement_note, Eye, Why};
 use crate::experiment::fly::FlySpec;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
@@ -25,7 +26,7 @@ pub fn paper_modes() -> Vec<Mode> {
 
 /// Sect. 5's flight with `frames` frames: from the pitch-5° view, 0.5 m forward per frame, the
 /// middle column, 400×400, Table 6's modes (AS, the exact AS, PS, SS8, SS16), every column
-/// histogrammed and the cut-in-time images kept.
+/// histogrammed and the cut-in-time images kept, walking the pyramid.
 pub fn paper_flight(frames: usize) -> FlySpec {
     FlySpec {
         frames,
@@ -46,13 +47,18 @@ pub fn paper_flight(frames: usize) -> FlySpec {
         path: None,
         projection: Projection::Paper,
         keep_cut: true,
+        lod: true,
     }
 }
 
-/// The camera of a paper case on `map`: from the map's centre, heading north, FOV 10°,
-/// `size` pixels (the paper's is 400×400), the default far distance, and the eye at the height
-/// where the pixel footprint at the first hit is one voxel wide (the rule of Table 1), found
-/// on the pyramid with or without `lod`.
+/// The camera of a paper case on `map`: FOV 10°, `size` pixels (the paper's is 400×400), the
+/// default far distance, and the eye at the height where the lowest ray of the middle column
+/// first hits the ground at a given distance, found on the pyramid with or without `lod`. On
+/// the built-in terrain, the paper's view ([`Placement::Paper`]): from the map's centre,
+/// heading north, the first hit where the pixel footprint is one voxel wide (the rule of
+/// Table 1), on a mirrored copy if that is beyond the map's edge. On a map file, the same
+/// view if it shows the map, else moved and brought nearer until it does
+/// ([`view::place_on_map`]); [`paper_view`] says what was changed.
 pub fn paper_camera(
     map: &Map,
     pyramid: &Pyramid,
@@ -60,12 +66,141 @@ pub fn paper_camera(
     size: Size,
     lod: bool,
 ) -> Result<Camera> {
-    let params = view::paper_params(map, pitch, size.width, size.height);
-    let options = Options {
+    Ok(placed_camera(map, pyramid, pitch, size, lod)?.0)
+}
+
+/// How one of the paper's views was placed on a map, and how much of it is the map.
+#[derive(Clone, Debug, Serialize)]
+pub struct ViewPlacement {
+    /// Pitch, degrees.
+    pub pitch: f64,
+    /// `paper` (the built-in terrain: the paper's view wherever it looks) or `on-map`.
+    pub placement: &'static str,
+    /// The eye east and south, metres.
+    pub x_m: f64,
+    /// The eye south, metres.
+    pub y_m: f64,
+    /// Heading, degrees clockwise from north.
+    pub heading_deg: f64,
+    /// Where the paper's rule puts the first hit (the pixel footprint one voxel wide), metres.
+    pub paper_first_hit_m: f64,
+    /// Where this view's first hit is aimed, metres (nearer than the paper's on a small map).
+    pub first_hit_m: f64,
+    /// Whether the eye and heading were moved from the map's centre and north.
+    pub moved: bool,
+    /// Whether the first hit is on the map itself, not on a mirrored copy.
+    pub first_hit_on_map: bool,
+    /// The share of the terrain pixels that show mirrored copies of the map.
+    pub mirrored_fraction: f64,
+    /// The same in the paper's own view from the map's centre, when it was tried.
+    pub paper_mirrored_fraction: Option<f64>,
+    /// What was changed and why (printed as `note: …`).
+    pub note: Option<String>,
+    /// Set when most of the terrain shown is mirrored (printed as `warning: …`).
+    pub warning: Option<String>,
+}
+
+impl ViewPlacement {
+    /// Prints the note and the warning, one line each on standard error.
+    pub fn print(&self) {
+        if let Some(n) = &self.note {
+            eprintln!("note: {n}");
+        }
+        if let Some(w) = &self.warning {
+            eprintln!("warning: {w}");
+        }
+    }
+}
+
+/// A paper case's camera ([`paper_camera`]) and how it was placed.
+pub struct PaperView {
+    /// The camera.
+    pub camera: Camera,
+    /// Where it looks.
+    pub placement: ViewPlacement,
+}
+
+/// The camera of a paper case ([`paper_camera`]) with what its placement changed and how much
+/// of what it shows is the map ([`ViewPlacement`]).
+pub fn paper_view(
+    map: &Map,
+    pyramid: &Pyramid,
+    pitch: f64,
+    size: Size,
+    lod: bool,
+) -> Result<PaperView> {
+    let (camera, placed) = placed_camera(map, pyramid, pitch, size, lod)?;
+    let placed = match placed {
+        Some(p) => p,
+        None => {
+            let target = 1.0 / camera.pixel_angle();
+            crate::camera::measure(pyramid, &camera, options(lod), target)?
+        }
+    };
+    let name = format!("the view at pitch {pitch}°");
+    let why = match Placement::for_map(map) {
+        Placement::Paper => Why::PapersDistances,
+        Placement::OnMap => Why::MapTooSmall,
+    };
+    let p = camera.params();
+    Ok(PaperView {
+        placement: ViewPlacement {
+            pitch,
+            placement: match Placement::for_map(map) {
+                Placement::Paper => "paper",
+                Placement::OnMap => "on-map",
+            },
+            x_m: p.x_m,
+            y_m: p.y_m,
+            heading_deg: p.heading_deg,
+            paper_first_hit_m: placed.paper_voxels * map.spacing_m,
+            first_hit_m: placed.first_hit_voxels * map.spacing_m,
+            moved: placed.moved,
+            first_hit_on_map: placed.first_hit_on_map,
+            mirrored_fraction: placed.coverage.mirrored_fraction(),
+            paper_mirrored_fraction: placed.paper_mirrored,
+            note: placement_note(&name, map, &placed),
+            warning: mirrored_warning(&name, map, &placed, why),
+        },
+        camera,
+    })
+}
+
+/// The frame options of the paper's views.
+fn options(lod: bool) -> Options {
+    Options {
         lod,
         ..Options::default()
-    };
-    place(pyramid, params, None, Eye::FitFirstHit, options)
+    }
+}
+
+/// The camera of [`paper_camera`], and with [`Placement::OnMap`] how it was placed.
+fn placed_camera(
+    map: &Map,
+    pyramid: &Pyramid,
+    pitch: f64,
+    size: Size,
+    lod: bool,
+) -> Result<(Camera, Option<view::Placed>)> {
+    let params = view::paper_params(map, pitch, size.width, size.height);
+    let options = options(lod);
+    if Placement::for_map(map) == Placement::OnMap {
+        // The far distance `place` gives the paper's view, so that both agree.
+        let mut far = params;
+        if let Ok(probe) = Camera::new(far) {
+            far.far_m = default_far_voxels(map, probe.pixel_angle()) * map.spacing_m;
+            if let Ok(placed) = view::place_on_map(pyramid, far, options) {
+                let p = placed.params;
+                let camera = place(pyramid, p, None, Eye::Placed(p.eye_m), options)?;
+                return Ok((camera, Some(placed)));
+            }
+        }
+    }
+    // The paper's view, or the reason it cannot be fitted in the user's words.
+    Ok((
+        place(pyramid, params, None, Eye::FitFirstHit, options)?,
+        None,
+    ))
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use anyhow::Result;
 use footprint_core::terrain::camera::Options;
 use serde::Serialize;
 
-use super::paper::paper_camera;
+use super::paper::{paper_view, ViewPlacement};
 use super::reference::{psnr, reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
@@ -60,6 +60,8 @@ pub struct Case {
     pub modes: Vec<ModeRow>,
     /// SS coverage for N = 1 (PS), 2, 4, …, 256, for Table 5 and the coverage plot.
     pub coverage_by_rate: Vec<(u32, f64)>,
+    /// Where the view was placed and how much of the terrain it shows is the map.
+    pub view: ViewPlacement,
 }
 
 /// A Table 5 entry: the smallest SS rate reaching a coverage in a case.
@@ -132,7 +134,8 @@ pub fn run(
     };
     let mut cases = Vec::new();
     for &pitch in pitches {
-        let camera = paper_camera(map, pyramid, pitch, size, lod)?;
+        let view = paper_view(map, pyramid, pitch, size, lod)?;
+        let camera = view.camera;
         progress(&format!("pitch {pitch}°: ground truth"));
         let truth = reference(&camera, pyramid, options.sky, options.projection)?;
         let mut tables = Tables::new(&camera);
@@ -185,6 +188,7 @@ pub fn run(
             V: per(base.total.v),
             modes: rows,
             coverage_by_rate,
+            view: view.placement,
         });
     }
     let table5 = TABLE5_COVERAGE

@@ -175,6 +175,27 @@ pub fn differences_section(d: &Differences) -> String {
             dist(d.target_m),
             and_list(&eyes)
         );
+        let notes: Vec<&str> = d
+            .views
+            .iter()
+            .filter_map(|v| v.placement_note.as_deref())
+            .collect();
+        if !notes.is_empty() {
+            s += &format!(
+                " On this map the paper's views would show mostly its mirrored copies, so they \
+                 are placed on the map: {}.",
+                notes.join("; ")
+            );
+        }
+        let shares: Vec<String> = d
+            .views
+            .iter()
+            .map(|v| format!("{:.0} % ({}°)", 100.0 * v.mirrored_fraction, v.pitch))
+            .collect();
+        s += &format!(
+            " Of the terrain each view shows, {} is mirrored copies of the map.",
+            and_list(&shares)
+        );
         let off: Vec<_> = d.views.iter().filter(|v| !v.first_hit_on_map).collect();
         if off.is_empty() {
             s += " Every view's first hit is on the map itself.\n";
@@ -347,7 +368,7 @@ pub fn markdown(doc: &Document<'_>) -> String {
     let walk = if t.lod {
         "the multiresolution pyramid (`--lod on`)"
     } else {
-        "pyramid level 0 alone (`--lod off`); the flight (Table 6, Fig. 14) walks the pyramid"
+        "pyramid level 0 alone (`--lod off`)"
     };
     let mut s = String::from("# footprint: exact antialiasing of textured terrain, reproduced\n\n");
     s += &format!(
