@@ -10,6 +10,7 @@ use footprint_core::terrain::pyramid::HeightFilter;
 use crate::camera::{place, Eye};
 use crate::map::{self, Map};
 use crate::pyramid::Pyramid;
+use footprint_scenes::survey::{survey, Kind};
 
 /// An image size `WxH`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -87,6 +88,18 @@ impl From<ProjectionArg> for Projection {
     }
 }
 
+/// The built-in terrains (`--terrain`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum TerrainArg {
+    /// Fractal mountains with lakes, 30 m voxels, up to about 3,600 m (the default).
+    #[default]
+    Mountains,
+    /// Smooth eroded hills like a 10 m survey DEM, about 300 m of relief.
+    Eroded,
+    /// The eroded hills with more than half the map filled flat (a plain or a lake).
+    Plains,
+}
+
 /// Where the terrain comes from.
 #[derive(Args, Clone, Debug)]
 pub struct MapArgs {
@@ -109,6 +122,10 @@ pub struct MapArgs {
     /// formats].
     #[arg(long = "height-scale", allow_hyphen_values = true, requires = "dem")]
     pub height_scale: Option<f64>,
+    /// Which built-in terrain: the mountains (30 m voxels, the paper's kind of scene) or a
+    /// survey-like map (10 m voxels: smooth eroded hills, or the same with large flat plains).
+    #[arg(long, value_enum, default_value_t = TerrainArg::Mountains, conflicts_with = "dem")]
+    pub terrain: TerrainArg,
     /// Seed of the built-in terrain.
     #[arg(long, default_value_t = 1, conflicts_with = "dem")]
     pub seed: u64,
@@ -175,7 +192,11 @@ impl MapArgs {
                     &format!("--terrain-size {n}"),
                     "the map and its pyramid",
                 )?;
-                Ok(map::procedural(self.seed, n))
+                Ok(match self.terrain {
+                    TerrainArg::Mountains => map::procedural(self.seed, n),
+                    TerrainArg::Eroded => survey(Kind::Eroded, self.seed, n),
+                    TerrainArg::Plains => survey(Kind::Plains, self.seed, n),
+                })
             }
         }
     }

@@ -26,6 +26,7 @@ pub mod plates;
 pub mod procedural;
 pub mod pyramid;
 pub mod render;
+pub mod survey;
 pub mod tint;
 pub mod view;
 

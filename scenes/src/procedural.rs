@@ -240,7 +240,7 @@ fn gradient_noise(out: &mut [i32], n: usize, k: u32, key: u64, rotation: (i64, i
 }
 
 /// One octave of noise for layer `channel`: period `1 << k`, rotated by the octave's own angle.
-fn octave(out: &mut [i32], n: usize, seed: u64, channel: u64, k: u32) {
+pub(crate) fn octave(out: &mut [i32], n: usize, seed: u64, channel: u64, k: u32) {
     let rotation = ROTATIONS[(k as usize + channel as usize) % ROTATIONS.len()];
     gradient_noise(out, n, k, key(seed, channel * 100 + u64::from(k)), rotation);
 }

@@ -38,7 +38,10 @@
 //! caller can warn. `k̂` is floored at 1/16 of its largest value in the image for the same reason.
 //!
 //! All of this is computed once per frame in `f64`; per pixel the resampling is integer
-//! (16 fractional bits), so the firmware and the host resample bit for bit alike.
+//! (16 fractional bits), so the firmware and the host resample bit for bit alike. A box's
+//! weights are its lines' overlaps and its two rows' shares, each to 1/256 of the box and each
+//! made to sum to exactly 256 (the last takes what the others leave), so an average is a
+//! shift, not a division; one multiply gives a pixel's position across the fan lines.
 
 use core::ops::Range;
 
@@ -56,8 +59,8 @@ const ONE: i64 = 1 << FRAC;
 const K_RATIO: f64 = 16.0;
 /// The most fan lines a frame may have: 16 times the widest image, at 64 columns per pixel.
 pub const MAX_FAN_LINES: u32 = 1 << 24;
-/// A bound on line coordinates (in the fixed point) that keeps every sum below 2^63.
-const SPAN: i64 = 1 << 44;
+/// A bound on a pixel's width in fan lines (fixed point), which keeps `x·g` within 64 bits.
+const MAX_WIDTH: i64 = 1 << 27;
 
 /// `⌈x⌉` as an `i64`, saturating.
 fn ceil_i64(x: f64) -> i64 {
@@ -92,6 +95,9 @@ pub struct Fan {
     a_lo: i64,
     /// Fan lines per unit of `a`.
     per_line: i64,
+    /// `a_lo` in fan lines: a pixel centred at unrolled `x` lies at `x·g − s_off` lines, with
+    /// `g` the fan lines per pixel at its row (see [`Fan::width_at`]).
+    s_off: i64,
     /// `1/k̂ = inv_a − s′·inv_b` for a row edge of slope `s′` (Eq. 2's row slope).
     inv_a: i64,
     inv_b: i64,
@@ -203,6 +209,7 @@ impl Fan {
             y_lo: fixed(y_lo),
             a_lo: fixed(a_lo),
             per_line: fixed(1.0 / da),
+            s_off: fixed(a_lo / da),
             inv_a: fixed(cp * cp),
             inv_b: fixed(sp * cp),
             inv_max: fixed(1.0 / k_floor),
@@ -247,8 +254,11 @@ impl Fan {
         self.vertical
     }
 
-    /// `1/k̂` at fan row edge `i` (clamped to the grid), from the row's slope.
-    fn inv_at(&self, slopes: &[Coord], i: i64) -> i64 {
+    /// The width of one pixel (of unrolled `x`) in fan lines at fan row edge `i` (clamped to
+    /// the grid), fixed point: `per_line/k̂`, with `1/k̂` from the row's slope. At most
+    /// `K_RATIO·64` lines (`1/k̂ ≤ K_RATIO/k̂_max` and `per_line ≤ 64·k̂_max`), below 2^27 in
+    /// the fixed point.
+    fn width_at(&self, slopes: &[Coord], i: i64) -> i64 {
         let last = slopes.len().saturating_sub(1);
         let at = usize::try_from(i.max(0)).map_or(last, |i| i.min(last));
         // The slope to 16 fractional bits, within ±2^15: beyond, 1/k̂ is clamped anyway
@@ -258,7 +268,8 @@ impl Fan {
             .get(at)
             .map_or(0, |s| s.to_bits() >> (32 - FRAC))
             .clamp(-(1 << 31) + 1, (1 << 31) - 1);
-        (self.inv_a - ((s * self.inv_b) >> FRAC)).clamp(0, self.inv_max)
+        let inv = (self.inv_a - ((s * self.inv_b) >> FRAC)).clamp(0, self.inv_max);
+        (inv.saturating_mul(self.per_line) >> FRAC).min(MAX_WIDTH)
     }
 
     /// The unrolled `(x, y)` of output pixel `(c, t)`'s centre (column, row from the top).
@@ -286,31 +297,39 @@ impl Fan {
     #[inline(always)]
     fn taps_at(&self, slopes: &[Coord], x: i64, y: i64, tap: impl FnMut(usize, usize, u32)) {
         let u = y - self.y_lo;
-        // 1/k̂ at u, linear between the row edges around it.
+        // The pixel's width in lines at u, linear between the row edges around it.
         let i = u >> FRAC;
-        let inv = lerp_inv(self.inv_at(slopes, i), self.inv_at(slopes, i + 1), u);
-        self.taps_with(x, u, inv, tap);
+        let g = lerp(self.width_at(slopes, i), self.width_at(slopes, i + 1), u);
+        self.taps_with(x, u, g, tap);
     }
 
-    /// [`Fan::taps_at`] with `u = y − y_lo` and `1/k̂` at `u` already known.
+    /// Where the pixel centred at unrolled `x` (fixed point), `g` fan lines wide, falls across
+    /// the fan lines: the fan-line coordinate `s` of its centre (fixed point, line `j` spans
+    /// `[j, j + 1)`), and half its box's width in lines.
+    ///
+    /// `|x| < 2^30` (the image is at most 16,384 pixels a side) and `0 ≤ g ≤ 2^27`
+    /// ([`Fan::width_at`]), so `x·g` fits in 64 bits, and nothing needs saturating.
     #[inline(always)]
-    fn taps_with(&self, x: i64, u: i64, inv: i64, mut tap: impl FnMut(usize, usize, u32)) {
-        // |x| < 2^31 (the image is at most 16,384 pixels a side) and 0 ≤ inv ≤ 2^20: the
-        // product fits in 64 bits.
-        let a = (x * inv) >> FRAC;
-        let s = a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC;
-        let half = (inv.saturating_mul(self.per_line) >> FRAC) / 2;
-        let (s, half) = (s.clamp(-SPAN, SPAN), half.min(SPAN));
+    fn across(&self, x: i64, g: i64) -> (i64, i64) {
+        (((x * g) >> FRAC) - self.s_off, g / 2)
+    }
+
+    /// [`Fan::taps_at`] with `u = y − y_lo` and the pixel's width `g` in lines there already
+    /// known.
+    #[inline(always)]
+    fn taps_with(&self, x: i64, u: i64, g: i64, mut tap: impl FnMut(usize, usize, u32)) {
+        let (s, half) = self.across(x, g);
         let (s_lo, s_hi) = (s - half, s + half);
         let b = u - ONE / 2;
         let (r0, fr) = (b >> FRAC, b & (ONE - 1));
         // The box's two rows with their 8-bit shares (0 for a row outside the grid; the upper
         // one has none when the box sits on a row, as without roll).
-        let row = |r: i64, share: i64| match usize::try_from(r) {
-            Ok(r) if r < self.rows() => (r, weight8(share)),
+        let row = |r: i64, share: u32| match usize::try_from(r) {
+            Ok(r) if r < self.rows() => (r, share),
             _ => (0, 0),
         };
-        let row_taps = [row(r0, ONE - fr), row(r0 + 1, fr)];
+        let upper = weight8(fr);
+        let row_taps = [row(r0, 256 - upper), row(r0 + 1, upper)];
         let per_box = box_scale(s_hi - s_lo);
         let first = (s_lo >> FRAC).max(0);
         let last = ((s_hi - 1) >> FRAC).min(i64::from(self.lines) - 1);
@@ -408,138 +427,158 @@ impl Fan {
                 });
             }
         }
-        if filter == Filter::Nearest {
-            self.nearest(slopes, grid, sky, image);
-            return Ok(());
-        }
-        if self.sr == 0 {
-            self.resample_rows(slopes, grid, sky, image);
-            return Ok(());
-        }
-        for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
-            let (mut x, mut y) = self.centre(0, t);
-            // 1/k̂ at the row edges around the pixel, kept while the pixels stay between them.
-            let (mut edge, mut lo, mut hi) = (i64::MIN, 0, 0);
-            for px in out_row.iter_mut() {
-                let mut acc = [0u32; 4];
-                let u = y - self.y_lo;
-                if u >> FRAC != edge {
-                    edge = u >> FRAC;
-                    (lo, hi) = (self.inv_at(slopes, edge), self.inv_at(slopes, edge + 1));
-                }
-                // Every cell a pixel taps is walked: `set_line_rows` walks at least the rows
-                // these same taps reach.
-                self.taps_with(x, u, lerp_inv(lo, hi, u), |line, row, weight| {
-                    if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
-                        accumulate(&mut acc, weight, *cell);
-                    }
-                });
-                *px = average(&acc, sky);
-                x += self.cr;
-                y -= self.sr;
-            }
+        match filter {
+            Filter::Box => self.each_pixel(slopes, image, |x, u, g| {
+                self.box_average(grid, x, u, g).unwrap_or(sky)
+            }),
+            Filter::Nearest => self.each_pixel(slopes, image, |x, u, g| {
+                self.nearest(grid, x, u, g).unwrap_or(sky)
+            }),
         }
         Ok(())
     }
-}
 
-impl Fan {
-    /// [`Fan::resample`] without roll: an output row lies on one fan row (its box's upper row
-    /// has weight 0), so `1/k̂`, the box's width and the fan row are the row's, and the box
-    /// moves along the fan row by a constant step per pixel. The same taps and weights as
-    /// [`Fan::taps`], computed once per row instead of per pixel.
-    fn resample_rows(&self, slopes: &[Coord], grid: &[Rgb], sky: Rgb, image: &mut [Rgb]) {
-        let (lines, rows) = (self.lines(), self.rows());
+    /// Sets every pixel of `image` (`W × H`, row-major from the top) to `pixel(x, u, g)`:
+    /// its centre's unrolled `x`, `u = y − y_lo` (fixed point) and its width `g` in fan lines
+    /// there. Along an output row the centre moves by a constant step; the widths at the two
+    /// row edges around it are kept while it stays between them (a whole row without roll,
+    /// about `1/sin ρ` pixels with it), and a step across one edge computes one new width.
+    #[inline(always)]
+    fn each_pixel(
+        &self,
+        slopes: &[Coord],
+        image: &mut [Rgb],
+        mut pixel: impl FnMut(i64, i64, i64) -> Rgb,
+    ) {
         let (w, _) = self.output_size();
-        for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
-            let (x0, y) = self.centre(0, t);
-            let u = y - self.y_lo;
-            let i = u >> FRAC;
-            let inv = lerp_inv(self.inv_at(slopes, i), self.inv_at(slopes, i + 1), u);
-            let half = ((inv.saturating_mul(self.per_line) >> FRAC) / 2).min(SPAN);
-            let b = u - ONE / 2;
-            let (r0, fr) = (b >> FRAC, b & (ONE - 1));
-            let base = usize::try_from(r0)
-                .ok()
-                .filter(|&r| r < rows && fr == 0)
-                .map(|r| (rows - 1 - r) * lines);
-            let Some(base) = base else {
-                // Not on a fan row (never without roll): the general path.
-                for (c, px) in out_row.iter_mut().enumerate() {
-                    let mut acc = [0u32; 4];
-                    let (x, y) = self.centre(c, t);
-                    self.taps_at(slopes, x, y, |line, row, weight| {
-                        if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
-                            accumulate(&mut acc, weight, *cell);
-                        }
-                    });
-                    *px = average(&acc, sky);
-                }
-                continue;
-            };
-            let cells = grid.get(base..base + lines).unwrap_or(&[]);
-            let last_line = i64::try_from(cells.len()).unwrap_or(0) - 1;
-            // The box is as wide in every pixel of the row.
-            let per_box = box_scale(2 * half);
-            let mut x = x0;
-            for px in out_row.iter_mut() {
-                let a = (x * inv) >> FRAC;
-                let s = (a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC)
-                    .clamp(-SPAN, SPAN);
-                let (s_lo, s_hi) = (s - half, s + half);
-                let mut acc = [0u32; 4];
-                let first = (s_lo >> FRAC).max(0);
-                let last = ((s_hi - 1) >> FRAC).min(last_line);
-                for j in first..=last {
-                    let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
-                    let cell = usize::try_from(j).ok().and_then(|j| cells.get(j));
-                    if let (true, Some(cell)) = (overlap > 0, cell) {
-                        // The tap's weight, as the general path's with a row weight of ONE.
-                        accumulate(&mut acc, weight8(ONE) * share8(overlap, per_box), *cell);
-                    }
-                }
-                *px = average(&acc, sky);
-                x += self.cr;
-            }
-        }
-    }
-}
-
-impl Fan {
-    /// [`Fan::resample`] with [`Filter::Nearest`]: the cell containing each pixel's centre,
-    /// which is the cell its box overlaps most (the box is centred there), so it is always a
-    /// walked cell.
-    fn nearest(&self, slopes: &[Coord], grid: &[Rgb], sky: Rgb, image: &mut [Rgb]) {
-        let (lines, rows) = (self.lines(), self.rows());
-        let (w, _) = self.output_size();
+        let (mut edge, mut lo, mut hi) = (i64::MIN, 0, 0);
         for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
             let (mut x, mut y) = self.centre(0, t);
-            let (mut edge, mut lo, mut hi) = (i64::MIN, 0, 0);
             for px in out_row.iter_mut() {
                 let u = y - self.y_lo;
-                if u >> FRAC != edge {
-                    edge = u >> FRAC;
-                    (lo, hi) = (self.inv_at(slopes, edge), self.inv_at(slopes, edge + 1));
+                let e = u >> FRAC;
+                if e != edge {
+                    // With roll the centre crosses one row edge at a time: one new width.
+                    (lo, hi) = if e == edge.wrapping_sub(1) {
+                        (self.width_at(slopes, e), lo)
+                    } else if e == edge.wrapping_add(1) {
+                        (hi, self.width_at(slopes, e + 1))
+                    } else {
+                        (self.width_at(slopes, e), self.width_at(slopes, e + 1))
+                    };
+                    edge = e;
                 }
-                let a = (x * lerp_inv(lo, hi, u)) >> FRAC;
-                let s = a.saturating_sub(self.a_lo).saturating_mul(self.per_line) >> FRAC;
-                let cell = match (usize::try_from(s >> FRAC), usize::try_from(edge)) {
-                    (Ok(line), Ok(row)) if line < lines && row < rows => {
-                        grid.get((rows - 1 - row) * lines + line)
-                    }
-                    _ => None,
-                };
-                *px = cell.copied().unwrap_or(sky);
+                *px = pixel(x, u, lerp(lo, hi, u));
                 x += self.cr;
                 y -= self.sr;
             }
         }
     }
+
+    /// [`Filter::Nearest`]: the cell containing the pixel's centre, which is the cell its box
+    /// overlaps most (the box is centred there), so it is always a walked cell; `None` off the
+    /// grid.
+    #[inline(always)]
+    fn nearest(&self, grid: &[Rgb], x: i64, u: i64, g: i64) -> Option<Rgb> {
+        let (s, _) = self.across(x, g);
+        let line = usize::try_from(s >> FRAC)
+            .ok()
+            .filter(|&j| j < self.lines())?;
+        let row = usize::try_from(u >> FRAC)
+            .ok()
+            .filter(|&r| r < self.rows())?;
+        grid.get((self.rows() - 1 - row) * self.lines() + line)
+            .copied()
+    }
+
+    /// [`Filter::Box`]: the overlap-weighted average of the cells under the pixel's box (the
+    /// taps of [`Fan::taps`]), rounded to nearest; `None` if it meets no cell.
+    ///
+    /// Where the box lies inside the grid (every pixel but a few at its border), its row shares
+    /// sum to exactly 256 and its line shares too (the last line takes what the others leave),
+    /// so the weights sum to exactly `2^16` and the average is a shift, not a division; each
+    /// line's two cells are summed with the line's share first and the rows' shares applied
+    /// once. A box at the border takes [`Fan::clipped_average`]'s general path.
+    #[inline(always)]
+    fn box_average(&self, grid: &[Rgb], x: i64, u: i64, g: i64) -> Option<Rgb> {
+        let (s, half) = self.across(x, g);
+        let (s_lo, s_hi) = (s - half, s + half);
+        let b = u - ONE / 2;
+        let (r0, upper) = (b >> FRAC, weight8(b & (ONE - 1)));
+        let (first_j, last_j) = (s_lo >> FRAC, (s_hi - 1) >> FRAC);
+        let (lines, rows) = (self.lines(), self.rows());
+        // The box's rows (from the bottom) and lines as indices, if it lies inside the grid.
+        let inside = (
+            usize::try_from(r0),
+            usize::try_from(first_j),
+            usize::try_from(last_j),
+        );
+        let (Ok(r0), Ok(first), Ok(last)) = inside else {
+            return self.clipped_average(grid, x, u, g);
+        };
+        let top = r0 + usize::from(upper > 0);
+        if top >= rows || last >= lines {
+            return self.clipped_average(grid, x, u, g);
+        }
+        // Row r (from the bottom) is the grid's row rows − 1 − r (from the top).
+        let lower_row = grid.get((rows - 1 - r0) * lines..)?.get(first..=last)?;
+        let per_box = box_scale(s_hi - s_lo);
+        // The lines' shares of the box, left to right; the last takes what the others leave.
+        let (mut left, mut j) = (256u32, first_j);
+        let mut share = || {
+            let share = if j == last_j {
+                left
+            } else {
+                let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
+                share8(overlap, per_box).min(left)
+            };
+            left -= share;
+            j += 1;
+            share
+        };
+        let mut low = [0u32; 3];
+        if upper == 0 {
+            // On a fan row (always without roll): one row of cells.
+            for cell in lower_row {
+                add(&mut low, share(), *cell);
+            }
+            return Some(Rgb::new(
+                round16(low[0] << 8),
+                round16(low[1] << 8),
+                round16(low[2] << 8),
+            ));
+        }
+        let upper_row = grid.get((rows - 1 - top) * lines..)?.get(first..=last)?;
+        let mut high = [0u32; 3];
+        for (lo, hi) in lower_row.iter().zip(upper_row) {
+            let share = share();
+            add(&mut low, share, *lo);
+            add(&mut high, share, *hi);
+        }
+        // Each sum is at most 255·256; times a row share (≤ 256) it stays below 2^24.
+        let lower = 256 - upper;
+        let ([r0, g0, b0], [r1, g1, b1]) = (low, high);
+        let ch = |l: u32, h: u32| round16(l * lower + h * upper);
+        Some(Rgb::new(ch(r0, r1), ch(g0, g1), ch(b0, b1)))
+    }
+
+    /// The box average of a pixel whose box reaches past the grid's border: the taps inside
+    /// the grid, weighted by their overlaps and divided by their total weight; `None` if none.
+    fn clipped_average(&self, grid: &[Rgb], x: i64, u: i64, g: i64) -> Option<Rgb> {
+        let (lines, rows) = (self.lines(), self.rows());
+        let mut acc = [0u32; 4];
+        self.taps_with(x, u, g, |line, row, weight| {
+            if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
+                accumulate(&mut acc, weight, *cell);
+            }
+        });
+        average(&acc)
+    }
 }
 
-/// `1/k̂` at `u`, linear between its values `lo` and `hi` at the row edges below and above.
+/// A value at `u`, linear between its values `lo` and `hi` at the row edges below and above.
 #[inline(always)]
-fn lerp_inv(lo: i64, hi: i64, u: i64) -> i64 {
+fn lerp(lo: i64, hi: i64, u: i64) -> i64 {
     lo + (((hi - lo) * (u & (ONE - 1))) >> FRAC)
 }
 
@@ -593,16 +632,35 @@ fn accumulate(acc: &mut [u32; 4], wt: u32, cell: Rgb) {
 }
 
 /// The weighted average of the sums `acc`, rounded to nearest (32-bit divisions, one
-/// instruction each on a Cortex-M4); `sky` for no weight. A single cell with all the weight
+/// instruction each on a Cortex-M4); `None` for no weight. A single cell with all the weight
 /// comes back exactly.
-#[inline(always)]
-fn average(acc: &[u32; 4], sky: Rgb) -> Rgb {
+fn average(acc: &[u32; 4]) -> Option<Rgb> {
     let total = acc[3];
     if total == 0 {
-        return sky;
+        return None;
     }
     let ch = |v: u32| u8::try_from((v + total / 2) / total).unwrap_or(u8::MAX);
-    Rgb::new(ch(acc[0]), ch(acc[1]), ch(acc[2]))
+    Some(Rgb::new(ch(acc[0]), ch(acc[1]), ch(acc[2])))
+}
+
+/// `v / 2^16` rounded to nearest, for a weighted sum `v` of 8-bit values whose weights sum to
+/// exactly `2^16`: at most 255.
+#[inline(always)]
+fn round16(v: u32) -> u8 {
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "v ≤ 255·2^16, so (v + 2^15) >> 16 ≤ 255"
+    )]
+    let c = ((v + (1 << 15)) >> 16) as u8;
+    c
+}
+
+/// Adds `cell` times `share` (at most 256) to the sums `sum` (red, green, blue).
+#[inline(always)]
+fn add(sum: &mut [u32; 3], share: u32, cell: Rgb) {
+    sum[0] += share * u32::from(cell.r);
+    sum[1] += share * u32::from(cell.g);
+    sum[2] += share * u32::from(cell.b);
 }
 
 impl Column {
@@ -673,6 +731,65 @@ mod tests {
                     });
                 }
             }
+        }
+    }
+
+    #[test]
+    fn the_box_average_is_its_taps_average_within_two_levels() {
+        // Both weigh each line by its overlap rounded to 1/256 of the box; the shift path gives
+        // the last line what the others leave, the division path renormalises. On neighbouring
+        // cells 255 levels apart, each rounding is worth up to one level.
+        for (pitch, roll) in [(20.0, 0.0), (40.0, 15.0), (60.0, 45.0), (-30.0, 120.0)] {
+            let cam = camera(pitch, roll, 10.0, 40, 32);
+            let fan = Fan::new(&cam, 1).unwrap();
+            let s = slopes(&cam, &fan);
+            let cols = vec![Column::default(); fan.lines()];
+            // A grid of distinct colours, so that every weight shows.
+            let grid: Vec<Rgb> = (0..fan.lines() * fan.rows())
+                .map(|i| {
+                    Rgb::new(
+                        (i * 37 % 256) as u8,
+                        (i * 101 % 256) as u8,
+                        (i % 7 * 40) as u8,
+                    )
+                })
+                .collect();
+            let sky = Rgb::new(1, 2, 3);
+            let mut image = vec![Rgb::default(); 40 * 32];
+            fan.resample(&s, &cols, &grid, sky, Filter::Box, &mut image)
+                .unwrap();
+            let mut exact_shift = 0;
+            for t in 0..32 {
+                for c in 0..40 {
+                    let mut acc = [0u32; 4];
+                    fan.taps(&s, c, t, |tap| {
+                        let cell = grid[(fan.rows() - 1 - tap.row) * fan.lines() + tap.line];
+                        accumulate(&mut acc, tap.weight, cell);
+                    });
+                    let want = average(&acc).unwrap_or(sky);
+                    let got = image[t * 40 + c];
+                    for (g, w) in [(got.r, want.r), (got.g, want.g), (got.b, want.b)] {
+                        assert!(
+                            g.abs_diff(w) <= 2,
+                            "pitch {pitch} roll {roll} pixel ({c}, {t}): {got:?} vs {want:?}"
+                        );
+                    }
+                    exact_shift += usize::from(got == want);
+                }
+            }
+            // Most pixels agree exactly: the two differ only in rounding.
+            assert!(
+                exact_shift * 2 > 40 * 32,
+                "pitch {pitch} roll {roll}: {exact_shift}"
+            );
+            // A grid of one colour comes back exactly: the weights sum to 2^16.
+            let flat = vec![Rgb::new(200, 17, 255); grid.len()];
+            fan.resample(&s, &cols, &flat, sky, Filter::Box, &mut image)
+                .unwrap();
+            assert!(
+                image.iter().all(|&p| p == Rgb::new(200, 17, 255)),
+                "{pitch} {roll}"
+            );
         }
     }
 
