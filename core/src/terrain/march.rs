@@ -5,8 +5,9 @@
 //!
 //! **Steps.** Positions `n` are half-voxels along the column's major axis. A level-L voxel
 //! spans `2^(L+1)` half-voxels and is visited at its centre. The walk starts at level 0 and
-//! climbs one level whenever the pixel footprint across the column has grown past `√2·2^L`
-//! voxels (so each step samples the level whose voxel width is nearest to the footprint) and
+//! climbs one level whenever the pixel footprint across the column has grown past
+//! [`LOD_SWITCH`](crate::terrain::camera::LOD_SWITCH)`·2^L`
+//! voxels (so each step samples a level whose voxel is at most 1/2.4 of the footprint) and
 //! the next level-L voxel begins a level-(L+1) voxel. The step along the ray therefore grows
 //! with the footprint, and the number of steps per column grows with the log of the distance,
 //! not with the map (Sect. 3). Without LOD every step is one level-0 voxel.
@@ -62,7 +63,7 @@ pub struct March<'a, 't> {
     /// The step at this level, `2^(l+1)` half-voxels.
     dn: i64,
     n_eye: i64,
-    /// The footprint reaches √2·2^l voxels at `n_eye + lod_base·2^l`.
+    /// The footprint reaches `LOD_SWITCH·2^l` voxels at `n_eye + lod_base·2^l`.
     lod_base: i64,
     /// The walk may climb a level at the first odd cell at or after this `n` (`i64::MAX` when
     /// it cannot climb).

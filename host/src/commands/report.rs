@@ -47,7 +47,7 @@ fn value_name(v: &impl ValueEnum) -> String {
 
 /// The words of the command that regenerates the report of `args`: `footprint report`, every
 /// option that changes what the report says (the map's, as given: --dem, --format, --color,
-/// --spacing, --height-scale, or the built-in terrain's --seed and --terrain-size; then
+/// --spacing, --height-scale, or the built-in terrain's --terrain, --seed and --terrain-size; then
 /// --height-filter, --lod and --frames, always, so that a change of default does not change
 /// the report), and --out. --threads and --max-memory are left out: images are the same for
 /// any number of threads, and the budget only refuses runs.
@@ -76,6 +76,7 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
             }
         }
         None => {
+            push("--terrain", value_name(&m.terrain));
             push("--seed", m.seed.to_string());
             push("--terrain-size", m.terrain_size.to_string());
         }
@@ -311,7 +312,7 @@ mod tests {
         for (given, want) in [
             (
                 &["footprint", "report", "--out", "/r"][..],
-                "footprint report --seed 1 --terrain-size 1024 --height-filter silhouette \
+                "footprint report --terrain mountains --seed 1 --terrain-size 1024 --height-filter silhouette \
                  --lod on --frames 400 --out /r",
             ),
             (
@@ -333,7 +334,7 @@ mod tests {
                     "--out",
                     "r",
                 ][..],
-                "cd '/w d' && footprint report --seed 7 --terrain-size 128 --height-filter mean \
+                "cd '/w d' && footprint report --terrain mountains --seed 7 --terrain-size 128 --height-filter mean \
                  --lod off --frames 9 --out r",
             ),
             (
