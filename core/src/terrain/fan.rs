@@ -431,9 +431,18 @@ impl Fan {
             Filter::Box => self.each_pixel(slopes, image, |x, u, g| {
                 self.box_average(grid, x, u, g).unwrap_or(sky)
             }),
-            Filter::Nearest => self.each_pixel(slopes, image, |x, u, g| {
-                self.nearest(grid, x, u, g).unwrap_or(sky)
-            }),
+            Filter::Nearest => {
+                // The fan row under the centre, kept while the centre stays in it (a whole
+                // output row without roll).
+                let (mut at, mut cells): (i64, &[Rgb]) = (i64::MIN, &[]);
+                self.each_pixel(slopes, image, |x, u, g| {
+                    if u >> FRAC != at {
+                        at = u >> FRAC;
+                        cells = self.fan_row(grid, at);
+                    }
+                    self.nearest(cells, x, g).unwrap_or(sky)
+                });
+            }
         }
         Ok(())
     }
@@ -475,19 +484,26 @@ impl Fan {
         }
     }
 
-    /// [`Filter::Nearest`]: the cell containing the pixel's centre, which is the cell its box
-    /// overlaps most (the box is centred there), so it is always a walked cell; `None` off the
-    /// grid.
+    /// Fan row `r` (counted from the bottom) of `grid` (row-major from the top); empty outside
+    /// the grid.
+    fn fan_row<'g>(&self, grid: &'g [Rgb], r: i64) -> &'g [Rgb] {
+        let (lines, rows) = (self.lines(), self.rows());
+        usize::try_from(r)
+            .ok()
+            .filter(|&r| r < rows)
+            .and_then(|r| grid.get((rows - 1 - r) * lines..(rows - r) * lines))
+            .unwrap_or(&[])
+    }
+
+    /// [`Filter::Nearest`]: in `cells`, the fan row under the pixel's centre, the cell
+    /// containing the centre, which is the cell its box overlaps most (the box is centred
+    /// there), so it is always a walked cell; `None` off the grid.
     #[inline(always)]
-    fn nearest(&self, grid: &[Rgb], x: i64, u: i64, g: i64) -> Option<Rgb> {
+    fn nearest(&self, cells: &[Rgb], x: i64, g: i64) -> Option<Rgb> {
         let (s, _) = self.across(x, g);
-        let line = usize::try_from(s >> FRAC)
+        usize::try_from(s >> FRAC)
             .ok()
-            .filter(|&j| j < self.lines())?;
-        let row = usize::try_from(u >> FRAC)
-            .ok()
-            .filter(|&r| r < self.rows())?;
-        grid.get((self.rows() - 1 - row) * self.lines() + line)
+            .and_then(|j| cells.get(j))
             .copied()
     }
 
