@@ -18,4 +18,5 @@ pub use footprint_scenes::pyramid;
 pub mod render;
 pub mod report;
 pub use footprint_scenes::plates as scene;
+pub use footprint_scenes::survey;
 pub mod view;
