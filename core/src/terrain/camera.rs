@@ -43,11 +43,12 @@ use crate::trig::{sin_cos_deg, sqrt};
 /// a level-`L` voxel is then 0.7–1.4 footprints wide, and because the coarse voxels are fixed
 /// 2^L-blocks that do not line up with the pixel, area sampling averages over up to twice the
 /// pixel's footprint. Issue 12's study (README, "The pyramid's error") measured that blur as
-/// most of the LOD error on smooth survey-like maps: AS at pitch 5° had 2.2–2.4× the RMSE of
-/// the same mode on level 0 at `√2`, 1.2–1.3× at 2, 1.1–1.2× at 2.4, 1.0× at 2.8 (where the
-/// paper's views never climb). 2.4 keeps area sampling within 1.25× of level 0 on every test
-/// terrain, for 15–35 % more hits than `√2` at pitch 5° (and still flat in map size: the
-/// switch distance does not depend on the map).
+/// most of the LOD error on smooth survey-like maps: seen from the paper's (mirrored) views, AS
+/// at pitch 5° had 2.2–2.4× the RMSE of the same mode on level 0 at `√2`, 1.2–1.3× at 2,
+/// 1.1–1.2× at 2.4 and 1.0× at 2.8 (where those views never climb). At 2.4 a level-`L` voxel is
+/// 0.42–0.83 footprints wide, and area sampling stays within 1.1× of level 0 on every test
+/// terrain, for up to 30 % more AS hits at pitch 5° and more walk steps in every mode (still
+/// flat in map size: the switch distance does not depend on the map).
 pub const LOD_SWITCH: f64 = 2.4;
 
 /// The largest image side in pixels.

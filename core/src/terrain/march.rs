@@ -7,7 +7,7 @@
 //! spans `2^(L+1)` half-voxels and is visited at its centre. The walk starts at level 0 and
 //! climbs one level whenever the pixel footprint across the column has grown past
 //! [`LOD_SWITCH`](crate::terrain::camera::LOD_SWITCH)`·2^L`
-//! voxels (so each step samples a level whose voxel is at most 1/2.4 of the footprint) and
+//! voxels (so each step samples a level whose voxel is 0.42–0.83 of the footprint wide) and
 //! the next level-L voxel begins a level-(L+1) voxel. The step along the ray therefore grows
 //! with the footprint, and the number of steps per column grows with the log of the distance,
 //! not with the map (Sect. 3). Without LOD every step is one level-0 voxel.
