@@ -14,7 +14,11 @@ use std::process::Command;
 
 fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+    // Read when the script runs, not baked in when it was compiled: a target folder shared
+    // with another checkout reuses this binary (same source, same hash), and a compiled-in path
+    // would build that checkout's page, or none once it is gone.
+    let manifest = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets it"));
+    let root = manifest
         .parent()
         .expect("host/ is inside the workspace")
         .to_owned();

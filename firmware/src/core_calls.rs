@@ -7,7 +7,7 @@
 use footprint_core::num::Coord;
 use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
-use footprint_core::terrain::camera::{Camera, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, Column, Frame, Options, Switch};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts};
 use footprint_core::terrain::fan::Filter;
@@ -52,8 +52,13 @@ pub fn resample(frame: &Frame<'_>, grid: &[Rgb], image: &mut [Rgb]) -> Result<()
 
 /// `visibility::count_visible`: the exact visible-voxel count `V` of every column.
 #[inline(never)]
-pub fn count_visible(frame: &Frame<'_>, terrain: &Terrain<'_>, counts: &mut Counts<'_>) {
-    visibility::count_visible(frame, terrain, counts);
+pub fn count_visible(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    switch: Switch,
+    counts: &mut Counts<'_>,
+) {
+    visibility::count_visible(frame, terrain, switch, counts);
 }
 
 /// The terrain over `level0` and the levels above it, which the core's pyramid builder

@@ -82,7 +82,7 @@ fn run_mode<S: Sampler + Clone>(
 
     let mut counts = Counts::new(&mut []);
     core_calls::render(frame, terrain, sampler, &mut counts, image)?;
-    core_calls::count_visible(frame, terrain, &mut counts);
+    core_calls::count_visible(frame, terrain, S::SWITCH, &mut counts);
     let counted_hash = image_hash(image);
     let t: Tally = counts.total;
     hprintln!(

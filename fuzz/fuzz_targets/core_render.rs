@@ -6,12 +6,12 @@
 
 use arbitrary::Arbitrary;
 use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Switch};
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::render;
 use footprint_core::terrain::cost::{Counts, Tally};
 use footprint_core::terrain::pyramid::{self, HeightFilter};
-use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale};
 use footprint_core::Rgb;
@@ -138,7 +138,18 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         _ => classic::render(&frame, &terrain, &mut counts, &mut image),
     };
     assert!(done.is_ok(), "buffers were sized from the camera");
-    count_visible(&frame, &terrain, &mut counts);
+    // The sequence the rendered mode walked (classic walks level 0).
+    let switch = match input.mode % 8 {
+        0 => Point::SWITCH,
+        1 => Linear::SWITCH,
+        2 => Super::<2>::SWITCH,
+        3 => Super::<16>::SWITCH,
+        4 => Super::<256>::SWITCH,
+        5 => Area::SWITCH,
+        6 => ParallelArea::SWITCH,
+        _ => Switch::Nearest,
+    };
+    count_visible(&frame, &terrain, switch, &mut counts);
     if input.mode % 8 == 5 {
         assert_eq!(
             counts.total.m, counts.total.v,

@@ -8,13 +8,13 @@ use std::str::FromStr;
 
 use footprint_core::color::Color16;
 use footprint_core::num::Weight;
-use footprint_core::terrain::camera::Frame;
+use footprint_core::terrain::camera::{Frame, Switch};
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, Tally};
 use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Super};
+use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::visibility::visit_visible;
 use footprint_core::terrain::Terrain;
 use footprint_core::{Error, Rgb};
@@ -206,6 +206,18 @@ macro_rules! with_sampler {
     };
 }
 
+impl Mode {
+    /// Where the walk climbs pyramid levels for this mode: its sampler's [`Sampler::SWITCH`]
+    /// (the paper's nearest level for PS, LI, SS2 and SS4, later for SS8 and up and AS).
+    /// `classic` walks level 0 and takes the paper's rule for its visibility counts.
+    pub fn switch(self) -> Switch {
+        fn of<S: Sampler>(_: &S) -> Switch {
+            S::SWITCH
+        }
+        with_sampler!(self, s => of(&s), classic => Switch::Nearest)
+    }
+}
+
 /// A rendered frame.
 pub struct Rendered {
     /// The image, row-major from the top.
@@ -316,7 +328,9 @@ pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usi
     };
     walk_mode(frame, terrain, mode, x, &mut counts, &mut pixels);
     let mut visible = Vec::new();
-    visit_visible(frame, terrain, x, |march| visible.push(march.step_index()));
+    visit_visible(frame, terrain, x, mode.switch(), |march| {
+        visible.push(march.step_index());
+    });
     let mut tally = counts.counts.total;
     tally.v = visible.len() as u64;
     let (hidden, missed) = hidden_and_missed(&counts.sampled, &visible);

@@ -27,7 +27,7 @@ fn draw<S: Sampler + Clone>(terrain: &Terrain<'_>, camera: &Camera, s: &S) -> (V
     let mut counts = Counts::new(&mut tallies);
     let mut image = vec![Rgb::default(); w * h];
     render(&frame, terrain, s, &mut counts, &mut image).expect("sized");
-    count_visible(&frame, terrain, &mut counts);
+    count_visible(&frame, terrain, S::SWITCH, &mut counts);
     (image, counts.total)
 }
 

@@ -19,7 +19,7 @@ mod common;
 use common::SKY;
 use footprint_core::color::Color16;
 use footprint_core::num::{Coord, Weight};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Switch};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::terrain::march::Voxel;
@@ -253,7 +253,7 @@ fn tallies<S: Sampler + Clone>(
     let mut cols = vec![Tally::default(); frame.width()];
     let mut counts = Counts::new(&mut cols);
     let image = columns(frame, terrain, sampler, &mut counts);
-    count_visible(frame, terrain, &mut counts);
+    count_visible(frame, terrain, S::SWITCH, &mut counts);
     (counts.total, counts.columns().to_vec(), image)
 }
 
@@ -464,15 +464,15 @@ proptest! {
     #[test]
     fn skipping_below_the_horizon_keeps_every_visible_voxel(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
-            for col in 0..frame.width() {
+            for (col, switch) in (0..frame.width()).flat_map(|c| Switch::ALL.map(|s| (c, s))) {
                 let (mut all, mut skipped) = (Vec::new(), Vec::new());
-                visit(frame, terrain, col, |m, seen| {
+                visit(frame, terrain, col, switch, |m, seen| {
                     if seen {
                         all.push(m.step_index());
                     }
                 });
-                visit_visible(frame, terrain, col, |m| skipped.push(m.step_index()));
-                prop_assert_eq!(&all, &skipped, "column {}", col);
+                visit_visible(frame, terrain, col, switch, |m| skipped.push(m.step_index()));
+                prop_assert_eq!(&all, &skipped, "column {} {:?}", col, switch);
             }
             Ok(())
         })

@@ -37,7 +37,8 @@ use crate::terrain::fan::{Fan, Filter};
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
 
-/// The footprint, in level-`L` voxels, past which the walk climbs to level `L+1`.
+/// Where the walk climbs from pyramid level `L` to `L+1`: the footprint, in level-`L` voxels,
+/// past which it climbs (Sect. 3). Each sampling mode names its own ([`Sampler::SWITCH`]).
 ///
 /// The paper's rule (Sect. 3) takes the level nearest the footprint in log2, a switch at `√2`:
 /// a level-`L` voxel is then 0.7–1.4 footprints wide, and because the coarse voxels are fixed
@@ -47,9 +48,35 @@ use crate::trig::{sin_cos_deg, sqrt};
 /// at pitch 5° had 2.2–2.4× the RMSE of the same mode on level 0 at `√2`, 1.2–1.3× at 2,
 /// 1.1–1.2× at 2.4 and 1.0× at 2.8 (where those views never climb). At 2.4 a level-`L` voxel is
 /// 0.42–0.83 footprints wide, and area sampling stays within 1.1× of level 0 on every test
-/// terrain, for up to 30 % more AS hits at pitch 5° and more walk steps in every mode (still
-/// flat in map size: the switch distance does not depend on the map).
-pub const LOD_SWITCH: f64 = 2.4;
+/// terrain, for up to 30 % more AS hits at pitch 5°. The point modes gain nothing from the
+/// later climb (one sample per pixel aliases either way; PS's RMSE on the mountains rose from
+/// 14.3 to 16.0) and pay 16 % more instructions for it, so they keep the paper's rule. Both
+/// are flat in map size: the switch distance does not depend on the map.
+///
+/// [`Sampler::SWITCH`]: crate::terrain::sampler::Sampler::SWITCH
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Switch {
+    /// The paper's rule: the level nearest the footprint in log2, climbing past `√2·2^L`
+    /// voxels. Point sampling, linear interpolation and `SS_N` with `N < 8`.
+    #[default]
+    Nearest,
+    /// Past `2.4·2^L` voxels, so that a voxel is never wider than the footprint: the modes
+    /// that integrate the footprint (`SS_N` with `N ≥ 8`, AS).
+    Late,
+}
+
+impl Switch {
+    /// Both switches, in the order of [`Column`]'s table.
+    pub const ALL: [Switch; 2] = [Switch::Nearest, Switch::Late];
+
+    /// The footprint, in level-`L` voxels, past which the walk climbs to `L+1`.
+    pub const fn voxels(self) -> f64 {
+        match self {
+            Switch::Nearest => core::f64::consts::SQRT_2,
+            Switch::Late => 2.4,
+        }
+    }
+}
 
 /// The largest image side in pixels.
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
@@ -248,9 +275,10 @@ pub struct Column {
     pub(crate) n_start: i64,
     /// The last `n` within the far distance.
     pub(crate) n_far: i64,
-    /// The distance (half-voxels) where the footprint is √2 voxels wide: level L+1 begins at
-    /// `lod_base·2^L` ahead of the eye.
-    pub(crate) lod_base: i64,
+    /// Per [`Switch`] (in the order of [`Switch::ALL`]), the distance in half-voxels where the
+    /// footprint is `switch.voxels()` voxels wide: level L+1 begins `lod_base·2^L` ahead of
+    /// the eye.
+    pub(crate) lod_base: [i64; 2],
     /// Voxels of horizontal distance per half-voxel step, `sec(φ)/2`, for reports.
     pub(crate) run: f64,
     /// The rows walked, `first_row..end_row` from the bottom ([`Column::rows`]).
@@ -259,6 +287,16 @@ pub struct Column {
 }
 
 impl Column {
+    /// Where the walk climbs at `switch`: level L+1 begins `lod_base·2^L` half-voxels ahead of
+    /// the eye.
+    pub(crate) fn lod_base(&self, switch: Switch) -> i64 {
+        let [nearest, late] = self.lod_base;
+        match switch {
+            Switch::Nearest => nearest,
+            Switch::Late => late,
+        }
+    }
+
     /// The horizontal distance, in voxels, from the eye to the voxel centred at `n`.
     pub fn distance(&self, n: i64) -> f64 {
         (n as f64 - self.n_eye.to_num::<f64>()) * self.run
@@ -447,14 +485,15 @@ impl<'t> Frame<'t> {
             let n_start = 2 * first + 1;
             let n_far = floor_i64(n_eye.to_num::<f64>() + far / run);
             // The footprint across the column at horizontal distance t is t·δ voxels, with δ
-            // the column's angular width; level L+1 begins where it reaches LOD_SWITCH·2^L
-            // (Sect. 3 switches at the nearest level in log2, √2·2^L; see LOD_SWITCH).
+            // the column's angular width; level L+1 begins where it reaches the switch's
+            // `voxels()·2^L` (see Switch).
             let delta = line_pix * spacing / (1.0 + xc * xc);
             #[allow(
                 clippy::cast_possible_truncation,
                 reason = "clamped to [2, 1e12] here, so `as` drops only the fraction"
             )]
-            let lod_base = (2.0 * LOD_SWITCH / (delta * sec)).clamp(2.0, 1e12) as i64;
+            let lod_base =
+                Switch::ALL.map(|s| (2.0 * s.voxels() / (delta * sec)).clamp(2.0, 1e12) as i64);
             *col = Column {
                 axis,
                 sign,

@@ -233,7 +233,7 @@ pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     let max_h = terrain.max_height();
     cost.begin_column(col);
 
-    let mut march = March::new(frame, terrain, column);
+    let mut march = March::new(frame, terrain, column, S::SWITCH);
     cost.new_ray();
     let mut px = Pixels {
         frame,

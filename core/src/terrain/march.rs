@@ -6,8 +6,8 @@
 //! **Steps.** Positions `n` are half-voxels along the column's major axis. A level-L voxel
 //! spans `2^(L+1)` half-voxels and is visited at its centre. The walk starts at level 0 and
 //! climbs one level whenever the pixel footprint across the column has grown past
-//! [`LOD_SWITCH`](crate::terrain::camera::LOD_SWITCH)`·2^L`
-//! voxels (so each step samples a level whose voxel is 0.42–0.83 of the footprint wide) and
+//! `s·2^L` voxels, `s` the sampling mode's [`Switch`] (√2, the paper's nearest level, or 2.4 for
+//! the modes that integrate the footprint, whose voxels are then 0.42–0.83 footprints wide), and
 //! the next level-L voxel begins a level-(L+1) voxel. The step along the ray therefore grows
 //! with the footprint, and the number of steps per column grows with the log of the distance,
 //! not with the map (Sect. 3). Without LOD every step is one level-0 voxel.
@@ -38,7 +38,7 @@
 
 use crate::color::{to_color16, Color16, Rgb};
 use crate::num::{height, Height};
-use crate::terrain::camera::{Column, Frame};
+use crate::terrain::camera::{Column, Frame, Switch};
 use crate::terrain::map::Axis;
 use crate::terrain::map::{fold, period, Level, Terrain};
 use crate::terrain::sampler::Ray;
@@ -63,7 +63,7 @@ pub struct March<'a, 't> {
     /// The step at this level, `2^(l+1)` half-voxels.
     dn: i64,
     n_eye: i64,
-    /// The footprint reaches `LOD_SWITCH·2^l` voxels at `n_eye + lod_base·2^l`.
+    /// The footprint reaches `switch.voxels()·2^l` voxels at `n_eye + lod_base·2^l`.
     lod_base: i64,
     /// The walk may climb a level at the first odd cell at or after this `n` (`i64::MAX` when
     /// it cannot climb).
@@ -107,8 +107,14 @@ pub struct March<'a, 't> {
 }
 
 impl<'a, 't> March<'a, 't> {
-    /// The cursor on the first voxel of `column` (the first centre ahead of the eye).
-    pub fn new(frame: &Frame<'_>, terrain: &'t Terrain<'a>, column: &Column) -> Self {
+    /// The cursor on the first voxel of `column` (the first centre ahead of the eye), climbing
+    /// levels at `switch`.
+    pub fn new(
+        frame: &Frame<'_>,
+        terrain: &'t Terrain<'a>,
+        column: &Column,
+        switch: Switch,
+    ) -> Self {
         let level = terrain.level(0);
         let mut m = Self {
             terrain,
@@ -124,7 +130,7 @@ impl<'a, 't> March<'a, 't> {
             n: column.n_start,
             dn: 2,
             n_eye: column.n_eye.to_num::<i64>(),
-            lod_base: column.lod_base,
+            lod_base: column.lod_base(switch),
             climb_at: i64::MAX,
             v: column
                 .v_base

@@ -12,6 +12,7 @@
 use crate::color::Rgb;
 use crate::color::{to_color16, to_rgb, Color16};
 use crate::num::{Eye, Height, Line, Slope, Weight};
+use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::march::Voxel;
 
@@ -52,6 +53,9 @@ pub enum Hit {
 
 /// The per-hit code of a sampling mode.
 pub trait Sampler {
+    /// Where the walk climbs pyramid levels for this mode (Sect. 3): the paper's nearest level
+    /// unless the mode integrates the footprint ([`Switch`]).
+    const SWITCH: Switch = Switch::Nearest;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
@@ -172,6 +176,14 @@ impl<const N: u32> Default for Super<N> {
 }
 
 impl<const N: u32> Sampler for Super<N> {
+    /// From `N = 8` the sub-rays resolve the footprint finer than a √2-wide voxel, and the
+    /// later climb lowers their error (README, "The pyramid's error"); below, one or two more
+    /// samples gain nothing from it.
+    const SWITCH: Switch = if N >= 8 {
+        Switch::Late
+    } else {
+        Switch::Nearest
+    };
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         self.sum = [0; 3];
@@ -283,6 +295,7 @@ impl Area {
 }
 
 impl Sampler for Area {
+    const SWITCH: Switch = Switch::Late;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         *self = Self::new();
@@ -413,6 +426,7 @@ impl ParallelArea {
 }
 
 impl Sampler for ParallelArea {
+    const SWITCH: Switch = Switch::Late;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         *self = Self::new();

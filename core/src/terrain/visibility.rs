@@ -1,7 +1,7 @@
 //! The exact count `V` of visible voxels in a column's footprint (Sect. 7, Table 1).
 //!
 //! This pass never runs a sampler. It steps through the same multiresolution voxel sequence as
-//! the walk ([`March`]) and keeps the *horizon*: at first the column's lowest ray `R_0`, and
+//! the walk ([`March`], climbing at the mode's [`Switch`]) and keeps the *horizon*: at first the column's lowest ray `R_0`, and
 //! after a visible voxel the ray from the eye through that voxel's top. A voxel is visible when
 //! some part of it is seen between the lowest ray `R_0` and the highest ray `R_H`: its top is
 //! strictly above the horizon and the horizon is still strictly below `R_H`. (For a fan line of
@@ -10,7 +10,7 @@
 //! coverage `M/V` measures the sampler against the geometry, not against itself.
 
 use crate::num::{Eye, Height, Line};
-use crate::terrain::camera::Frame;
+use crate::terrain::camera::{Frame, Switch};
 use crate::terrain::cost::Counts;
 use crate::terrain::march::March;
 use crate::terrain::Terrain;
@@ -24,22 +24,25 @@ enum Horizon {
     Top(i64, Height),
 }
 
-/// The number of voxels of column `col` that are visible in the image.
-pub fn visible_voxels(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> u64 {
+/// The number of voxels of column `col`'s sequence (climbing at `switch`) that are visible in
+/// the image.
+pub fn visible_voxels(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize, switch: Switch) -> u64 {
     let mut count = 0;
-    visit_visible(frame, terrain, col, |_| count += 1);
+    visit_visible(frame, terrain, col, switch, |_| count += 1);
     count
 }
 
-/// Calls `f(voxel, visible)` for every voxel of column `col`'s sequence, in order, until
-/// nothing further can be visible (the far distance, or the horizon reaching the highest ray).
+/// Calls `f(voxel, visible)` for every voxel of column `col`'s sequence (climbing at
+/// `switch`), in order, until nothing further can be visible (the far distance, or the horizon
+/// reaching the highest ray).
 pub fn visit(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
+    switch: Switch,
     f: impl FnMut(&March<'_, '_>, bool),
 ) {
-    pass(frame, terrain, col, false, f);
+    pass(frame, terrain, col, switch, false, f);
 }
 
 /// Calls `f(voxel)` for every visible voxel of column `col`, in order. Blocks of the
@@ -51,9 +54,10 @@ pub fn visit_visible(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
+    switch: Switch,
     mut f: impl FnMut(&March<'_, '_>),
 ) {
-    pass(frame, terrain, col, true, |march, visible| {
+    pass(frame, terrain, col, switch, true, |march, visible| {
         if visible {
             f(march);
         }
@@ -92,6 +96,7 @@ fn pass(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
+    switch: Switch,
     skip: bool,
     mut f: impl FnMut(&March<'_, '_>, bool),
 ) {
@@ -111,7 +116,7 @@ fn pass(
     let lowest = frame.ray(column, rows.start);
     let highest = frame.ray(column, rows.end);
     let max_h = terrain.max_height();
-    let mut march = March::new(frame, terrain, column);
+    let mut march = March::new(frame, terrain, column, switch);
     // Only the visible voxels are wanted: the pass may stop early and skip blocks.
     let only_visible = skip;
     let skip = skip && march.can_skip();
@@ -162,10 +167,16 @@ fn pass(
     }
 }
 
-/// Fills `V` for every column of `counts`.
-pub fn count_visible(frame: &Frame<'_>, terrain: &Terrain<'_>, counts: &mut Counts<'_>) {
+/// Fills `V` for every column of `counts`, over the sequence that climbs at `switch` (the
+/// counted mode's [`Sampler::SWITCH`](crate::terrain::sampler::Sampler::SWITCH)).
+pub fn count_visible(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    switch: Switch,
+    counts: &mut Counts<'_>,
+) {
     for col in 0..frame.width() {
-        let v = visible_voxels(frame, terrain, col);
+        let v = visible_voxels(frame, terrain, col, switch);
         counts.set_visible(col, v);
     }
 }

@@ -322,7 +322,7 @@ pub fn footprint(
     let mut counts = FootprintCounts::default();
     for col in 0..frame.width() {
         let mut seen = false;
-        visit(&frame, &terrain, col, |m, visible| {
+        visit(&frame, &terrain, col, mode.switch(), |m, visible| {
             seen |= visible;
             if !seen {
                 return;
