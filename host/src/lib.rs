@@ -11,6 +11,7 @@ pub mod camera;
 pub mod cli;
 pub mod commands;
 pub mod experiment;
+pub mod lighting;
 pub use footprint_maps as map;
 pub use footprint_maps::memory;
 pub mod output;

@@ -8,13 +8,14 @@ use std::str::FromStr;
 
 use footprint_core::color::Color16;
 use footprint_core::num::Weight;
-use footprint_core::terrain::camera::{Frame, Switch};
+use footprint_core::terrain::camera::{Camera, Frame, Switch};
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::{render, walk};
 use footprint_core::terrain::cost::{Cost, Counts, Tally};
 use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::shade::{Shader, Sun};
 use footprint_core::terrain::visibility::visit_visible;
 use footprint_core::terrain::Terrain;
 use footprint_core::{Error, Rgb};
@@ -233,6 +234,35 @@ impl fmt::Debug for Rendered {
             .field("size", &self.size)
             .finish_non_exhaustive()
     }
+}
+
+/// Renders one frame lit by `sun` (issue 16): the walk's samples shaded by a [`Shader`] into
+/// their own grid (sky where no terrain was sampled), resampled like the colour image. The
+/// eye and the pixel's angle come from `camera`.
+pub fn render_lit<C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    camera: &Camera,
+    mode: Mode,
+    sun: &Sun<'_>,
+    cost: &mut C,
+) -> Result<Rendered, Error> {
+    let (w, h) = (frame.width(), frame.height());
+    let mut grid = vec![Rgb::default(); w * h];
+    let mut lit = vec![frame.sky(); w * h];
+    let p = camera.params();
+    let mut shader = Shader::new(
+        sun,
+        terrain,
+        [p.x_m, p.y_m, p.eye_m],
+        camera.pixel_angle(),
+        (w, h),
+        &mut lit,
+        cost,
+    )?;
+    with_sampler!(mode, s => render(frame, terrain, &s, &mut shader, &mut grid),
+        classic => classic::render(frame, terrain, &mut shader, &mut grid))?;
+    finish(frame, lit, mode)
 }
 
 /// Renders one frame with cost `cost` into a new image: the walk's grid, resampled when the

@@ -67,6 +67,86 @@ pub trait Cost {
     /// A pixel through which terrain is visible (`P`).
     #[inline(always)]
     fn terrain_pixel(&mut self) {}
+    /// Shading: `count` samples lit, each with a normal from the level's heights, a view
+    /// direction and the diffuse term ([`crate::terrain::shade`]).
+    #[inline(always)]
+    fn normals(&mut self, _count: u32) {}
+    /// Shading: `count` Phong highlight evaluations (`K_spec·cos^n α`).
+    #[inline(always)]
+    fn shading(&mut self, _count: u32) {}
+}
+
+/// A borrowed cost counts into what it borrows (so that a wrapper such as
+/// [`crate::terrain::shade::Shader`] can forward to a caller's counters).
+impl<C: Cost + ?Sized> Cost for &mut C {
+    #[inline(always)]
+    fn begin_column(&mut self, column: usize) {
+        (**self).begin_column(column);
+    }
+    #[inline(always)]
+    fn end_column(&mut self) {
+        (**self).end_column();
+    }
+    #[inline(always)]
+    fn step(&mut self, in_footprint: bool) {
+        (**self).step(in_footprint);
+    }
+    #[inline(always)]
+    fn steps(&mut self, count: u32, in_footprint: bool) {
+        (**self).steps(count, in_footprint);
+    }
+    #[inline(always)]
+    fn new_ray(&mut self) {
+        (**self).new_ray();
+    }
+    #[inline(always)]
+    fn begin_pixel(&mut self, row: usize) {
+        (**self).begin_pixel(row);
+    }
+    #[inline(always)]
+    fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
+        (**self).sample(voxel, color, weight);
+    }
+    #[inline(always)]
+    fn sky_sample(&mut self, color: Color16, weight: Weight) {
+        (**self).sky_sample(color, weight);
+    }
+    #[inline(always)]
+    fn hit(&mut self) {
+        (**self).hit();
+    }
+    #[inline(always)]
+    fn ss_hit(&mut self) {
+        (**self).ss_hit();
+    }
+    #[inline(always)]
+    fn as_hit(&mut self) {
+        (**self).as_hit();
+    }
+    #[inline(always)]
+    fn top_division(&mut self) {
+        (**self).top_division();
+    }
+    #[inline(always)]
+    fn shifts(&mut self, count: u32) {
+        (**self).shifts(count);
+    }
+    #[inline(always)]
+    fn divisions(&mut self, count: u32) {
+        (**self).divisions(count);
+    }
+    #[inline(always)]
+    fn terrain_pixel(&mut self) {
+        (**self).terrain_pixel();
+    }
+    #[inline(always)]
+    fn normals(&mut self, count: u32) {
+        (**self).normals(count);
+    }
+    #[inline(always)]
+    fn shading(&mut self, count: u32) {
+        (**self).shading(count);
+    }
 }
 
 /// No counting: zero-sized, and the walk compiles as if the calls were not there.
@@ -104,6 +184,10 @@ pub struct Tally {
     pub shifts: u64,
     /// Divisions finishing pixels.
     pub divisions: u64,
+    /// Shading: samples lit (a normal, a view direction and the diffuse term each).
+    pub normals: u64,
+    /// Shading: Phong highlight evaluations.
+    pub shading: u64,
 }
 
 impl Tally {
@@ -123,6 +207,8 @@ impl Tally {
         f(&mut self.top_divisions, o.top_divisions);
         f(&mut self.shifts, o.shifts);
         f(&mut self.divisions, o.divisions);
+        f(&mut self.normals, o.normals);
+        f(&mut self.shading, o.shading);
     }
 
     /// The coverage `M/V` (Tables 2–4); 1 when nothing is visible.
@@ -229,5 +315,11 @@ impl Cost for Counts<'_> {
     }
     fn terrain_pixel(&mut self) {
         self.current.p += 1;
+    }
+    fn normals(&mut self, count: u32) {
+        self.current.normals += u64::from(count);
+    }
+    fn shading(&mut self, count: u32) {
+        self.current.shading += u64::from(count);
     }
 }

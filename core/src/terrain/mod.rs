@@ -5,7 +5,8 @@
 //! them ([`pyramid`]) → the camera's per-frame tables ([`camera`]) → the voxel sequence under
 //! a column ([`march`]) → the one column walk (Fig. 4, [`column`](mod@column)) → the per-hit sampler of
 //! each mode (Figs. 4, 8, 12, [`sampler`]) → the pixel. [`cost`] counts what the walk spends
-//! (Sect. 6), [`visibility`] counts what it should see (`V`), and [`classic`] is the voxel-space
+//! (Sect. 6), [`visibility`] counts what it should see (`V`), [`shade`] lights the samples
+//! with a sun and antialiases their highlight (both papers in one frame), and [`classic`] is the voxel-space
 //! baseline the paper's walk is measured against.
 
 pub mod camera;
@@ -17,6 +18,7 @@ pub mod map;
 pub mod march;
 pub mod pyramid;
 pub mod sampler;
+pub mod shade;
 pub mod visibility;
 
 pub use map::{mirror, next_size, Axis, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};

@@ -6,11 +6,14 @@ use anyhow::Result;
 use clap::Args;
 
 use crate::args::OutputFormat;
+use crate::lighting::{load_materials, LightArgs};
 use crate::render::{count, render_timed, render_timed_parallel, Mode, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, View};
 use footprint_core::terrain::camera::Projection;
+use footprint_core::terrain::cost::Counts;
+use footprint_scenes::render::render_lit;
 
 /// `footprint render`.
 #[derive(Args, Debug)]
@@ -21,6 +24,9 @@ pub struct RenderArgs {
     #[command(flatten)]
     /// The camera.
     pub camera: CameraArgs,
+    #[command(flatten)]
+    /// The sun (issue 16).
+    pub light: LightArgs,
     /// Sampling mode: ps, li, ss2, ss4, …, ss256, as (area sampling as the paper's Fig. 12
     /// writes it: parallel rays within a pixel, one division per pixel), or as-exact (area
     /// sampling with the exact ray through each voxel's top: every visible voxel, only those).
@@ -50,7 +56,25 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let mut tables = Tables::new(&view.camera);
     let frame = tables.frame(&view.camera, &terrain, view.options)?;
     let (_, ms) = render_timed(&frame, &terrain, args.mode, 3)?;
-    let (rendered, ms_threads) = render_timed_parallel(&frame, &terrain, args.mode, 3)?;
+    let (mut rendered, ms_threads) = render_timed_parallel(&frame, &terrain, args.mode, 3)?;
+    let materials = match &args.light.material {
+        Some(path) => Some(load_materials(path, view.map().width, view.map().height)?),
+        None => None,
+    };
+    if let Some(sun) = args
+        .light
+        .sun_with(&terrain, args.light.specular.0, materials.as_deref())?
+    {
+        let mut counts = Counts::new(&mut []);
+        rendered = render_lit(&frame, &terrain, &view.camera, args.mode, &sun, &mut counts)?;
+        let pixels = (frame.width() * frame.height()).max(1) as f64;
+        eprintln!(
+            "lit by the sun, specular {}: {:.2} samples lit and {:.2} highlight evaluations per pixel",
+            args.light.specular,
+            counts.total.normals as f64 / pixels,
+            counts.total.shading as f64 / pixels
+        );
+    }
     if let Some(out) = &args.out {
         let (w, h) = rendered.size;
         write_png(out, w, h, &rendered.image)?;

@@ -1,0 +1,156 @@
+//! The sun on the terrain (issue 16): `--sun AZ,EL`, `--specular METHOD`, `--material FILE.png`,
+//! turned into the core's [`Sun`].
+
+use std::fmt;
+use std::path::PathBuf;
+use std::str::FromStr;
+
+use anyhow::{Context, Result};
+use clap::Args;
+
+use footprint_core::specular::{Clamp, Phong, Power};
+use footprint_core::terrain::shade::{Materials, Specular, Sun, Surface};
+use footprint_core::terrain::Terrain;
+
+/// A sun direction: azimuth clockwise from north and elevation above the horizon, degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SunDir {
+    /// Azimuth, degrees clockwise from north.
+    pub azimuth: f64,
+    /// Elevation, degrees above the horizon, in (0, 90].
+    pub elevation: f64,
+}
+
+impl FromStr for SunDir {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let bad = || format!("{s:?} is not AZ,EL (degrees, e.g. 180,15)");
+        let (a, e) = s.split_once(',').ok_or_else(bad)?;
+        let azimuth: f64 = a.trim().parse().map_err(|_| bad())?;
+        let elevation: f64 = e.trim().parse().map_err(|_| bad())?;
+        if !azimuth.is_finite() {
+            return Err(format!("azimuth {azimuth} is not finite"));
+        }
+        if !(elevation > 0.0 && elevation <= 90.0) {
+            return Err(format!("elevation {elevation} is outside (0, 90]"));
+        }
+        Ok(Self { azimuth, elevation })
+    }
+}
+
+/// A specular antialiasing method by its CLI name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Method(pub Specular);
+
+impl Method {
+    /// Every method, in the order tables list them.
+    pub const ALL: [Method; 6] = [
+        Method(Specular::None),
+        Method(Specular::Clamp(Clamp::Conservative)),
+        Method(Specular::Clamp(Clamp::Aggressive(Power::P99))),
+        Method(Specular::Clamp(Clamp::Aggressive(Power::P999))),
+        Method(Specular::Toksvig),
+        Method(Specular::Reference),
+    ];
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self.0 {
+            Specular::None => "none",
+            Specular::Clamp(Clamp::Conservative) => "clamp",
+            Specular::Clamp(Clamp::Aggressive(Power::P90)) => "clamp90",
+            Specular::Clamp(Clamp::Aggressive(Power::P99)) => "clamp99",
+            Specular::Clamp(Clamp::Aggressive(Power::P999)) => "clamp99.9",
+            Specular::Toksvig => "toksvig",
+            Specular::Reference => "reference",
+        })
+    }
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.to_string() == s)
+            .ok_or_else(|| {
+                format!(
+                    "unknown specular method {s:?}: expected none, clamp, clamp99, clamp99.9, toksvig or reference"
+                )
+            })
+    }
+}
+
+impl serde::Serialize for Method {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+/// `--sun`, `--specular`, `--material`: the terrain lit by a sun (without `--sun`, the colour
+/// map as it is).
+#[derive(Args, Clone, Debug)]
+pub struct LightArgs {
+    /// Light the terrain with a sun at AZ,EL degrees (azimuth clockwise from north, elevation
+    /// above the horizon): diffuse shading and a Phong highlight per voxel (water glints, rock
+    /// has a weak sheen). Without it the image is the colour map's, unchanged.
+    #[arg(long, value_name = "AZ,EL", allow_hyphen_values = true)]
+    pub sun: Option<SunDir>,
+    /// How the highlight is antialiased: none, clamp (Amanatides, conservative), clamp99,
+    /// clamp99.9 (aggressive: keep 99 % / 99.9 % of the power), toksvig (Toksvig 2005), or
+    /// reference (every sample shaded on its own).
+    #[arg(long, default_value = "clamp99", requires = "sun")]
+    pub specular: Method,
+    /// Specular material per voxel, a PNG the size of the map: red is K_spec (0–255 → 0–1),
+    /// green the exponent n = 1024^(G/255) (0 → 1, 255 → 1024). Default: water (n 1024,
+    /// K_spec 0.9) where the colour is blue or the ground is flat at its lowest height, rock
+    /// (n 8, K_spec 0.05) elsewhere.
+    #[arg(long, value_name = "FILE.png", requires = "sun")]
+    pub material: Option<PathBuf>,
+}
+
+/// The ambient and diffuse light of a lit frame.
+pub const AMBIENT_DIFFUSE: (f64, f64) = (0.35, 0.65);
+
+/// The surfaces of a `--material` PNG, loaded for a `width × height` map.
+pub fn load_materials(path: &std::path::Path, width: u32, height: u32) -> Result<Vec<Surface>> {
+    let colors = footprint_maps::png::load_color_map(path, &[], width, height, "the map")
+        .with_context(|| format!("--material {}", path.display()))?;
+    colors
+        .into_iter()
+        .map(|c| {
+            let n = 1024f64.powf(f64::from(c.g) / 255.0).round() as u32;
+            Ok(Phong::new(n, f64::from(c.r) / 255.0)?)
+        })
+        .collect()
+}
+
+impl LightArgs {
+    /// The sun for `terrain` with the given method, or `None` without `--sun`; `materials`
+    /// holds a loaded `--material` map (see [`load_materials`]).
+    pub fn sun_with<'a>(
+        &self,
+        terrain: &Terrain<'_>,
+        method: Specular,
+        materials: Option<&'a [Surface]>,
+    ) -> Result<Option<Sun<'a>>> {
+        let Some(dir) = self.sun else {
+            return Ok(None);
+        };
+        let materials = match materials {
+            Some(m) => Materials::Map(m),
+            None => Materials::default_by_color(),
+        };
+        let sun = Sun::new(
+            terrain,
+            dir.azimuth,
+            dir.elevation,
+            AMBIENT_DIFFUSE,
+            materials,
+            method,
+        )
+        .context("--sun")?;
+        Ok(Some(sun))
+    }
+}
