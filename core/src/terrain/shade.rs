@@ -389,7 +389,18 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
                 let d = 2 * u64::from(acos(I2F30::from_bits(acc.min_dot)).to_bits())
                     + u64::from(self.half_pixel);
                 let spread = Spread::Angle(U2F30::from_bits(u32::try_from(d).unwrap_or(u32::MAX)));
-                clamp(&phong, spread, policy).phong
+                let clamped = clamp(&phong, spread, policy).phong;
+                // The paper's K′ = K·Maximum[n]/Maximum[n′] keeps the first cosine component
+                // of the 1-D signal cos^n α. A glint on terrain is a 2-D lobe (α turns in both
+                // directions across the pixel), whose level the ratio keeps only when applied
+                // once per direction: K″ = K·(Maximum[n]/Maximum[n′])² = K′²/K.
+                let k = u64::from(phong.k_spec().to_bits());
+                let k1 = u64::from(clamped.k_spec().to_bits());
+                let k2 = (k1 * k1).checked_div(k).unwrap_or(0);
+                Phong::from_parts(
+                    clamped.n(),
+                    U2F30::from_bits(u32::try_from(k2).unwrap_or(u32::MAX)),
+                )
             }
             Specular::Toksvig => {
                 // |N̄| = |Σ w·N| / Σw, Q30.
