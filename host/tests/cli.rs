@@ -539,3 +539,63 @@ fn table_measures_with_and_without_the_pyramid() {
     let o = footprint(&["table", "--lod", "maybe"]);
     assert_one_line_error(&o, &["table", "--lod", "maybe"], "--lod");
 }
+
+/// `--sun`, `--specular` and `--material`: each bad value fails with one line naming it.
+#[test]
+fn a_bad_sun_fails_naming_its_option() {
+    fails(&["--sun", "180"], "--sun");
+    fails(&["--sun", "180,0"], "--sun");
+    fails(&["--sun", "180,95"], "--sun");
+    fails(&["--sun", "nan,10"], "--sun");
+    fails(&["--sun", "180,10", "--specular", "shiny"], "--specular");
+    // --specular and --material mean nothing without a sun.
+    fails(&["--specular", "clamp"], "--sun");
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.png");
+    fails(
+        &["--sun", "180,10", "--material", missing.to_str().unwrap()],
+        "--material",
+    );
+    let small = dir.path().join("small.png");
+    write_rgb(&small, 8, 8);
+    fails(
+        &["--sun", "180,10", "--material", small.to_str().unwrap()],
+        "--material",
+    );
+}
+
+/// A sun lights the frame (the image changes), and a material map of the map's size is read.
+#[test]
+fn a_sun_lights_the_frame_and_a_material_map_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let render = |extra: &[&str], name: &str| -> Vec<u8> {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            "render",
+            "--terrain-size",
+            "64",
+            "--size",
+            "48x32",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = footprint(&args);
+        assert!(
+            o.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        image::open(&out).unwrap().to_rgb8().into_raw()
+    };
+    let plain = render(&[], "plain.png");
+    let lit = render(&["--sun", "0,20"], "lit.png");
+    assert_ne!(plain, lit, "the sun changes the image");
+    let material = dir.path().join("material.png");
+    write_rgb(&material, 64, 64);
+    let m = render(
+        &["--sun", "0,20", "--material", material.to_str().unwrap()],
+        "material.png.out.png",
+    );
+    assert_ne!(m, lit, "the material map changes the highlight");
+}

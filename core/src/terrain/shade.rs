@@ -20,7 +20,12 @@
 //!   pairwise minimum is bounded without a pairwise loop by the smallest dot product `d` of a
 //!   sample's normal with the pixel's first: every pair lies within `2·acos d`. The view turns
 //!   across the pixel too (by its angular size, which moves the reflected direction as a normal
-//!   turn of half that angle would), so the pixel's spread is `D = 2·acos d + pixel/2`;
+//!   turn of half that angle would), so the pixel's spread is `D = 2·acos d + pixel/2`. The
+//!   paper renormalises with `K′ = K·Maximum[n]/Maximum[n′]`, the first cosine component of the
+//!   1-D signal; a glint on terrain is a 2-D lobe, so the ratio is applied once per direction,
+//!   `K″ = K·(Maximum[n]/Maximum[n′])²` (with the paper's ratio the clamped glint on a flat
+//!   plane had 5–6× the reference's energy; with the square, 0.92–1.09× at 99 %, test
+//!   `glint_mirror`);
 //! * `Toksvig`: Toksvig (2005): the weight-averaged unit normal has length `|N̄| ≤ 1`, and the
 //!   lobe widens to `n′ = n·|N̄| / (|N̄| + n(1 − |N̄|))`, with the normalised-Phong energy factor
 //!   `K′ = K·(1 + n′)/(1 + n)`;
