@@ -13,6 +13,7 @@ use footprint_core::terrain::cost::{Cost, Counts};
 use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::Sampler;
+use footprint_core::terrain::shade::{Shader, Sun};
 use footprint_core::terrain::visibility;
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
@@ -29,6 +30,31 @@ pub fn render<S: Sampler + Clone, C: Cost>(
     image: &mut [Rgb],
 ) -> Result<(), Error> {
     column::render(frame, terrain, sampler, cost, image)
+}
+
+/// `column::render` with a [`Shader`] listening: the frame lit by `sun`. The walk draws the
+/// colour map into `grid` as [`render`] does; the shader lights every sample it takes and
+/// writes the lit frame into `lit`, which is filled with the frame's sky first (the pixels that
+/// see only sky keep it), as `footprint_scenes::render::render_lit` does on the host. The eye
+/// is at `eye_m` (east, south, up, metres) and the pixels are `pixel_angle` radians tall (the
+/// camera's). Returns the inner cost `inner` with everything the walk and the shader counted.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+pub fn render_lit<'s, S: Sampler + Clone, C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &'s Terrain<'s>,
+    sampler: &S,
+    sun: &'s Sun<'s>,
+    (eye_m, pixel_angle): ([f64; 3], f64),
+    inner: C,
+    grid: &mut [Rgb],
+    lit: &mut [Rgb],
+) -> Result<C, Error> {
+    lit.fill(frame.sky());
+    let size = (frame.width(), frame.height());
+    let mut shader = Shader::new(sun, terrain, eye_m, pixel_angle, size, lit, inner)?;
+    column::render(frame, terrain, sampler, &mut shader, grid)?;
+    Ok(shader.inner)
 }
 
 /// `Frame::new`: the camera tables (soft-double trigonometry, once per frame).

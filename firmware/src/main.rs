@@ -16,6 +16,12 @@
 //! It exits 0 over semihosting when every check passed, and non-zero on a failed check, a
 //! panic (`panic-semihosting` with `exit`) or a hard fault.
 //!
+//! After the four terrain modes it renders the glint frame (issue 16): the same view lit by a
+//! low sun straight ahead (the camera's heading, at its pitch), AS with Amanatides' `clamp99`
+//! and the default materials, and prints its `frame` line (hash, hits, samples lit, highlight
+//! evaluations) and what lighting adds in instructions over the unlit AS frame. Then the rolled
+//! frame (30° of roll, the exact projection's fan).
+//!
 //! After the terrain frames it renders the specular plate that `build.rs` baked from the host's
 //! `experiment::firmware::plate()` (Plate 2's cylinders at 64×64, conservative clamping) with
 //! the core's z-buffer tiler and shader, and prints a fourth `frame` line: the mode, the
@@ -39,6 +45,7 @@ use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Optio
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::shade::{Materials, Sun};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};
@@ -48,7 +55,9 @@ use footprint_firmware::scene::{
     PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME,
     ROLL_DEG, SPACING_M, WIDTH,
 };
-use footprint_firmware::{core_calls, image_hash, stack, Buffers, FanBuffers, PlateBuffers, Ratio};
+use footprint_firmware::{
+    core_calls, glint, image_hash, stack, Buffers, FanBuffers, GlintBuffers, PlateBuffers, Ratio,
+};
 
 #[exception]
 fn SysTick() {
@@ -104,6 +113,84 @@ fn run_mode<S: Sampler + Clone>(
         return Ok(None);
     }
     Ok(Some(render))
+}
+
+/// Renders the glint frame ([`glint`]): the terrain frame `frame` of `camera` lit by a low sun
+/// straight ahead, AS with `clamp99`, the walk's grid in `image` and the lit image in `lit`;
+/// once timed, once with every counter on. Prints the `frame` line (the host's `glint_line`)
+/// and the `#` instruction line, with what lighting adds over `unlit`, the instructions of the
+/// same frame's unlit AS render. `Ok(false)` if the two renders differ.
+fn run_glint(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    camera: &Camera,
+    unlit: u64,
+    image: &mut [Rgb],
+    lit: &mut [Rgb],
+) -> Result<bool, Error> {
+    let p = camera.params();
+    let (azimuth, elevation) = glint::sun(p);
+    let (setup, sun) = instructions(|| {
+        Sun::new(
+            terrain,
+            azimuth,
+            elevation,
+            glint::AMBIENT_DIFFUSE,
+            Materials::default_by_color(),
+            glint::SPECULAR,
+        )
+    });
+    let sun = sun?;
+    let view = ([p.x_m, p.y_m, p.eye_m], camera.pixel_angle());
+    let sampler = ParallelArea::new();
+    let (render, result) = instructions(|| {
+        core_calls::render_lit(frame, terrain, &sampler, &sun, view, NoCost, image, lit)
+    });
+    result?;
+    let hash = image_hash(lit);
+
+    let counts = core_calls::render_lit(
+        frame,
+        terrain,
+        &sampler,
+        &sun,
+        view,
+        Counts::new(&mut []),
+        image,
+        lit,
+    )?;
+    let counted_hash = image_hash(lit);
+    let t: Tally = counts.total;
+    hprintln!(
+        "frame {} {}x{} fnv1a={:016x} hits={} normals={} shading={}",
+        glint::NAME,
+        WIDTH,
+        HEIGHT,
+        hash,
+        t.hits,
+        t.normals,
+        t.shading
+    );
+    let pixels = (WIDTH * HEIGHT) as u64;
+    let added = render.saturating_sub(unlit);
+    hprintln!(
+        "# icount {}: render {} instructions, {} per pixel; the same frame unlit (as) {} per pixel, so lighting adds {} per pixel (+{} %); Sun::new {} (instructions, not cycles)",
+        glint::NAME,
+        render,
+        Ratio::tenths(render, pixels),
+        Ratio::tenths(unlit, pixels),
+        Ratio::tenths(added, pixels),
+        Ratio::tenths(added * 100, unlit),
+        setup
+    );
+    if counted_hash != hash {
+        hprintln!(
+            "FAIL {}: the counting render drew a different image",
+            glint::NAME
+        );
+        return Ok(false);
+    }
+    Ok(true)
 }
 
 /// Renders the rolled frame: the scene banked by `ROLL_DEG` in the exact projection, the
@@ -344,6 +431,10 @@ fn run() -> Result<bool, Error> {
         hprintln!("FAIL: the plate's buffers were taken twice");
         return Ok(false);
     };
+    let Some(GlintBuffers { lit }) = GlintBuffers::take() else {
+        hprintln!("FAIL: the glint frame's buffer was taken twice");
+        return Ok(false);
+    };
     let Some(fan_buffers) = FanBuffers::take() else {
         hprintln!("FAIL: the fan's buffers were taken twice");
         return Ok(false);
@@ -405,6 +496,7 @@ fn run() -> Result<bool, Error> {
                     places: 2
                 }
             );
+            ok &= run_glint(&frame, &terrain, &camera, paper, image, &mut lit[..])?;
         }
         _ => ok = false,
     }

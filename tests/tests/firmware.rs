@@ -24,7 +24,8 @@ use std::time::{Duration, Instant};
 
 use footprint_core::Rgb;
 use footprint_host::experiment::firmware::{
-    fnv1a64, image_hash, plate, plate_mode_name, reference_lines, reference_text, PLATE_SIZE,
+    fnv1a64, image_hash, plate, plate_mode_name, reference_lines, reference_text, GLINT_NAME,
+    PLATE_SIZE,
 };
 
 const TARGET: &str = "thumbv7em-none-eabihf";
@@ -151,6 +152,11 @@ fn firmware_output_equals_the_host_reference() {
         ));
     }
     let expected = reference_text().expect("the host reference");
+    let glint_frame = format!("frame {GLINT_NAME} ");
+    assert!(
+        expected.lines().any(|l| l.starts_with(&glint_frame)),
+        "the host reference has no glint frame:\n{expected}"
+    );
     let bin = build_firmware();
 
     let out = run_under_qemu(&runner, &bin.join("footprint-firmware"));
@@ -163,6 +169,14 @@ fn firmware_output_equals_the_host_reference() {
     );
     // The chip-only lines are there too: one instruction count per mode, calibrated.
     let text = String::from_utf8_lossy(&out);
+    assert!(
+        text.lines().any(|l| l.starts_with(&glint_frame)),
+        "the firmware printed no glint frame:\n{text}"
+    );
+    assert!(
+        text.contains(&format!("# icount {GLINT_NAME}: render ")) && text.contains("lighting adds"),
+        "no instruction count for the glint frame:\n{text}"
+    );
     let plate_mode = plate_mode_name();
     for mode in ["ps", "ss8", "as-exact", "as", plate_mode.as_str()] {
         assert!(
@@ -213,7 +227,7 @@ fn the_reference_is_consistent() {
             .unwrap()
     };
     let frames: Vec<&String> = lines.iter().filter(|l| l.starts_with("frame ")).collect();
-    assert_eq!(frames.len(), 6, "{lines:#?}");
+    assert_eq!(frames.len(), 7, "{lines:#?}");
     let (ps, ss8, area, paper) = (frames[0], frames[1], frames[2], frames[3]);
     assert!(paper.starts_with("frame as 160x120 "), "{paper}");
     assert_eq!(
@@ -237,19 +251,36 @@ fn the_reference_is_consistent() {
     let hash = |l: &str| l.split_whitespace().nth(3).unwrap().to_owned();
     assert_ne!(hash(ps), hash(area));
     assert_ne!(hash(ss8), hash(area));
+    // The glint frame: the paper's AS walk again (the same hits), every sample lit, one
+    // highlight evaluation per terrain pixel, and an image unlike the unlit AS frame's.
+    let glint = frames[4];
+    assert!(
+        glint.starts_with(&format!("frame {GLINT_NAME} 160x120 ")),
+        "{glint}"
+    );
+    assert_eq!(field(glint, "hits"), field(paper, "hits"), "{glint}");
+    assert!(
+        field(glint, "normals") > 0 && field(glint, "normals") <= field(glint, "hits"),
+        "{glint}"
+    );
+    assert!(
+        field(glint, "shading") > 0 && field(glint, "shading") <= field(paper, "P"),
+        "{glint}"
+    );
+    assert_ne!(hash(glint), hash(paper));
     // The specular plate, after the terrain frames (`plate_reference_line` has already checked
     // it against `footprint specular`'s own render of the same plate): one shade per fragment
     // (clamping), the cylinders alias at 64×64, and every flagged pixel was drawn.
     // The rolled frame: the exact projection's fan is wider than the image (the banked image
     // spans more azimuth) and taller (more elevation), and the banked image is not the level one.
-    let rolled = frames[4];
+    let rolled = frames[5];
     assert!(rolled.starts_with("frame as-roll30 160x120 "), "{rolled}");
     assert!(
         field(rolled, "lines") > 160 && field(rolled, "rows") > 120,
         "{rolled}"
     );
     assert_ne!(hash(rolled), hash(paper));
-    let specular = frames[5];
+    let specular = frames[6];
     assert!(
         specular.starts_with(&format!(
             "frame {} {PLATE_SIZE}x{PLATE_SIZE} ",
@@ -265,5 +296,5 @@ fn the_reference_is_consistent() {
     assert!(baked.triangles.len() > 1000 && baked.vertices.len() < baked.triangles.len() * 3);
     let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
     assert_eq!(errors, 10, "{lines:#?}");
-    assert_eq!(lines.len(), 16);
+    assert_eq!(lines.len(), 17);
 }

@@ -13,8 +13,9 @@ use crate::experiment::firmware;
 pub struct FirmwareReferenceArgs {}
 
 /// Prints the firmware's scene (128² built-in terrain, seed 1, 160×120, pitch 20°, FOV 10°,
-/// fit-first-hit) in PS, SS8 and AS as `frame` lines, the specular plate (Plate 2, 64×64,
-/// conservative clamping) as a fourth, then the constructor `error` lines.
+/// fit-first-hit) in PS, SS8, AS-exact and AS as `frame` lines, the same view lit by a low sun
+/// with `clamp99` (the glint frame), the rolled frame, the specular plate (Plate 2, 64×64,
+/// conservative clamping), then the constructor `error` lines.
 pub fn firmware_reference(_args: &FirmwareReferenceArgs) -> Result<()> {
     let text = firmware::reference_text()?;
     let mut out = std::io::stdout().lock();

@@ -22,6 +22,13 @@
 //! thing there as here. (Every constructor error is tested on the host by
 //! `tests/tests/analytic.rs`'s `constructor_errors`.)
 //!
+//! After the terrain modes comes the glint frame of issue 16 ([`glint_line`]): the same view lit
+//! by a low sun straight ahead, AS with `clamp99`:
+//!
+//! ```text
+//! frame glint-as-clamp99 160x120 fnv1a=<16 hex digits> hits=… normals=… shading=…
+//! ```
+//!
 //! The second scene is the specular plate of the specular issue: [`plate`] gives `build.rs`
 //! Plate 2's triangles as the host's tiler receives them at 64×64, and
 //! [`plate_reference_line`] renders them here with the core's tiler and conservative clamping
@@ -33,11 +40,13 @@
 
 use anyhow::{bail, Result};
 use footprint_core::num::Coord;
+use footprint_core::specular::{Clamp, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame};
 use footprint_core::terrain::column;
-use footprint_core::terrain::cost::{NoCost, Tally};
+use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::Point;
+use footprint_core::terrain::shade::{Materials, Specular, Sun};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 
@@ -49,8 +58,10 @@ pub use footprint_scenes::firmware::{
     PLATE_MODE, PLATE_SIZE, ROLLED_NAME, ROLL_DEG, SEED, WIDTH,
 };
 use footprint_scenes::plates::Scene as PlateScene;
+use footprint_scenes::render::render_lit;
 pub use footprint_scenes::render::{fnv1a64, image_hash};
 
+use crate::lighting::AMBIENT_DIFFUSE;
 use crate::pyramid::Pyramid;
 use crate::render::{count, Mode, Rate, Tables};
 use crate::view::Size;
@@ -60,6 +71,21 @@ pub const SIZE: Size = Size {
     width: WIDTH,
     height: HEIGHT,
 };
+
+/// The glint frame's name in the firmware's `frame` and `# icount` lines (the firmware's
+/// `glint::NAME`).
+pub const GLINT_NAME: &str = "glint-as-clamp99";
+
+/// The glint frame's highlight antialiasing: Amanatides' aggressive clamp keeping 99 % of the
+/// power (`clamp99`; the firmware's `glint::SPECULAR`).
+pub const GLINT_SPECULAR: Specular = Specular::Clamp(Clamp::Aggressive(Power::P99));
+
+/// The glint frame's sun for a camera, `(azimuth, elevation)` in degrees (the firmware's
+/// `glint::sun`): straight ahead (the heading) and as high as the camera looks down (the
+/// pitch), so flat ground mirrors it into the image's centre row.
+pub fn glint_sun(camera: &CameraParams) -> (f64, f64) {
+    (camera.heading_deg, camera.pitch_deg)
+}
 
 /// The modes the firmware renders, in the order it prints them.
 pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(Rate::N8), Mode::AsExact, Mode::As];
@@ -160,7 +186,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
 }
 
 /// Every line the firmware prints that must match the host: one `frame` line per mode of
-/// [`MODES`], the rolled frame's ([`rolled_line`]), the specular plate's `frame` line, then the
+/// [`MODES`], the glint frame's ([`glint_line`]), the rolled frame's ([`rolled_line`]), the specular plate's `frame` line, then the
 /// `error` lines.
 pub fn reference_lines() -> Result<Vec<String>> {
     let scene = scene()?;
@@ -175,10 +201,45 @@ pub fn reference_lines() -> Result<Vec<String>> {
         let hash = image_hash(&rendered.image);
         lines.push(frame_line(mode, SIZE, hash, &measured.total));
     }
+    lines.push(glint_line(&camera, &frame, &terrain)?);
     lines.push(rolled_line(&scene, &terrain)?);
     lines.push(plate_reference_line()?);
     lines.extend(error_lines(&scene)?);
     Ok(lines)
+}
+
+/// The glint frame's `frame` line: `frame` (the firmware's view, the paper's projection) lit
+/// by [`glint_sun`] with the CLI's [`AMBIENT_DIFFUSE`] and default materials, drawn by the
+/// paper's AS with [`GLINT_SPECULAR`] through `footprint_scenes::render::render_lit`
+/// (`footprint render --mode as --sun AZ,EL --specular clamp99`):
+/// `frame glint-as-clamp99 160x120 fnv1a=… hits=… normals=… shading=…`, the hits of the walk,
+/// the samples lit and the highlight evaluations.
+pub fn glint_line(
+    camera: &Camera,
+    frame: &Frame<'_>,
+    terrain: &footprint_core::terrain::Terrain<'_>,
+) -> Result<String> {
+    let (azimuth, elevation) = glint_sun(camera.params());
+    let sun = Sun::new(
+        terrain,
+        azimuth,
+        elevation,
+        AMBIENT_DIFFUSE,
+        Materials::default_by_color(),
+        GLINT_SPECULAR,
+    )?;
+    let mut counts = Counts::new(&mut []);
+    let rendered = render_lit(frame, terrain, camera, Mode::As, &sun, &mut counts)?;
+    let t = &counts.total;
+    Ok(format!(
+        "frame {GLINT_NAME} {}x{} fnv1a={:016x} hits={} normals={} shading={}",
+        SIZE.width,
+        SIZE.height,
+        image_hash(&rendered.image),
+        t.hits,
+        t.normals,
+        t.shading
+    ))
 }
 
 /// The rolled frame's `frame` line: [`Scene::rolled`] in the exact projection, the paper's AS
