@@ -72,6 +72,63 @@ impl Normal {
         self.v.map(|c| c as f64 / ONE as f64)
     }
 
+    /// The unit vector along the integer direction `v` (any scale; `None` for zero), with
+    /// multiplies and shifts only: no division and no square root, for the per-sample
+    /// shading of [`crate::terrain::shade`] on cores without a fast 64-bit divide.
+    ///
+    /// The components are scaled by a power of two so that `s = |v|²` lies in `[2^60, 2^62)`,
+    /// `1/√s` comes from a 12-entry table and three Newton steps `r ← r·(3 − s·r²)/2` (relative
+    /// error below 10^-8 before rounding), and each component is `v_i·r`. Error ≤ 4·2^-30 per
+    /// component (test `from_direction_is_the_unit_vector`).
+    pub fn from_direction(v: [i64; 3]) -> Option<Normal> {
+        // 2^30/√((j + ½)/16), j = 4..16: 1/√u at the middle of each sixteenth of [¼, 1).
+        const SEED: [u64; 12] = [
+            2_024_667_000,
+            1_831_380_208,
+            1_684_624_773,
+            1_568_300_315,
+            1_473_161_629,
+            1_393_471_397,
+            1_325_455_684,
+            1_266_516_759,
+            1_214_800_200,
+            1_168_942_037,
+            1_127_913_670,
+            1_090_922_784,
+        ];
+        let big = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+        if big == 0 {
+            return None;
+        }
+        // The largest component to [2^29, 2^30): then s < 3·2^60.
+        let top = 63 - big.leading_zeros() as i32;
+        let shift = top - 29;
+        let scale = |c: i64| if shift >= 0 { c >> shift } else { c << -shift };
+        let mut w = v.map(scale);
+        let mut s = w.iter().map(|&c| (c * c) as u64).sum::<u64>();
+        // s ∈ [2^58, 3·2^60): below 2^60, up by 4 (components < 2^31); s is in [2^60, 2^62).
+        if s < 1 << 60 {
+            w = w.map(|c| c << 1);
+            s <<= 2;
+        }
+        // u = s/2^62 ∈ [¼, 1) in Q30.
+        let u = s >> 32;
+        let j = usize::try_from((u >> 26).saturating_sub(4)).unwrap_or(0);
+        let mut r = SEED.get(j).copied().unwrap_or(1 << 30);
+        for _ in 0..3 {
+            let r2 = (r * r) >> 30; // r ≤ 2^31: r² < 2^62
+            let t = (r2 * u) >> 30; // u·r² ≈ 1, Q30
+            r = (r * ((3 << 30) - t.min(3 << 30))) >> 31;
+        }
+        // |v'| = √s = 2^31·√u, so v'_i/|v'| = v'_i·r/2^31 in Q30.
+        let q = |c: i64| {
+            let x = (c * r as i64 + (1 << 30)) >> 31;
+            // Within ±2^30 after the clamp: the fallback is never taken.
+            i32::try_from(x.clamp(-ONE, ONE)).unwrap_or(0)
+        };
+        Some(Normal { v: w.map(q) })
+    }
+
     /// The dot product, rounded to nearest and clamped to `[−1, 1]`.
     #[inline]
     pub fn dot(&self, other: &Normal) -> I2F30 {
@@ -194,6 +251,33 @@ pub fn isqrt(x: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn from_direction_is_the_unit_vector() {
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut worst = 0.0f64;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let bits = (x % 50) as u32;
+            let c = |k: u32| (x.rotate_left(k * 21) as i64) >> (13 + bits);
+            let v = [c(0), c(1), c(2)];
+            let Some(n) = Normal::from_direction(v) else {
+                assert_eq!(v, [0, 0, 0]);
+                continue;
+            };
+            let len = v
+                .iter()
+                .map(|&c| (c as f64) * (c as f64))
+                .sum::<f64>()
+                .sqrt();
+            for (got, &c) in n.to_f64().iter().zip(&v) {
+                worst = worst.max((got - c as f64 / len).abs());
+            }
+        }
+        assert!(worst <= 4.0 / ONE as f64, "worst error {worst:e}");
+    }
 
     #[test]
     fn isqrt_is_the_floor() {

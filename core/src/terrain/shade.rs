@@ -16,11 +16,14 @@
 //! * `None`: one Phong evaluation at the pixel's weight-averaged normal `N̄` and view `Ē`, with
 //!   the material's `n`: the highlight aliases where the normals under the pixel spread;
 //! * `Clamp(policy)`: the same evaluation with Amanatides' `n′` and `K′_spec`
-//!   ([`clamp()`](crate::specular::clamp())). `dot_ΔN` comes from the normals the sampler met: the
-//!   pairwise minimum is bounded without a pairwise loop by the smallest dot product `d` of a
-//!   sample's normal with the pixel's first: every pair lies within `2·acos d`. The view turns
-//!   across the pixel too (by its angular size, which moves the reflected direction as a normal
-//!   turn of half that angle would), so the pixel's spread is `D = 2·acos d + pixel/2`. The
+//!   ([`clamp()`](crate::specular::clamp())). The normals' turn comes from the normals the sampler
+//!   met, with their weights, and needs no pairwise loop: the weight-averaged unit normal has
+//!   length `|N̄| ≈ 1 − σ²/2` for an RMS turn σ from the mean, and two normals of equal weight
+//!   `θ` apart have `σ = θ/2`, so the pixel's turn is `2σ = 2·√(2(1 − |N̄|))` (a sliver of
+//!   tilted shore in a water pixel turns it by its share, not by its angle: the smallest
+//!   pairwise dot flipped whole glint pixels between clamped and not from frame to frame). The
+//!   view turns across the pixel too (by its angular size, which moves the reflected direction as
+//!   a normal turn of half that angle would), so the pixel's spread is `D = 2σ + pixel/2`. The
 //!   paper renormalises with `K′ = K·Maximum[n]/Maximum[n′]`, the first cosine component of the
 //!   1-D signal; a glint on terrain is a 2-D lobe, so the ratio is applied once per direction,
 //!   `K″ = K·(Maximum[n]/Maximum[n′])²` (with the paper's ratio the clamped glint on a flat
@@ -35,12 +38,12 @@
 //! Every evaluation is integer fixed point: normals and directions `I2F30`
 //! ([`crate::specular::Normal`]), colours 8.8, weights the walk's.
 
-use fixed::types::{I2F30, U2F30};
+use fixed::types::U2F30;
 
 use crate::color::{Color16, Rgb};
 use crate::error::{check, Error};
 use crate::num::Weight;
-use crate::specular::{acos, clamp, Clamp, Light, Normal, Phong, Spread, Vector};
+use crate::specular::{clamp, isqrt, Clamp, Light, Normal, Phong, Spread};
 use crate::terrain::camera::floor_i64;
 use crate::terrain::cost::Cost;
 use crate::terrain::map::{mirror, Axis, Terrain};
@@ -181,31 +184,80 @@ struct Lit {
     normal: Normal,
     view: Normal,
     surface: Surface,
-    /// `ambient + diffuse·max(N·L, 0)`, Q30.
-    light: u64,
+    /// `ambient + diffuse·max(N·L, 0)`, Q15.
+    light: i64,
 }
 
-/// A pixel's accumulated samples.
+/// A pixel's accumulated samples, weighted by the walk's weights `w` (raw bits, below 2^32
+/// per pixel in every sampler): every sum fits an `i64` (values below 2^16 each), so the M4
+/// needs no 128-bit arithmetic. Sums saturate rather than wrap.
 #[derive(Clone, Copy, Debug, Default)]
 struct Acc {
     /// Σw over terrain samples and over sky.
-    w_terrain: i128,
-    w_sky: i128,
-    /// Σ w·colour·light (8.8 colour × Q30 light), and Σ w·sky colour (8.8).
-    color: [i128; 3],
-    sky: [i128; 3],
-    /// Σ w·N and Σ w·E (Q30 components).
-    normal: [i128; 3],
-    view: [i128; 3],
-    /// Σ w·K_spec (Q30) and Σ w·n.
-    k_spec: i128,
-    n: i128,
-    /// Σ w·K·cos^n α per sample (reference), Q30.
-    highlight: i128,
-    /// The first sample's normal, and the smallest dot product of a normal with it.
-    first: Option<Normal>,
-    min_dot: i32,
+    w_terrain: i64,
+    w_sky: i64,
+    /// Σ w·colour·light (8.8 colour, light Q15, the product back to 8.8), and Σ w·sky (8.8).
+    color: [i64; 3],
+    sky: [i64; 3],
+    /// Σ w·N, components Q30 (the spread needs `1 − |N̄|` to 2^-30), and Σ w·E, Q15.
+    normal: [i64; 3],
+    view: [i64; 3],
+    /// Σ w·K_spec (Q15) and Σ w·n.
+    k_spec: i64,
+    n: i64,
+    /// Σ w·K·cos^n α per sample (reference), Q15.
+    highlight: i64,
     samples: u32,
+}
+
+/// The largest weight a sample enters a pixel with: the samplers' weights are far below it
+/// (`ParallelArea` keeps `Σw < 2^24`, `SS_N` gives `2^24` per sub-ray), and with every value
+/// at most 2^30 each product `w·x` is at most 2^62, exact without an overflow check.
+const MAX_WEIGHT: i64 = 1 << 32;
+
+/// `Σ += w·x` for `w ≤ MAX_WEIGHT` and `|x| ≤ 2^30`: the product (at most 2^62) is exact, the
+/// sum saturates.
+#[inline(always)]
+fn add(sum: &mut i64, w: i64, x: i64) {
+    *sum = sum.saturating_add(w.wrapping_mul(x));
+}
+
+/// `i` folded into `0..len` by the map's mirroring, with no division when it is inside.
+#[inline(always)]
+fn fold(i: i64, len: u32) -> usize {
+    if (0..i64::from(len)).contains(&i) {
+        // 0 ≤ i < len ≤ u32::MAX.
+        usize::try_from(i).unwrap_or(0)
+    } else {
+        mirror(i, len) as usize
+    }
+}
+
+/// `i − 1`, `i` and `i + 1` folded into `0..len` ([`mirror`]) with at most one division: in a
+/// mirrored period the neighbours of the folded index are one step either way, the edge voxel
+/// repeating at each edge.
+#[inline(always)]
+fn fold3(i: i64, len: u32) -> (usize, usize, usize) {
+    let len = len.max(1) as usize;
+    let (c, ascending) = if (0..len as i64).contains(&i) {
+        // 0 ≤ i < len.
+        (usize::try_from(i).unwrap_or(0), true)
+    } else {
+        // 0 ≤ p < 2·len ≤ 2^33: the fallback is never taken.
+        let p = usize::try_from(i.rem_euclid(2 * len as i64)).unwrap_or(0);
+        if p < len {
+            (p, true)
+        } else {
+            (2 * len - 1 - p, false)
+        }
+    };
+    let up = if c + 1 < len { c + 1 } else { c };
+    let down = c.saturating_sub(1);
+    if ascending {
+        (down, c, up)
+    } else {
+        (up, c, down)
+    }
 }
 
 /// Shades the samples of a walk into its own image (row-major from the top, `W × H` of the
@@ -278,35 +330,40 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
     }
 
     /// The normal, view and surface of `voxel`.
+    #[inline]
     fn light(&self, voxel: &Voxel<'_>) -> Option<Lit> {
         let sun = self.sun;
         let l = voxel.level();
         let level = self.terrain.level(l as usize);
         let (x, y) = voxel.cell_unmirrored();
-        let h = |dx: i64, dy: i64| i128::from(level.height_at(Axis::X, x + dx, y + dy));
-        let cell = i128::from(sun.spacing_q) << l; // the level's cell, 1/256 m
-        let hq = i128::from(sun.height_q);
+        let (w, hgt) = (level.width(), level.height());
+        let heights = level.heights(Axis::X);
+        let (x0, x1, x2) = fold3(x, w);
+        let (y0, y1, y2) = fold3(y, hgt);
+        let (r0, r1, r2) = (y0 * w as usize, y1 * w as usize, y2 * w as usize);
+        let h = |at: usize| i64::from(heights.get(at).copied().unwrap_or(0));
+        let (left, right) = (h(r1 + x0), h(r1 + x2));
+        let (up, down, here) = (h(r0 + x1), h(r2 + x1), h(r1 + x1));
+        let cell = sun.spacing_q.saturating_mul(1 << l); // the level's cell, 1/256 m
+        let hq = sun.height_q;
         // (−∂h/∂x, −∂h/∂y, 1) times 2·cell, in 1/256 m.
-        let normal = Vector::from_wide([
-            -(h(1, 0) - h(-1, 0)) * hq,
-            -(h(0, 1) - h(0, -1)) * hq,
-            2 * cell,
-        ])
-        .normalize()?;
+        let normal = Normal::from_direction([
+            -(right - left).saturating_mul(hq),
+            -(down - up).saturating_mul(hq),
+            cell.saturating_mul(2),
+        ])?;
         // From the top of the voxel's centre to the eye.
-        let centre = |c: i64| (2 * i128::from(c) + 1) * cell / 2;
-        let view = Vector::from_wide([
-            i128::from(self.eye[0]) - centre(x),
-            i128::from(self.eye[1]) - centre(y),
-            i128::from(self.eye[2]) - h(0, 0) * hq,
-        ])
-        .normalize()?;
+        let centre = |c: i64| c.saturating_mul(2).saturating_add(1).saturating_mul(cell) / 2;
+        let view = Normal::from_direction([
+            self.eye[0].saturating_sub(centre(x)),
+            self.eye[1].saturating_sub(centre(y)),
+            self.eye[2].saturating_sub(here.saturating_mul(hq)),
+        ])?;
         let surface = match sun.materials {
             Materials::ByColor { water, rock } => {
-                let c = level.color_at(x, y);
-                let flat = h(1, 0) == h(-1, 0) && h(0, 1) == h(0, -1);
-                let low = h(0, 0) == i128::from(sun.lowest);
-                if (c.b > c.r && c.b > c.g) || (flat && low) {
+                let c = level.colors().get(r1 + x1).copied().unwrap_or_default();
+                let flat = left == right && up == down;
+                if (c.b > c.r && c.b > c.g) || (flat && here == i64::from(sun.lowest)) {
                     water
                 } else {
                     rock
@@ -314,20 +371,17 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
             }
             Materials::Map(m) => {
                 let base = self.terrain.base();
-                let (bx, by) = (
-                    mirror(x.saturating_mul(1 << l), base.width()),
-                    mirror(y.saturating_mul(1 << l), base.height()),
-                );
-                let at = by as usize * base.width() as usize + bx as usize;
-                m.get(at)
+                let bx = fold(x.saturating_mul(1 << l), base.width());
+                let by = fold(y.saturating_mul(1 << l), base.height());
+                m.get(by * base.width() as usize + bx)
                     .copied()
                     .unwrap_or(Phong::from_parts(1, U2F30::ZERO))
             }
         };
         let nl = i64::from(normal.dot(&sun.l).to_bits()).max(0);
-        let light = (u64::from(sun.ambient.to_bits())
-            + ((u64::from(sun.diffuse.to_bits()) * nl as u64) >> 30))
-            .min(1 << 30);
+        let light = (i64::from(sun.ambient.to_bits() >> 15)
+            + ((i64::from(sun.diffuse.to_bits()) * nl) >> 45))
+            .min(1 << 15);
         Some(Lit {
             normal,
             view,
@@ -342,18 +396,21 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         let Some(row) = self.row.take() else {
             return;
         };
-        let total = acc.w_terrain + acc.w_sky;
+        let total = acc.w_terrain.saturating_add(acc.w_sky);
         if acc.samples == 0 || total <= 0 || row >= self.height {
             return;
         }
-        // The highlight (Q30) as white light over the terrain's share of the pixel, in the
+        // The highlight (Q15) as white light over the terrain's share of the pixel, in the
         // channels' 8.8 × weight.
-        let spec = (self.highlight(&acc) * 255 * 256 * acc.w_terrain) >> 30;
-        let ch = |(color, sky): (i128, i128)| {
-            let c = (color >> 30) + sky + spec;
-            let v = (c + total * 128) / (total * 256);
+        let spec = ((self.highlight(&acc) * 255 * 256) >> 15).saturating_mul(acc.w_terrain);
+        let den = total.saturating_mul(256);
+        let ch = |(color, sky): (i64, i64)| {
+            let c = color
+                .saturating_add(sky)
+                .saturating_add(spec)
+                .saturating_add(total.saturating_mul(128));
             // Clamped to 0..=255 first: the fallback is never taken.
-            u8::try_from(v.clamp(0, 255)).unwrap_or(u8::MAX)
+            u8::try_from((c / den).clamp(0, 255)).unwrap_or(u8::MAX)
         };
         let ([c0, c1, c2], [s0, s1, s2]) = (acc.color, acc.sky);
         let [r, g, b] = [(c0, s0), (c1, s1), (c2, s2)].map(ch);
@@ -363,8 +420,8 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         }
     }
 
-    /// The pixel's highlight, Q30.
-    fn highlight(&mut self, acc: &Acc) -> i128 {
+    /// The pixel's highlight, Q15.
+    fn highlight(&mut self, acc: &Acc) -> i64 {
         let w = acc.w_terrain;
         if w <= 0 {
             return 0;
@@ -375,24 +432,35 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         }
         self.inner.shading(1);
         let (Some(n_bar), Some(e_bar)) = (
-            Vector::from_wide(acc.normal).normalize(),
-            Vector::from_wide(acc.view).normalize(),
+            Normal::from_direction(acc.normal),
+            Normal::from_direction(acc.view),
         ) else {
             return 0;
         };
-        #[allow(
-            clippy::cast_possible_truncation,
-            reason = "Σw·K/Σw ≤ 2^30 and Σw·n/Σw ≤ N_MAX: means of values in range"
-        )]
-        let phong = Phong::from_parts(
-            ((acc.n + w / 2) / w) as u16,
-            U2F30::from_bits((acc.k_spec / w) as u32),
-        );
+        // |N̄| = |Σ w·N| / Σw in Q30: the sum dotted with its own direction (a unit normal
+        // rounds to within 4·2^-30 of 1; the clamp keeps a pixel of equal normals at 1).
+        let len = acc
+            .normal
+            .iter()
+            .zip(n_bar.bits())
+            .map(|(&s, u)| i128::from(s) * i128::from(u))
+            .sum::<i128>()
+            >> 30;
+        let len = i64::try_from(len / i128::from(w))
+            .unwrap_or(0)
+            .clamp(0, 1 << 30);
+        let len = if len >= (1 << 30) - 8 { 1 << 30 } else { len };
+        // Means of values in range: n ≤ N_MAX, K ≤ 2^15 (Q15).
+        let n_mean = u16::try_from((acc.n + w / 2) / w).unwrap_or(u16::MAX);
+        let k_mean = u32::try_from((acc.k_spec / w).clamp(0, 1 << 15)).unwrap_or(0) << 15;
+        let phong = Phong::from_parts(n_mean, U2F30::from_bits(k_mean));
         let phong = match method {
             Specular::None | Specular::Reference => phong,
             Specular::Clamp(policy) => {
-                let d = 2 * u64::from(acos(I2F30::from_bits(acc.min_dot)).to_bits())
-                    + u64::from(self.half_pixel);
+                // The normals' weighted RMS turn from their mean is σ ≈ √(2(1 − |N̄|)); two
+                // normals of equal weight θ apart have σ = θ/2, so the pairwise turn is 2σ.
+                let sigma = isqrt(u64::try_from((2 * ((1 << 30) - len)) << 30).unwrap_or(0));
+                let d = 2 * sigma + u64::from(self.half_pixel);
                 let spread = Spread::Angle(U2F30::from_bits(u32::try_from(d).unwrap_or(u32::MAX)));
                 let clamped = clamp(&phong, spread, policy).phong;
                 // The paper's K′ = K·Maximum[n]/Maximum[n′] keeps the first cosine component
@@ -408,45 +476,20 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
                 )
             }
             Specular::Toksvig => {
-                // |N̄| = |Σ w·N| / Σw, Q30.
-                let len = isqrt_wide(acc.normal) * (1 << 30) / w;
-                let len = len.clamp(0, 1 << 30);
-                let n = i128::from(phong.n());
+                let n = i64::from(phong.n());
                 // n′ = n·|N̄| / (|N̄| + n(1 − |N̄|)), all in Q30.
                 let den = len + n * ((1 << 30) - len);
                 let n2 = if den > 0 { n * len / den } else { n };
-                let k = i128::from(phong.k_spec().to_bits()) * (1 + n2) / (1 + n);
-                #[allow(
-                    clippy::cast_possible_truncation,
-                    reason = "n′ ≤ n ≤ N_MAX and K′ ≤ K ≤ 2^30"
-                )]
-                let p = Phong::from_parts(n2 as u16, U2F30::from_bits(k as u32));
-                p
+                let k = i64::from(phong.k_spec().to_bits()) * (1 + n2) / (1 + n);
+                Phong::from_parts(
+                    u16::try_from(n2).unwrap_or(u16::MAX),
+                    U2F30::from_bits(u32::try_from(k).unwrap_or(0)),
+                )
             }
         };
         let cos = Light::new(self.sun.l, e_bar).cos_alpha_unit(&n_bar);
-        i128::from(phong.highlight(cos).to_bits())
+        i64::from(phong.highlight(cos).to_bits() >> 15)
     }
-}
-
-/// `⌊|v|⌋` of a wide vector (components below 2^100).
-fn isqrt_wide(v: [i128; 3]) -> i128 {
-    let big = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
-    if big == 0 {
-        return 0;
-    }
-    // Scale so that the squares fit in 64 bits, then undo the scale.
-    let top = 128 - big.leading_zeros();
-    let shift = top.saturating_sub(31);
-    let s: u64 = v
-        .iter()
-        .map(|&c| {
-            // The shift leaves at most 31 bits: the fallback is never taken.
-            let c = u64::try_from(c.unsigned_abs() >> shift).unwrap_or(u64::MAX >> 33);
-            c * c
-        })
-        .sum();
-    i128::from(crate::specular::isqrt(s)) << shift
 }
 
 impl<C: Cost> core::fmt::Debug for Shader<'_, '_, C> {
@@ -485,7 +528,7 @@ impl<C: Cost> Cost for Shader<'_, '_, C> {
     }
     fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
         self.inner.sample(voxel, color, weight);
-        let w = i128::from(weight.to_bits());
+        let w = weight.to_bits().min(MAX_WEIGHT);
         if w <= 0 {
             return;
         }
@@ -495,40 +538,40 @@ impl<C: Cost> Cost for Shader<'_, '_, C> {
         };
         let acc = &mut self.acc;
         acc.samples += 1;
-        acc.w_terrain += w;
+        acc.w_terrain = acc.w_terrain.saturating_add(w);
         for (sum, &c) in acc.color.iter_mut().zip(color.iter()) {
-            *sum += w * i128::from(c) * i128::from(lit.light);
+            add(sum, w, (i64::from(c) * lit.light) >> 15);
         }
+        // Q30 to Q15, rounded.
+        let q15 = |c: i32| (i64::from(c) + (1 << 14)) >> 15;
         for (sum, c) in acc.normal.iter_mut().zip(lit.normal.bits()) {
-            *sum += w * i128::from(c);
+            add(sum, w, i64::from(c));
         }
         for (sum, c) in acc.view.iter_mut().zip(lit.view.bits()) {
-            *sum += w * i128::from(c);
+            add(sum, w, q15(c));
         }
-        acc.k_spec += w * i128::from(lit.surface.k_spec().to_bits());
-        acc.n += w * i128::from(lit.surface.n());
-        match acc.first {
-            None => {
-                acc.first = Some(lit.normal);
-                acc.min_dot = 1 << 30;
-            }
-            Some(first) => acc.min_dot = acc.min_dot.min(first.dot(&lit.normal).to_bits()),
-        }
+        add(
+            &mut acc.k_spec,
+            w,
+            i64::from(lit.surface.k_spec().to_bits() >> 15),
+        );
+        add(&mut acc.n, w, i64::from(lit.surface.n()));
         if self.sun.specular == Specular::Reference {
             self.inner.shading(1);
             let cos = Light::new(self.sun.l, lit.view).cos_alpha_unit(&lit.normal);
-            self.acc.highlight += w * i128::from(lit.surface.highlight(cos).to_bits());
+            let h = i64::from(lit.surface.highlight(cos).to_bits() >> 15);
+            add(&mut self.acc.highlight, w, h);
         }
     }
     fn sky_sample(&mut self, color: Color16, weight: Weight) {
         self.inner.sky_sample(color, weight);
-        let w = i128::from(weight.to_bits());
+        let w = weight.to_bits().min(MAX_WEIGHT);
         if w <= 0 {
             return;
         }
-        self.acc.w_sky += w;
+        self.acc.w_sky = self.acc.w_sky.saturating_add(w);
         for (sum, &c) in self.acc.sky.iter_mut().zip(color.iter()) {
-            *sum += w * i128::from(c);
+            add(sum, w, i64::from(c));
         }
     }
     fn hit(&mut self) {
@@ -557,5 +600,24 @@ impl<C: Cost> Cost for Shader<'_, '_, C> {
     }
     fn shading(&mut self, count: u32) {
         self.inner.shading(count);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fold3_is_three_mirrors() {
+        for len in [1u32, 2, 3, 7] {
+            for i in -40..40 {
+                let want = (
+                    mirror(i - 1, len) as usize,
+                    mirror(i, len) as usize,
+                    mirror(i + 1, len) as usize,
+                );
+                assert_eq!(fold3(i, len), want, "i {i} len {len}");
+            }
+        }
     }
 }
