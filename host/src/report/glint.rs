@@ -83,10 +83,21 @@ pub fn verdict(g: &Glint) -> String {
         .iter()
         .find(|r| g.name(r) == g.least_column_flicker)
         .map_or(0, |r| r.column_excess_flicker);
+    let tied = g
+        .runs
+        .iter()
+        .filter(|r| r.column_excess_flicker == column)
+        .count()
+        > 1;
+    let first = if tied {
+        ", the first listed among equals"
+    } else {
+        ""
+    };
     format!(
         "Lowest RMSE: **{}** ({rmse:.2}). Least excess flicker over every column: **{}** \
          ({flicker:+} changes of 6 levels and more against the reference's {}); in the middle \
-         column alone: **{}** ({column:+}, the first listed among equals).",
+         column alone: **{}** ({column:+}{first}).",
         g.lowest_rmse, g.least_flicker, g.reference.large_changes, g.least_column_flicker
     )
 }
@@ -117,6 +128,7 @@ pub fn section(g: &Glint, note: &str) -> String {
           water under a low sun straight ahead, against the supersampled reference (issue 16; \
           `footprint glint --measure`). ";
     s += note;
+    s += "\n\n";
     s += &markdown(g);
     s += &format!(
         "\nColumn {} over time (one image column per frame; left to right: ",
