@@ -66,7 +66,7 @@ fn print_table(g: &Value) {
 /// reference's own flicker) than no antialiasing.
 #[test]
 #[ignore = "fails on the current core (issue 16): clamp99 adds more flicker than none \
-            (+208 against +20 changes of 6+ levels here), probably because its dot_dN bound is \
+            (+130 against +20 changes of 6+ levels here), probably because its dot_dN bound is \
             a minimum over every sampled normal whatever its weight, so a pixel toggles \
             between clamped and not as a sample enters or leaves it; toksvig renders byte for \
             byte as none on this flight. Run with --ignored to see the numbers"]
