@@ -39,6 +39,9 @@ pub enum Command {
     Specular(Box<commands::SpecularArgs>),
     /// The flight of Sect. 5: Table 6 (pixel changes between frames) and Fig. 14 (a column over time).
     Fly(Box<FlyArgs>),
+    /// Sun glint on water in the flight (issue 16): each specular antialiasing method against
+    /// the supersampled reference: RMSE, flicker (Table 6's bins) and shading work.
+    Glint(Box<commands::GlintArgs>),
     /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9).
     Inspect(Box<InspectArgs>),
     /// Every terrain experiment, written as REPORT.md, index.html, images and plots.
@@ -143,6 +146,7 @@ pub fn main() -> ExitCode {
         Command::Table(args) => commands::table(args),
         Command::Specular(args) => commands::specular(args),
         Command::Fly(args) => commands::fly(args),
+        Command::Glint(args) => commands::glint(args),
         Command::Inspect(args) => commands::inspect(args),
         Command::Report(args) => commands::report(args),
         Command::Map(args) => commands::map(args),

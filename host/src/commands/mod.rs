@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod firmware_reference;
 pub mod fly;
+pub mod glint;
 pub mod inspect;
 pub mod map;
 pub mod render;
@@ -14,6 +15,7 @@ pub mod table;
 pub use bench::{bench, BenchArgs};
 pub use firmware_reference::{firmware_reference, FirmwareReferenceArgs};
 pub use fly::{fly, FlyArgs};
+pub use glint::{glint, GlintArgs};
 pub use inspect::{inspect, InspectArgs};
 pub use map::{map, MapCommandArgs};
 pub use render::{render, RenderArgs};

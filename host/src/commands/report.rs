@@ -11,6 +11,7 @@ use serde_json::json;
 
 use crate::experiment::differences;
 use crate::experiment::fly::{self, FlySpec, BINS};
+use crate::experiment::glint::{self, GlintSpec};
 use crate::experiment::heights;
 use crate::experiment::inspect;
 use crate::experiment::paper::{paper_camera, paper_flight, PAPER_PITCHES};
@@ -18,7 +19,7 @@ use crate::experiment::table;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{MapArgs, Size, Switch};
+use crate::view::{MapArgs, Size, Switch, TerrainArg};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -141,7 +142,9 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let cwd = std::env::current_dir()
         .map_err(|e| anyhow::anyhow!("--out: the current folder is unreadable: {e}"))?;
     let command = regenerate_command(args, &cwd);
-    let steps = table::steps(3, modes.len()) + args.frames as u64 + 14;
+    let glint_spec = GlintSpec::report(lod);
+    glint_spec.check_memory()?;
+    let steps = table::steps(3, modes.len()) + args.frames as u64 + glint_spec.frames as u64 + 14;
     let bar = super::progress(steps, "steps", false);
     let file = |name: &str| -> PathBuf { folder.file(name) };
 
@@ -209,6 +212,19 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         &bars,
     )?;
 
+    // The sun's glint: over the built-in plains (whose flat lowland is water) unless a map
+    // was given.
+    bar.set_message("glint");
+    let (glint, glint_note) = glint_section(args, &pyramid, &glint_spec, || bar.inc(1))?;
+    for r in glint.runs.iter().chain(std::iter::once(&glint.reference)) {
+        write_png(
+            &file(&crate::report::glint::cut_file(&glint, r)),
+            glint.frames as u32,
+            glint.height,
+            &r.cut,
+        )?;
+    }
+
     // Diagnostic pictures.
     bar.set_message("pictures");
     let camera5 = paper_camera(map, &pyramid, 5.0, size, lod)?;
@@ -273,18 +289,49 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         pixel: &choice,
         study: &study,
         differences: &diffs,
+        glint: &glint,
+        glint_note: &glint_note,
     });
     write_text(&file("REPORT.md"), &md)?;
     write_text(&file("index.html"), &html::page("footprint report", &md))?;
     let data = json!({"command": command, "command_words": regenerate_words(args),
         "lod": value_name(&args.lod), "tables": tables, "fly": flight,
         "fig13_pixel": choice, "pixel": pixel_json, "footprint": fp_json,
-        "pyramid_heights_pitch5": study, "differences": diffs});
+        "pyramid_heights_pitch5": study, "differences": diffs, "glint": glint});
     write_text(&file("report.json"), &serde_json::to_string_pretty(&data)?)?;
     folder.finish()?;
     bar.finish_and_clear();
     println!("wrote {}", args.out.join("REPORT.md").display());
     Ok(())
+}
+
+/// The glint flight of the report and a sentence on its map: the report's map if it is a map
+/// file or the built-in plains, else the built-in plains with the same seed and size (the
+/// mountains' views show no water).
+fn glint_section(
+    args: &ReportArgs,
+    pyramid: &crate::pyramid::Pyramid,
+    spec: &GlintSpec,
+    progress: impl Fn() + Sync,
+) -> Result<(glint::Glint, String)> {
+    let m = &args.map;
+    if m.dem.is_some() || m.terrain == TerrainArg::Plains {
+        let g = glint::run(pyramid.map(), pyramid, spec, progress)?;
+        return Ok((g, String::new()));
+    }
+    let plains = MapArgs {
+        terrain: TerrainArg::Plains,
+        ..m.clone()
+    }
+    .pyramid()?;
+    let g = glint::run(plains.map(), &plains, spec, progress)?;
+    let note = format!(
+        "The flight is over {} rather than this report's map: the pitch-5° view of the \
+         built-in {} has little or no water to glint. ",
+        g.map,
+        value_name(&m.terrain)
+    );
+    Ok((g, note))
 }
 
 fn write_text(path: &Path, text: &str) -> Result<()> {

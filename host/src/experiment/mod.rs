@@ -5,6 +5,7 @@ pub mod claims;
 pub mod differences;
 pub mod firmware;
 pub mod fly;
+pub mod glint;
 pub mod heights;
 pub mod inspect;
 pub mod paper;

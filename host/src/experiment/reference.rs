@@ -36,13 +36,23 @@ pub fn reference(
     if projection == Projection::Exact {
         return Ok(wide.image);
     }
-    let k = REFERENCE_COLUMNS as usize;
-    let (w, h) = (camera.width(), camera.height());
+    Ok(box_columns(
+        &wide.image,
+        camera.width(),
+        camera.height(),
+        REFERENCE_COLUMNS as usize,
+    ))
+}
+
+/// Box-filters an image walked with `k` columns per pixel (`w·k × h`, row-major from the top)
+/// down to `w × h`: each pixel the rounded mean of its `k` columns.
+pub fn box_columns(wide: &[Rgb], w: usize, h: usize, k: usize) -> Vec<Rgb> {
+    let k = k.max(1);
     let mut out = Vec::with_capacity(w * h);
     for y in 0..h {
         for x in 0..w {
             let mut sum = [0u32; 3];
-            for px in &wide.image[y * w * k + x * k..y * w * k + (x + 1) * k] {
+            for px in &wide[y * w * k + x * k..y * w * k + (x + 1) * k] {
                 sum[0] += u32::from(px.r);
                 sum[1] += u32::from(px.g);
                 sum[2] += u32::from(px.b);
@@ -51,7 +61,7 @@ pub fn reference(
             out.push(Rgb::new(avg(sum[0]), avg(sum[1]), avg(sum[2])));
         }
     }
-    Ok(out)
+    out
 }
 
 /// The root-mean-square difference of two images over every channel, in 8-bit levels.

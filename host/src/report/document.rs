@@ -5,6 +5,7 @@
 use crate::experiment::claims::claims;
 use crate::experiment::differences::{Differences, PAPER_TABLE6, PAPER_V_L_5};
 use crate::experiment::fly;
+use crate::experiment::glint::Glint;
 use crate::experiment::heights::Variant;
 use crate::experiment::inspect::PixelChoice;
 use crate::experiment::table::Tables15;
@@ -78,6 +79,10 @@ pub struct Document<'a> {
     pub cuts: &'a str,
     /// The Fig. 13 pixel.
     pub pixel: &'a PixelChoice,
+    /// The sun-glint flight (issue 16).
+    pub glint: &'a Glint,
+    /// What the glint section says about its map first (empty if it is the report's).
+    pub glint_note: &'a str,
     /// The pyramid height filters.
     pub study: &'a [Variant],
     /// The numbers of "where our numbers differ".
@@ -408,6 +413,7 @@ pub fn markdown(doc: &Document<'_>) -> String {
     s += &pixel_paragraph(doc.pixel);
     s += "Fig. 9, the ground under a 32×32 window at pitch 20°: sampled voxels blue, visible but unsampled red, hidden green; SS4 (left) and AS (right).\n\n![SS4](footprint_ss4.png) ![AS](footprint_as.png)\n\n";
     s += &pyramid_section(doc.study);
+    s += &crate::report::glint::section(doc.glint, doc.glint_note);
     s += &differences_section(doc.differences);
     s
 }

@@ -6,6 +6,7 @@ pub mod apng;
 pub mod counts;
 pub mod document;
 pub mod flight;
+pub mod glint;
 pub mod html;
 pub mod plot;
 pub mod png;

@@ -1,0 +1,282 @@
+//! `footprint glint --measure`: the low-sun flight over the plains' water, each specular method
+//! against the supersampled reference (issue 16).
+
+mod common;
+
+use std::sync::OnceLock;
+
+use common::{assert_one_line_error, footprint};
+use serde_json::Value;
+
+/// The low-sun flight the measuring tests share: 24 frames of 160×100 over the built-in
+/// plains, AS, the sun straight ahead at 8°, the reference with 4 columns per pixel.
+const FLIGHT: &[&str] = &[
+    "glint",
+    "--measure",
+    "--json",
+    "--size",
+    "160x100",
+    "--frames",
+    "24",
+    "--reference-columns",
+    "4",
+];
+
+/// The flight's JSON, run once for every test that reads it.
+fn flight() -> &'static Value {
+    static RUN: OnceLock<Value> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let o = footprint(FLIGHT);
+        assert!(
+            o.status.success(),
+            "{FLIGHT:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let text = String::from_utf8(o.stdout).expect("UTF-8");
+        assert_eq!(text.trim().lines().count(), 1, "one JSON object: {text}");
+        serde_json::from_str(&text).expect("JSON")
+    })
+}
+
+/// The run of `method` (mode `as`).
+fn run<'a>(g: &'a Value, method: &str) -> &'a Value {
+    g["runs"]
+        .as_array()
+        .expect("runs")
+        .iter()
+        .find(|r| r["method"] == method)
+        .unwrap_or_else(|| panic!("no run of {method}: {g}"))
+}
+
+/// Prints every method's RMSE, excess flicker and shading work (visible with --nocapture).
+fn print_table(g: &Value) {
+    for r in g["runs"].as_array().expect("runs") {
+        println!(
+            "{:>10}: RMSE {:.3}, excess flicker {:+}, {:.2} evaluations/px",
+            r["method"].as_str().unwrap_or("?"),
+            r["rmse"].as_f64().unwrap_or(f64::NAN),
+            r["excess_flicker"].as_i64().unwrap_or(0),
+            r["shading_per_pixel"].as_f64().unwrap_or(f64::NAN)
+        );
+    }
+    println!("lowest RMSE: {}", g["lowest_rmse"]);
+}
+
+/// Issue 16: in the low-sun flight, `clamp99` and `toksvig` both flicker less (beyond the
+/// reference's own flicker) than no antialiasing.
+#[test]
+#[ignore = "fails on the current core (issue 16): clamp99 adds more flicker than none \
+            (+130 against +20 changes of 6+ levels here), probably because its dot_dN bound is \
+            a minimum over every sampled normal whatever its weight, so a pixel toggles \
+            between clamped and not as a sample enters or leaves it; toksvig renders byte for \
+            byte as none on this flight. Run with --ignored to see the numbers"]
+fn clamp99_and_toksvig_flicker_less_than_none() {
+    let g = flight();
+    print_table(g);
+    let excess = |m: &str| {
+        run(g, m)["excess_flicker"]
+            .as_i64()
+            .expect("excess_flicker")
+    };
+    let none = excess("none");
+    for m in ["clamp99", "toksvig"] {
+        assert!(
+            excess(m) < none,
+            "{m}: excess flicker {} is not below none's {none}",
+            excess(m)
+        );
+    }
+}
+
+/// The RMSEs are printed and the result names the method with the lowest, whichever it is.
+#[test]
+fn the_lowest_rmse_is_named() {
+    let g = flight();
+    print_table(g);
+    let runs = g["runs"].as_array().expect("runs");
+    let best = runs
+        .iter()
+        .min_by(|a, b| {
+            let f = |r: &Value| r["rmse"].as_f64().expect("rmse");
+            f(a).total_cmp(&f(b))
+        })
+        .expect("a run");
+    assert_eq!(g["lowest_rmse"], best["method"], "{g}");
+    for r in runs {
+        let e = r["rmse"].as_f64().expect("rmse");
+        assert!(e > 0.0 && e < 255.0, "{r}");
+    }
+}
+
+/// `--json` has the documented fields, every method once, and the reference shades every
+/// sample while the methods evaluate the highlight once per pixel at most.
+#[test]
+fn json_has_the_documented_fields() {
+    let g = flight();
+    for key in [
+        "map",
+        "frames",
+        "step",
+        "width",
+        "height",
+        "column",
+        "eye_height",
+        "heading",
+        "sun",
+        "lod",
+        "reference_columns",
+        "reference",
+        "runs",
+        "lowest_rmse",
+        "least_flicker",
+        "least_column_flicker",
+    ] {
+        assert!(g.get(key).is_some(), "no {key}: {g}");
+    }
+    assert_eq!(g["frames"], 24);
+    assert_eq!(
+        (g["width"].as_u64(), g["height"].as_u64()),
+        (Some(160), Some(100))
+    );
+    assert_eq!(g["sun"][0], g["heading"], "the sun is straight ahead");
+    assert_eq!(g["sun"][1].as_f64(), Some(8.0));
+    let methods: Vec<&str> = g["runs"]
+        .as_array()
+        .expect("runs")
+        .iter()
+        .map(|r| r["method"].as_str().expect("method"))
+        .collect();
+    assert_eq!(
+        methods,
+        ["none", "clamp", "clamp99", "clamp99.9", "toksvig"]
+    );
+    let reference = &g["reference"];
+    assert_eq!(reference["method"], "reference");
+    assert_eq!(reference["mode"], "as-exact");
+    assert_eq!(reference["excess_flicker"], 0);
+    let ref_shading = reference["shading_per_pixel"].as_f64().expect("shading");
+    for r in g["runs"]
+        .as_array()
+        .expect("runs")
+        .iter()
+        .chain([reference])
+    {
+        for key in [
+            "method",
+            "mode",
+            "rmse",
+            "rmse_max",
+            "column",
+            "flicker",
+            "large_changes",
+            "excess_flicker",
+            "column_excess_flicker",
+            "excess_bins",
+            "shading_per_pixel",
+            "lit_per_pixel",
+        ] {
+            assert!(r.get(key).is_some(), "no {key}: {r}");
+        }
+        let bins = r["flicker"].as_object().expect("flicker bins");
+        let total: u64 = bins.values().map(|v| v.as_u64().expect("count")).sum();
+        assert_eq!(total, 23 * 160 * 100, "every pixel of 23 frame pairs: {r}");
+        let large = bins["6-60"].as_u64().unwrap_or(0) + bins[">60"].as_u64().unwrap_or(0);
+        assert_eq!(r["large_changes"].as_u64(), Some(large), "{r}");
+        let excess = large as i64 - reference["large_changes"].as_i64().expect("reference");
+        assert_eq!(r["excess_flicker"].as_i64(), Some(excess), "{r}");
+        if r["method"] != "reference" {
+            assert_eq!(r["mode"], "as");
+            let s = r["shading_per_pixel"].as_f64().expect("shading");
+            assert!(s > 0.0 && s <= 1.0, "one evaluation per pixel at most: {r}");
+            assert!(
+                ref_shading > 10.0 * s,
+                "the reference shades every sample: {g}"
+            );
+        }
+    }
+}
+
+/// The text table names every method and the winner, and `--out` writes a frame and a
+/// cut-in-time image per method and for the reference.
+#[test]
+fn text_and_images() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let args = [
+        "glint",
+        "--measure",
+        "--size",
+        "40x24",
+        "--frames",
+        "3",
+        "--reference-columns",
+        "2",
+        "--out",
+        out,
+    ];
+    let o = footprint(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for m in [
+        "none",
+        "clamp",
+        "clamp99",
+        "clamp99.9",
+        "toksvig",
+        "reference",
+    ] {
+        assert!(text.contains(&format!("| {m} |")), "{m}: {text}");
+        for file in [format!("glint_{m}.png"), format!("glint_cut_{m}.png")] {
+            assert!(dir.path().join(&file).is_file(), "{file} missing");
+        }
+    }
+    assert!(text.contains("Lowest RMSE: **"), "{text}");
+    let cut = image_size(&dir.path().join("glint_cut_none.png"));
+    assert_eq!(cut, (3, 24), "one column per frame, the image's height");
+}
+
+/// A PNG's width and height, from its header.
+fn image_size(path: &std::path::Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap();
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+/// Without --measure the command says what it does and renders nothing.
+#[test]
+fn without_measure_it_says_what_it_does() {
+    let o = footprint(&["glint"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("--measure"), "{text}");
+}
+
+/// Bad --sun-elevation and --frames: exit 2, one line naming the option, nothing written.
+#[test]
+fn bad_input_is_one_line_naming_the_option() {
+    for (args, names) in [
+        (&["--sun-elevation", "0"][..], "--sun-elevation"),
+        (&["--sun-elevation", "-5"], "--sun-elevation"),
+        (&["--sun-elevation", "90.5"], "--sun-elevation"),
+        (&["--sun-elevation", "nan"], "--sun-elevation"),
+        (&["--sun-elevation", "high"], "--sun-elevation"),
+        (&["--frames", "1"], "--frames"),
+        (&["--frames", "0"], "--frames"),
+        (&["--frames", "-3"], "--frames"),
+        (&["--frames", "many"], "--frames"),
+        (&["--reference-columns", "0"], "--reference-columns"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().to_str().unwrap().to_owned();
+        let mut all = vec!["glint", "--measure", "--size", "40x24", "--out", &out];
+        all.extend_from_slice(args);
+        let o = footprint(&all);
+        assert_one_line_error(&o, &all, names);
+        assert!(o.stdout.is_empty(), "{all:?}: printed {:?}", o.stdout);
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "{all:?}: wrote files"
+        );
+    }
+}
