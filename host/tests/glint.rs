@@ -62,30 +62,43 @@ fn print_table(g: &Value) {
     println!("lowest RMSE: {}", g["lowest_rmse"]);
 }
 
-/// Issue 16: in the low-sun flight, `clamp99` and `toksvig` both flicker less (beyond the
-/// reference's own flicker) than no antialiasing.
+/// The excess flicker (changes of 6 levels and more between frames, less the reference's own)
+/// of method `m` on the test flight.
+fn excess(g: &Value, m: &str) -> i64 {
+    run(g, m)["excess_flicker"]
+        .as_i64()
+        .expect("excess_flicker")
+}
+
+/// Issue 16: in the low-sun flight, Toksvig flickers less (beyond the reference's own flicker)
+/// than no antialiasing (+17 against +20 changes measured: on the flat water every normal is
+/// the same and Toksvig is `none`; it acts on the hills and shores).
 #[test]
-#[ignore = "fails on the current core (issue 16): clamp99 adds more flicker than none \
-            (+130 against +20 changes of 6+ levels here), probably because its dot_dN bound is \
-            a minimum over every sampled normal whatever its weight, so a pixel toggles \
-            between clamped and not as a sample enters or leaves it; toksvig renders byte for \
-            byte as none on this flight. Run with --ignored to see the numbers"]
-fn clamp99_and_toksvig_flicker_less_than_none() {
+fn toksvig_flickers_less_than_none() {
     let g = flight();
     print_table(g);
-    let excess = |m: &str| {
-        run(g, m)["excess_flicker"]
-            .as_i64()
-            .expect("excess_flicker")
-    };
-    let none = excess("none");
-    for m in ["clamp99", "toksvig"] {
-        assert!(
-            excess(m) < none,
-            "{m}: excess flicker {} is not below none's {none}",
-            excess(m)
-        );
-    }
+    let (none, toksvig) = (excess(g, "none"), excess(g, "toksvig"));
+    assert!(
+        toksvig < none,
+        "toksvig {toksvig} is not below none's {none}"
+    );
+}
+
+/// Issue 16: in the low-sun flight, `clamp99` flickers less than no antialiasing. It does not
+/// on this flight (README, "Sun glint"): it has the lowest RMSE, but its clamped exponent
+/// steps with the pixel's normal spread from frame to frame.
+#[test]
+#[ignore = "fails on the current core (issue 16, open): clamp99 adds more flicker than none on \
+            this flight (+108 against +20 changes of 6+ levels), although its RMSE is the \
+            lowest (5.72 against 9.61); run with --ignored to see the numbers"]
+fn clamp99_flickers_less_than_none() {
+    let g = flight();
+    print_table(g);
+    let (none, clamp99) = (excess(g, "none"), excess(g, "clamp99"));
+    assert!(
+        clamp99 < none,
+        "clamp99 {clamp99} is not below none's {none}"
+    );
 }
 
 /// The RMSEs are printed and the result names the method with the lowest, whichever it is.
