@@ -6,12 +6,14 @@
 
 use arbitrary::Arbitrary;
 use footprint_core::num::Coord;
+use footprint_core::specular::{Clamp, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Switch};
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::render;
-use footprint_core::terrain::cost::{Counts, Tally};
+use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::shade::{Materials, Shader, Specular, Sun};
 use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale};
 use footprint_core::Rgb;
@@ -35,6 +37,8 @@ struct Input {
     mode: u8,
     lod: bool,
     mean_heights: bool,
+    /// A sun (azimuth, elevation, specular method) to light the frame with, issue 16.
+    sun: Option<(f64, f64, u8)>,
 }
 
 libfuzzer_sys::fuzz_target!(|input: Input| {
@@ -155,5 +159,41 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             counts.total.m, counts.total.v,
             "area sampling covers every visible voxel"
         );
+    }
+    // Lit by a sun: the shader over the exact and the point sampler must not panic, and the
+    // pixels it writes are the frame's.
+    if let Some((az, el, method)) = input.sun {
+        let specular = match method % 6 {
+            0 => Specular::None,
+            1 => Specular::Clamp(Clamp::Conservative),
+            2 => Specular::Clamp(Clamp::Aggressive(Power::P99)),
+            3 => Specular::Clamp(Clamp::Aggressive(Power::P999)),
+            4 => Specular::Toksvig,
+            _ => Specular::Reference,
+        };
+        let materials = Materials::default_by_color();
+        let Ok(sun) = Sun::new(&terrain, az, el, (0.35, 0.65), materials, specular) else {
+            return;
+        };
+        let p = camera.params();
+        let mut lit = vec![Rgb::default(); cw * ch];
+        let eye = [p.x_m, p.y_m, p.eye_m];
+        let Ok(mut shader) = Shader::new(
+            &sun,
+            &terrain,
+            eye,
+            camera.pixel_angle(),
+            (cw, ch),
+            &mut lit,
+            NoCost,
+        ) else {
+            return;
+        };
+        let done = if input.mode % 2 == 0 {
+            render(&frame, &terrain, &Area::new(), &mut shader, &mut image)
+        } else {
+            render(&frame, &terrain, &Point, &mut shader, &mut image)
+        };
+        assert!(done.is_ok(), "buffers were sized from the camera");
     }
 });
