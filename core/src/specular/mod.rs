@@ -34,7 +34,7 @@ pub use fixed::types::{I2F30, U16F16, U1F31, U2F30};
 
 pub use clamp::{clamp, Clamped};
 pub use detect::{acos, Spread};
-pub use normal::{isqrt, Normal, Vector};
+pub use normal::{isqrt, sqrt_q30, Normal, Vector};
 pub use phong::{cos_pow, Light, Phong};
 pub use policy::Clamp;
 pub use shade::{crow_grid, shade, specular, Material, Method, Specular};

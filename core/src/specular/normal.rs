@@ -81,21 +81,6 @@ impl Normal {
     /// error below 10^-8 before rounding), and each component is `v_i·r`. Error ≤ 4·2^-30 per
     /// component (test `from_direction_is_the_unit_vector`).
     pub fn from_direction(v: [i64; 3]) -> Option<Normal> {
-        // 2^30/√((j + ½)/16), j = 4..16: 1/√u at the middle of each sixteenth of [¼, 1).
-        const SEED: [u64; 12] = [
-            2_024_667_000,
-            1_831_380_208,
-            1_684_624_773,
-            1_568_300_315,
-            1_473_161_629,
-            1_393_471_397,
-            1_325_455_684,
-            1_266_516_759,
-            1_214_800_200,
-            1_168_942_037,
-            1_127_913_670,
-            1_090_922_784,
-        ];
         let big = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
         if big == 0 {
             return None;
@@ -112,14 +97,7 @@ impl Normal {
             s <<= 2;
         }
         // u = s/2^62 ∈ [¼, 1) in Q30.
-        let u = s >> 32;
-        let j = usize::try_from((u >> 26).saturating_sub(4)).unwrap_or(0);
-        let mut r = SEED.get(j).copied().unwrap_or(1 << 30);
-        for _ in 0..3 {
-            let r2 = (r * r) >> 30; // r ≤ 2^31: r² < 2^62
-            let t = (r2 * u) >> 30; // u·r² ≈ 1, Q30
-            r = (r * ((3 << 30) - t.min(3 << 30))) >> 31;
-        }
+        let r = rsqrt_q30(s >> 32);
         // |v'| = √s = 2^31·√u, so v'_i/|v'| = v'_i·r/2^31 in Q30.
         let q = |c: i64| {
             let x = (c * r as i64 + (1 << 30)) >> 31;
@@ -232,6 +210,53 @@ impl From<Normal> for Vector {
     }
 }
 
+/// `1/√u` in Q30 for `u ∈ [¼, 1)` in Q30 (`u` in `[2^28, 2^30)`), with multiplies only: a
+/// 12-entry table seed and three Newton steps `r ← r·(3 − u·r²)/2` (relative error below
+/// 10^-8 before rounding).
+fn rsqrt_q30(u: u64) -> u64 {
+    // 2^30/√((j + ½)/16), j = 4..16: 1/√u at the middle of each sixteenth of [¼, 1).
+    const SEED: [u64; 12] = [
+        2_024_667_000,
+        1_831_380_208,
+        1_684_624_773,
+        1_568_300_315,
+        1_473_161_629,
+        1_393_471_397,
+        1_325_455_684,
+        1_266_516_759,
+        1_214_800_200,
+        1_168_942_037,
+        1_127_913_670,
+        1_090_922_784,
+    ];
+    let j = usize::try_from((u >> 26).saturating_sub(4)).unwrap_or(0);
+    let mut r = SEED.get(j).copied().unwrap_or(1 << 30);
+    for _ in 0..3 {
+        let r2 = (r * r) >> 30; // r ≤ 2^31: r² < 2^62
+        let t = (r2 * u) >> 30; // u·r² ≈ 1, Q30
+        r = (r * ((3 << 30) - t.min(3 << 30))) >> 31;
+    }
+    r
+}
+
+/// `√x` for `x` in Q30 (any `u64`), in Q30, with multiplies only ([`rsqrt_q30`]); relative
+/// error below 2^-28.
+pub fn sqrt_q30(x: u64) -> u64 {
+    if x == 0 {
+        return 0;
+    }
+    // x·4^k ∈ [2^28, 2^30): then √x = √(x·4^k)/2^k.
+    let top = 63 - x.leading_zeros() as i32; // bit 28 or 29 wanted
+    let k = (28 - top).div_euclid(2) + i32::from((28 - top).rem_euclid(2) != 0);
+    let u = if k >= 0 { x << (2 * k) } else { x >> (-2 * k) };
+    let root = (u * rsqrt_q30(u)) >> 30; // √u in Q30, u < 2^30 and r ≤ 2^31
+    if k >= 0 {
+        root >> k
+    } else {
+        root << -k
+    }
+}
+
 /// `⌊√x⌋` for any `u64`, by Newton's iteration from a power of two above the root; integer only.
 pub fn isqrt(x: u64) -> u64 {
     if x < 2 {
@@ -251,6 +276,29 @@ pub fn isqrt(x: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sqrt_q30_is_the_square_root() {
+        for x in [
+            1u64,
+            3,
+            1 << 20,
+            1 << 28,
+            (1 << 29) + 7,
+            1 << 30,
+            2 << 30,
+            123_456_789_012,
+            u64::MAX >> 2,
+        ] {
+            let want = ((x as f64) / ONE as f64).sqrt() * ONE as f64;
+            let got = sqrt_q30(x) as f64;
+            assert!(
+                (got - want).abs() <= want * 4e-9 + 2.0,
+                "x {x}: {got} against {want}"
+            );
+        }
+        assert_eq!(sqrt_q30(0), 0);
+    }
 
     #[test]
     fn from_direction_is_the_unit_vector() {

@@ -43,7 +43,7 @@ use fixed::types::U2F30;
 use crate::color::{Color16, Rgb};
 use crate::error::{check, Error};
 use crate::num::Weight;
-use crate::specular::{clamp, isqrt, Clamp, Light, Normal, Phong, Spread};
+use crate::specular::{clamp, sqrt_q30, Clamp, Light, Normal, Phong, Spread};
 use crate::terrain::camera::floor_i64;
 use crate::terrain::cost::Cost;
 use crate::terrain::map::{mirror, Axis, Terrain};
@@ -446,9 +446,8 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
             .map(|(&s, u)| i128::from(s) * i128::from(u))
             .sum::<i128>()
             >> 30;
-        let len = i64::try_from(len / i128::from(w))
-            .unwrap_or(0)
-            .clamp(0, 1 << 30);
+        // |Σ w·N| ≤ Σw·2^30 < 2^63: a 64-bit division (no 128-bit one on the M4).
+        let len = (i64::try_from(len).unwrap_or(i64::MAX) / w).clamp(0, 1 << 30);
         let len = if len >= (1 << 30) - 8 { 1 << 30 } else { len };
         // Means of values in range: n ≤ N_MAX, K ≤ 2^15 (Q15).
         let n_mean = u16::try_from((acc.n + w / 2) / w).unwrap_or(u16::MAX);
@@ -459,7 +458,7 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
             Specular::Clamp(policy) => {
                 // The normals' weighted RMS turn from their mean is σ ≈ √(2(1 − |N̄|)); two
                 // normals of equal weight θ apart have σ = θ/2, so the pairwise turn is 2σ.
-                let sigma = isqrt(u64::try_from((2 * ((1 << 30) - len)) << 30).unwrap_or(0));
+                let sigma = sqrt_q30(u64::try_from(2 * ((1 << 30) - len)).unwrap_or(0));
                 let d = 2 * sigma + u64::from(self.half_pixel);
                 let spread = Spread::Angle(U2F30::from_bits(u32::try_from(d).unwrap_or(u32::MAX)));
                 let clamped = clamp(&phong, spread, policy).phong;
