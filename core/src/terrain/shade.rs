@@ -105,7 +105,8 @@ pub struct Sun<'a> {
     specular: Specular,
     /// The map's lowest level-0 height (flat voxels there are water by default).
     lowest: u16,
-    /// Metres per voxel and per height unit, in 1/256 m.
+    /// Metres per voxel and per height unit, in 1/65536 m (so that a 0.1 m height unit is
+    /// exact to 8·10^-6, not rounded by 1.6 % as in 1/256 m).
     spacing_q: i64,
     height_q: i64,
 }
@@ -150,7 +151,7 @@ impl<'a> Sun<'a> {
         }
         let lowest = base.heights(Axis::X).iter().copied().min().unwrap_or(0);
         let scale = terrain.scale();
-        let q = |m: f64| floor_i64(m * 256.0 + 0.5).max(1);
+        let q = |m: f64| floor_i64(m * 65536.0 + 0.5).max(1);
         #[allow(
             clippy::cast_possible_truncation,
             reason = "checked to [0, 1] above: ·2^30 + ½ is below 2^31"
@@ -188,9 +189,9 @@ struct Lit {
     light: i64,
 }
 
-/// A pixel's accumulated samples, weighted by the walk's weights `w` (raw bits, below 2^32
-/// per pixel in every sampler): every sum fits an `i64` (values below 2^16 each), so the M4
-/// needs no 128-bit arithmetic. Sums saturate rather than wrap.
+/// A pixel's accumulated samples, weighted by the walk's weights `w` (raw bits, capped at
+/// [`MAX_WEIGHT`]): every product `w·x` fits an `i64` (values at most 2^30), so the M4 needs no
+/// 128-bit arithmetic. Sums saturate rather than wrap.
 #[derive(Clone, Copy, Debug, Default)]
 struct Acc {
     /// Σw over terrain samples and over sky.
@@ -268,7 +269,7 @@ fn fold3(i: i64, len: u32) -> (usize, usize, usize) {
 pub struct Shader<'s, 'o, C: Cost> {
     sun: &'s Sun<'s>,
     terrain: &'s Terrain<'s>,
-    /// The eye, in 1/256 m (x east, y south, height).
+    /// The eye, in 1/65536 m (x east, y south, height).
     eye: [i64; 3],
     /// Half the pixel's angular size, radians Q30: the view's turn across a pixel.
     half_pixel: u32,
@@ -306,7 +307,7 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         }
         let mut eye = [0i64; 3];
         for (e, m) in eye.iter_mut().zip(eye_m) {
-            *e = floor_i64(check("eye", m, -1e12, 1e12, false)? * 256.0 + 0.5);
+            *e = floor_i64(check("eye", m, -1e12, 1e12, false)? * 65536.0 + 0.5);
         }
         let pix = check("pixel angle", pixel_angle, 0.0, 3.2, true)?;
         #[allow(
@@ -344,9 +345,9 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         let h = |at: usize| i64::from(heights.get(at).copied().unwrap_or(0));
         let (left, right) = (h(r1 + x0), h(r1 + x2));
         let (up, down, here) = (h(r0 + x1), h(r2 + x1), h(r1 + x1));
-        let cell = sun.spacing_q.saturating_mul(1 << l); // the level's cell, 1/256 m
+        let cell = sun.spacing_q.saturating_mul(1 << l); // the level's cell, 1/65536 m
         let hq = sun.height_q;
-        // (−∂h/∂x, −∂h/∂y, 1) times 2·cell, in 1/256 m.
+        // (−∂h/∂x, −∂h/∂y, 1) times 2·cell, in 1/65536 m.
         let normal = Normal::from_direction([
             -(right - left).saturating_mul(hq),
             -(down - up).saturating_mul(hq),
