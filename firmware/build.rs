@@ -129,6 +129,19 @@ fn main() {
         footprint_scenes::firmware::ROLLED_NAME
     )
     .unwrap();
+    let (glint_azimuth, glint_elevation) = scene.glint_sun();
+    writeln!(
+        s,
+        "/// The glint frame's name in the `frame` and `# icount` lines.\n\
+         pub const GLINT_NAME: &str = {:?};\n\
+         /// The glint frame's sun: azimuth, degrees clockwise from north.\n\
+         pub const GLINT_AZIMUTH: f64 = {};\n\
+         /// The glint frame's sun: elevation, degrees.\npub const GLINT_ELEVATION: f64 = {};",
+        footprint_scenes::firmware::GLINT_NAME,
+        f64_const(glint_azimuth),
+        f64_const(glint_elevation)
+    )
+    .unwrap();
 
     s.push_str("/// Level-0 heights, row-major.\n#[link_section = \".scene\"]\npub static HEIGHTS: [u16; CELLS] = [");
     for (i, v) in map.heights.iter().enumerate() {

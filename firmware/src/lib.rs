@@ -39,31 +39,17 @@ pub mod scene {
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
 
-/// The glint frame (issue 16): the firmware's terrain frame lit by a low sun straight ahead,
-/// the paper's AS, Amanatides' aggressive clamp keeping 99 % of the highlight's power
-/// (`clamp99`). The host's `footprint_host::experiment::firmware` renders the same frame with
-/// the same values (`GLINT_NAME`, `glint_sun`, its `lighting::AMBIENT_DIFFUSE`); the
-/// bit-exactness test fails if they drift apart.
+/// The glint frame (issue 16): the firmware's terrain frame lit by a low sun straight ahead
+/// (`scene::GLINT_AZIMUTH`, `scene::GLINT_ELEVATION`, baked from
+/// `footprint_scenes::firmware::Scene::glint_sun`), the core's `AMBIENT_DIFFUSE`, the paper's
+/// AS and Amanatides' aggressive clamp keeping 99 % of the highlight's power.
 pub mod glint {
     use footprint_core::specular::{Clamp, Power};
-    use footprint_core::terrain::camera::CameraParams;
     use footprint_core::terrain::shade::Specular;
 
-    /// The glint frame's name in its `frame` and `# icount` lines.
-    pub const NAME: &str = "glint-as-clamp99";
-
-    /// Ambient and diffuse light (the host CLI's `AMBIENT_DIFFUSE`).
-    pub const AMBIENT_DIFFUSE: (f64, f64) = (0.35, 0.65);
-
-    /// The highlight's antialiasing: `clamp99`.
+    /// The highlight's antialiasing, `clamp99`: `footprint_scenes::firmware::GLINT_SPECULAR`
+    /// (an enum the build script does not bake); the bit-exactness test fails if they differ.
     pub const SPECULAR: Specular = Specular::Clamp(Clamp::Aggressive(Power::P99));
-
-    /// The sun of a camera, `(azimuth, elevation)` in degrees: straight ahead (the camera's
-    /// heading) and as high as the camera looks down (its pitch), so flat ground mirrors it
-    /// into the image's centre row.
-    pub fn sun(camera: &CameraParams) -> (f64, f64) {
-        (camera.heading_deg, camera.pitch_deg)
-    }
 }
 
 /// The glint frame's lit image, in `.bss` (the walk's own grid is [`Buffers::image`]).

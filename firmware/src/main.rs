@@ -45,15 +45,15 @@ use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Optio
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
-use footprint_core::terrain::shade::{Materials, Sun};
+use footprint_core::terrain::shade::{Materials, Sun, AMBIENT_DIFFUSE};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
-    COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT,
-    PLATE_BACKGROUND, PLATE_COLORS, PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD,
-    PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME,
-    ROLL_DEG, SPACING_M, WIDTH,
+    COLORS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS, HEIGHT_SCALE_M,
+    MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT, PLATE_BACKGROUND, PLATE_COLORS, PLATE_DIFFUSE,
+    PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD, PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE,
+    PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M, WIDTH,
 };
 use footprint_firmware::{
     core_calls, glint, image_hash, stack, Buffers, FanBuffers, GlintBuffers, PlateBuffers, Ratio,
@@ -129,13 +129,12 @@ fn run_glint(
     lit: &mut [Rgb],
 ) -> Result<bool, Error> {
     let p = camera.params();
-    let (azimuth, elevation) = glint::sun(p);
     let (setup, sun) = instructions(|| {
         Sun::new(
             terrain,
-            azimuth,
-            elevation,
-            glint::AMBIENT_DIFFUSE,
+            GLINT_AZIMUTH,
+            GLINT_ELEVATION,
+            AMBIENT_DIFFUSE,
             Materials::default_by_color(),
             glint::SPECULAR,
         )
@@ -163,7 +162,7 @@ fn run_glint(
     let t: Tally = counts.total;
     hprintln!(
         "frame {} {}x{} fnv1a={:016x} hits={} normals={} shading={}",
-        glint::NAME,
+        GLINT_NAME,
         WIDTH,
         HEIGHT,
         hash,
@@ -175,7 +174,7 @@ fn run_glint(
     let added = render.saturating_sub(unlit);
     hprintln!(
         "# icount {}: render {} instructions, {} per pixel; the same frame unlit (as) {} per pixel, so lighting adds {} per pixel (+{} %); Sun::new {} (instructions, not cycles)",
-        glint::NAME,
+        GLINT_NAME,
         render,
         Ratio::tenths(render, pixels),
         Ratio::tenths(unlit, pixels),
@@ -186,7 +185,7 @@ fn run_glint(
     if counted_hash != hash {
         hprintln!(
             "FAIL {}: the counting render drew a different image",
-            glint::NAME
+            GLINT_NAME
         );
         return Ok(false);
     }

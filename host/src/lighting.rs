@@ -110,8 +110,7 @@ pub struct LightArgs {
     pub material: Option<PathBuf>,
 }
 
-/// The ambient and diffuse light of a lit frame.
-pub const AMBIENT_DIFFUSE: (f64, f64) = (0.35, 0.65);
+pub use footprint_core::terrain::shade::AMBIENT_DIFFUSE;
 
 /// The surfaces of a `--material` PNG, loaded for a `width × height` map.
 pub fn load_materials(path: &std::path::Path, width: u32, height: u32) -> Result<Vec<Surface>> {

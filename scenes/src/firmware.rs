@@ -11,9 +11,10 @@ use std::collections::HashMap;
 use std::fmt;
 
 use footprint_core::specular::raster::Vertex;
-use footprint_core::specular::Normal;
+use footprint_core::specular::{Clamp, Normal, Power};
 use footprint_core::terrain::camera::{CameraParams, Options, Projection};
 use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::terrain::shade::Specular;
 use footprint_core::{Error, Rgb};
 
 use crate::plates::{self, Mode, SceneName};
@@ -41,6 +42,15 @@ pub const ROLL_DEG: f64 = 30.0;
 
 /// The name of the rolled frame in the firmware's `frame` lines.
 pub const ROLLED_NAME: &str = "as-roll30";
+
+/// The name of the glint frame (issue 16) in the firmware's `frame` and `# icount` lines: the
+/// view lit by [`Scene::glint_sun`], the paper's AS with [`GLINT_SPECULAR`].
+pub const GLINT_NAME: &str = "glint-as-clamp99";
+
+/// The glint frame's highlight antialiasing: Amanatides' aggressive clamp keeping 99 % of the
+/// power (`clamp99`). The firmware spells it out again in `firmware/src/lib.rs`
+/// (`glint::SPECULAR`); the bit-exactness test fails if the two differ.
+pub const GLINT_SPECULAR: Specular = Specular::Clamp(Clamp::Aggressive(Power::P99));
 
 /// The firmware's terrain scene: the map and the camera, with the eye height fitted.
 #[derive(Debug)]
@@ -75,6 +85,13 @@ impl Scene {
             roll_deg: ROLL_DEG,
             ..self.params
         }
+    }
+
+    /// The glint frame's sun, `(azimuth, elevation)` in degrees: straight ahead (the camera's
+    /// heading) and as high as the camera looks down (its pitch), so flat ground mirrors it
+    /// into the image's centre row.
+    pub fn glint_sun(&self) -> (f64, f64) {
+        (self.params.heading_deg, self.params.pitch_deg)
     }
 
     /// The options of the rolled frame: [`Scene::options`] in the exact projection.

@@ -50,6 +50,10 @@ use crate::terrain::map::{mirror, Axis, Terrain};
 use crate::terrain::march::Voxel;
 use crate::trig::sin_cos_deg;
 
+/// The default ambient and diffuse light, `(ambient, diffuse)`: `0.35 + 0.65·max(N·L, 0)`
+/// times the colour (the CLI's `--sun` and the firmware's glint frame).
+pub const AMBIENT_DIFFUSE: (f64, f64) = (0.35, 0.65);
+
 /// How a pixel's highlight is antialiased (issue 16).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Specular {
@@ -606,6 +610,58 @@ impl<C: Cost> Cost for Shader<'_, '_, C> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::terrain::cost::NoCost;
+    use crate::terrain::map::{Level, Scale};
+
+    #[test]
+    fn bad_suns_and_buffers_are_errors() {
+        let heights = [0u16; 4];
+        let colors = [Rgb::new(1, 2, 3); 4];
+        let level = Level::new(2, 2, &heights, &colors).unwrap();
+        let terrain = Terrain::new(level, Scale::new(10.0, 0.1).unwrap());
+        let sun = |az: f64, el: f64, light: (f64, f64), m: Materials<'_>| {
+            Sun::new(&terrain, az, el, light, m, Specular::None).is_err()
+        };
+        let by_color = Materials::default_by_color();
+        assert!(
+            sun(0.0, 0.0, (0.35, 0.65), by_color),
+            "a sun on the horizon"
+        );
+        assert!(
+            sun(0.0, 90.5, (0.35, 0.65), by_color),
+            "a sun past the zenith"
+        );
+        assert!(
+            sun(f64::NAN, 10.0, (0.35, 0.65), by_color),
+            "a non-finite azimuth"
+        );
+        assert!(sun(0.0, 10.0, (1.5, 0.65), by_color), "ambient above 1");
+        assert!(sun(0.0, 10.0, (0.35, -0.1), by_color), "diffuse below 0");
+        let three = [Phong::from_parts(8, U2F30::ZERO); 3];
+        assert!(
+            sun(0.0, 10.0, (0.35, 0.65), Materials::Map(&three)),
+            "materials not 2×2"
+        );
+        assert!(
+            !sun(0.0, 90.0, (0.35, 0.65), by_color),
+            "the zenith is a sun"
+        );
+        let ok = Sun::new(&terrain, 0.0, 10.0, (0.35, 0.65), by_color, Specular::None).unwrap();
+        let mut short = [Rgb::default(); 3];
+        let shader = Shader::new(&ok, &terrain, [0.0; 3], 0.01, (2, 2), &mut short, NoCost);
+        assert!(shader.is_err(), "an image of 3 pixels for 2×2");
+        let mut out = [Rgb::default(); 4];
+        let shader = Shader::new(
+            &ok,
+            &terrain,
+            [f64::INFINITY, 0.0, 0.0],
+            0.01,
+            (2, 2),
+            &mut out,
+            NoCost,
+        );
+        assert!(shader.is_err(), "a non-finite eye");
+    }
 
     #[test]
     fn fold3_is_three_mirrors() {

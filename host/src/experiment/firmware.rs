@@ -40,13 +40,12 @@
 
 use anyhow::{bail, Result};
 use footprint_core::num::Coord;
-use footprint_core::specular::{Clamp, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::Point;
-use footprint_core::terrain::shade::{Materials, Specular, Sun};
+use footprint_core::terrain::shade::{Materials, Sun};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 
@@ -54,8 +53,8 @@ use footprint_core::specular::raster::{self, Target, Triangle};
 use footprint_core::specular::{self, Light, Material, Normal, Phong};
 
 pub use footprint_scenes::firmware::{
-    plate, plate_mode_name, scene, Plate, PlateVertex, Scene, HEIGHT, MAP_SIDE, PITCH_DEG, PLATE,
-    PLATE_MODE, PLATE_SIZE, ROLLED_NAME, ROLL_DEG, SEED, WIDTH,
+    plate, plate_mode_name, scene, Plate, PlateVertex, Scene, GLINT_NAME, GLINT_SPECULAR, HEIGHT,
+    MAP_SIDE, PITCH_DEG, PLATE, PLATE_MODE, PLATE_SIZE, ROLLED_NAME, ROLL_DEG, SEED, WIDTH,
 };
 use footprint_scenes::plates::Scene as PlateScene;
 use footprint_scenes::render::render_lit;
@@ -71,21 +70,6 @@ pub const SIZE: Size = Size {
     width: WIDTH,
     height: HEIGHT,
 };
-
-/// The glint frame's name in the firmware's `frame` and `# icount` lines (the firmware's
-/// `glint::NAME`).
-pub const GLINT_NAME: &str = "glint-as-clamp99";
-
-/// The glint frame's highlight antialiasing: Amanatides' aggressive clamp keeping 99 % of the
-/// power (`clamp99`; the firmware's `glint::SPECULAR`).
-pub const GLINT_SPECULAR: Specular = Specular::Clamp(Clamp::Aggressive(Power::P99));
-
-/// The glint frame's sun for a camera, `(azimuth, elevation)` in degrees (the firmware's
-/// `glint::sun`): straight ahead (the heading) and as high as the camera looks down (the
-/// pitch), so flat ground mirrors it into the image's centre row.
-pub fn glint_sun(camera: &CameraParams) -> (f64, f64) {
-    (camera.heading_deg, camera.pitch_deg)
-}
 
 /// The modes the firmware renders, in the order it prints them.
 pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(Rate::N8), Mode::AsExact, Mode::As];
@@ -201,7 +185,7 @@ pub fn reference_lines() -> Result<Vec<String>> {
         let hash = image_hash(&rendered.image);
         lines.push(frame_line(mode, SIZE, hash, &measured.total));
     }
-    lines.push(glint_line(&camera, &frame, &terrain)?);
+    lines.push(glint_line(&camera, scene.glint_sun(), &frame, &terrain)?);
     lines.push(rolled_line(&scene, &terrain)?);
     lines.push(plate_reference_line()?);
     lines.extend(error_lines(&scene)?);
@@ -209,17 +193,17 @@ pub fn reference_lines() -> Result<Vec<String>> {
 }
 
 /// The glint frame's `frame` line: `frame` (the firmware's view, the paper's projection) lit
-/// by [`glint_sun`] with the CLI's [`AMBIENT_DIFFUSE`] and default materials, drawn by the
+/// by `sun` (`Scene::glint_sun`) with the CLI's [`AMBIENT_DIFFUSE`] and default materials, drawn by the
 /// paper's AS with [`GLINT_SPECULAR`] through `footprint_scenes::render::render_lit`
 /// (`footprint render --mode as --sun AZ,EL --specular clamp99`):
 /// `frame glint-as-clamp99 160x120 fnv1a=… hits=… normals=… shading=…`, the hits of the walk,
 /// the samples lit and the highlight evaluations.
 pub fn glint_line(
     camera: &Camera,
+    (azimuth, elevation): (f64, f64),
     frame: &Frame<'_>,
     terrain: &footprint_core::terrain::Terrain<'_>,
 ) -> Result<String> {
-    let (azimuth, elevation) = glint_sun(camera.params());
     let sun = Sun::new(
         terrain,
         azimuth,
