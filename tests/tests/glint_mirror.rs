@@ -19,6 +19,7 @@ use footprint_core::terrain::sampler::Area;
 use footprint_core::terrain::shade::{Materials, Shader, Specular, Sun};
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
+use footprint_host::experiment::reference::box_columns;
 
 const WATER: Rgb = Rgb::new(20, 40, 90);
 const SIZE: u32 = 8;
@@ -103,19 +104,8 @@ fn image(
     )
     .expect("a shader");
     render(&frame, terrain, &Area::new(), &mut shader, &mut grid).expect("sized");
-    // Average `columns` columns per pixel.
-    let c = columns as usize;
-    (0..h * cam.width())
-        .map(|i| {
-            let (y, x) = (i / cam.width(), i % cam.width());
-            let px = &out[y * w + x * c..y * w + x * c + c];
-            let ch = |f: fn(&Rgb) -> u8| {
-                let s = px.iter().map(|p| u32::from(f(p))).sum::<u32>();
-                u8::try_from((s + c as u32 / 2) / c as u32).expect("an average of u8")
-            };
-            Rgb::new(ch(|p| p.r), ch(|p| p.g), ch(|p| p.b))
-        })
-        .collect()
+    // Average `columns` columns per pixel, as the colour ground truth is.
+    box_columns(&out, cam.width(), h, columns as usize)
 }
 
 /// The glint's energy (luminance above the plain water, summed over the image), its peak, and
