@@ -1,4 +1,5 @@
-//! The sun on the terrain (issue 16): `--sun AZ,EL`, `--specular METHOD`, `--material FILE.png`,
+//! The sun on the terrain (issue 16): `--sun AZ,EL`, `--specular METHOD`,
+//! `--material water|wet|FILE.png`,
 //! turned into the core's [`Sun`].
 
 use std::fmt;
@@ -102,12 +103,75 @@ pub struct LightArgs {
     /// reference (every sample shaded on its own).
     #[arg(long, default_value = "clamp99", requires = "sun")]
     pub specular: Method,
-    /// Specular material per voxel, a PNG the size of the map: red is K_spec (0–255 → 0–1),
-    /// green the exponent n = 1024^(G/255) (0 → 1, 255 → 1024). Default: water (n 1024,
-    /// K_spec 0.9) where the colour is blue or the ground is flat at its lowest height, rock
-    /// (n 8, K_spec 0.05) elsewhere.
-    #[arg(long, value_name = "FILE.png", requires = "sun")]
-    pub material: Option<PathBuf>,
+    /// The specular materials: `water` (the default: water, n 1024 and K_spec 0.9, where the
+    /// colour is blue or the ground is flat at its lowest height; dull rock, n 8 and K_spec
+    /// 0.05, elsewhere), `wet` (the same water; wet rock, n 256 and K_spec 0.5), or a PNG the
+    /// size of the map: red is K_spec (0–255 → 0–1), green the exponent n = 1024^(G/255)
+    /// (0 → 1, 255 → 1024); `./wet` for a file named wet.
+    #[arg(long, value_name = "water|wet|FILE.png", requires = "sun")]
+    pub material: Option<MaterialArg>,
+}
+
+/// `--material`: a built-in set of surfaces or a PNG of them.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum MaterialArg {
+    /// [`Materials::default_by_color`].
+    Water,
+    /// [`Materials::wet`].
+    Wet,
+    /// A material PNG ([`load_materials`]).
+    File(PathBuf),
+}
+
+impl FromStr for MaterialArg {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Ok(match s {
+            "water" => MaterialArg::Water,
+            "wet" => MaterialArg::Wet,
+            "" => return Err("expected water, wet or a PNG file".into()),
+            path => MaterialArg::File(PathBuf::from(path)),
+        })
+    }
+}
+
+impl fmt::Display for MaterialArg {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MaterialArg::Water => f.write_str("water"),
+            MaterialArg::Wet => f.write_str("wet"),
+            MaterialArg::File(p) => write!(f, "{}", p.display()),
+        }
+    }
+}
+
+/// The surfaces `--material` names, loaded: built in, or one per voxel of the map.
+#[derive(Clone, Debug)]
+pub enum LoadedMaterials {
+    /// A built-in set.
+    Builtin(Materials<'static>),
+    /// One surface per level-0 voxel.
+    Map(Vec<Surface>),
+}
+
+impl LoadedMaterials {
+    /// `--material` (the default `water` without it) for a `width × height` map; the error
+    /// names the file.
+    pub fn load(arg: Option<&MaterialArg>, width: u32, height: u32) -> Result<Self> {
+        Ok(match arg {
+            None | Some(MaterialArg::Water) => Self::Builtin(Materials::default_by_color()),
+            Some(MaterialArg::Wet) => Self::Builtin(Materials::wet()),
+            Some(MaterialArg::File(path)) => Self::Map(load_materials(path, width, height)?),
+        })
+    }
+
+    /// The core's view of them.
+    pub fn materials(&self) -> Materials<'_> {
+        match self {
+            Self::Builtin(m) => *m,
+            Self::Map(m) => Materials::Map(m),
+        }
+    }
 }
 
 pub use footprint_core::terrain::shade::AMBIENT_DIFFUSE;
@@ -127,20 +191,17 @@ pub fn load_materials(path: &std::path::Path, width: u32, height: u32) -> Result
 
 impl LightArgs {
     /// The sun for `terrain` with the given method, or `None` without `--sun`; `materials`
-    /// holds a loaded `--material` map (see [`load_materials`]).
+    /// are the loaded `--material` ([`LoadedMaterials::load`]).
     pub fn sun_with<'a>(
         &self,
         terrain: &Terrain<'_>,
         method: Specular,
-        materials: Option<&'a [Surface]>,
+        materials: &'a LoadedMaterials,
     ) -> Result<Option<Sun<'a>>> {
         let Some(dir) = self.sun else {
             return Ok(None);
         };
-        let materials = match materials {
-            Some(m) => Materials::Map(m),
-            None => Materials::default_by_color(),
-        };
+        let materials = materials.materials();
         let sun = Sun::new(
             terrain,
             dir.azimuth,

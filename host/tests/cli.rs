@@ -598,4 +598,35 @@ fn a_sun_lights_the_frame_and_a_material_map_is_read() {
         "material.png.out.png",
     );
     assert_ne!(m, lit, "the material map changes the highlight");
+    let water = render(&["--sun", "0,20", "--material", "water"], "water.png");
+    assert_eq!(water, lit, "`water` is the default");
+    let wet = render(&["--sun", "0,20", "--material", "wet"], "wet.png");
+    assert_ne!(wet, lit, "wet rock shines");
+}
+
+/// `glint --material`: a missing PNG fails with one line naming the option and the file, and
+/// nothing is measured.
+#[test]
+fn glint_names_a_bad_material() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.png");
+    let args = [
+        "glint",
+        "--measure",
+        "--size",
+        "16x8",
+        "--frames",
+        "2",
+        "--material",
+        missing.to_str().unwrap(),
+    ];
+    let o = footprint(&args);
+    assert_one_line_error(&o, &args, "--material");
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("missing.png"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let args = ["glint", "--material", ""];
+    assert_one_line_error(&footprint(&args), &args, "--material");
 }

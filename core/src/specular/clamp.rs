@@ -41,14 +41,32 @@ pub struct Clamped {
 /// The paper's code fragment: detect with the policy's table and, in an aliasing pixel, clamp
 /// `n` to `n′ ≤ n` and renormalise `K′_spec = K_spec·Maximum[n]/Maximum[n′] ≤ K_spec`.
 pub fn clamp(phong: &Phong, spread: Spread, policy: Clamp) -> Clamped {
-    let n = phong.n();
-    if !spread.aliases(n, policy) {
+    if !spread.aliases(phong.n(), policy) {
         return Clamped {
             phong: *phong,
             aliased: false,
         };
     }
-    let f = spread.sample_frequency();
+    clamp_at(phong, spread.sample_frequency(), policy)
+}
+
+/// The fragment for a pixel whose sampling frequency is `f` (the integer
+/// `sampleFrequency = ⌊π/Δα_N⌋` that [`clamp`] takes from the spread): `n` is kept when the
+/// policy's frequency limit of `n` is at most `f`, otherwise clamped to the largest `n′ < n`
+/// whose limit is, with `K′_spec = K_spec·Maximum[n]/Maximum[n′]`.
+///
+/// For a spread given as an angle `D`, `clamp(phong, Spread::Angle(D), policy)` equals
+/// `clamp_at(phong, ⌊π/2D⌋, policy)`; callers with a fractional frequency blend `clamp_at` at
+/// its floor and ceiling (the shaded terrain does, so that a pixel's highlight does not step
+/// as its spread drifts).
+pub fn clamp_at(phong: &Phong, f: u16, policy: Clamp) -> Clamped {
+    let n = phong.n();
+    if policy.frequency_limit(n) <= f {
+        return Clamped {
+            phong: *phong,
+            aliased: false,
+        };
+    }
     let mut n2 = policy.max_n(f).min(n);
     // K_p alternates with parity, so MaxnAllowed_p[f] can exceed an n whose own K_p(n) > f;
     // capped at n, step down to the largest n′ ≤ n that fits (one or two steps).
@@ -85,5 +103,26 @@ mod tests {
         assert_eq!(c.phong, phong);
         // A flat pixel never clamps.
         assert!(!clamp(&phong, Spread::NONE, Clamp::Conservative).aliased);
+    }
+
+    #[test]
+    fn clamp_is_clamp_at_the_spreads_frequency() {
+        let phong = Phong::new(700, 0.6).unwrap();
+        for policy in [
+            Clamp::Conservative,
+            Clamp::Aggressive(Power::P99),
+            Clamp::Aggressive(Power::P999),
+        ] {
+            for d in [1e-4, 0.003, 0.0123, 0.05, 0.4, 1.7] {
+                let s = Spread::Angle(U2F30::from_num(d));
+                let at = clamp_at(&phong, s.sample_frequency(), policy);
+                assert_eq!(clamp(&phong, s, policy), at, "{policy:?}, D = {d}");
+            }
+            // Frequency 0 keeps only cos^0; the exponent's own limit keeps n.
+            assert_eq!(clamp_at(&phong, 0, policy).phong.n(), 0, "{policy:?}");
+            let own = policy.frequency_limit(700);
+            assert!(!clamp_at(&phong, own, policy).aliased, "{policy:?}");
+            assert!(clamp_at(&phong, own - 1, policy).aliased, "{policy:?}");
+        }
     }
 }

@@ -32,7 +32,7 @@ pub mod tables;
 /// callers need not depend on `fixed` themselves.
 pub use fixed::types::{I2F30, U16F16, U1F31, U2F30};
 
-pub use clamp::{clamp, Clamped};
+pub use clamp::{clamp, clamp_at, Clamped};
 pub use detect::{acos, Spread};
 pub use normal::{isqrt, sqrt_q30, Normal, Vector};
 pub use phong::{cos_pow, Light, Phong};

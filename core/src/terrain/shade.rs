@@ -12,26 +12,36 @@
 //! heights, cells `2^L` voxels wide), so distant normals are prefiltered as the colours are.
 //! **The view direction** of a sample is from its voxel's top centre to the eye.
 //!
-//! **The highlight** of a pixel, by [`Specular`] method:
-//! * `None`: one Phong evaluation at the pixel's weight-averaged normal `N̄` and view `Ē`, with
-//!   the material's `n`: the highlight aliases where the normals under the pixel spread;
+//! **Lobes.** A pixel keeps one lobe per octave of the exponent ([`LOBES`]): water and rock
+//! under one pixel are two highlights, each with the moments of its own samples, weighted by
+//! their share of the highlight `w·K_spec` (the pixel's weighted normal `N̄`, its length, the
+//! mean `n`), and the pixel's highlight is their sum. One lobe for both had neither's width.
+//!
+//! **The highlight** of a lobe, by [`Specular`] method:
+//! * `None`: one Phong evaluation at the lobe's mean normal `N̄` and the pixel's view `Ē`, with
+//!   the lobe's mean `n`: the highlight aliases where the normals under the pixel spread;
 //! * `Clamp(policy)`: the same evaluation with Amanatides' `n′` and `K′_spec`
-//!   ([`clamp()`](crate::specular::clamp())). The normals' turn comes from the normals the sampler
-//!   met, with their weights, and needs no pairwise loop: the weight-averaged unit normal has
-//!   length `|N̄| ≈ 1 − σ²/2` for an RMS turn σ from the mean, and two normals of equal weight
-//!   `θ` apart have `σ = θ/2`, so the pixel's turn is `2σ = 2·√(2(1 − |N̄|))` (a sliver of
-//!   tilted shore in a water pixel turns it by its share, not by its angle: the smallest
-//!   pairwise dot flipped whole glint pixels between clamped and not from frame to frame). The
-//!   view turns across the pixel too (by its angular size, which moves the reflected direction as
-//!   a normal turn of half that angle would), so the pixel's spread is `D = 2σ + pixel/2`. The
-//!   paper renormalises with `K′ = K·Maximum[n]/Maximum[n′]`, the first cosine component of the
-//!   1-D signal; a glint on terrain is a 2-D lobe, so the ratio is applied once per direction,
+//!   ([`clamp_at`]). The normals' turn comes from the normals the sampler met, with their
+//!   weights, and needs no pairwise loop: the weight-averaged unit normal has length
+//!   `|N̄| ≈ 1 − σ²/2` for an RMS turn σ from the mean, and two normals of equal weight `θ`
+//!   apart have `σ = θ/2`, so the pixel's turn is `2σ` (a sliver of tilted shore in a water
+//!   pixel turns it by its share, not by its angle: the smallest pairwise dot flipped whole
+//!   glint pixels between clamped and not from frame to frame). `σ²` is the samples' spread,
+//!   `2(1 − |N̄|)`, plus their voxels' own: a normal turns across its cell by the heights'
+//!   second differences, a mean square of `turn²/12` per axis (one ray samples one line of the
+//!   pixel's footprint; the voxels' turn stands for the rest). The view turns across the pixel
+//!   too (by its angular size, which moves the reflected direction as a normal turn of half
+//!   that angle would), so the pixel's spread is `D = 2σ + pixel/2`. Its sampling frequency
+//!   `π/2D` is fractional: the fragment runs at its floor and ceiling and the highlights are
+//!   blended, so a drifting spread does not step the highlight. The paper renormalises with
+//!   `K′ = K·Maximum[n]/Maximum[n′]`, the first cosine component of the 1-D signal; a glint on
+//!   terrain is a 2-D lobe, so the ratio is applied once per direction,
 //!   `K″ = K·(Maximum[n]/Maximum[n′])²` (with the paper's ratio the clamped glint on a flat
-//!   plane had 5–6× the reference's energy; with the square, 0.92–1.09× at 99 %, test
+//!   plane had 5–6× the reference's energy; with the square, 0.91–1.10× at 99 %, test
 //!   `glint_mirror`);
-//! * `Toksvig`: Toksvig (2005): the weight-averaged unit normal has length `|N̄| ≤ 1`, and the
-//!   lobe widens to `n′ = n·|N̄| / (|N̄| + n(1 − |N̄|))`, with the normalised-Phong energy factor
-//!   `K′ = K·(1 + n′)/(1 + n)`;
+//! * `Toksvig`: Toksvig (2005): the mean of unit normals with that spread has length
+//!   `|N̄| = 1 − σ²/2 ≤ 1`, and the lobe widens to `n′ = n·|N̄| / (|N̄| + n(1 − |N̄|))`, with
+//!   the normalised-Phong energy factor `K′ = K·(1 + n′)/(1 + n)`;
 //! * `Reference`: every sample evaluated with its own normal and view (run on level 0 with many
 //!   columns per pixel and the exact area sampler, it is the supersampled reference).
 //!
@@ -43,7 +53,8 @@ use fixed::types::U2F30;
 use crate::color::{Color16, Rgb};
 use crate::error::{check, Error};
 use crate::num::Weight;
-use crate::specular::{clamp, sqrt_q30, Clamp, Light, Normal, Phong, Spread};
+use crate::specular::detect::PI_Q30;
+use crate::specular::{clamp_at, sqrt_q30, Clamp, Light, Normal, Phong, N_MAX};
 use crate::terrain::camera::floor_i64;
 use crate::terrain::cost::Cost;
 use crate::terrain::map::{mirror, Axis, Terrain};
@@ -88,12 +99,27 @@ pub enum Materials<'a> {
 }
 
 impl Materials<'_> {
-    /// The default: water with `n = 1024`, `K_spec = 0.9` (a low sun's glint), rock with
-    /// `n = 8`, `K_spec = 0.05` (a weak sheen).
+    /// Water: `n = 1024`, `K_spec = 0.9` (a low sun's glint).
+    pub fn water() -> Surface {
+        Phong::from_parts(1024, U2F30::from_bits(966_367_642))
+    }
+
+    /// The default: [water](Self::water) by colour, and rock with `n = 8`, `K_spec = 0.05`
+    /// (a weak sheen).
     pub fn default_by_color() -> Materials<'static> {
         Materials::ByColor {
-            water: Phong::from_parts(1024, U2F30::from_bits(966_367_642)),
+            water: Self::water(),
             rock: Phong::from_parts(8, U2F30::from_bits(53_687_091)),
+        }
+    }
+
+    /// After rain: [water](Self::water) by colour, and wet rock with `n = 256`,
+    /// `K_spec = 0.5`, a highlight on every slope that faces the glint (the issue's "wet
+    /// rock"), where the normals under a distant pixel spread and the highlight can alias.
+    pub fn wet() -> Materials<'static> {
+        Materials::ByColor {
+            water: Self::water(),
+            rock: Phong::from_parts(256, U2F30::from_bits(1 << 29)),
         }
     }
 }
@@ -113,6 +139,10 @@ pub struct Sun<'a> {
     /// exact to 8·10^-6, not rounded by 1.6 % as in 1/256 m).
     spacing_q: i64,
     height_q: i64,
+    /// A height unit over a level-0 cell, Q30: the slope of one unit's step, so that a second
+    /// difference `d` at level `L` turns the normal by `d·unit_slope/2^L` radians (capped
+    /// below 2 rad: a larger step turns the normal by more than any cell can anyway).
+    unit_slope: i32,
 }
 
 impl<'a> Sun<'a> {
@@ -170,6 +200,14 @@ impl<'a> Sun<'a> {
             lowest,
             spacing_q: q(scale.spacing_m),
             height_q: q(scale.height_scale_m),
+            unit_slope: i32::try_from(
+                q(scale.height_scale_m)
+                    .saturating_mul(1 << 30)
+                    .checked_div(q(scale.spacing_m))
+                    .unwrap_or(0)
+                    .min(i64::from(i32::MAX)),
+            )
+            .unwrap_or(i32::MAX),
         })
     }
 
@@ -191,6 +229,9 @@ struct Lit {
     surface: Surface,
     /// `ambient + diffuse·max(N·L, 0)`, Q15.
     light: i64,
+    /// Six times the normal's mean squared turn within the voxel (`(turn_x² + turn_y²)/2`),
+    /// Q30 rad², at most 1.
+    within: i64,
 }
 
 /// A pixel's accumulated samples, weighted by the walk's weights `w` (raw bits, capped at
@@ -204,15 +245,45 @@ struct Acc {
     /// Σ w·colour·light (8.8 colour, light Q15, the product back to 8.8), and Σ w·sky (8.8).
     color: [i64; 3],
     sky: [i64; 3],
-    /// Σ w·N, components Q30 (the spread needs `1 − |N̄|` to 2^-30), and Σ w·E, Q15.
-    normal: [i64; 3],
+    /// Σ w·E, Q15: the pixel's view.
     view: [i64; 3],
-    /// Σ w·K_spec (Q15) and Σ w·n.
-    k_spec: i64,
-    n: i64,
     /// Σ w·K·cos^n α per sample (reference), Q15.
     highlight: i64,
     samples: u32,
+}
+
+/// The lobes a pixel keeps apart: one per octave of the exponent, `n ∈ [2^k, 2^(k+1))` for
+/// `k = 0..LOBES` (`N_MAX = 1024` is the last octave's).
+///
+/// A single lobe for a pixel of water and rock has neither's width: with the default materials
+/// a sliver of tilted rock widened and dimmed the water's glint, and the first water voxel
+/// entering a rock pixel narrowed the rock's sheen to nothing, each a jump of 6 levels and
+/// more between frames that the reference does not have (on the test flight, 110 such changes
+/// with `clamp99` against the reference's 1, and 3 with a lobe per octave). Within an octave
+/// lobes differ in width by less than √2, and the clamp sees only the spread of the normals of
+/// the surfaces that share the lobe.
+pub const LOBES: usize = (u16::BITS - N_MAX.leading_zeros()) as usize;
+
+/// The lobe of exponent `n` ([`LOBES`]).
+#[inline(always)]
+fn octave(n: u16) -> usize {
+    n.max(1).ilog2() as usize
+}
+
+/// The moments of one lobe of a pixel: samples weighted by their share of the highlight,
+/// `w_K = w·K_spec` (K Q15, so `w_K ≤ w`), so that a dull voxel's normal counts for little.
+#[derive(Clone, Copy, Debug, Default)]
+struct Lobe {
+    /// Σ w·K_spec, Q15: the lobe's strength over the pixel (divided by the pixel's Σw).
+    k_spec: i64,
+    /// Σ w_K.
+    w_k: i64,
+    /// Σ w_K·n.
+    n: i64,
+    /// Σ w_K·N, components Q30 (the spread needs `1 − |N̄|` to 2^-30).
+    normal: [i64; 3],
+    /// Σ w_K·(six times the normal's mean squared turn within the sample's voxel), Q30 rad².
+    within: i64,
 }
 
 /// The largest weight a sample enters a pixel with: the samplers' weights are far below it
@@ -265,6 +336,22 @@ fn fold3(i: i64, len: u32) -> (usize, usize, usize) {
     }
 }
 
+/// The paper's fragment at sampling frequency `f` ([`clamp_at`]), renormalised for a 2-D
+/// lobe: the paper's `K′ = K·Maximum[n]/Maximum[n′]` keeps the first cosine component of the
+/// 1-D signal cos^n α; a glint on terrain is a 2-D lobe (α turns in both directions across the
+/// pixel), whose level the ratio keeps only when applied once per direction:
+/// `K″ = K·(Maximum[n]/Maximum[n′])² = K′²/K`.
+fn terrain_clamp(phong: &Phong, f: u16, policy: Clamp) -> Phong {
+    let clamped = clamp_at(phong, f, policy).phong;
+    let k = u64::from(phong.k_spec().to_bits());
+    let k1 = u64::from(clamped.k_spec().to_bits());
+    let k2 = (k1 * k1).checked_div(k).unwrap_or(0);
+    Phong::from_parts(
+        clamped.n(),
+        U2F30::from_bits(u32::try_from(k2).unwrap_or(u32::MAX)),
+    )
+}
+
 /// Shades the samples of a walk into its own image (row-major from the top, `W × H` of the
 /// frame's grid), forwarding every event to the inner cost `C`.
 ///
@@ -283,6 +370,9 @@ pub struct Shader<'s, 'o, C: Cost> {
     column: usize,
     row: Option<usize>,
     acc: Acc,
+    /// The current pixel's lobes ([`LOBES`]) and which of them samples reached (bit `k`).
+    lobes: [Lobe; LOBES],
+    used: u16,
     /// The inner cost, which every event reaches too.
     pub inner: C,
 }
@@ -330,6 +420,8 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
             column: 0,
             row: None,
             acc: Acc::default(),
+            lobes: [Lobe::default(); LOBES],
+            used: 0,
             inner,
         })
     }
@@ -383,6 +475,19 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
                     .unwrap_or(Phong::from_parts(1, U2F30::ZERO))
             }
         };
+        // The normal turns across the cell by the second differences (radians, small
+        // angles), linearly: its mean squared turn from the centre is turn²/12 per axis (the
+        // division by 12 waits for the lobe's sum).
+        // |d| < 2^18 and unit_slope < 2^31: the product is exact in an i64 (one 32×32
+        // multiply on the M4), and the turn fits an i32.
+        let turn = |d: i64| {
+            let d = i32::try_from(d).unwrap_or(0);
+            let t = (i64::from(d) * i64::from(sun.unit_slope)) >> l;
+            i32::try_from(t.clamp(-(1 << 30), 1 << 30)).unwrap_or(0)
+        };
+        let sq = |t: i32| i64::from(t) * i64::from(t);
+        let (tx, ty) = (turn(left + right - 2 * here), turn(up + down - 2 * here));
+        let within = ((sq(tx) + sq(ty)) >> 31).min(1 << 30);
         let nl = i64::from(normal.dot(&sun.l).to_bits()).max(0);
         let light = (i64::from(sun.ambient.to_bits() >> 15)
             + ((i64::from(sun.diffuse.to_bits()) * nl) >> 45))
@@ -392,6 +497,7 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
             view,
             surface,
             light,
+            within,
         })
     }
 
@@ -425,59 +531,90 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         }
     }
 
-    /// The pixel's highlight, Q15.
+    /// The pixel's highlight, Q15: the sum of its lobes'. Clears the lobes.
     fn highlight(&mut self, acc: &Acc) -> i64 {
         let w = acc.w_terrain;
-        if w <= 0 {
-            return 0;
+        let evaluate = w > 0 && self.sun.specular != Specular::Reference;
+        let light = Normal::from_direction(acc.view).map(|e_bar| Light::new(self.sun.l, e_bar));
+        let mut sum = 0;
+        let mut used = core::mem::take(&mut self.used);
+        while used != 0 {
+            let k = used.trailing_zeros() as usize;
+            used &= used - 1;
+            let Some(slot) = self.lobes.get_mut(k) else {
+                continue;
+            };
+            let lobe = core::mem::take(slot);
+            if let (true, Some(light)) = (evaluate, light.as_ref()) {
+                sum += self.lobe(&lobe, w, light);
+            }
         }
-        let method = self.sun.specular;
-        if method == Specular::Reference {
-            return acc.highlight / w;
+        match (w > 0, self.sun.specular) {
+            (true, Specular::Reference) => acc.highlight / w,
+            (true, _) => sum,
+            (false, _) => 0,
+        }
+    }
+
+    /// One lobe's highlight over a pixel of terrain weight `w`, Q15, seen along `light`.
+    fn lobe(&mut self, lobe: &Lobe, w: i64, light: &Light) -> i64 {
+        let w_k = lobe.w_k;
+        if w_k <= 0 {
+            return 0;
         }
         self.inner.shading(1);
-        let (Some(n_bar), Some(e_bar)) = (
-            Normal::from_direction(acc.normal),
-            Normal::from_direction(acc.view),
-        ) else {
+        let Some(n_bar) = Normal::from_direction(lobe.normal) else {
             return 0;
         };
-        // |N̄| = |Σ w·N| / Σw in Q30: the sum dotted with its own direction (a unit normal
+        // |N̄| = |Σ w_K·N| / Σw_K in Q30: the sum dotted with its own direction (a unit normal
         // rounds to within 4·2^-30 of 1; the clamp keeps a pixel of equal normals at 1).
-        let len = acc
+        let len = lobe
             .normal
             .iter()
             .zip(n_bar.bits())
             .map(|(&s, u)| i128::from(s) * i128::from(u))
             .sum::<i128>()
             >> 30;
-        // |Σ w·N| ≤ Σw·2^30 < 2^63: a 64-bit division (no 128-bit one on the M4).
-        let len = (i64::try_from(len).unwrap_or(i64::MAX) / w).clamp(0, 1 << 30);
+        // |Σ w_K·N| ≤ Σw_K·2^30 < 2^63: a 64-bit division (no 128-bit one on the M4).
+        let len = (i64::try_from(len).unwrap_or(i64::MAX) / w_k).clamp(0, 1 << 30);
         let len = if len >= (1 << 30) - 8 { 1 << 30 } else { len };
-        // Means of values in range: n ≤ N_MAX, K ≤ 2^15 (Q15).
-        let n_mean = u16::try_from((acc.n + w / 2) / w).unwrap_or(u16::MAX);
-        let k_mean = u32::try_from((acc.k_spec / w).clamp(0, 1 << 15)).unwrap_or(0) << 15;
+        // The normals' mean squared turn: between the samples, 2(1 − |N̄|), plus within their
+        // voxels (a ray samples one line of the pixel's footprint; the voxels' own turn stands
+        // for the rest, so the spread does not jump as the ray crosses other cells).
+        let var = (2 * ((1 << 30) - len) + lobe.within / w_k / 6).min(1 << 31);
+        // The length a mean of normals with that spread has, |N̄| ≈ 1 − σ²/2 (Toksvig's).
+        let len = (1 << 30) - var / 2;
+        // Means of values in range: n ≤ N_MAX (weighted by w_K), K ≤ 2^15 (Q15, over the
+        // pixel's Σw: the lobe's share of the pixel).
+        let n_mean = u16::try_from((lobe.n + w_k / 2) / w_k).unwrap_or(u16::MAX);
+        let k_mean = u32::try_from((lobe.k_spec / w).clamp(0, 1 << 15)).unwrap_or(0) << 15;
         let phong = Phong::from_parts(n_mean, U2F30::from_bits(k_mean));
-        let phong = match method {
+        let phong = match self.sun.specular {
             Specular::None | Specular::Reference => phong,
             Specular::Clamp(policy) => {
                 // The normals' weighted RMS turn from their mean is σ ≈ √(2(1 − |N̄|)); two
                 // normals of equal weight θ apart have σ = θ/2, so the pairwise turn is 2σ.
-                let sigma = sqrt_q30(u64::try_from(2 * ((1 << 30) - len)).unwrap_or(0));
+                let sigma = sqrt_q30(u64::try_from(var).unwrap_or(0));
                 let d = 2 * sigma + u64::from(self.half_pixel);
-                let spread = Spread::Angle(U2F30::from_bits(u32::try_from(d).unwrap_or(u32::MAX)));
-                let clamped = clamp(&phong, spread, policy).phong;
-                // The paper's K′ = K·Maximum[n]/Maximum[n′] keeps the first cosine component
-                // of the 1-D signal cos^n α. A glint on terrain is a 2-D lobe (α turns in both
-                // directions across the pixel), whose level the ratio keeps only when applied
-                // once per direction: K″ = K·(Maximum[n]/Maximum[n′])² = K′²/K.
-                let k = u64::from(phong.k_spec().to_bits());
-                let k1 = u64::from(clamped.k_spec().to_bits());
-                let k2 = (k1 * k1).checked_div(k).unwrap_or(0);
-                Phong::from_parts(
-                    clamped.n(),
-                    U2F30::from_bits(u32::try_from(k2).unwrap_or(u32::MAX)),
-                )
+                // The sampling frequency π/2D, Q16, below N_MAX + 1.
+                let cap = (u64::from(N_MAX) + 1) << 16;
+                let f = ((PI_Q30 << 16) / (2 * d).max(1)).min(cap);
+                let (f0, t) = (f >> 16, f & 0xFFFF);
+                let at = |f: u64| terrain_clamp(&phong, u16::try_from(f).unwrap_or(N_MAX), policy);
+                let (p0, p1) = (at(f0), at(f0 + 1));
+                let cos = light.cos_alpha_unit(&n_bar);
+                let h0 = i64::from(p0.highlight(cos).to_bits() >> 15);
+                if t == 0 || p0 == p1 {
+                    return h0;
+                }
+                // Between the table's integer frequencies the highlight is blended by the
+                // fraction of f, so that it does not step as the pixel's spread drifts (at the
+                // paper's ⌊f⌋ alone a drifting spread stepped a wet slope's highlight by 6 and
+                // more levels between frames: K″ ∝ n′ moves by a step of MaxnAllowed).
+                self.inner.shading(1);
+                let h1 = i64::from(p1.highlight(cos).to_bits() >> 15);
+                let t = i64::try_from(t).unwrap_or(0);
+                return h0 + (((h1 - h0) * t + (1 << 15)) >> 16);
             }
             Specular::Toksvig => {
                 let n = i64::from(phong.n());
@@ -491,7 +628,7 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
                 )
             }
         };
-        let cos = Light::new(self.sun.l, e_bar).cos_alpha_unit(&n_bar);
+        let cos = light.cos_alpha_unit(&n_bar);
         i64::from(phong.highlight(cos).to_bits() >> 15)
     }
 }
@@ -548,18 +685,24 @@ impl<C: Cost> Cost for Shader<'_, '_, C> {
         }
         // Q30 to Q15, rounded.
         let q15 = |c: i32| (i64::from(c) + (1 << 14)) >> 15;
-        for (sum, c) in acc.normal.iter_mut().zip(lit.normal.bits()) {
-            add(sum, w, i64::from(c));
-        }
         for (sum, c) in acc.view.iter_mut().zip(lit.view.bits()) {
             add(sum, w, q15(c));
         }
-        add(
-            &mut acc.k_spec,
-            w,
-            i64::from(lit.surface.k_spec().to_bits() >> 15),
-        );
-        add(&mut acc.n, w, i64::from(lit.surface.n()));
+        let k = i64::from(lit.surface.k_spec().to_bits() >> 15);
+        // w·K with K ≤ 2^15 in Q15: at most w, rounded.
+        let w_k = (w * k + (1 << 14)) >> 15;
+        let k_lobe = octave(lit.surface.n());
+        self.used |= 1 << k_lobe;
+        let Some(lobe) = self.lobes.get_mut(k_lobe) else {
+            return;
+        };
+        add(&mut lobe.k_spec, w, k);
+        lobe.w_k = lobe.w_k.saturating_add(w_k);
+        add(&mut lobe.n, w_k, i64::from(lit.surface.n()));
+        for (sum, c) in lobe.normal.iter_mut().zip(lit.normal.bits()) {
+            add(sum, w_k, i64::from(c));
+        }
+        add(&mut lobe.within, w_k, lit.within);
         if self.sun.specular == Specular::Reference {
             self.inner.shading(1);
             let cos = Light::new(self.sun.l, lit.view).cos_alpha_unit(&lit.normal);

@@ -8,6 +8,7 @@ use clap::Args;
 
 use crate::args::OutputFormat;
 use crate::experiment::glint::{self, GlintSpec, METHODS};
+use crate::lighting::MaterialArg;
 use crate::render::Mode;
 use crate::report::glint as writer;
 use crate::report::png::write_png;
@@ -70,6 +71,11 @@ pub struct GlintArgs {
         allow_hyphen_values = true
     )]
     pub reference_columns: u32,
+    /// The surfaces: `water` (water glints, rock is dull), `wet` (the same water, and wet rock
+    /// with n 256 and K_spec 0.5, whose highlight can alias on distant slopes), or a material
+    /// PNG the size of the map (see `render --help`).
+    #[arg(long, default_value = "water", value_name = "water|wet|FILE.png")]
+    pub material: MaterialArg,
     /// Folder (it must exist) for a PNG of the last frame per method (`glint_<method>.png`,
     /// the reference's too) and the cut-in-time images of the middle column
     /// (`glint_cut_<method>.png`).
@@ -129,6 +135,7 @@ impl GlintArgs {
             sun_elevation_deg: el,
             lod: self.lod == Switch::On,
             reference_columns: self.reference_columns,
+            material: self.material.clone(),
         };
         spec.check_memory()?;
         Ok(spec)

@@ -6,7 +6,7 @@ use anyhow::Result;
 use clap::Args;
 
 use crate::args::OutputFormat;
-use crate::lighting::{load_materials, LightArgs};
+use crate::lighting::{LightArgs, LoadedMaterials};
 use crate::render::{count, render_timed, render_timed_parallel, Mode, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
@@ -57,13 +57,14 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let frame = tables.frame(&view.camera, &terrain, view.options)?;
     let (_, ms) = render_timed(&frame, &terrain, args.mode, 3)?;
     let (mut rendered, ms_threads) = render_timed_parallel(&frame, &terrain, args.mode, 3)?;
-    let materials = match &args.light.material {
-        Some(path) => Some(load_materials(path, view.map().width, view.map().height)?),
-        None => None,
-    };
+    let materials = LoadedMaterials::load(
+        args.light.material.as_ref(),
+        view.map().width,
+        view.map().height,
+    )?;
     if let Some(sun) = args
         .light
-        .sun_with(&terrain, args.light.specular.0, materials.as_deref())?
+        .sun_with(&terrain, args.light.specular.0, &materials)?
     {
         let mut counts = Counts::new(&mut []);
         rendered = render_lit(&frame, &terrain, &view.camera, args.mode, &sun, &mut counts)?;

@@ -16,6 +16,7 @@ use crate::experiment::heights;
 use crate::experiment::inspect;
 use crate::experiment::paper::{paper_camera, paper_flight, PAPER_PITCHES};
 use crate::experiment::table;
+use crate::lighting::MaterialArg;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
@@ -142,7 +143,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let cwd = std::env::current_dir()
         .map_err(|e| anyhow::anyhow!("--out: the current folder is unreadable: {e}"))?;
     let command = regenerate_command(args, &cwd);
-    let glint_spec = GlintSpec::report(lod);
+    let glint_spec = GlintSpec::report(lod, MaterialArg::Water);
     glint_spec.check_memory()?;
     let steps = table::steps(3, modes.len()) + args.frames as u64 + glint_spec.frames as u64 + 14;
     let bar = super::progress(steps, "steps", false);

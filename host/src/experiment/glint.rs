@@ -23,7 +23,7 @@ use serde::Serialize;
 use super::fly::{flight, luminance, Histogram, BINS};
 use super::paper::paper_camera;
 use super::reference::{box_columns, rmse};
-use crate::lighting::{Method, AMBIENT_DIFFUSE};
+use crate::lighting::{LoadedMaterials, MaterialArg, Method, AMBIENT_DIFFUSE};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{Mode, Tables};
@@ -63,12 +63,14 @@ pub struct GlintSpec {
     pub lod: bool,
     /// Columns walked per pixel in the reference.
     pub reference_columns: u32,
+    /// The surfaces (`water`, the default, or `wet`, or a material PNG).
+    pub material: MaterialArg,
 }
 
 impl GlintSpec {
     /// The small flight of `footprint report`'s glint section: 24 frames of 160×100, AS, every
-    /// method, the sun at 8°, the reference with 8 columns per pixel.
-    pub fn report(lod: bool) -> GlintSpec {
+    /// method, the sun at 8°, the reference with 8 columns per pixel, over `material`.
+    pub fn report(lod: bool, material: MaterialArg) -> GlintSpec {
         GlintSpec {
             frames: 24,
             step_m: 0.5,
@@ -81,6 +83,7 @@ impl GlintSpec {
             sun_elevation_deg: 8.0,
             lod,
             reference_columns: 8,
+            material,
         }
     }
 
@@ -166,6 +169,8 @@ pub struct Glint {
     pub lod: bool,
     /// Columns walked per pixel in the reference.
     pub reference_columns: u32,
+    /// The surfaces: `water`, `wet`, or the material PNG's path.
+    pub material: String,
     /// The reference's own flight.
     pub reference: GlintRun,
     /// Every method in every mode.
@@ -201,19 +206,21 @@ struct FrameRun {
     image: Option<Vec<Rgb>>,
 }
 
-/// The sun of `method` at azimuth `heading` (straight ahead) and `elevation`, lighting `terrain`.
-fn sun(
+/// The sun of `method` at azimuth `heading` (straight ahead) and `elevation`, lighting
+/// `terrain` with `materials`.
+fn sun<'m>(
     terrain: &Terrain<'_>,
     heading: f64,
     elevation: f64,
+    materials: Materials<'m>,
     method: Method,
-) -> Result<Sun<'static>> {
+) -> Result<Sun<'m>> {
     Sun::new(
         terrain,
         heading,
         elevation,
         AMBIENT_DIFFUSE,
-        Materials::default_by_color(),
+        materials,
         method.0,
     )
     .map_err(|e| anyhow::anyhow!("--sun-elevation {elevation}: {e}"))
@@ -254,11 +261,13 @@ pub fn run(
         .iter()
         .flat_map(|&m| spec.modes.iter().map(move |&mode| (m, mode)))
         .collect();
+    let loaded = LoadedMaterials::load(Some(&spec.material), map.width, map.height)?;
+    let materials = loaded.materials();
     let suns = runs
         .iter()
-        .map(|&(m, _)| sun(&terrain, heading, el, m))
+        .map(|&(m, _)| sun(&terrain, heading, el, materials, m))
         .collect::<Result<Vec<_>>>()?;
-    let reference_sun = sun(&level0, heading, el, REFERENCE)?;
+    let reference_sun = sun(&level0, heading, el, materials, REFERENCE)?;
     let options = Options {
         lod: spec.lod,
         projection: Projection::Paper,
@@ -406,6 +415,7 @@ pub fn run(
         sun: [heading, el],
         lod: spec.lod,
         reference_columns: spec.reference_columns,
+        material: spec.material.to_string(),
         reference,
         runs,
         lowest_rmse: String::new(),

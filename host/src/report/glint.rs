@@ -17,7 +17,7 @@ pub fn frame_file(g: &Glint, r: &GlintRun) -> String {
 /// The flight in one sentence.
 fn flight(g: &Glint) -> String {
     format!(
-        "{} frames of {}×{} over {}, {} m forward per frame from the pitch-5° view (eye \
+        "{} frames of {}×{} over {} (materials: {}), {} m forward per frame from the pitch-5° view (eye \
          {:.0} m, heading {:.1}°), the sun straight ahead at elevation {}°; the methods walk {}, \
          the reference is `as-exact` at level 0 with {} columns per pixel and every sample \
          shaded on its own",
@@ -25,6 +25,7 @@ fn flight(g: &Glint) -> String {
         g.width,
         g.height,
         g.map,
+        g.material,
         g.step,
         g.eye_height,
         g.heading,
