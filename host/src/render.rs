@@ -68,6 +68,31 @@ pub fn render_timed_parallel(
     best_of(repeats, || render_parallel(frame, terrain, mode))
 }
 
+/// [`render_timed`] lit by `sun` (`footprint_scenes::render::render_lit`, one thread: the
+/// shader writes the whole lit image), with its cost `cost` counted in the last run only.
+pub fn render_lit_timed<C: footprint_core::terrain::cost::Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    camera: &footprint_core::terrain::camera::Camera,
+    mode: Mode,
+    sun: &footprint_core::terrain::shade::Sun<'_>,
+    repeats: usize,
+    cost: &mut C,
+) -> Result<(Rendered, f64)> {
+    let (_, ms) = best_of(repeats, || {
+        Ok(footprint_scenes::render::render_lit(
+            frame,
+            terrain,
+            camera,
+            mode,
+            sun,
+            &mut NoCost,
+        )?)
+    })?;
+    let rendered = footprint_scenes::render::render_lit(frame, terrain, camera, mode, sun, cost)?;
+    Ok((rendered, ms))
+}
+
 /// The last of `repeats` renders (at least one) and the fastest one's wall time, ms.
 fn best_of(
     repeats: usize,

@@ -7,13 +7,12 @@ use clap::Args;
 
 use crate::args::OutputFormat;
 use crate::lighting::{LightArgs, LoadedMaterials};
-use crate::render::{count, render_timed, render_timed_parallel, Mode, Tables};
+use crate::render::{count, render_lit_timed, render_timed, render_timed_parallel, Mode, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, View};
 use footprint_core::terrain::camera::Projection;
 use footprint_core::terrain::cost::Counts;
-use footprint_scenes::render::render_lit;
 
 /// `footprint render`.
 #[derive(Args, Debug)]
@@ -55,27 +54,43 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let terrain = view.pyramid.terrain(view.options.lod)?;
     let mut tables = Tables::new(&view.camera);
     let frame = tables.frame(&view.camera, &terrain, view.options)?;
-    let (_, ms) = render_timed(&frame, &terrain, args.mode, 3)?;
-    let (mut rendered, ms_threads) = render_timed_parallel(&frame, &terrain, args.mode, 3)?;
     let materials = LoadedMaterials::load(
         args.light.material.as_ref(),
         view.map().width,
         view.map().height,
     )?;
-    if let Some(sun) = args
+    let sun = args
         .light
-        .sun_with(&terrain, args.light.specular.0, &materials)?
-    {
-        let mut counts = Counts::new(&mut []);
-        rendered = render_lit(&frame, &terrain, &view.camera, args.mode, &sun, &mut counts)?;
-        let pixels = (frame.width() * frame.height()).max(1) as f64;
-        eprintln!(
-            "lit by the sun, specular {}: {:.2} samples lit and {:.2} highlight evaluations per pixel",
-            args.light.specular,
-            counts.total.normals as f64 / pixels,
-            counts.total.shading as f64 / pixels
-        );
-    }
+        .sun_with(&terrain, args.light.specular.0, &materials)?;
+    let (rendered, ms, ms_threads, threads) = match &sun {
+        None => {
+            let (_, ms) = render_timed(&frame, &terrain, args.mode, 3)?;
+            let (rendered, ms_threads) = render_timed_parallel(&frame, &terrain, args.mode, 3)?;
+            (rendered, ms, ms_threads, rayon::current_num_threads())
+        }
+        Some(sun) => {
+            // The lit frame is timed (one thread: the shader writes the whole lit image), not
+            // the colour map's; its shading counters go to stderr.
+            let mut counts = Counts::new(&mut []);
+            let (rendered, ms) = render_lit_timed(
+                &frame,
+                &terrain,
+                &view.camera,
+                args.mode,
+                sun,
+                3,
+                &mut counts,
+            )?;
+            let pixels = (frame.width() * frame.height()).max(1) as f64;
+            eprintln!(
+                "lit by the sun, specular {}: {:.2} samples lit and {:.2} highlight evaluations per pixel",
+                args.light.specular,
+                counts.total.normals as f64 / pixels,
+                counts.total.shading as f64 / pixels
+            );
+            (rendered, ms, ms, 1)
+        }
+    };
     if let Some(out) = &args.out {
         let (w, h) = rendered.size;
         write_png(out, w, h, &rendered.image)?;
@@ -96,7 +111,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             per_column: args.per_column,
             ms,
             ms_threads,
-            threads: rayon::current_num_threads(),
+            threads,
             map: &view.map().source,
         };
         if args.format.json {

@@ -211,8 +211,11 @@ pub fn text(s: &RenderSummary<'_>) -> String {
     );
     let _ = writeln!(
         out,
-        "render {:.2} ms (best of 3, no counting, one thread); {:.2} ms on {} threads",
-        s.ms, s.ms_threads, s.threads
+        "render {:.2} ms (best of 3, no counting, one thread); {:.2} ms on {} thread{}",
+        s.ms,
+        s.ms_threads,
+        s.threads,
+        if s.threads == 1 { "" } else { "s" }
     );
     out
 }
