@@ -115,18 +115,27 @@ fn main() {
         scene.options == footprint_core::terrain::camera::Options::default(),
         "the firmware renders with Options::default()"
     );
-    let rolled = footprint_core::terrain::camera::Camera::new(scene.rolled()).expect("rolled");
-    let (fan_lines, fan_rows) =
-        footprint_core::terrain::camera::Frame::grid_size(&rolled, scene.rolled_options())
-            .expect("the rolled frame's fan");
+    // The fan buffers hold the larger of the rolled and the level frame's fans.
+    let fan = |params| {
+        let camera = footprint_core::terrain::camera::Camera::new(params).expect("a fan camera");
+        footprint_core::terrain::camera::Frame::grid_size(&camera, scene.rolled_options())
+            .expect("the frame's fan")
+    };
+    let ((rolled_lines, rolled_rows), (level_lines, level_rows)) =
+        (fan(scene.rolled()), fan(scene.level()));
+    let (fan_lines, fan_rows) = (rolled_lines.max(level_lines), rolled_rows.max(level_rows));
     writeln!(
         s,
         "/// The rolled frame's roll, degrees.\npub const ROLL_DEG: f64 = {};\n\
-         /// Its fan: lines (the walk's columns).\npub const FAN_LINES: usize = {fan_lines};\n\
-         /// Its fan: rows.\npub const FAN_ROWS: usize = {fan_rows};\n\
-         /// Its name in the `frame` lines.\npub const ROLLED_NAME: &str = {:?};",
+         /// The fans (rolled and level): lines (the walk's columns).\n\
+         pub const FAN_LINES: usize = {fan_lines};\n\
+         /// The fans (rolled and level): rows.\npub const FAN_ROWS: usize = {fan_rows};\n\
+         /// The rolled frame's name in the `frame` lines.\npub const ROLLED_NAME: &str = {:?};\n\
+         /// The level frame's name (the exact projection without roll).\n\
+         pub const LEVEL_NAME: &str = {:?};",
         f64_const(scene.rolled().roll_deg),
-        footprint_scenes::firmware::ROLLED_NAME
+        footprint_scenes::firmware::ROLLED_NAME,
+        footprint_scenes::firmware::LEVEL_NAME
     )
     .unwrap();
     let (glint_azimuth, glint_elevation) = scene.glint_sun();

@@ -20,7 +20,8 @@
 //! low sun straight ahead (the camera's heading, at its pitch), AS with Amanatides' `clamp99`
 //! and the default materials, and prints its `frame` line (hash, hits, samples lit, highlight
 //! evaluations) and what lighting adds in instructions over the unlit AS frame. Then the rolled
-//! frame (30° of roll, the exact projection's fan).
+//! frame (30° of roll, the exact projection's fan) and the same view level in the exact
+//! projection (issue 13's unrolled frame).
 //!
 //! After the terrain frames it renders the specular plate that `build.rs` baked from the host's
 //! `experiment::firmware::plate()` (Plate 2's cylinders at 64×64, conservative clamping) with
@@ -51,9 +52,9 @@ use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
     COLORS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS, HEIGHT_SCALE_M,
-    MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT, PLATE_BACKGROUND, PLATE_COLORS, PLATE_DIFFUSE,
-    PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD, PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE,
-    PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M, WIDTH,
+    LEVEL_NAME, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT, PLATE_BACKGROUND, PLATE_COLORS,
+    PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD, PLATE_MODE, PLATE_N, PLATE_PIXELS,
+    PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M, WIDTH,
 };
 use footprint_firmware::{
     core_calls, glint, image_hash, stack, Buffers, FanBuffers, GlintBuffers, PlateBuffers, Ratio,
@@ -192,42 +193,50 @@ fn run_glint(
     Ok(true)
 }
 
-/// Renders the rolled frame: the scene banked by `ROLL_DEG` in the exact projection, the
-/// paper's AS walked along the fan of vertical planes and resampled into the image; prints the
-/// `frame` line (the host's `rolled_line`) and the `#` instruction line.
-fn run_rolled(terrain: &Terrain<'_>, fan: FanBuffers, image: &mut [Rgb]) -> Result<(), Error> {
+/// Renders a frame in the exact projection: the scene banked by `roll_deg` (the rolled frame,
+/// `ROLL_DEG`, or the level one, 0), the paper's AS walked along the fan of vertical planes
+/// and resampled into the image; prints the `frame` line `name` (the host's `fan_line`) and
+/// the `#` instruction line.
+fn run_fan(
+    terrain: &Terrain<'_>,
+    fan: &mut FanBuffers,
+    image: &mut [Rgb],
+    roll_deg: f64,
+    name: &str,
+) -> Result<(), Error> {
     let FanBuffers {
         rows,
         columns,
         grid,
     } = fan;
-    let camera = Camera::new(CameraParams {
-        roll_deg: ROLL_DEG,
-        ..PARAMS
-    })?;
+    let camera = Camera::new(CameraParams { roll_deg, ..PARAMS })?;
     let options = Options {
         projection: Projection::Exact,
         ..Options::default()
     };
-    let (tables, frame) = instructions(|| {
-        core_calls::frame(&camera, terrain, options, &mut rows[..], &mut columns[..])
-    });
+    // The buffers hold the larger fan (build.rs); this frame takes its own fan's share.
+    let (lines, fan_rows) = Frame::grid_size(&camera, options)?;
+    let capacity = grid.len();
+    let too_small = || Error::SliceLength {
+        what: "fan buffers",
+        expected: lines * fan_rows,
+        actual: capacity,
+    };
+    let rows = rows.get_mut(..fan_rows + 1).ok_or_else(too_small)?;
+    let columns = columns.get_mut(..lines).ok_or_else(too_small)?;
+    let grid = grid.get_mut(..lines * fan_rows).ok_or_else(too_small)?;
+    let (tables, frame) =
+        instructions(|| core_calls::frame(&camera, terrain, options, rows, columns));
     let frame = frame?;
     let (render, result) = instructions(|| {
-        core_calls::render(
-            &frame,
-            terrain,
-            &ParallelArea::new(),
-            &mut NoCost,
-            &mut grid[..],
-        )
+        core_calls::render(&frame, terrain, &ParallelArea::new(), &mut NoCost, grid)
     });
     result?;
-    let (resample, result) = instructions(|| core_calls::resample(&frame, &grid[..], image));
+    let (resample, result) = instructions(|| core_calls::resample(&frame, grid, image));
     result?;
     hprintln!(
         "frame {} {}x{} fnv1a={:016x} lines={} rows={}",
-        ROLLED_NAME,
+        name,
         WIDTH,
         HEIGHT,
         image_hash(image),
@@ -237,7 +246,7 @@ fn run_rolled(terrain: &Terrain<'_>, fan: FanBuffers, image: &mut [Rgb]) -> Resu
     let pixels = (WIDTH * HEIGHT) as u64;
     hprintln!(
         "# icount {}: walk {} + resample {} instructions, {} per pixel; with the fan's tables {} per pixel (instructions, not cycles)",
-        ROLLED_NAME,
+        name,
         render,
         resample,
         Ratio::tenths(render + resample, pixels),
@@ -499,7 +508,9 @@ fn run() -> Result<bool, Error> {
         }
         _ => ok = false,
     }
-    run_rolled(&terrain, fan_buffers, image)?;
+    let mut fan = fan_buffers;
+    run_fan(&terrain, &mut fan, image, ROLL_DEG, ROLLED_NAME)?;
+    run_fan(&terrain, &mut fan, image, 0.0, LEVEL_NAME)?;
     run_plate(plate_buffers)?;
     ok &= error_paths(&terrain, &camera, rows, columns, image)?;
     Ok(ok)

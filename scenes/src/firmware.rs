@@ -43,6 +43,10 @@ pub const ROLL_DEG: f64 = 30.0;
 /// The name of the rolled frame in the firmware's `frame` lines.
 pub const ROLLED_NAME: &str = "as-roll30";
 
+/// The name of the level frame in the exact projection ([`Scene::level`]): the rolled frame's
+/// view and walk without the roll, the unrolled frame issue 13's cost target compares with.
+pub const LEVEL_NAME: &str = "as-roll0";
+
 /// The name of the glint frame (issue 16) in the firmware's `frame` and `# icount` lines: the
 /// view lit by [`Scene::glint_sun`], the paper's AS with [`GLINT_SPECULAR`].
 pub const GLINT_NAME: &str = "glint-as-clamp99";
@@ -83,6 +87,15 @@ impl Scene {
     pub fn rolled(&self) -> CameraParams {
         CameraParams {
             roll_deg: ROLL_DEG,
+            ..self.params
+        }
+    }
+
+    /// The camera of the level frame ([`LEVEL_NAME`]): [`Scene::params`], drawn with
+    /// [`Scene::rolled_options`] (the exact projection) as the rolled frame is.
+    pub fn level(&self) -> CameraParams {
+        CameraParams {
+            roll_deg: 0.0,
             ..self.params
         }
     }

@@ -184,10 +184,12 @@ fn firmware_output_equals_the_host_reference() {
             "no instruction count for {mode}:\n{text}"
         );
     }
-    assert!(
-        text.contains("# icount as-roll30: walk "),
-        "no instruction count for the rolled frame:\n{text}"
-    );
+    for name in ["as-roll30", "as-roll0"] {
+        assert!(
+            text.contains(&format!("# icount {name}: walk ")),
+            "no instruction count for the frame {name}:\n{text}"
+        );
+    }
     assert!(text.contains("# calibration: "), "{text}");
 
     // The smallest embedding draws the same area-sampled image.
@@ -227,7 +229,7 @@ fn the_reference_is_consistent() {
             .unwrap()
     };
     let frames: Vec<&String> = lines.iter().filter(|l| l.starts_with("frame ")).collect();
-    assert_eq!(frames.len(), 7, "{lines:#?}");
+    assert_eq!(frames.len(), 8, "{lines:#?}");
     let (ps, ss8, area, paper) = (frames[0], frames[1], frames[2], frames[3]);
     assert!(paper.starts_with("frame as 160x120 "), "{paper}");
     assert_eq!(
@@ -281,7 +283,16 @@ fn the_reference_is_consistent() {
         "{rolled}"
     );
     assert_ne!(hash(rolled), hash(paper));
-    let specular = frames[6];
+    // The level frame: the same view in the exact projection without roll, a fan about as
+    // wide as the image and an image close to, but not, the paper projection's.
+    let level = frames[6];
+    assert!(level.starts_with("frame as-roll0 160x120 "), "{level}");
+    assert!(
+        field(level, "lines") >= 160 && field(level, "lines") < field(rolled, "lines"),
+        "{level} / {rolled}"
+    );
+    assert_ne!(hash(level), hash(rolled));
+    let specular = frames[7];
     assert!(
         specular.starts_with(&format!(
             "frame {} {PLATE_SIZE}x{PLATE_SIZE} ",
@@ -297,5 +308,5 @@ fn the_reference_is_consistent() {
     assert!(baked.triangles.len() > 1000 && baked.vertices.len() < baked.triangles.len() * 3);
     let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
     assert_eq!(errors, 10, "{lines:#?}");
-    assert_eq!(lines.len(), 17);
+    assert_eq!(lines.len(), 18);
 }

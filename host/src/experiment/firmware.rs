@@ -54,7 +54,8 @@ use footprint_core::specular::{self, Light, Material, Normal, Phong};
 
 pub use footprint_scenes::firmware::{
     plate, plate_mode_name, scene, Plate, PlateVertex, Scene, GLINT_NAME, GLINT_SPECULAR, HEIGHT,
-    MAP_SIDE, PITCH_DEG, PLATE, PLATE_MODE, PLATE_SIZE, ROLLED_NAME, ROLL_DEG, SEED, WIDTH,
+    LEVEL_NAME, MAP_SIDE, PITCH_DEG, PLATE, PLATE_MODE, PLATE_SIZE, ROLLED_NAME, ROLL_DEG, SEED,
+    WIDTH,
 };
 use footprint_scenes::plates::Scene as PlateScene;
 use footprint_scenes::render::render_lit;
@@ -170,7 +171,7 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
 }
 
 /// Every line the firmware prints that must match the host: one `frame` line per mode of
-/// [`MODES`], the glint frame's ([`glint_line`]), the rolled frame's ([`rolled_line`]), the specular plate's `frame` line, then the
+/// [`MODES`], the glint frame's ([`glint_line`]), the rolled and the level frame's ([`fan_line`]), the specular plate's `frame` line, then the
 /// `error` lines.
 pub fn reference_lines() -> Result<Vec<String>> {
     let scene = scene()?;
@@ -186,7 +187,8 @@ pub fn reference_lines() -> Result<Vec<String>> {
         lines.push(frame_line(mode, SIZE, hash, &measured.total));
     }
     lines.push(glint_line(&camera, scene.glint_sun(), &frame, &terrain)?);
-    lines.push(rolled_line(&scene, &terrain)?);
+    lines.push(fan_line(&scene, &terrain, scene.rolled(), ROLLED_NAME)?);
+    lines.push(fan_line(&scene, &terrain, scene.level(), LEVEL_NAME)?);
     lines.push(plate_reference_line()?);
     lines.extend(error_lines(&scene)?);
     Ok(lines)
@@ -226,18 +228,21 @@ pub fn glint_line(
     ))
 }
 
-/// The rolled frame's `frame` line: [`Scene::rolled`] in the exact projection, the paper's AS
-/// (`frame as-roll30 160x120 fnv1a=… lines=… rows=…`, the fan's size).
-pub fn rolled_line(
+/// The `frame` line of a frame in the exact projection (the firmware's `run_fan`): `params`
+/// ([`Scene::rolled`] or [`Scene::level`]) with [`Scene::rolled_options`], the paper's AS
+/// walked along the fan and resampled: `frame NAME 160x120 fnv1a=… lines=… rows=…`.
+pub fn fan_line(
     scene: &Scene,
     terrain: &footprint_core::terrain::Terrain<'_>,
+    params: footprint_core::terrain::camera::CameraParams,
+    name: &str,
 ) -> Result<String> {
-    let camera = Camera::new(scene.rolled())?;
+    let camera = Camera::new(params)?;
     let mut tables = Tables::new(&camera);
     let frame = tables.frame(&camera, terrain, scene.rolled_options())?;
     let rendered = crate::render::render_with(&frame, terrain, Mode::As, &mut NoCost)?;
     Ok(format!(
-        "frame {ROLLED_NAME} {}x{} fnv1a={:016x} lines={} rows={}",
+        "frame {name} {}x{} fnv1a={:016x} lines={} rows={}",
         SIZE.width,
         SIZE.height,
         image_hash(&rendered.image),
