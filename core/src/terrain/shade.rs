@@ -504,13 +504,15 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
     /// Writes the current pixel and clears the accumulator.
     fn finish_pixel(&mut self) {
         let acc = core::mem::take(&mut self.acc);
-        let Some(row) = self.row.take() else {
-            return;
-        };
         let total = acc.w_terrain.saturating_add(acc.w_sky);
-        if acc.samples == 0 || total <= 0 || row >= self.height {
-            return;
-        }
+        let row = match self.row.take() {
+            Some(row) if acc.samples > 0 && total > 0 && row < self.height => row,
+            _ => {
+                // Nothing to write: the lobes are cleared unevaluated.
+                self.discard_lobes();
+                return;
+            }
+        };
         // The highlight (Q15) as white light over the terrain's share of the pixel, in the
         // channels' 8.8 × weight.
         let spec = ((self.highlight(&acc) * 255 * 256) >> 15).saturating_mul(acc.w_terrain);
@@ -528,6 +530,17 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         let y = self.height - 1 - row;
         if let Some(p) = self.out.get_mut(y * self.width + self.column) {
             *p = Rgb::new(r, g, b);
+        }
+    }
+
+    /// Clears the lobes samples reached.
+    fn discard_lobes(&mut self) {
+        let mut used = core::mem::take(&mut self.used);
+        while used != 0 {
+            if let Some(slot) = self.lobes.get_mut(used.trailing_zeros() as usize) {
+                *slot = Lobe::default();
+            }
+            used &= used - 1;
         }
     }
 
