@@ -1,6 +1,5 @@
 //! The sun on the terrain (issue 16): `--sun AZ,EL`, `--specular METHOD`,
-//! `--material water|wet|FILE.png`,
-//! turned into the core's [`Sun`].
+//! `--material water|wet|FILE.png`, turned into the core's [`Sun`].
 
 use std::fmt;
 use std::path::PathBuf;

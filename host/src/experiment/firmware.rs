@@ -171,8 +171,8 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
 }
 
 /// Every line the firmware prints that must match the host: one `frame` line per mode of
-/// [`MODES`], the glint frame's ([`glint_line`]), the rolled and the level frame's ([`fan_line`]), the specular plate's `frame` line, then the
-/// `error` lines.
+/// [`MODES`], the glint frame's ([`glint_line`]), the rolled and the level frame's
+/// ([`fan_line`]), the specular plate's `frame` line, then the `error` lines.
 pub fn reference_lines() -> Result<Vec<String>> {
     let scene = scene()?;
     let pyramid = Pyramid::build(scene.map.clone(), HeightFilter::default())?;
