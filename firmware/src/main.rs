@@ -443,7 +443,7 @@ fn run() -> Result<bool, Error> {
         hprintln!("FAIL: the glint frame's buffer was taken twice");
         return Ok(false);
     };
-    let Some(fan_buffers) = FanBuffers::take() else {
+    let Some(mut fan_buffers) = FanBuffers::take() else {
         hprintln!("FAIL: the fan's buffers were taken twice");
         return Ok(false);
     };
@@ -508,9 +508,8 @@ fn run() -> Result<bool, Error> {
         }
         _ => ok = false,
     }
-    let mut fan = fan_buffers;
-    run_fan(&terrain, &mut fan, image, ROLL_DEG, ROLLED_NAME)?;
-    run_fan(&terrain, &mut fan, image, 0.0, LEVEL_NAME)?;
+    run_fan(&terrain, &mut fan_buffers, image, ROLL_DEG, ROLLED_NAME)?;
+    run_fan(&terrain, &mut fan_buffers, image, 0.0, LEVEL_NAME)?;
     run_plate(plate_buffers)?;
     ok &= error_paths(&terrain, &camera, rows, columns, image)?;
     Ok(ok)
