@@ -53,12 +53,12 @@ use crate::trig::sin_cos_deg;
 
 /// Fractional bits of the resampling's fixed point.
 const FRAC: u32 = 16;
+/// One, in the resampling's fixed point.
+const ONE: i64 = 1 << FRAC;
 /// The side of the tiles [`Fan::resample`] walks the image in with [`Filter::Nearest`].
 const TILE: usize = 16;
 /// The most fan rows a tile's centres may span for its row table (else per pixel).
 const TILE_ROWS: usize = 48;
-/// One, in the resampling's fixed point.
-const ONE: i64 = 1 << FRAC;
 /// The smallest `k̂` kept, as a fraction of the largest in the image (see the module's limits).
 const K_RATIO: f64 = 16.0;
 /// The most fan lines a frame may have: 16 times the widest image, at 64 columns per pixel.
@@ -530,11 +530,7 @@ impl Fan {
             .ok()
             .filter(|&r| r < rows)
             .map_or(usize::MAX, |r| (rows - 1 - r) * lines);
-        TileRow {
-            lo,
-            rise: hi - lo,
-            start,
-        }
+        TileRow { lo, hi, start }
     }
 
     /// Sets every pixel of `image` (`W × H`, row-major from the top) to `pixel(x, u, g)`:
@@ -659,12 +655,12 @@ impl Fan {
     }
 }
 
-/// One fan row of a tile ([`Fan::resample_nearest`]): the width at its lower edge, the rise
-/// to its upper edge, and where it starts in the grid (`usize::MAX` outside the grid).
+/// One fan row of a tile ([`Fan::resample_nearest`]): the widths at its lower and upper
+/// edges, and where it starts in the grid (`usize::MAX` outside the grid).
 #[derive(Clone, Copy, Debug)]
 struct TileRow {
     lo: i64,
-    rise: i64,
+    hi: i64,
     start: usize,
 }
 
@@ -672,18 +668,19 @@ impl TileRow {
     /// A row outside the grid: every pixel there is sky.
     const OUTSIDE: TileRow = TileRow {
         lo: 0,
-        rise: 0,
+        hi: 0,
         start: usize::MAX,
     };
 
-    /// The pixel's width in fan lines at `u` ([`lerp`] between the edges).
+    /// The pixel's width in fan lines at `u`, between the edges' ([`lerp`]).
     #[inline(always)]
     fn width(&self, u: i64) -> i64 {
-        self.lo + ((self.rise * (u & (ONE - 1))) >> FRAC)
+        lerp(self.lo, self.hi, u)
     }
 
-    /// The cell at `s` lines (fixed point) across this row of `grid` (`lines` wide), or `sky`
-    /// off the grid.
+    /// The cell at `s` lines (fixed point) across this row of `grid` (`lines` wide): the cell
+    /// containing the pixel's centre, which is the cell its box overlaps most (the box is
+    /// centred there), so always a walked cell; `sky` off the grid.
     #[inline(always)]
     fn cell(&self, grid: &[Rgb], lines: usize, s: i64, sky: Rgb) -> Rgb {
         match usize::try_from(s >> FRAC) {
