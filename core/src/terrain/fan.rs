@@ -445,8 +445,9 @@ impl Fan {
     /// are at the tile's corners), whose edge widths and grid rows are looked up once per tile
     /// into a table on the stack. Without the table a rolled image crossed a row edge every
     /// `1/sin ρ` pixels and paid `width_at` and the row's bounds there (at 45°, 75 instructions
-    /// 0.71 times per pixel); a tile spanning more than `TILE_ROWS` rows takes them per pixel.
-    /// Without roll an output row is one fan row at one height, and takes one width.
+    /// 0.71 times per pixel). Fan rows are one pixel apart, so a tile spans at most
+    /// `⌈15·√2⌉ + 1 = 23` of them; a tile spanning more than `TILE_ROWS` would take its rows per
+    /// pixel. Without roll an output row is one fan row at one height, and takes one width.
     fn resample_nearest(&self, slopes: &[Coord], grid: &[Rgb], sky: Rgb, image: &mut [Rgb]) {
         let (w, h) = self.output_size();
         if self.sr == 0 {
