@@ -533,40 +533,42 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
         }
     }
 
-    /// Clears the lobes samples reached.
-    fn discard_lobes(&mut self) {
-        let mut used = core::mem::take(&mut self.used);
-        while used != 0 {
-            if let Some(slot) = self.lobes.get_mut(used.trailing_zeros() as usize) {
-                *slot = Lobe::default();
+    /// Takes the next lobe samples reached (the lowest octave first), leaving it cleared;
+    /// `None` when every one is taken.
+    fn next_lobe(&mut self) -> Option<Lobe> {
+        while self.used != 0 {
+            let k = self.used.trailing_zeros() as usize;
+            self.used &= self.used - 1;
+            if let Some(slot) = self.lobes.get_mut(k) {
+                return Some(core::mem::take(slot));
             }
-            used &= used - 1;
         }
+        None
     }
 
-    /// The pixel's highlight, Q15: the sum of its lobes'. Clears the lobes.
+    /// Clears the lobes samples reached.
+    fn discard_lobes(&mut self) {
+        while self.next_lobe().is_some() {}
+    }
+
+    /// The pixel's highlight, Q15: the sum of its lobes' (the reference's own sum for
+    /// [`Specular::Reference`]). Clears the lobes.
     fn highlight(&mut self, acc: &Acc) -> i64 {
         let w = acc.w_terrain;
-        let evaluate = w > 0 && self.sun.specular != Specular::Reference;
         let light = Normal::from_direction(acc.view).map(|e_bar| Light::new(self.sun.l, e_bar));
-        let mut sum = 0;
-        let mut used = core::mem::take(&mut self.used);
-        while used != 0 {
-            let k = used.trailing_zeros() as usize;
-            used &= used - 1;
-            let Some(slot) = self.lobes.get_mut(k) else {
-                continue;
+        if w <= 0 || self.sun.specular == Specular::Reference || light.is_none() {
+            self.discard_lobes();
+            return if w > 0 && self.sun.specular == Specular::Reference {
+                acc.highlight / w
+            } else {
+                0
             };
-            let lobe = core::mem::take(slot);
-            if let (true, Some(light)) = (evaluate, light.as_ref()) {
-                sum += self.lobe(&lobe, w, light);
-            }
         }
-        match (w > 0, self.sun.specular) {
-            (true, Specular::Reference) => acc.highlight / w,
-            (true, _) => sum,
-            (false, _) => 0,
+        let mut sum = 0;
+        while let (Some(lobe), Some(light)) = (self.next_lobe(), light.as_ref()) {
+            sum += self.lobe(&lobe, w, light);
         }
+        sum
     }
 
     /// One lobe's highlight over a pixel of terrain weight `w`, Q15, seen along `light`.
@@ -701,6 +703,14 @@ impl<C: Cost> Cost for Shader<'_, '_, C> {
         for (sum, c) in acc.view.iter_mut().zip(lit.view.bits()) {
             add(sum, w, q15(c));
         }
+        if self.sun.specular == Specular::Reference {
+            // The reference shades every sample on its own and needs no lobes.
+            self.inner.shading(1);
+            let cos = Light::new(self.sun.l, lit.view).cos_alpha_unit(&lit.normal);
+            let h = i64::from(lit.surface.highlight(cos).to_bits() >> 15);
+            add(&mut acc.highlight, w, h);
+            return;
+        }
         let k = i64::from(lit.surface.k_spec().to_bits() >> 15);
         // w·K with K ≤ 2^15 in Q15: at most w, rounded.
         let w_k = (w * k + (1 << 14)) >> 15;
@@ -716,12 +726,6 @@ impl<C: Cost> Cost for Shader<'_, '_, C> {
             add(sum, w_k, i64::from(c));
         }
         add(&mut lobe.within, w_k, lit.within);
-        if self.sun.specular == Specular::Reference {
-            self.inner.shading(1);
-            let cos = Light::new(self.sun.l, lit.view).cos_alpha_unit(&lit.normal);
-            let h = i64::from(lit.surface.highlight(cos).to_bits() >> 15);
-            add(&mut self.acc.highlight, w, h);
-        }
     }
     fn sky_sample(&mut self, color: Color16, weight: Weight) {
         self.inner.sky_sample(color, weight);
