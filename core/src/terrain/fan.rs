@@ -432,34 +432,51 @@ impl Fan {
             }
         }
         match filter {
-            Filter::Box => self.each_pixel(slopes, image, |x, u, g| {
-                self.box_average(grid, x, u, g).unwrap_or(sky)
-            }),
-            Filter::Nearest => self.resample_nearest(slopes, grid, sky, image),
+            Filter::Box => self.each_pixel(
+                slopes,
+                image,
+                #[inline(always)]
+                |x, u, row| self.box_average(grid, x, u, row.width(u)).unwrap_or(sky),
+            ),
+            Filter::Nearest => self.each_pixel(
+                slopes,
+                image,
+                #[inline(always)]
+                |x, u, row| row.cell(grid, lines, self.across(x, row.width(u)).0, sky),
+            ),
         }
         Ok(())
     }
 
-    /// [`Filter::Nearest`] over the whole image, in tiles of `TILE × TILE` output pixels: a
-    /// tile's centres span a few fan rows (their `u` is affine in the pixel, so its extremes
-    /// are at the tile's corners), whose edge widths and grid rows are looked up once per tile
-    /// into a table on the stack. Without the table a rolled image crossed a row edge every
-    /// `1/sin ρ` pixels and paid `width_at` and the row's bounds there (at 45°, 75 instructions
-    /// 0.71 times per pixel). Fan rows are one pixel apart, so a tile spans at most
-    /// `⌈15·√2⌉ + 1 = 23` of them; a tile spanning more than `TILE_ROWS` would take its rows per
-    /// pixel. Without roll an output row is one fan row at one height, and takes one width.
-    fn resample_nearest(&self, slopes: &[Coord], grid: &[Rgb], sky: Rgb, image: &mut [Rgb]) {
+    /// Sets every pixel of `image` (`W × H`, row-major from the top) to `pixel(x, u, row)`:
+    /// its centre's unrolled `x` and `u = y − y_lo` (fixed point), and the fan row `u` lies in
+    /// (its edges' widths and its start in the grid, [`TileRow`]).
+    ///
+    /// Without roll an output row lies in one fan row at one height: one row per output row.
+    /// With roll the image is walked in tiles of `TILE × TILE` pixels: a tile's centres span a
+    /// few fan rows (their `u` is affine in the pixel, so its extremes are at the tile's
+    /// corners), which are looked up once per tile into a table on the stack. Without the table
+    /// a rolled image crossed a row edge every `1/sin ρ` pixels and paid `width_at` and the
+    /// row's bounds there (at 45°, 75 instructions 0.71 times per pixel). Fan rows are one
+    /// pixel apart, so a tile spans at most `⌈15·√2⌉ + 1 = 23` of them; a tile spanning more
+    /// than `TILE_ROWS` would take its rows per pixel.
+    #[inline(always)]
+    fn each_pixel(
+        &self,
+        slopes: &[Coord],
+        image: &mut [Rgb],
+        mut pixel: impl FnMut(i64, i64, &TileRow) -> Rgb,
+    ) {
         let (w, h) = self.output_size();
+        let row_at =
+            |e: i64| self.tile_row(e, self.width_at(slopes, e), self.width_at(slopes, e + 1));
         if self.sr == 0 {
-            // Without roll an output row lies in one fan row at one height: one width per row.
             for (t, out) in image.chunks_exact_mut(w).enumerate() {
                 let (mut x, y) = self.centre(0, t);
                 let u = y - self.y_lo;
-                let e = u >> FRAC;
-                let row = self.tile_row(e, self.width_at(slopes, e), self.width_at(slopes, e + 1));
-                let g = row.width(u);
+                let row = row_at(u >> FRAC);
                 for px in out {
-                    *px = row.cell(grid, self.lines(), self.across(x, g).0, sky);
+                    *px = pixel(x, u, &row);
                     x += self.cr;
                 }
             }
@@ -507,13 +524,9 @@ impl Fan {
                                 .and_then(|i| rows.get(i))
                                 .copied()
                                 .unwrap_or(TileRow::OUTSIDE),
-                            None => self.tile_row(
-                                e,
-                                self.width_at(slopes, e),
-                                self.width_at(slopes, e + 1),
-                            ),
+                            None => row_at(e),
                         };
-                        *px = row.cell(grid, self.lines(), self.across(x, row.width(u)).0, sky);
+                        *px = pixel(x, u, &row);
                         x += self.cr;
                         y -= self.sr;
                     }
@@ -522,8 +535,8 @@ impl Fan {
         }
     }
 
-    /// Fan row `e` (counted from the bottom) for [`Fan::resample_nearest`]'s table, with its
-    /// edges' widths `lo` and `hi`.
+    /// Fan row `e` (counted from the bottom) for [`Fan::each_pixel`], with its edges' widths
+    /// `lo` and `hi`.
     #[inline(always)]
     fn tile_row(&self, e: i64, lo: i64, hi: i64) -> TileRow {
         let (lines, rows) = (self.lines(), self.rows());
@@ -532,43 +545,6 @@ impl Fan {
             .filter(|&r| r < rows)
             .map_or(usize::MAX, |r| (rows - 1 - r) * lines);
         TileRow { lo, hi, start }
-    }
-
-    /// Sets every pixel of `image` (`W × H`, row-major from the top) to `pixel(x, u, g)`:
-    /// its centre's unrolled `x`, `u = y − y_lo` (fixed point) and its width `g` in fan lines
-    /// there. Along an output row the centre moves by a constant step; the widths at the two
-    /// row edges around it are kept while it stays between them (a whole row without roll,
-    /// about `1/sin ρ` pixels with it), and a step across one edge computes one new width.
-    #[inline(always)]
-    fn each_pixel(
-        &self,
-        slopes: &[Coord],
-        image: &mut [Rgb],
-        mut pixel: impl FnMut(i64, i64, i64) -> Rgb,
-    ) {
-        let (w, _) = self.output_size();
-        let (mut edge, mut lo, mut hi) = (i64::MIN, 0, 0);
-        for (t, out_row) in image.chunks_exact_mut(w).enumerate() {
-            let (mut x, mut y) = self.centre(0, t);
-            for px in out_row.iter_mut() {
-                let u = y - self.y_lo;
-                let e = u >> FRAC;
-                if e != edge {
-                    // With roll the centre crosses one row edge at a time: one new width.
-                    (lo, hi) = if e == edge.wrapping_sub(1) {
-                        (self.width_at(slopes, e), lo)
-                    } else if e == edge.wrapping_add(1) {
-                        (hi, self.width_at(slopes, e + 1))
-                    } else {
-                        (self.width_at(slopes, e), self.width_at(slopes, e + 1))
-                    };
-                    edge = e;
-                }
-                *px = pixel(x, u, lerp(lo, hi, u));
-                x += self.cr;
-                y -= self.sr;
-            }
-        }
     }
 
     /// [`Filter::Box`]: the overlap-weighted average of the cells under the pixel's box (the
@@ -600,46 +576,30 @@ impl Fan {
         if top >= rows || last >= lines {
             return self.clipped_average(grid, x, u, g);
         }
-        // Row r (from the bottom) is the grid's row rows − 1 − r (from the top).
-        let lower_row = grid.get((rows - 1 - r0) * lines..)?.get(first..=last)?;
-        let per_box = box_scale(s_hi - s_lo);
-        // The lines' shares of the box, left to right; the last takes what the others leave.
-        let (mut left, mut j) = (256u32, first_j);
-        let mut share = || {
-            let share = if j == last_j {
-                left
-            } else {
-                let overlap = s_hi.min((j + 1) << FRAC) - s_lo.max(j << FRAC);
-                share8(overlap, per_box).min(left)
-            };
-            left -= share;
-            j += 1;
-            share
-        };
-        let mut low = [0u32; 3];
+        // Row r (from the bottom) is the grid's row rows − 1 − r (from the top); the box's
+        // first cell in its lower row, and in its upper row one grid row before.
+        let at = (rows - 1 - r0) * lines + first;
+        let shares = Shares::new(s_lo, s_hi, first_j, last_j);
+        if last == first + 1 {
+            // Two lines (nearly every pixel, rolled or not): their cells without a loop.
+            let [a, b] = *grid.get(at..)?.first_chunk::<2>()?;
+            let low = shares.pair(a, b);
+            if upper == 0 {
+                return Some(on_row(low));
+            }
+            let [c, d] = *grid.get(at.checked_sub(lines)?..)?.first_chunk::<2>()?;
+            return Some(between_rows(low, shares.pair(c, d), upper));
+        }
+        let lower_row = grid.get(at..)?.get(..=last.saturating_sub(first))?;
         if upper == 0 {
             // On a fan row (always without roll): one row of cells.
-            for cell in lower_row {
-                add(&mut low, share(), *cell);
-            }
-            return Some(Rgb::new(
-                round16(low[0] << 8),
-                round16(low[1] << 8),
-                round16(low[2] << 8),
-            ));
+            return Some(on_row(shares.sum(lower_row)));
         }
-        let upper_row = grid.get((rows - 1 - top) * lines..)?.get(first..=last)?;
-        let mut high = [0u32; 3];
-        for (lo, hi) in lower_row.iter().zip(upper_row) {
-            let share = share();
-            add(&mut low, share, *lo);
-            add(&mut high, share, *hi);
-        }
-        // Each sum is at most 255·256; times a row share (≤ 256) it stays below 2^24.
-        let lower = 256 - upper;
-        let ([r0, g0, b0], [r1, g1, b1]) = (low, high);
-        let ch = |l: u32, h: u32| round16(l * lower + h * upper);
-        Some(Rgb::new(ch(r0, r1), ch(g0, g1), ch(b0, b1)))
+        let upper_row = grid
+            .get(at.checked_sub(lines)?..)?
+            .get(..=last.saturating_sub(first))?;
+        let [low, high] = shares.sum2(lower_row, upper_row);
+        Some(between_rows(low, high, upper))
     }
 
     /// The box average of a pixel whose box reaches past the grid's border: the taps inside
@@ -656,7 +616,7 @@ impl Fan {
     }
 }
 
-/// One fan row of a tile ([`Fan::resample_nearest`]): the widths at its lower and upper
+/// One fan row of a tile ([`Fan::each_pixel`]): the widths at its lower and upper
 /// edges, and where it starts in the grid (`usize::MAX` outside the grid).
 #[derive(Clone, Copy, Debug)]
 struct TileRow {
@@ -690,6 +650,105 @@ impl TileRow {
             }
             _ => sky,
         }
+    }
+}
+
+/// A box's 8-bit shares of the fan lines it overlaps ([`Fan::box_average`]), which sum to
+/// exactly 256: the first line's (its overlap with the box), every whole line's between (each
+/// the same), and the last line's (what the others leave).
+#[derive(Clone, Copy, Debug)]
+struct Shares {
+    first: u32,
+    whole: u32,
+    last: u32,
+}
+
+impl Shares {
+    /// The shares of the box `[s_lo, s_hi)` (fixed point, in lines), which overlaps the lines
+    /// `first_j..=last_j`.
+    ///
+    /// The whole lines' and the first line's shares never add up past 256: each is its
+    /// overlap's exact share `overlap·⌊2^24/width⌋/2^16` (whole lines exactly, the first
+    /// rounded to nearest), and without the last line's overlap their exact sum is below 256,
+    /// so rounded it is at most 256 and the last line's share is never negative.
+    #[inline(always)]
+    fn new(s_lo: i64, s_hi: i64, first_j: i64, last_j: i64) -> Self {
+        if first_j >= last_j {
+            return Self {
+                first: 256,
+                whole: 0,
+                last: 0,
+            };
+        }
+        let per_box = box_scale(s_hi - s_lo);
+        let first = share8(((first_j + 1) << FRAC) - s_lo, per_box);
+        let whole = share8(ONE, per_box);
+        let between = u32::try_from(last_j - first_j - 1).unwrap_or(0);
+        let last = 256u32.saturating_sub(first.saturating_add(between.saturating_mul(whole)));
+        Self { first, whole, last }
+    }
+
+    /// The share-weighted sums (red, green, blue) of one row's two cells `a` and `b` under a
+    /// box over two lines.
+    #[inline(always)]
+    fn pair(&self, a: Rgb, b: Rgb) -> [u32; 3] {
+        let mut sum = [0u32; 3];
+        add(&mut sum, self.first, a);
+        add(&mut sum, self.last, b);
+        sum
+    }
+
+    /// The share-weighted sums (red, green, blue) of one row's `cells` under the box, first
+    /// line to last: the whole lines' cells are summed first and weighted once. Each sum is
+    /// at most 255·256.
+    #[inline(always)]
+    fn sum(&self, cells: &[Rgb]) -> [u32; 3] {
+        let mut sum = [0u32; 3];
+        let Some((first, rest)) = cells.split_first() else {
+            return sum;
+        };
+        add(&mut sum, self.first, *first);
+        let Some((last, between)) = rest.split_last() else {
+            return sum;
+        };
+        let mut whole = [0u32; 3];
+        for cell in between {
+            add(&mut whole, 1, *cell);
+        }
+        for (s, w) in sum.iter_mut().zip(whole) {
+            *s += self.whole * w;
+        }
+        add(&mut sum, self.last, *last);
+        sum
+    }
+
+    /// [`Shares::sum`] of two rows of cells at once (`lower` and `upper`, the same lines).
+    #[inline(always)]
+    fn sum2(&self, lower: &[Rgb], upper: &[Rgb]) -> [[u32; 3]; 2] {
+        let mut sum = [[0u32; 3]; 2];
+        let (Some((l0, lower)), Some((h0, upper))) = (lower.split_first(), upper.split_first())
+        else {
+            return sum;
+        };
+        add(&mut sum[0], self.first, *l0);
+        add(&mut sum[1], self.first, *h0);
+        let (Some((l1, lower)), Some((h1, upper))) = (lower.split_last(), upper.split_last())
+        else {
+            return sum;
+        };
+        let mut whole = [[0u32; 3]; 2];
+        for (lo, hi) in lower.iter().zip(upper) {
+            add(&mut whole[0], 1, *lo);
+            add(&mut whole[1], 1, *hi);
+        }
+        for (sum, whole) in sum.iter_mut().zip(whole) {
+            for (s, w) in sum.iter_mut().zip(whole) {
+                *s += self.whole * w;
+            }
+        }
+        add(&mut sum[0], self.last, *l1);
+        add(&mut sum[1], self.last, *h1);
+        sum
     }
 }
 
@@ -770,6 +829,28 @@ fn round16(v: u32) -> u8 {
     )]
     let c = ((v + (1 << 15)) >> 16) as u8;
     c
+}
+
+/// The pixel whose box lies on one fan row, from that row's share-weighted sums (whose shares
+/// sum to 256).
+#[inline(always)]
+fn on_row(sum: [u32; 3]) -> Rgb {
+    let [r, g, b] = sum.map(|c| round16(c << 8));
+    Rgb::new(r, g, b)
+}
+
+/// The pixel whose box straddles two fan rows, from their share-weighted sums `low` and
+/// `high` and the upper row's share `upper` of 256. Each sum is at most 255·256; times a row
+/// share (≤ 256) it stays below 2^24.
+#[inline(always)]
+fn between_rows(low: [u32; 3], high: [u32; 3], upper: u32) -> Rgb {
+    let lower = 256 - upper;
+    let ch = |l: u32, h: u32| round16(l * lower + h * upper);
+    Rgb::new(
+        ch(low[0], high[0]),
+        ch(low[1], high[1]),
+        ch(low[2], high[2]),
+    )
 }
 
 /// Adds `cell` times `share` (at most 256) to the sums `sum` (red, green, blue).
