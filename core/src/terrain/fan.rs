@@ -57,8 +57,9 @@ const FRAC: u32 = 16;
 const ONE: i64 = 1 << FRAC;
 /// The side of the tiles [`Fan::resample`] walks the image in with [`Filter::Nearest`].
 const TILE: usize = 16;
-/// The most fan rows a tile's centres may span for its row table (else per pixel).
-const TILE_ROWS: usize = 48;
+/// The entries of a tile's row table: at least the fan rows a tile's centres can span, a power
+/// of two (see [`Fan::each_pixel`]).
+const TILE_ROWS: usize = 2 * TILE;
 /// The smallest `k̂` kept, as a fraction of the largest in the image (see the module's limits).
 const K_RATIO: f64 = 16.0;
 /// The most fan lines a frame may have: 16 times the widest image, at 64 columns per pixel.
@@ -303,7 +304,8 @@ impl Fan {
         let u = y - self.y_lo;
         // The pixel's width in lines at u, linear between the row edges around it.
         let i = u >> FRAC;
-        let g = lerp(self.width_at(slopes, i), self.width_at(slopes, i + 1), u);
+        let lo = self.width_at(slopes, i);
+        let g = lerp(lo, self.width_at(slopes, i + 1) - lo, u);
         self.taps_with(x, u, g, tap);
     }
 
@@ -457,9 +459,10 @@ impl Fan {
     /// few fan rows (their `u` is affine in the pixel, so its extremes are at the tile's
     /// corners), which are looked up once per tile into a table on the stack. Without the table
     /// a rolled image crossed a row edge every `1/sin ρ` pixels and paid `width_at` and the
-    /// row's bounds there (at 45°, 75 instructions 0.71 times per pixel). Fan rows are one
-    /// pixel apart, so a tile spans at most `⌈15·√2⌉ + 1 = 23` of them; a tile spanning more
-    /// than `TILE_ROWS` would take its rows per pixel.
+    /// row's bounds there (at 45°, 75 instructions 0.71 times per pixel). Across a tile `u`
+    /// changes by at most `(TILE − 1)·(|cos ρ| + |sin ρ|) < 2·TILE − 1` rows (both fixed-point
+    /// factors are at most one), so a tile spans at most `2·TILE = TILE_ROWS` fan rows and a
+    /// pixel's row is the table's entry `(e − e_min) mod TILE_ROWS`, with no bounds to check.
     #[inline(always)]
     fn each_pixel(
         &self,
@@ -482,7 +485,7 @@ impl Fan {
             }
             return;
         }
-        let mut table = [TileRow::OUTSIDE; TILE_ROWS];
+        let mut table = [TileRow::UNSET; TILE_ROWS];
         let edge = |c: usize, t: usize| (self.centre(c, t).1 - self.y_lo) >> FRAC;
         for t0 in (0..h).step_by(TILE) {
             let t1 = (t0 + TILE).min(h);
@@ -495,40 +498,34 @@ impl Fan {
                     edge(c1 - 1, t1 - 1),
                 ];
                 let e_min = corners.iter().copied().min().unwrap_or(0);
-                let e_max = corners.iter().copied().max().unwrap_or(0);
-                let span = usize::try_from(e_max - e_min + 1).unwrap_or(usize::MAX);
-                let rows = if span <= TILE_ROWS {
-                    let mut hi = self.width_at(slopes, e_min);
-                    for (i, row) in table.iter_mut().enumerate().take(span) {
-                        let e = e_min + i as i64;
-                        let lo = hi;
-                        hi = self.width_at(slopes, e + 1);
-                        *row = self.tile_row(e, lo, hi);
+                let mut hi = self.width_at(slopes, e_min);
+                for (e, row) in (e_min..).zip(table.iter_mut()) {
+                    let lo = hi;
+                    hi = self.width_at(slopes, e + 1);
+                    *row = self.tile_row(e, lo, hi);
+                    if corners.iter().all(|&c| c <= e) {
+                        break;
                     }
-                    table.get(..span)
-                } else {
-                    None
-                };
+                }
                 for t in t0..t1 {
-                    let (mut x, mut y) = self.centre(c0, t);
+                    let (mut x, y) = self.centre(c0, t);
+                    let mut u = y - self.y_lo;
                     let Some(out) = image.get_mut(t * w + c0..t * w + c1) else {
                         continue;
                     };
                     for px in out {
-                        let u = y - self.y_lo;
-                        let e = u >> FRAC;
-                        let row = match rows {
-                            // e_min ≤ e ≤ e_max: the index is in the table.
-                            Some(rows) => usize::try_from(e - e_min)
-                                .ok()
-                                .and_then(|i| rows.get(i))
-                                .copied()
-                                .unwrap_or(TileRow::OUTSIDE),
-                            None => row_at(e),
-                        };
-                        *px = pixel(x, u, &row);
+                        #[allow(
+                            clippy::cast_possible_truncation,
+                            clippy::cast_sign_loss,
+                            reason = "e_min ≤ e < e_min + TILE_ROWS (see above): the mask only \
+                                      spares the bounds check"
+                        )]
+                        let i = ((u >> FRAC) - e_min) as usize & (TILE_ROWS - 1);
+                        #[allow(clippy::indexing_slicing, reason = "i < TILE_ROWS, masked")]
+                        let row = &table[i];
+                        *px = pixel(x, u, row);
                         x += self.cr;
-                        y -= self.sr;
+                        u -= self.sr;
                     }
                 }
             }
@@ -536,15 +533,20 @@ impl Fan {
     }
 
     /// Fan row `e` (counted from the bottom) for [`Fan::each_pixel`], with its edges' widths
-    /// `lo` and `hi`.
+    /// `lo` and `hi`; a row outside the grid starts at the grid's end, so that any cell looked
+    /// up in it is past the grid (sky).
     #[inline(always)]
     fn tile_row(&self, e: i64, lo: i64, hi: i64) -> TileRow {
         let (lines, rows) = (self.lines(), self.rows());
         let start = usize::try_from(e)
             .ok()
             .filter(|&r| r < rows)
-            .map_or(usize::MAX, |r| (rows - 1 - r) * lines);
-        TileRow { lo, hi, start }
+            .map_or(rows * lines, |r| (rows - 1 - r) * lines);
+        TileRow {
+            lo,
+            rise: hi - lo,
+            start,
+        }
     }
 
     /// [`Filter::Box`]: the overlap-weighted average of the cells under the pixel's box (the
@@ -579,9 +581,15 @@ impl Fan {
         // Row r (from the bottom) is the grid's row rows − 1 − r (from the top); the box's
         // first cell in its lower row, and in its upper row one grid row before.
         let at = (rows - 1 - r0) * lines + first;
-        let shares = Shares::new(s_lo, s_hi, first_j, last_j);
         if last == first + 1 {
-            // Two lines (nearly every pixel, rolled or not): their cells without a loop.
+            // Two lines (nearly every pixel, rolled or not): their cells without a loop, the
+            // first line's share as in `Shares::new`, the second's what it leaves.
+            let first = share8(((first_j + 1) << FRAC) - s_lo, box_scale(s_hi - s_lo));
+            let shares = Shares {
+                first,
+                whole: 0,
+                last: 256 - first,
+            };
             let [a, b] = *grid.get(at..)?.first_chunk::<2>()?;
             let low = shares.pair(a, b);
             if upper == 0 {
@@ -590,6 +598,7 @@ impl Fan {
             let [c, d] = *grid.get(at.checked_sub(lines)?..)?.first_chunk::<2>()?;
             return Some(between_rows(low, shares.pair(c, d), upper));
         }
+        let shares = Shares::new(s_lo, s_hi, first_j, last_j);
         let lower_row = grid.get(at..)?.get(..=last.saturating_sub(first))?;
         if upper == 0 {
             // On a fan row (always without roll): one row of cells.
@@ -616,38 +625,38 @@ impl Fan {
     }
 }
 
-/// One fan row of a tile ([`Fan::each_pixel`]): the widths at its lower and upper
-/// edges, and where it starts in the grid (`usize::MAX` outside the grid).
+/// One fan row of a tile ([`Fan::each_pixel`]): the width at its lower edge, the rise to
+/// its upper edge's, and where it starts in the grid (the grid's end for a row outside it).
 #[derive(Clone, Copy, Debug)]
 struct TileRow {
     lo: i64,
-    hi: i64,
+    rise: i64,
     start: usize,
 }
 
 impl TileRow {
-    /// A row outside the grid: every pixel there is sky.
-    const OUTSIDE: TileRow = TileRow {
+    /// A tile table's entry before it is set; never read (a tile sets every entry its pixels
+    /// read).
+    const UNSET: TileRow = TileRow {
         lo: 0,
-        hi: 0,
-        start: usize::MAX,
+        rise: 0,
+        start: 0,
     };
 
-    /// The pixel's width in fan lines at `u`, between the edges' ([`lerp`]).
+    /// The pixel's width in fan lines at `u`, linear between the edges' ([`lerp`]).
     #[inline(always)]
     fn width(&self, u: i64) -> i64 {
-        lerp(self.lo, self.hi, u)
+        lerp(self.lo, self.rise, u)
     }
 
     /// The cell at `s` lines (fixed point) across this row of `grid` (`lines` wide): the cell
     /// containing the pixel's centre, which is the cell its box overlaps most (the box is
-    /// centred there), so always a walked cell; `sky` off the grid.
+    /// centred there), so always a walked cell; `sky` off the grid. `start + j` stays below
+    /// `(rows + 1)·lines`, so it cannot overflow.
     #[inline(always)]
     fn cell(&self, grid: &[Rgb], lines: usize, s: i64, sky: Rgb) -> Rgb {
         match usize::try_from(s >> FRAC) {
-            Ok(j) if j < lines && self.start != usize::MAX => {
-                grid.get(self.start + j).copied().unwrap_or(sky)
-            }
+            Ok(j) if j < lines => grid.get(self.start + j).copied().unwrap_or(sky),
             _ => sky,
         }
     }
@@ -752,10 +761,11 @@ impl Shares {
     }
 }
 
-/// A value at `u`, linear between its values `lo` and `hi` at the row edges below and above.
+/// A value at `u`, linear between its value `lo` at the row edge below and `lo + rise` at the
+/// edge above.
 #[inline(always)]
-fn lerp(lo: i64, hi: i64, u: i64) -> i64 {
-    lo + (((hi - lo) * (u & (ONE - 1))) >> FRAC)
+fn lerp(lo: i64, rise: i64, u: i64) -> i64 {
+    lo + ((rise * (u & (ONE - 1))) >> FRAC)
 }
 
 /// A fraction of the box (`0..=ONE`) to 8 bits, `0..=256`, rounded so that a whole box stays
