@@ -563,6 +563,9 @@ impl Fan {
         let (s_lo, s_hi) = (s - half, s + half);
         let b = u - ONE / 2;
         let (r0, upper) = (b >> FRAC, weight8(b & (ONE - 1)));
+        if let Some(rgb) = self.two_lines(grid, s_lo, s_hi - s_lo, r0, upper) {
+            return Some(rgb);
+        }
         let (first_j, last_j) = (s_lo >> FRAC, (s_hi - 1) >> FRAC);
         let (lines, rows) = (self.lines(), self.rows());
         // The box's rows (from the bottom) and lines as indices, if it lies inside the grid.
@@ -581,23 +584,6 @@ impl Fan {
         // Row r (from the bottom) is the grid's row rows − 1 − r (from the top); the box's
         // first cell in its lower row, and in its upper row one grid row before.
         let at = (rows - 1 - r0) * lines + first;
-        if last == first + 1 {
-            // Two lines (nearly every pixel, rolled or not): their cells without a loop, the
-            // first line's share as in `Shares::new`, the second's what it leaves.
-            let first = share8(((first_j + 1) << FRAC) - s_lo, box_scale(s_hi - s_lo));
-            let shares = Shares {
-                first,
-                whole: 0,
-                last: 256 - first,
-            };
-            let [a, b] = *grid.get(at..)?.first_chunk::<2>()?;
-            let low = shares.pair(a, b);
-            if upper == 0 {
-                return Some(on_row(low));
-            }
-            let [c, d] = *grid.get(at.checked_sub(lines)?..)?.first_chunk::<2>()?;
-            return Some(between_rows(low, shares.pair(c, d), upper));
-        }
         let shares = Shares::new(s_lo, s_hi, first_j, last_j);
         let lower_row = grid.get(at..)?.get(..=last.saturating_sub(first))?;
         if upper == 0 {
@@ -609,6 +595,56 @@ impl Fan {
             .get(..=last.saturating_sub(first))?;
         let [low, high] = shares.sum2(lower_row, upper_row);
         Some(between_rows(low, high, upper))
+    }
+
+    /// [`Fan::box_average`] of a box over exactly two fan lines and inside the grid (nearly
+    /// every pixel, rolled or not), `None` for any other box: the box from `s_lo` (fixed point,
+    /// in lines) `width` wide, its lower row `r0` (from the bottom) and the upper row's share
+    /// `upper`. Past the first line's index the arithmetic is 32-bit (a Cortex-M4's word):
+    /// where the box starts in its first line is below 2^16 and its width at most
+    /// `MAX_WIDTH = 2^27`. The first line's share is [`share8`]'s and the second's what it
+    /// leaves, so the result is the general path's, bit for bit.
+    #[inline(always)]
+    fn two_lines(&self, grid: &[Rgb], s_lo: i64, width: i64, r0: i64, upper: u32) -> Option<Rgb> {
+        let start = u32::try_from(s_lo & (ONE - 1)).ok()?;
+        let width = u32::try_from(width).ok()?;
+        let end = start + width;
+        // The box's last line is its first plus one: ONE < start + width ≤ 2·ONE.
+        if end <= 1 << FRAC || end > 2 << FRAC {
+            return None;
+        }
+        let (first, r0) = (
+            usize::try_from(s_lo >> FRAC).ok()?,
+            usize::try_from(r0).ok()?,
+        );
+        let (lines, rows) = (self.lines(), self.rows());
+        if first + 1 >= lines || r0 + usize::from(upper > 0) >= rows {
+            return None;
+        }
+        // Row r (from the bottom) is the grid's row rows − 1 − r (from the top): the box's
+        // first cell in its lower row, and in its upper row one grid row before.
+        let at = (rows - 1 - r0) * lines + first;
+        // The first line's overlap, 2^16 − start, is below the width (the box reaches the
+        // second line), so times ⌊2^24/width⌋ it stays below 2^24.
+        let scale = (1u32 << 24) / width;
+        let f = ((((1 << FRAC) - start) * scale + (1 << 15)) >> 16).min(256);
+        let l = 256 - f;
+        let across = |a: u8, b: u8| f * u32::from(a) + l * u32::from(b);
+        if upper == 0 {
+            let [a, b] = *grid.get(at..)?.first_chunk::<2>()?;
+            let ch = |a: u8, b: u8| round16(across(a, b) << 8);
+            return Some(Rgb::new(ch(a.r, b.r), ch(a.g, b.g), ch(a.b, b.b)));
+        }
+        // The upper row's two cells, then (one grid row on) the lower row's.
+        let cells = grid.get(at.checked_sub(lines)?..=at + 1)?;
+        let ([c, d], [a, b]) = (*cells.first_chunk::<2>()?, *cells.last_chunk::<2>()?);
+        let lower = 256 - upper;
+        let ch = |a: u8, b: u8, c: u8, d: u8| round16(lower * across(a, b) + upper * across(c, d));
+        Some(Rgb::new(
+            ch(a.r, b.r, c.r, d.r),
+            ch(a.g, b.g, c.g, d.g),
+            ch(a.b, b.b, c.b, d.b),
+        ))
     }
 
     /// The box average of a pixel whose box reaches past the grid's border: the taps inside
@@ -695,16 +731,6 @@ impl Shares {
         let between = u32::try_from(last_j - first_j - 1).unwrap_or(0);
         let last = 256u32.saturating_sub(first.saturating_add(between.saturating_mul(whole)));
         Self { first, whole, last }
-    }
-
-    /// The share-weighted sums (red, green, blue) of one row's two cells `a` and `b` under a
-    /// box over two lines.
-    #[inline(always)]
-    fn pair(&self, a: Rgb, b: Rgb) -> [u32; 3] {
-        let mut sum = [0u32; 3];
-        add(&mut sum, self.first, a);
-        add(&mut sum, self.last, b);
-        sum
     }
 
     /// The share-weighted sums (red, green, blue) of one row's `cells` under the box, first
