@@ -566,6 +566,17 @@ impl Fan {
         if let Some(rgb) = self.two_lines(grid, s_lo, s_hi - s_lo, r0, upper) {
             return Some(rgb);
         }
+        self.any_lines(grid, x, u, g)
+    }
+
+    /// [`Fan::box_average`] of any box: over its lines' shares ([`Shares`]) where it lies
+    /// inside the grid, else [`Fan::clipped_average`].
+    #[inline(always)]
+    fn any_lines(&self, grid: &[Rgb], x: i64, u: i64, g: i64) -> Option<Rgb> {
+        let (s, half) = self.across(x, g);
+        let (s_lo, s_hi) = (s - half, s + half);
+        let b = u - ONE / 2;
+        let (r0, upper) = (b >> FRAC, weight8(b & (ONE - 1)));
         let (first_j, last_j) = (s_lo >> FRAC, (s_hi - 1) >> FRAC);
         let (lines, rows) = (self.lines(), self.rows());
         // The box's rows (from the bottom) and lines as indices, if it lies inside the grid.
@@ -1025,6 +1036,56 @@ mod tests {
                 "{pitch} {roll}"
             );
         }
+    }
+
+    #[test]
+    fn the_two_line_box_is_the_general_box_bit_for_bit() {
+        // `two_lines` is a shortcut: wherever it answers, `any_lines` (the shares of every
+        // line) must give the same pixel. Boxes across the grid, at every fraction of a line
+        // and of a row, and widths from under one line to past two.
+        let cam = camera(40.0, 30.0, 10.0, 40, 32);
+        let fan = Fan::new(&cam, 1).unwrap();
+        let grid: Vec<Rgb> = (0..fan.lines() * fan.rows())
+            .map(|i| {
+                Rgb::new(
+                    (i * 37 % 256) as u8,
+                    (i * 101 % 256) as u8,
+                    (i * 13 % 256) as u8,
+                )
+            })
+            .collect();
+        let (mut answered, mut declined) = (0, 0);
+        let mut rng = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |m: i64| {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            (rng % m as u64) as i64
+        };
+        for _ in 0..20_000 {
+            let u = next(fan.rows() as i64 * ONE + 2 * ONE) - ONE;
+            let g = next(3 * ONE) + 1;
+            let x = next(60 * ONE) - 30 * ONE;
+            let (s, half) = fan.across(x, g);
+            let b = u - ONE / 2;
+            let (r0, upper) = (b >> FRAC, weight8(b & (ONE - 1)));
+            match fan.two_lines(&grid, s - half, 2 * half, r0, upper) {
+                Some(fast) => {
+                    answered += 1;
+                    assert_eq!(
+                        Some(fast),
+                        fan.any_lines(&grid, x, u, g),
+                        "x {x} u {u} g {g}"
+                    );
+                }
+                None => declined += 1,
+            }
+        }
+        // Both branches were taken many times.
+        assert!(
+            answered > 1_000 && declined > 1_000,
+            "{answered} {declined}"
+        );
     }
 
     #[test]
