@@ -240,6 +240,13 @@ fn bench_times_rolls_against_the_unrolled_paper_frame() {
         for m in c["modes"].as_array().unwrap() {
             assert!(m["ratio_to_unrolled"].as_f64().unwrap() > 0.0, "{c}");
             assert!(m["steps"].as_u64().unwrap() > 0, "{c}");
+            // Against the exact projection at roll 0, which is itself at exactly 1.
+            let level = m["ratio_to_level"].as_f64().unwrap();
+            if c["roll"] == 0.0 {
+                assert_eq!(level, 1.0, "{c}");
+            } else {
+                assert!(level > 0.0, "{c}");
+            }
         }
     }
     let args = ["bench", "--terrain-size", "64", "--roll", "nan"];

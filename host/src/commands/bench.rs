@@ -31,7 +31,9 @@ pub struct BenchArgs {
     #[arg(long, value_enum, default_value_t = Switch::On)]
     pub lod: Switch,
     /// Also time each paper case in the exact projection at these rolls (degrees, comma
-    /// separated, e.g. 0,15,45), each against the case in the paper's projection at roll 0.
+    /// separated, e.g. 0,15,45), each against the case in the paper's projection at roll 0
+    /// (×unrolled) and, when the list has 0, against the exact projection at roll 0 (×level:
+    /// what the roll alone costs).
     #[arg(
         long,
         value_delimiter = ',',
@@ -101,15 +103,21 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
             case.view, case.pitch, case.roll, case.projection, case.height, case.far_voxels
         );
         println!(
-            "  {:>8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}  {:>10}",
-            "mode", "1 thread ms", "all ms", "speedup", "×classic", "×PS", "×unrolled", "steps"
+            "  {:>8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}  {:>8}  {:>10}",
+            "mode",
+            "1 thread ms",
+            "all ms",
+            "speedup",
+            "×classic",
+            "×PS",
+            "×unrolled",
+            "×level",
+            "steps"
         );
+        let ratio = |r: Option<f64>| r.map_or_else(|| "-".to_owned(), |r| format!("{r:.2}"));
         for m in &case.modes {
-            let unrolled = m
-                .ratio_to_unrolled
-                .map_or_else(|| "-".to_owned(), |r| format!("{r:.2}"));
             println!(
-                "  {:>8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>10}",
+                "  {:>8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>8}  {:>10}",
                 m.mode,
                 m.ms,
                 m.ms_median,
@@ -117,7 +125,8 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
                 m.speedup,
                 m.ratio_to_classic,
                 m.ratio_to_ps,
-                unrolled,
+                ratio(m.ratio_to_unrolled),
+                ratio(m.ratio_to_level),
                 m.steps
             );
         }

@@ -38,6 +38,11 @@ pub struct ModeTime {
     /// against fastest (for the rolled views of `--roll`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ratio_to_unrolled: Option<f64>,
+    /// `ms / ms` of the same mode and pitch in the exact projection without roll, fastest
+    /// against fastest (for the rolled views, when `--roll` has 0): what the roll alone costs,
+    /// issue 13's target.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ratio_to_level: Option<f64>,
     /// Traversal steps per frame (term `a`, from a counted render of the same frame).
     pub steps: u64,
 }
@@ -107,18 +112,29 @@ pub fn run(
         ..paper
     };
     let terrain = pyramid.terrain(lod)?;
-    // (view, camera, options, index of the unrolled paper view it is timed against)
+    // (view, camera, options, the indices of the unrolled views it is timed against: the
+    // paper projection's and, when `rolls` has 0, the exact projection's)
     let mut views = Vec::new();
     for pitch in PAPER_PITCHES {
         let camera = paper_camera(map, pyramid, pitch, size, lod)?;
+        let rolled = rolls
+            .iter()
+            .map(|&roll_deg| {
+                Camera::new(CameraParams {
+                    roll_deg,
+                    ..*camera.params()
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let unrolled = views.len();
+        // The camera wraps the roll, so that 360 is 0 too.
+        let level = rolled
+            .iter()
+            .position(|c| c.roll_deg() == 0.0)
+            .map(|i| unrolled + 1 + i);
         views.push(("paper", camera, paper, None));
-        for &roll_deg in rolls {
-            let rolled = Camera::new(CameraParams {
-                roll_deg,
-                ..*camera.params()
-            })?;
-            views.push(("paper", rolled, exact, Some(unrolled)));
+        for camera in rolled {
+            views.push(("paper", camera, exact, Some((unrolled, level))));
         }
     }
     views.push(("classic", classic_camera(map, size)?, paper, None));
@@ -150,7 +166,7 @@ pub fn run(
         x[x.len() / 2]
     };
     let mut cases = Vec::new();
-    for (v, ((view, camera, options, unrolled), frame)) in views.iter().zip(&frames).enumerate() {
+    for (v, ((view, camera, options, against), frame)) in views.iter().zip(&frames).enumerate() {
         let best_in = |v: usize, mode: Mode| {
             modes
                 .iter()
@@ -171,7 +187,10 @@ pub fn run(
                 speedup: min(one) / min(all),
                 ratio_to_ps: min(one) / ps,
                 ratio_to_classic: min(one) / classic,
-                ratio_to_unrolled: unrolled.map(|u| min(one) / best_in(u, mode)),
+                ratio_to_unrolled: against.map(|(u, _)| min(one) / best_in(u, mode)),
+                ratio_to_level: against
+                    .and_then(|(_, level)| level)
+                    .map(|l| min(one) / best_in(l, mode)),
                 steps: measured.total.a,
             });
         }
