@@ -555,18 +555,19 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
     /// [`Specular::Reference`]). Clears the lobes.
     fn highlight(&mut self, acc: &Acc) -> i64 {
         let w = acc.w_terrain;
-        let light = Normal::from_direction(acc.view).map(|e_bar| Light::new(self.sun.l, e_bar));
-        if w <= 0 || self.sun.specular == Specular::Reference || light.is_none() {
+        if self.sun.specular == Specular::Reference {
+            // Every sample was shaded on its own (`sample` fills no lobe).
             self.discard_lobes();
-            return if w > 0 && self.sun.specular == Specular::Reference {
-                acc.highlight / w
-            } else {
-                0
-            };
+            return if w > 0 { acc.highlight / w } else { 0 };
         }
+        let light = Normal::from_direction(acc.view).map(|e_bar| Light::new(self.sun.l, e_bar));
+        let (Some(light), true) = (light, w > 0) else {
+            self.discard_lobes();
+            return 0;
+        };
         let mut sum = 0;
-        while let (Some(lobe), Some(light)) = (self.next_lobe(), light.as_ref()) {
-            sum += self.lobe(&lobe, w, light);
+        while let Some(lobe) = self.next_lobe() {
+            sum += self.lobe(&lobe, w, &light);
         }
         sum
     }
