@@ -48,8 +48,9 @@ use crate::terrain::sampler::Ray;
 pub struct March<'a, 't> {
     terrain: &'t Terrain<'a>,
     level: &'t Level<'a>,
-    /// The current level's heights as rays along `axis` see them.
+    /// The current level's heights as rays along `axis` see them, and its colours.
     heights: &'a [u16],
+    colors: &'a [Rgb],
     axis: Axis,
     /// The ray moves towards increasing major coordinate.
     forward: bool,
@@ -120,6 +121,7 @@ impl<'a, 't> March<'a, 't> {
             terrain,
             level,
             heights: level.heights(column.axis),
+            colors: level.colors(),
             axis: column.axis,
             forward: column.sign > 0,
             lod: frame.lod(),
@@ -164,6 +166,7 @@ impl<'a, 't> March<'a, 't> {
     fn enter_level(&mut self) {
         self.level = self.terrain.level(self.l as usize);
         self.heights = self.level.heights(self.axis);
+        self.colors = self.level.colors();
         let (w, h) = (self.level.width(), self.level.height());
         let (len_u, len_v, stride_u, stride_v) = match self.axis {
             Axis::X => (w, h, 1, w as usize),
@@ -675,41 +678,23 @@ impl<'a, 't> March<'a, 't> {
 
     /// The current voxel as a sampler sees it.
     #[inline(always)]
-    pub fn voxel(&self) -> Voxel<'a> {
+    pub fn voxel(&self) -> Voxel<'_> {
         self.voxel_at(self.idx, self.v, self.cv, 0, 0)
     }
 
     /// The voxel at array index `idx`, cross coordinate `v` and cross cell `cv`, `crossed`
     /// crossings across the ray and `taken` steps into the current run beyond what the cursor's
-    /// fields record (a ride's locals, not yet written back).
+    /// fields record (a ride's locals, not yet written back). Only these five words are
+    /// written per hit: everything else a sampler may ask is read from the cursor when asked.
     #[inline(always)]
-    fn voxel_at(&self, idx: usize, v: i64, cv: i64, crossed: u32, taken: u32) -> Voxel<'a> {
-        let pv = if crossed == 0 {
-            self.pv
-        } else if self.len_v == 1 {
-            self.pv ^ (crossed & 1)
-        } else if self.dv_step > 0 {
-            self.pv + crossed
-        } else {
-            self.pv - crossed
-        };
-        let taken = self.taken() + taken;
+    fn voxel_at(&self, idx: usize, v: i64, cv: i64, crossed: u32, taken: u32) -> Voxel<'_> {
         Voxel {
-            colors: self.level.colors(),
+            march: self,
             idx,
             v,
-            l: self.l,
-            pv,
-            len_v: self.len_v,
-            stride_v: self.stride_v,
-            n_run: self.n,
-            dn: self.dn,
-            taken,
-            k_run: self.k,
-            j_run: self.j,
             cv,
-            forward: self.forward,
-            axis: self.axis,
+            crossed,
+            taken,
         }
     }
 
@@ -755,60 +740,53 @@ pub enum RideEnd {
 
 /// The voxel the walk stands on, as a sampler sees it (Sect. 4): where its colour is, the
 /// ray's cross-axis position over it, and its place in the voxel sequence. Built from a ride's
-/// locals, so a sampler that reads only the colour costs only the colour's load.
+/// locals and a borrow of the cursor, so a hit writes five words, and a sampler that reads
+/// only the colour costs only the colour's load.
 #[derive(Clone, Copy, Debug)]
-pub struct Voxel<'a> {
-    colors: &'a [Rgb],
+pub struct Voxel<'v> {
+    /// The cursor, as of the current run's start (level, run origin, cross period).
+    march: &'v March<'v, 'v>,
     /// The voxel's index in the level's arrays.
     idx: usize,
     /// The ray's cross coordinate, raw I32F32 level-0 voxels.
     v: i64,
-    /// The pyramid level.
-    l: u32,
-    /// The cross-axis position in the mirrored period, the level's cross side and stride.
-    pv: u32,
-    len_v: u32,
-    stride_v: usize,
-    /// The run's first centre (half-voxels along the ray), its step, and the steps taken
-    /// since: the centre is `n_run + taken·dn`, computed only by the samplers that ask.
-    n_run: i64,
-    dn: i64,
-    taken: u32,
-    /// The run's first index in the voxel sequence and cell index along `n`.
-    k_run: u32,
-    j_run: i64,
-    /// The cell index across, and which way the ray runs along which axis.
+    /// The cell index across.
     cv: i64,
-    forward: bool,
-    axis: Axis,
+    /// Crossings across the ray since the cursor's `pv` was recorded.
+    crossed: u32,
+    /// Steps into the run beyond the cursor's own count.
+    taken: u32,
 }
 
 impl Voxel<'_> {
     /// The voxel's centre, half-voxels along the ray.
     #[inline(always)]
     pub fn n(&self) -> i64 {
-        self.n_run + i64::from(self.taken) * self.dn
+        let m = self.march;
+        m.n + i64::from(m.taken() + self.taken) * m.dn
     }
 
     /// The index of the voxel in the column's sequence (the number of steps taken): the
     /// identity the distinct-sample count `M` uses (Sect. 6).
     #[inline(always)]
     pub fn step_index(&self) -> u32 {
-        self.k_run.saturating_add(self.taken)
+        let m = self.march;
+        m.k.saturating_add(m.taken() + self.taken)
     }
 
     /// The voxel's pyramid level.
     #[inline(always)]
     pub fn level(&self) -> u32 {
-        self.l
+        self.march.l
     }
 
     /// The voxel's `(x, y)` at its level in the infinite (unmirrored) grid (see
     /// [`March::cell_unmirrored`]).
     pub fn cell_unmirrored(&self) -> (i64, i64) {
-        let j = self.j_run + i64::from(self.taken);
-        let u = if self.forward { j } else { -j - 1 };
-        match self.axis {
+        let m = self.march;
+        let j = m.j + i64::from(m.taken() + self.taken);
+        let u = if m.forward { j } else { -j - 1 };
+        match m.axis {
             Axis::X => (u, self.cv),
             Axis::Y => (self.cv, u),
         }
@@ -823,7 +801,22 @@ impl Voxel<'_> {
     /// The voxel's 8-bit colour, as the map stores it.
     #[inline(always)]
     pub fn color(&self) -> Rgb {
-        self.colors.get(self.idx).copied().unwrap_or_default()
+        self.march.colors.get(self.idx).copied().unwrap_or_default()
+    }
+
+    /// The voxel's position in the mirrored period across the ray.
+    #[inline(always)]
+    fn pv(&self) -> u32 {
+        let (m, crossed) = (self.march, self.crossed);
+        if crossed == 0 {
+            m.pv
+        } else if m.len_v == 1 {
+            m.pv ^ (crossed & 1)
+        } else if m.dv_step > 0 {
+            m.pv + crossed
+        } else {
+            m.pv - crossed
+        }
     }
 
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose
@@ -831,8 +824,9 @@ impl Voxel<'_> {
     #[inline(always)]
     pub fn sample_linear(&self) -> Color16 {
         // Position in level cells, 32 fractional bits; centres sit at +½.
-        let frac = (self.v >> self.l) as u64 & 0xFFFF_FFFF; // the fraction of v / 2^l
-        let (pv, len, stride) = (self.pv, self.len_v, self.stride_v as isize);
+        let m = self.march;
+        let frac = (self.v >> m.l) as u64 & 0xFFFF_FFFF; // the fraction of v / 2^l
+        let (pv, len, stride) = (self.pv(), m.len_v, m.stride_v as isize);
         // The neighbour across is one row from the current voxel: the mirrored index moves by
         // one cell, or stays at an edge of the map (where the mirror repeats the edge voxel).
         #[allow(
@@ -860,7 +854,7 @@ impl Voxel<'_> {
             };
             (step, ((frac + (1 << 31)) >> 24) as u32)
         };
-        let colors = self.colors;
+        let colors = m.colors;
         let at = |i: usize| colors.get(i).copied().unwrap_or_default();
         let (here, there) = (at(self.idx), at(self.idx.wrapping_add_signed(near)));
         // The lower voxel takes 256 − f, the upper f: here is the lower one past the centre.

@@ -393,6 +393,20 @@ impl ParallelArea {
         }
     }
 
+    /// The pixel's first hit, at the voxel centred at `n` with the ray at `h`: its span here,
+    /// the shift that quantizes it, and where the ray is in it. Once per pixel, so kept out of
+    /// the walk's loop (inlined, its 64-bit products cost the loop registers).
+    #[inline(never)]
+    fn first_hit(&mut self, n: i64, h: Height) {
+        let lower = self.lower.at(n);
+        self.span = self.upper.at(n).saturating_sub(lower).to_bits().max(1);
+        self.shift = (64 - self.span.leading_zeros()).saturating_sub(16);
+        self.offset = h.saturating_sub(lower).to_bits().clamp(0, self.span);
+        self.sum = [0; 3];
+        self.wsum = 0;
+        self.seen = true;
+    }
+
     /// Raises the ray's offset in the span to `to` (raw, `offset ≤ to ≤ span`) and adds the
     /// quantized weight times `c`.
     #[inline(always)]
@@ -417,8 +431,15 @@ impl ParallelArea {
             return to_rgb(fallback);
         }
         cost.divisions(3);
+        self.divide()
+    }
+
+    /// `Σc / Σw` per channel, once per pixel: out of the walk's loop, whose registers the three
+    /// divisions would otherwise take.
+    #[inline(never)]
+    fn divide(&self) -> Rgb {
         // (Σc / Σw) in 8.8, rounded to 8 bits in the same division: Σc + Σw·128 < 2^32
-        // because every colour is at most 255·256.
+        // because every colour is at most 255·256; `finish` has checked Σw > 0.
         let den = self.wsum * 256;
         let ch = |s: u32| ((s + self.wsum * 128) / den).min(255) as u8;
         Rgb::new(ch(self.sum[0]), ch(self.sum[1]), ch(self.sum[2]))
@@ -429,7 +450,9 @@ impl Sampler for ParallelArea {
     const SWITCH: Switch = Switch::Late;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
-        *self = Self::new();
+        // The sums and the span are set by the pixel's first hit (`first_hit`); until then
+        // `seen` is false and nothing reads them.
+        self.seen = false;
         self.upper = pixel.upper;
         self.lower = pixel.lower;
     }
@@ -437,28 +460,20 @@ impl Sampler for ParallelArea {
     #[inline(always)]
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
         if !self.seen {
-            // The pixel's first hit: its span, here, and the shift that quantizes it.
-            let n = voxel.n();
-            self.span = self
-                .upper
-                .at(n)
-                .saturating_sub(self.lower.at(n))
-                .to_bits()
-                .max(1);
-            self.shift = (64 - self.span.leading_zeros()).saturating_sub(16);
-            self.offset = ray
-                .h
-                .saturating_sub(self.lower.at(n))
-                .to_bits()
-                .clamp(0, self.span);
-            self.seen = true;
+            self.first_hit(voxel.n(), ray.h);
         }
         let color = voxel.sample_linear();
         // H′ − H(R), as an offset into the span: the voxel's top, or the pixel's upper edge.
-        let to = self
-            .offset
-            .saturating_add(top.saturating_sub(ray.h).to_bits())
-            .min(self.span);
+        // Exact without saturation: a hit has H(R) < top ≤ 2^40 (raw) and H(R) > −2^62 (the
+        // ray heights of `num`), so 0 < top − H(R) < 2^63; and 0 ≤ offset ≤ span, so the room
+        // left, span − offset, is in range too.
+        let visible = top.to_bits().wrapping_sub(ray.h.to_bits());
+        let room = self.span - self.offset;
+        let to = if visible >= room {
+            self.span
+        } else {
+            self.offset + visible
+        };
         let w = self.accumulate(to, color, cost);
         cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
         if to == self.span {
