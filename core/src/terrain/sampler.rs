@@ -371,8 +371,10 @@ pub struct ParallelArea {
     span: i64,
     /// How far up the span the ray has been raised (raw).
     offset: i64,
-    /// The quantizing shift of the span.
+    /// The quantizing shift of the span, and the offset quantized (`offset >> shift`,
+    /// below 2^16), so that a hit shifts only its new offset.
     shift: u32,
+    quantized: u32,
     sum: [u32; 3],
     wsum: u32,
     seen: bool,
@@ -387,6 +389,7 @@ impl ParallelArea {
             span: 0,
             offset: 0,
             shift: 0,
+            quantized: 0,
             sum: [0; 3],
             wsum: 0,
             seen: false,
@@ -402,9 +405,21 @@ impl ParallelArea {
         self.span = self.upper.at(n).saturating_sub(lower).to_bits().max(1);
         self.shift = (64 - self.span.leading_zeros()).saturating_sub(16);
         self.offset = h.saturating_sub(lower).to_bits().clamp(0, self.span);
+        self.quantized = self.quantize(self.offset);
         self.sum = [0; 3];
         self.wsum = 0;
         self.seen = true;
+    }
+
+    /// An offset into the span (`0 ≤ offset ≤ span`), quantized: below 2^16.
+    #[inline(always)]
+    fn quantize(&self, offset: i64) -> u32 {
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "0 ≤ offset ≤ span and span >> shift < 2^16 (`first_hit` chooses the shift)"
+        )]
+        let q = (offset >> self.shift) as u32;
+        q
     }
 
     /// Raises the ray's offset in the span to `to` (raw, `offset ≤ to ≤ span`) and adds the
@@ -412,12 +427,9 @@ impl ParallelArea {
     #[inline(always)]
     fn accumulate<C: Cost>(&mut self, to: i64, c: Color16, cost: &mut C) -> u32 {
         cost.as_hit();
-        #[allow(
-            clippy::cast_possible_truncation,
-            reason = "0 ≤ offset ≤ to ≤ span and span >> shift < 2^16 (`hit` chooses the shift), so w < 2^16"
-        )]
-        let w = ((to >> self.shift) - (self.offset >> self.shift)) as u32;
-        self.offset = to;
+        let q = self.quantize(to);
+        let w = q - self.quantized;
+        (self.offset, self.quantized) = (to, q);
         for (s, c) in self.sum.iter_mut().zip(c) {
             *s += w * u32::from(c);
         }
