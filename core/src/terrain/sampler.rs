@@ -365,8 +365,8 @@ impl Sampler for Area {
 /// work is 32-bit (three multiply-adds), and the pixel's three divisions are 32-bit.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ParallelArea {
-    upper: Line,
-    lower: Line,
+    /// `R_{i+1} − R_i`: the line whose height at `n` is the pixel's span there.
+    gap: Line,
     /// The pixel's span `H(R_{i+1}) − H(R_i)` (raw), 0 before the first hit.
     span: i64,
     /// How far up the span the ray has been raised (raw).
@@ -384,8 +384,7 @@ impl ParallelArea {
     /// A fresh sampler.
     pub const fn new() -> Self {
         Self {
-            upper: Line::ZERO,
-            lower: Line::ZERO,
+            gap: Line::ZERO,
             span: 0,
             offset: 0,
             shift: 0,
@@ -396,16 +395,18 @@ impl ParallelArea {
         }
     }
 
-    /// The pixel's first hit, at the voxel centred at `n` with the ray at `h`: its span here,
-    /// the shift that quantizes it, and where the ray is in it. Once per pixel, so kept out of
-    /// the walk's loop (inlined, its 64-bit products cost the loop registers).
+    /// The pixel's first hit, at the voxel centred at `n`: its span here and the shift that
+    /// quantizes it. The ray is `R_i` itself there (since the pixel began it has only been
+    /// stepped, by exact products of its own slope), so its offset in the span is 0. Once per
+    /// pixel, so kept out of the walk's loop (inlined, its 64-bit product costs the loop
+    /// registers).
     #[inline(never)]
-    fn first_hit(&mut self, n: i64, h: Height) {
-        let lower = self.lower.at(n);
-        self.span = self.upper.at(n).saturating_sub(lower).to_bits().max(1);
+    fn first_hit(&mut self, n: i64) {
+        // H(R_{i+1}) − H(R_i) at n: exact in wrapping arithmetic, as `Line::at` is.
+        self.span = self.gap.at(n).to_bits().max(1);
         self.shift = (64 - self.span.leading_zeros()).saturating_sub(16);
-        self.offset = h.saturating_sub(lower).to_bits().clamp(0, self.span);
-        self.quantized = self.quantize(self.offset);
+        self.offset = 0;
+        self.quantized = 0;
         self.sum = [0; 3];
         self.wsum = 0;
         self.seen = true;
@@ -465,14 +466,28 @@ impl Sampler for ParallelArea {
         // The sums and the span are set by the pixel's first hit (`first_hit`); until then
         // `seen` is false and nothing reads them.
         self.seen = false;
-        self.upper = pixel.upper;
-        self.lower = pixel.lower;
+        self.gap = Line {
+            base: Height::from_bits(
+                pixel
+                    .upper
+                    .base
+                    .to_bits()
+                    .wrapping_sub(pixel.lower.base.to_bits()),
+            ),
+            slope: Slope::from_bits(
+                pixel
+                    .upper
+                    .slope
+                    .to_bits()
+                    .wrapping_sub(pixel.lower.slope.to_bits()),
+            ),
+        };
     }
 
     #[inline(always)]
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
         if !self.seen {
-            self.first_hit(voxel.n(), ray.h);
+            self.first_hit(voxel.n());
         }
         let color = voxel.sample_linear();
         // H′ − H(R), as an offset into the span: the voxel's top, or the pixel's upper edge.
