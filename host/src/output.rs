@@ -223,6 +223,9 @@ fn open_in_place(path: &Path, at: &Path) -> Result<File> {
 /// offset with their flags); another descriptor is opened in place through its entry.
 fn descriptor(path: &Path, n: u32) -> Result<File> {
     let dup = match n {
+        // Written into, standard input would feed this process itself (a pipe nobody reads
+        // would block the run once full).
+        0 => bail!("output {:?}: standard input is not an output", shown(path)),
         1 => {
             // What was printed before goes first.
             std::io::stdout().flush().ok();
