@@ -19,7 +19,7 @@ use std::net::{Ipv4Addr, SocketAddr, TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -34,7 +34,8 @@ const STYLE: &str = include_str!("../../../web/static/style.css");
 
 /// Connections served at once; one more is answered 503 and closed.
 pub const MAX_CONNECTIONS: usize = 256;
-/// How long a request's head may take to arrive (and a kept-alive connection may stay idle).
+/// How long a request's head may take to arrive, all of it (and a kept-alive connection may
+/// stay idle).
 pub const READ_TIMEOUT: Duration = Duration::from_secs(10);
 /// How long a write may wait for a client that does not read before the connection is dropped.
 pub const WRITE_TIMEOUT: Duration = Duration::from_secs(10);
@@ -261,12 +262,13 @@ fn is_loopback_host(host: &str) -> bool {
 
 /// Serves the requests of one connection until it closes, fails or times out.
 fn connection(stream: TcpStream, site: &Site) -> std::io::Result<()> {
-    stream.set_read_timeout(Some(READ_TIMEOUT))?;
     stream.set_write_timeout(Some(WRITE_TIMEOUT))?;
     stream.set_nodelay(true)?;
     let mut buf: Vec<u8> = Vec::with_capacity(4096);
     let mut chunk = [0u8; 4096];
     loop {
+        // The whole head within READ_TIMEOUT, however it trickles in.
+        let deadline = Instant::now() + READ_TIMEOUT;
         let (head, len) = loop {
             match parse_head(&buf) {
                 Ok(Some(parsed)) => break parsed,
@@ -295,6 +297,11 @@ fn connection(stream: TcpStream, site: &Site) -> std::io::Result<()> {
                     );
                 }
             }
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() {
+                return Ok(());
+            }
+            stream.set_read_timeout(Some(left))?;
             let n = (&stream).read(&mut chunk)?;
             if n == 0 {
                 return Ok(());
