@@ -618,6 +618,17 @@ mod tests {
         write_with(&folder.file("a.txt"), |w| Ok(w.write_all(b"a")?)).unwrap();
         folder.finish().unwrap();
         assert_eq!(std::fs::read(out.join("a.txt")).unwrap(), b"a");
+        // The folder and its file have the modes `mkdir` and `File::create` give (0777 and
+        // 0666 less the umask), not a temporary folder's 0700 or file's 0600.
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        let plain_dir = dir.path().join("plain");
+        std::fs::create_dir(&plain_dir).unwrap();
+        let plain_file = dir.path().join("plain.txt");
+        File::create(&plain_file).unwrap();
+        assert_eq!(mode(&out), mode(&plain_dir));
+        assert_eq!(mode(&out.join("a.txt")), mode(&plain_file));
+        std::fs::remove_dir(&plain_dir).unwrap();
+        std::fs::remove_file(&plain_file).unwrap();
         // Into an existing folder: files are replaced, others kept.
         std::fs::write(out.join("keep.txt"), b"k").unwrap();
         let folder = Folder::create("--out", &out).unwrap();

@@ -435,6 +435,44 @@ mod tests {
         assert_eq!(input.looks_like(), Some("a TIFF file"));
     }
 
+    /// A FIFO with no writer is refused after the grace, without blocking; one whose writer
+    /// comes within it is read.
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_waits_a_little_for_its_writer_and_no_longer() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("f.asc");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !matches!(made, Ok(s) if s.success()) {
+            eprintln!("SKIPPED: mkfifo is not available");
+            return;
+        }
+        let started = Instant::now();
+        let e = Input::open(&fifo, "height map \"f.asc\"").err().unwrap();
+        assert!(
+            matches!(e, MapError::NothingToRead { fifo: true, .. }),
+            "{e}"
+        );
+        assert!(e.to_string().contains("f.asc"), "{e}");
+        assert!(
+            started.elapsed() < STREAM_GRACE * 5,
+            "{:?}",
+            started.elapsed()
+        );
+        let writer = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || {
+                std::thread::sleep(STREAM_GRACE / 4);
+                std::fs::write(fifo, b"ncols 2\nnrows 1\n1 2\n").unwrap();
+            })
+        };
+        let mut input = Input::open(&fifo, "height map").unwrap();
+        let mut all = String::new();
+        input.read_to_string(&mut all).unwrap();
+        writer.join().unwrap();
+        assert_eq!(all, "ncols 2\nnrows 1\n1 2\n");
+    }
+
     #[test]
     fn a_folder_is_refused_naming_it() {
         let dir = tempfile::tempdir().unwrap();
