@@ -68,11 +68,18 @@ impl FlySpec {
             cuts.and_then(|c| c.checked_add(streamed))
                 .and_then(|c| c.checked_add(cameras?)),
             &format!("--frames {}", self.frames),
-            &format!(
-                "the cameras, the cut-in-time images ({h} rows × {} frames per mode) and the \
-                 frames in flight",
-                self.frames
-            ),
+            &if self.keep_cut {
+                format!(
+                    "the cameras, the cut-in-time images ({h} rows × {} frames per mode) and \
+                     the frames in flight",
+                    self.frames
+                )
+            } else {
+                format!(
+                    "the cameras ({} frames) and the frames in flight",
+                    self.frames
+                )
+            },
         )
     }
 }
@@ -96,8 +103,8 @@ pub fn check_reach(step_m: f64, frames: usize) -> Result<()> {
     let reach = step_m.abs() * frames.saturating_sub(1) as f64;
     if reach > MAX_REACH_M {
         bail!(
-            "--step {step}: {frames} frames of it fly {reach:.3e} m, beyond the {MAX_REACH_M:.0e} m \
-             a flight may cover"
+            "--step {step}: {frames} frames of it would fly beyond the {MAX_REACH_M:.0e} m a \
+             flight may cover"
         );
     }
     Ok(())
