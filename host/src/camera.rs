@@ -87,7 +87,7 @@ pub fn place(
 /// the user may expect.
 pub fn warn_degenerate(pyramid: &Pyramid, camera: &Camera, options: Options) {
     for d in view::degenerate(pyramid.map(), camera, options) {
-        eprintln!("warning: {d}");
+        crate::note!("warning: {d}");
     }
 }
 
@@ -238,7 +238,7 @@ pub fn warn_mirrored(pyramid: &Pyramid, camera: &Camera, options: Options) -> Re
         Shown(p.pitch_deg)
     );
     if let Some(w) = mirrored_warning(&name, pyramid.map(), &placed, Why::UsersCamera) {
-        eprintln!("warning: {w}");
+        crate::note!("warning: {w}");
     }
     Ok(())
 }

@@ -56,9 +56,14 @@ pub enum Command {
 }
 
 /// A closed stdout (`footprint … | head`) ends the run quietly with the status a shell gives a
-/// process killed by SIGPIPE (128 + 13), as `head` expects: Rust ignores SIGPIPE, so a write
-/// to the closed pipe fails, and `println!` turns that failure into a panic, which this hook
-/// catches before it prints anything. Every output file is written and renamed into place
+/// process killed by SIGPIPE (128 + 13), as `head` expects.
+const SIGPIPE_STATUS: u8 = 141;
+
+/// The backstop for a `println!` left in a dependency: Rust ignores SIGPIPE, so a write to a
+/// closed or full standard output fails, and `println!` turns that failure into a panic, which
+/// this hook catches before it prints anything (a closed pipe: status 141; any other failure:
+/// one line and 2). The commands themselves print through [`crate::console`], which returns
+/// the failure as an error instead. Every output file is written and renamed into place
 /// before the command prints to stdout, so nothing is left half-written.
 fn quiet_on_closed_stdout() {
     let default = std::panic::take_hook();
@@ -69,11 +74,28 @@ fn quiet_on_closed_stdout() {
             .map(String::as_str)
             .or_else(|| payload.downcast_ref::<&str>().copied())
             .unwrap_or("");
-        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
-            std::process::exit(141);
+        if message.starts_with("failed printing to stdout") {
+            if message.contains("Broken pipe") {
+                std::process::exit(i32::from(SIGPIPE_STATUS));
+            }
+            crate::note!("error: standard output: {message}");
+            std::process::exit(2);
+        }
+        if message.starts_with("failed printing to stderr") {
+            std::process::exit(2);
         }
         default(info);
     }));
+}
+
+/// The command line's definition: clap's, with negative numbers taken as values in every
+/// subcommand (`--frames -1` is then refused by `--frames`' own parser, naming it, instead of
+/// being read as an unknown flag `-1`).
+fn command() -> clap::Command {
+    fn negatives(c: clap::Command) -> clap::Command {
+        c.allow_negative_numbers(true).mut_subcommands(negatives)
+    }
+    negatives(<Cli as clap::CommandFactory>::command())
 }
 
 /// Parses `args` (the program name first): the command line, or what to print and the exit
@@ -83,7 +105,10 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    Cli::try_parse_from(args).map_err(|e| {
+    let parsed = command()
+        .try_get_matches_from(args)
+        .and_then(|mut m| <Cli as clap::FromArgMatches>::from_arg_matches_mut(&mut m));
+    parsed.map_err(|e| {
         if !e.use_stderr() {
             return (e.render().to_string(), 0);
         }
@@ -116,11 +141,10 @@ pub fn main() -> ExitCode {
         Ok(cli) => cli,
         Err((text, 0)) => {
             // --help and --version: print them whole.
-            print!("{text}");
-            return ExitCode::SUCCESS;
+            return finish(crate::out!("{text}").map_err(anyhow::Error::from));
         }
         Err((line, code)) => {
-            eprintln!("{line}");
+            crate::note!("{line}");
             return ExitCode::from(code);
         }
     };
@@ -132,12 +156,12 @@ pub fn main() -> ExitCode {
             .num_threads(usize::from(n))
             .build_global()
         {
-            eprintln!("error: --threads {n}: {e}");
+            crate::note!("error: --threads {n}: {e}");
             return ExitCode::from(2);
         }
     }
     if let Err(e) = crate::output::remove_temporaries_on_signal() {
-        eprintln!("error: {e:#}");
+        crate::note!("error: {e:#}");
         return ExitCode::from(2);
     }
     let result = match &cli.command {
@@ -153,13 +177,26 @@ pub fn main() -> ExitCode {
         Command::FirmwareReference(args) => commands::firmware_reference(args),
         Command::Serve(args) => commands::serve(args),
     };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            // One line: the context chain joined by ": ".
-            let msg = format!("{e:#}").replace('\n', " ");
-            eprintln!("error: {msg}");
-            ExitCode::from(2)
-        }
+    finish(result)
+}
+
+/// The exit code of a run that gave `result`, once what is left of standard output is flushed:
+/// 0; 141 for a closed standard output (quietly, as a process killed by SIGPIPE); otherwise
+/// the error on one line of standard error (its control characters escaped) and 2.
+fn finish(result: anyhow::Result<()>) -> ExitCode {
+    let result = result.and_then(|()| Ok(crate::console::flush()?));
+    let Err(e) = result else {
+        return ExitCode::SUCCESS;
+    };
+    let closed = e.chain().any(|c| {
+        c.downcast_ref::<crate::console::StdoutError>()
+            .is_some_and(|s| s.0.kind() == std::io::ErrorKind::BrokenPipe)
+    });
+    if closed {
+        return ExitCode::from(SIGPIPE_STATUS);
     }
+    // One line: the context chain joined by ": ".
+    let msg = format!("{e:#}").replace('\n', " ");
+    crate::note!("error: {msg}");
+    ExitCode::from(2)
 }

@@ -10,6 +10,7 @@ pub mod args;
 pub mod camera;
 pub mod cli;
 pub mod commands;
+pub mod console;
 pub mod experiment;
 pub mod lighting;
 pub use footprint_maps as map;

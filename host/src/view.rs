@@ -161,14 +161,14 @@ impl MapArgs {
                     },
                 )?;
                 if loaded.voids_filled > 0 {
-                    eprintln!(
+                    crate::note!(
                         "note: {}: {} voids filled from their neighbours",
                         dem.display(),
                         loaded.voids_filled
                     );
                 }
                 if let Some(hint) = map::relief_hint(&loaded.map, loaded.range_m) {
-                    eprintln!("hint: {}: {hint}", dem.display());
+                    crate::note!("hint: {}: {hint}", dem.display());
                 }
                 Ok(loaded.map)
             }

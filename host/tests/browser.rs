@@ -239,8 +239,10 @@ fn a_png_height_map_and_its_colour_map_load_from_the_two_pickers() {
     );
 }
 
+/// The map is read once, when the server starts (issue 28): an empty standard input or a
+/// folder is refused then, naming `--dem`.
 #[test]
-fn serve_needs_map_files_it_can_read_again() {
+fn serve_refuses_a_map_it_cannot_read() {
     let o = footprint(&["serve", "--port", "0", "--dem", "-"]);
     assert_one_line_error(&o, &["serve", "--dem", "-"], "--dem -");
     let dir = tempfile::tempdir().unwrap();

@@ -2,6 +2,7 @@
 //! or the file, exit code 2, and no output file.
 
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
 mod common;
 
@@ -629,4 +630,133 @@ fn glint_names_a_bad_material() {
     );
     let args = ["glint", "--material", ""];
     assert_one_line_error(&footprint(&args), &args, "--material");
+}
+
+/// Class 4 (issue 28): a full stdout or stderr ends the run with one line and exit code 2.
+/// Before: `map info g.asc --json > /dev/full` panicked (exit 101).
+#[test]
+fn a_full_stdout_or_stderr_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("g.asc");
+    std::fs::write(
+        &grid,
+        "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n1 2 3\n4 5 6\n",
+    )
+    .unwrap();
+    let g = grid.to_str().unwrap();
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
+    for args in [
+        &["map", "info", g, "--json"][..],
+        &["map", "info", g][..],
+        &[
+            "render",
+            "--terrain-size",
+            "64",
+            "--size",
+            "8x8",
+            "--counts",
+        ][..],
+        &["specular", "--figure", "2", "--csv"][..],
+        &["firmware-reference"][..],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_footprint"))
+            .args(args)
+            .stdout(full())
+            .output()
+            .unwrap();
+        assert_one_line_error(&o, args, "standard output");
+    }
+    // A full stderr: the error has nowhere to go, but the exit code says it.
+    let o = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(["map", "info", "/nonexistent/g.asc"])
+        .stderr(full())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    let o = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(["render", "--terrain-size", "64", "--size", "8x8"])
+        .stderr(full())
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "a note that cannot be printed is no failure: {o:?}"
+    );
+}
+
+/// Class 8 (issue 28): messages a user can act on. Before: escape sequences in a file name
+/// reached the terminal raw; `--frames -1` gave clap's "unexpected argument '-1'"; `fly --step
+/// 1e308` blamed "frame 1: y = ..."; `specular --measure` ignored `--max-memory` (it ran).
+#[test]
+fn messages_name_the_option_and_escape_the_file() {
+    let evil = "/nonexistent/\u{1b}[31mred\u{7}.asc";
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("g.asc");
+    std::fs::write(
+        &grid,
+        "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n1 2 3\n4 5 6\n",
+    )
+    .unwrap();
+    for args in [
+        &["map", "info", evil][..],
+        &["render", "--dem", evil][..],
+        &["map", "convert", grid.to_str().unwrap(), evil][..],
+    ] {
+        let o = footprint(args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{stderr}");
+        assert!(
+            !stderr.chars().any(|c| c.is_control() && c != '\n'),
+            "{args:?}: a control character reached stderr: {stderr:?}"
+        );
+        assert!(stderr.contains("red"), "{stderr}");
+    }
+    for (args, names) in [
+        (&["fly", "--frames", "-1"][..], "--frames"),
+        (
+            &["specular", "--scene", "plate2", "--size", "-5"][..],
+            "--size",
+        ),
+        (&["render", "--seed", "-1"][..], "--seed"),
+        (&["specular", "--measure", "--frames", "-2"][..], "--frames"),
+    ] {
+        let o = footprint(args);
+        assert_one_line_error(&o, args, names);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !stderr.contains("unexpected argument"),
+            "{args:?}: {stderr}"
+        );
+    }
+    let args = [
+        "fly",
+        "--terrain-size",
+        "64",
+        "--size",
+        "8x8",
+        "--frames",
+        "3",
+        "--step",
+        "1e308",
+    ];
+    let o = footprint(&args);
+    assert_one_line_error(&o, &args, "--step 1e308");
+    let args = [
+        "specular",
+        "--measure",
+        "--size",
+        "4096",
+        "--frames",
+        "4096",
+        "--max-memory",
+        "64M",
+    ];
+    let o = common::footprint_bounded(&args, 60).unwrap_or_else(|e| panic!("{e}"));
+    assert_one_line_error(&o, &args, "--max-memory");
 }

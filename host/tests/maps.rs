@@ -7,6 +7,8 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use serde_json::Value;
+
+mod common;
 use tiff::encoder::colortype;
 use tiff::encoder::TiffEncoder;
 use tiff::tags::Tag;
@@ -1010,4 +1012,85 @@ fn options_that_would_be_ignored_are_refused() {
     ] {
         fails(&args, names, None);
     }
+}
+
+/// Class 5 (issue 28): a FIFO nobody writes to (an input) or reads from (an output) is refused
+/// with one line naming it, not waited on for ever. Before: `--dem`, `--color`, `fly --path`,
+/// `--out` and a FIFO inside a `fly --out` folder each hung.
+#[test]
+fn fifos_with_no_writer_or_reader_are_refused_not_waited_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("f.asc");
+    if !common::mkfifo(&fifo) {
+        eprintln!("SKIPPED: mkfifo is not available");
+        return;
+    }
+    let grid = dir.path().join("g.asc");
+    write_asc(&grid, HEAD_3X2, &["1 2 3", "4 5 6"]);
+    let out_dir = dir.path().join("flight");
+    std::fs::create_dir(&out_dir).unwrap();
+    assert!(common::mkfifo(&out_dir.join("cut_ps.png")));
+    let out_fifo = dir.path().join("out.png");
+    assert!(common::mkfifo(&out_fifo));
+    let (f, g, o, p) = (s(&fifo), s(&grid), s(&out_dir), s(&out_fifo));
+    let small = ["--size", "8x8"];
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["map", "info", &f], "f.asc"),
+        (vec!["render", "--dem", &f, "--out", "/dev/null"], "f.asc"),
+        (
+            vec!["render", "--dem", &g, "--color", &f, "--out", "/dev/null"],
+            "f.asc",
+        ),
+        (
+            vec!["fly", "--terrain-size", "64", "--frames", "3", "--path", &f],
+            "--path",
+        ),
+        (
+            vec!["render", "--terrain-size", "64", "--out", &p],
+            "out.png",
+        ),
+        (vec!["map", "convert", &g, &p, "--to", "png"], "out.png"),
+        (
+            vec![
+                "fly",
+                "--terrain-size",
+                "64",
+                "--frames",
+                "3",
+                "--modes",
+                "ps",
+                "--out",
+                &o,
+            ],
+            "cut_ps.png",
+        ),
+    ];
+    for (mut args, names) in cases {
+        args.extend_from_slice(&small);
+        if args[0] == "map" {
+            args.truncate(args.len() - 2);
+        }
+        let out = common::footprint_bounded(&args, 30).unwrap_or_else(|e| panic!("{e}"));
+        common_one_line(&out, &args, names);
+    }
+    // The FIFOs are still FIFOs, and nothing else was written.
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+    assert!(std::fs::metadata(out_dir.join("cut_ps.png"))
+        .unwrap()
+        .file_type()
+        .is_fifo());
+    assert_eq!(listing(dir.path()).len(), 4, "{:?}", listing(dir.path()));
+    assert_eq!(listing(&out_dir).len(), 1, "{:?}", listing(&out_dir));
+}
+
+/// Exit code 2 and one line naming `names`.
+fn common_one_line(o: &Output, args: &[&str], names: &str) {
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{args:?}: {stderr}");
+    assert!(
+        stderr.contains(names),
+        "{args:?}: should name {names}: {stderr}"
+    );
 }

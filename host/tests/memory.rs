@@ -160,3 +160,30 @@ fn bad_memory_sizes_name_the_option() {
     let o = footprint(&["render", "--max-memory", "lots", "--out", "/tmp/never.png"]);
     assert_one_line_error(&o, &["--max-memory", "lots"], "--max-memory");
 }
+
+/// Class 3 (issue 28): `fly --frames 1000000000` without `--out` is refused under the budget.
+/// Before: the frames' cameras (72 GB) were allocated unchecked, and the run aborted (exit 134).
+#[test]
+fn the_frames_bomb_without_out_is_refused_under_the_budget() {
+    for extra in [&[][..], &["--column-only"][..]] {
+        let mut args = vec![
+            "fly",
+            "--frames",
+            "1000000000",
+            "--size",
+            "64x64",
+            "--terrain-size",
+            "64",
+            "--max-memory",
+            "3G",
+        ];
+        args.extend_from_slice(extra);
+        refused(&args, "--frames 1000000000");
+        let o = footprint(&args);
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains("--max-memory"),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}

@@ -454,7 +454,7 @@ pub fn read(mut reader: Input) -> Result<(Grid, Header, Spacing), MapError> {
 
     // The projection file beside it, if any (standard input has none).
     let prj = (!is_stdin(reader.path()))
-        .then(|| std::fs::read_to_string(reader.path().with_extension("prj")).ok())
+        .then(|| super::input::read_side_file(&reader.path().with_extension("prj")))
         .flatten();
     let spacing = header.spacing(prj.as_deref());
     let grid = Grid {

@@ -1,4 +1,4 @@
-//! One map input, opened exactly once.
+//! One map input, opened exactly once, and never waited on for ever.
 //!
 //! A regular file is opened once and read from there (its length is known and it can seek, so
 //! the readers check a header against the length before they allocate). Anything else (`-` for
@@ -6,12 +6,23 @@
 //! one pass, at most the memory budget ([`crate::memory`]), and then served from there. Either
 //! way the first bytes are kept, so the format can be guessed from them ([`Input::looks_like`])
 //! without opening the file again.
+//!
+//! Every path is opened without blocking (`O_NONBLOCK`, cleared once it is open): opening a FIFO
+//! for reading would otherwise wait until a writer comes. A FIFO or device that gives nothing to
+//! read within [`STREAM_GRACE`] (no writer, a terminal no one types at) is refused with
+//! [`MapError::NothingToRead`]; one whose writer is there is read to its end, however slowly the
+//! writer writes. [`read_all`] reads any other input file (a flight path) the same way.
 
 use std::fs::File;
 use std::io::{self, BufRead, BufReader, Cursor, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 use super::{Format, MapError};
+
+/// How long a FIFO or device given as an input may take to start giving bytes (a writer that
+/// opens it a moment after `footprint` does) before it is refused.
+pub const STREAM_GRACE: Duration = Duration::from_secs(2);
 
 /// How many first bytes are kept for guessing the format.
 const HEAD: usize = 16;
@@ -94,26 +105,19 @@ impl Input {
             error,
         };
         let (source, len) = if is_stdin(path) {
-            let bytes = read_stream(io::stdin().lock(), what)?;
+            let bytes = read_stream(io::stdin().lock(), what, 0)?;
             let len = bytes.len() as u64;
             (Source::Memory(Cursor::new(bytes)), len)
         } else {
-            let file = File::open(path).map_err(io_err)?;
-            let meta = file.metadata().map_err(io_err)?;
-            if meta.is_dir() {
-                return Err(MapError::IsDirectory {
-                    what: what.to_owned(),
-                });
-            }
-            if meta.is_file() {
-                (
-                    Source::File(BufReader::with_capacity(1 << 16, file)),
-                    meta.len(),
-                )
-            } else {
-                let bytes = read_stream(file, what)?;
-                let len = bytes.len() as u64;
-                (Source::Memory(Cursor::new(bytes)), len)
+            match open_nonblocking(path, what)? {
+                Opened::File(file, len) => {
+                    (Source::File(BufReader::with_capacity(1 << 16, file)), len)
+                }
+                Opened::Stream(file) => {
+                    let bytes = read_special(file, what)?;
+                    let len = bytes.len() as u64;
+                    (Source::Memory(Cursor::new(bytes)), len)
+                }
             }
         };
         let mut input = Self {
@@ -224,18 +228,144 @@ pub fn sniff(head: &[u8], len: u64) -> Option<Format> {
     }
 }
 
-/// Reads a stream to its end, refusing one longer than the memory budget.
-fn read_stream(stream: impl Read, what: &str) -> Result<Vec<u8>, MapError> {
+/// An input path, opened.
+enum Opened {
+    /// A regular file (blocking again) and its length.
+    File(File, u64),
+    /// Anything else that is not a folder (FIFO, device, socket), still non-blocking.
+    Stream(File),
+}
+
+/// Opens `path` for reading without blocking (see the module documentation); a folder is
+/// refused.
+fn open_nonblocking(path: &Path, what: &str) -> Result<Opened, MapError> {
+    let io_err = |error: io::Error| MapError::Io {
+        what: what.to_owned(),
+        error,
+    };
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(nonblocking_flag());
+    }
+    let file = options.open(path).map_err(io_err)?;
+    let meta = file.metadata().map_err(io_err)?;
+    if meta.is_dir() {
+        return Err(MapError::IsDirectory {
+            what: what.to_owned(),
+        });
+    }
+    if meta.is_file() {
+        set_blocking(&file).map_err(io_err)?;
+        Ok(Opened::File(file, meta.len()))
+    } else {
+        Ok(Opened::Stream(file))
+    }
+}
+
+/// `O_NONBLOCK`, as `OpenOptionsExt::custom_flags` takes it.
+#[cfg(unix)]
+fn nonblocking_flag() -> i32 {
+    i32::try_from(rustix::fs::OFlags::NONBLOCK.bits()).unwrap_or(0)
+}
+
+/// Clears `O_NONBLOCK` on an opened file.
+#[cfg(unix)]
+fn set_blocking(file: &File) -> io::Result<()> {
+    use rustix::fs::{fcntl_getfl, fcntl_setfl, OFlags};
+    let flags = fcntl_getfl(file)?;
+    fcntl_setfl(file, flags - OFlags::NONBLOCK)?;
+    Ok(())
+}
+
+#[cfg(not(unix))]
+fn set_blocking(_: &File) -> io::Result<()> {
+    Ok(())
+}
+
+/// Reads a FIFO, device or socket opened without blocking: waits at most [`STREAM_GRACE`] for
+/// its first bytes (a FIFO with no writer yet reads as its end; a device with nothing to give
+/// would block), then, once there is a writer, reads to the end as [`read_stream`] does.
+fn read_special(mut file: File, what: &str) -> Result<Vec<u8>, MapError> {
+    let io_err = |error: io::Error| MapError::Io {
+        what: what.to_owned(),
+        error,
+    };
+    #[cfg(unix)]
+    let fifo = {
+        use std::os::unix::fs::FileTypeExt;
+        file.metadata().map_err(io_err)?.file_type().is_fifo()
+    };
+    #[cfg(not(unix))]
+    let fifo = false;
+    let deadline = Instant::now() + STREAM_GRACE;
+    let mut first = vec![0u8; 1 << 16];
+    let n = loop {
+        match file.read(&mut first) {
+            Ok(0) if fifo => {} // no writer yet
+            Ok(n) => break n,
+            // A FIFO's writer is there, with nothing written yet: wait for it.
+            Err(e) if e.kind() == io::ErrorKind::WouldBlock && fifo => break 0,
+            Err(e) if e.kind() == io::ErrorKind::WouldBlock => {}
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(io_err(e)),
+        }
+        if Instant::now() >= deadline {
+            return Err(MapError::NothingToRead {
+                what: what.to_owned(),
+                fifo,
+            });
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    set_blocking(&file).map_err(io_err)?;
+    first.truncate(n);
+    let rest = read_stream(file, what, first.len() as u64)?;
+    first.extend_from_slice(&rest);
+    Ok(first)
+}
+
+/// Reads all of `path` (`-`: standard input) as [`Input::open`] opens it: never blocking on a
+/// FIFO with no writer, a stream at most the memory budget; `what` names it in errors.
+pub fn read_all(path: &Path, what: &str) -> Result<Vec<u8>, MapError> {
+    let mut input = Input::open(path, what)?;
+    let mut bytes = Vec::new();
+    input
+        .read_to_end(&mut bytes)
+        .map_err(|e| input.io_error(e))?;
+    Ok(bytes)
+}
+
+/// Reads a small side file (an ASCII grid's `.prj`) if it is a regular file of at most 64 KiB
+/// that can be read now; `None` otherwise (it is optional, and a FIFO there is never waited
+/// on).
+pub fn read_side_file(path: &Path) -> Option<String> {
+    let Ok(Opened::File(file, len)) = open_nonblocking(path, "") else {
+        return None;
+    };
+    if len > 1 << 16 {
+        return None;
+    }
+    let mut text = String::new();
+    file.take(1 << 16).read_to_string(&mut text).ok()?;
+    Some(text)
+}
+
+/// Reads a stream to its end, refusing one longer than the memory budget (`already` bytes of it
+/// were read before).
+fn read_stream(stream: impl Read, what: &str, already: u64) -> Result<Vec<u8>, MapError> {
     let budget = crate::memory::budget();
     let mut bytes = Vec::new();
     stream
-        .take(budget.saturating_add(1))
+        .take(budget.saturating_add(1).saturating_sub(already))
         .read_to_end(&mut bytes)
         .map_err(|error| MapError::Io {
             what: what.to_owned(),
             error,
         })?;
-    if bytes.len() as u64 > budget {
+    if bytes.len() as u64 + already > budget {
         return Err(MapError::StreamTooLong {
             what: what.to_owned(),
         });
@@ -303,6 +433,44 @@ mod tests {
         let input = Input::open(&path, "height map").unwrap();
         assert_eq!(input.head(), b"II*\0");
         assert_eq!(input.looks_like(), Some("a TIFF file"));
+    }
+
+    /// A FIFO with no writer is refused after the grace, without blocking; one whose writer
+    /// comes within it is read.
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_waits_a_little_for_its_writer_and_no_longer() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("f.asc");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !matches!(made, Ok(s) if s.success()) {
+            eprintln!("SKIPPED: mkfifo is not available");
+            return;
+        }
+        let started = Instant::now();
+        let e = Input::open(&fifo, "height map \"f.asc\"").err().unwrap();
+        assert!(
+            matches!(e, MapError::NothingToRead { fifo: true, .. }),
+            "{e}"
+        );
+        assert!(e.to_string().contains("f.asc"), "{e}");
+        assert!(
+            started.elapsed() < STREAM_GRACE * 5,
+            "{:?}",
+            started.elapsed()
+        );
+        let writer = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || {
+                std::thread::sleep(STREAM_GRACE / 4);
+                std::fs::write(fifo, b"ncols 2\nnrows 1\n1 2\n").unwrap();
+            })
+        };
+        let mut input = Input::open(&fifo, "height map").unwrap();
+        let mut all = String::new();
+        input.read_to_string(&mut all).unwrap();
+        writer.join().unwrap();
+        assert_eq!(all, "ncols 2\nnrows 1\n1 2\n");
     }
 
     #[test]

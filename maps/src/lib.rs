@@ -145,6 +145,14 @@ pub enum MapError {
         /// The map, e.g. `height map "-"`.
         what: String,
     },
+    /// A FIFO or device gave nothing to read within [`input::STREAM_GRACE`]: a FIFO no one
+    /// writes to, a terminal no one types at.
+    NothingToRead {
+        /// The input, e.g. `height map "f.asc"`.
+        what: String,
+        /// True for a FIFO (else a device).
+        fifo: bool,
+    },
     /// The colour map's size differs from the height map's.
     SizeMismatch {
         /// The colour map, e.g. `colour map "c.png"`.
@@ -238,6 +246,16 @@ impl fmt::Display for MapError {
                     memory::map_bytes(size.0, size.1).unwrap_or(u64::MAX)
                 ),
                 memory::show(memory::budget())
+            ),
+            MapError::NothingToRead { what, fifo } => write!(
+                f,
+                "{what}: {} within {} s; nothing read",
+                if *fifo {
+                    "a FIFO that no one wrote to"
+                } else {
+                    "a device that gave nothing to read"
+                },
+                input::STREAM_GRACE.as_secs()
             ),
             MapError::StreamTooLong { what } => write!(
                 f,

@@ -83,26 +83,31 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
             .print();
     }
     if args.format.json {
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string(&serde_json::json!({ "cases": cases }))?
-        );
+        )?;
         return Ok(());
     }
-    println!(
+    crate::outln!(
         "{} · {}x{} · FOV 10° · {} interleaved rounds · ms per frame, fastest (median) on one thread, fastest on {} threads",
         map.source,
         args.size.size.width,
         args.size.size.height,
         args.repeats,
         rayon::current_num_threads()
-    );
+    )?;
     for case in &cases {
-        println!(
+        crate::outln!(
             "{} view, pitch {}°, roll {}°, {} projection, eye {:.1} m, far {:.0} voxels",
-            case.view, case.pitch, case.roll, case.projection, case.height, case.far_voxels
-        );
-        println!(
+            case.view,
+            case.pitch,
+            case.roll,
+            case.projection,
+            case.height,
+            case.far_voxels
+        )?;
+        crate::outln!(
             "  {:>8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}  {:>8}  {:>10}",
             "mode",
             "1 thread ms",
@@ -113,10 +118,10 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
             "×unrolled",
             "×level",
             "steps"
-        );
+        )?;
         let ratio = |r: Option<f64>| r.map_or_else(|| "-".to_owned(), |r| format!("{r:.2}"));
         for m in &case.modes {
-            println!(
+            crate::outln!(
                 "  {:>8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>8}  {:>10}",
                 m.mode,
                 m.ms,
@@ -128,9 +133,9 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
                 ratio(m.ratio_to_unrolled),
                 ratio(m.ratio_to_level),
                 m.steps
-            );
+            )?;
         }
     }
-    eprintln!("({:.1} s)", started.elapsed().as_secs_f64());
+    crate::note!("({:.1} s)", started.elapsed().as_secs_f64());
     Ok(())
 }

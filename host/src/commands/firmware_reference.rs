@@ -1,8 +1,6 @@
 //! `footprint firmware-reference`: the lines the firmware (`firmware/`) prints, rendered on
 //! the host through the same core API, for a byte-for-byte comparison.
 
-use std::io::Write;
-
 use anyhow::Result;
 use clap::Args;
 
@@ -18,8 +16,7 @@ pub struct FirmwareReferenceArgs {}
 /// conservative clamping), then the constructor `error` lines.
 pub fn firmware_reference(_args: &FirmwareReferenceArgs) -> Result<()> {
     let text = firmware::reference_text()?;
-    let mut out = std::io::stdout().lock();
-    out.write_all(text.as_bytes())?;
-    out.flush()?;
+    crate::console::out_bytes(text.as_bytes())?;
+    crate::console::flush()?;
     Ok(())
 }

@@ -9,6 +9,7 @@ use footprint_core::Rgb;
 use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::fly::{self, FlySpec};
 use crate::experiment::path::FlightPath;
+use crate::output::Folder;
 use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
@@ -20,6 +21,14 @@ const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
 
 /// Black columns between the panels of `--animation`.
 const GAP: usize = 2;
+
+/// The animation's file name in `--out`.
+const ANIMATION: &str = "flight.png";
+
+/// The cut-in-time image's file name in `--out` for `mode`.
+fn cut_name(mode: Mode) -> String {
+    format!("cut_{mode}.png")
+}
 
 /// `footprint fly`.
 #[derive(Args, Debug)]
@@ -125,21 +134,35 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         lod: true,
     };
     spec.check_memory(if args.animation { PANELS.len() } else { 0 })?;
+    // Every file goes into a temporary folder first, and into --out only when all are
+    // written: a failure leaves none of them. A file of the same name that is a folder or a
+    // special file (a FIFO) is refused now, before the flight.
+    let folder = args
+        .out
+        .as_deref()
+        .map(|dir| Folder::create("--out", dir))
+        .transpose()?;
+    if let Some(folder) = &folder {
+        let mut names: Vec<String> = spec.modes.iter().map(|m| cut_name(*m)).collect();
+        if args.animation {
+            names.push(ANIMATION.to_owned());
+        }
+        folder.check(&names)?;
+    }
     let pyramid = args.map.pyramid()?;
     let map = pyramid.map();
     let bar = super::progress(args.frames as u64, "frames", args.format.json);
     let result = if args.animation {
-        let dir = args
-            .out
-            .as_deref()
-            .expect("clap requires --out with --animation");
+        let Some(folder) = &folder else {
+            bail!("--animation: give --out DIR");
+        };
         let (w, h) = (
             args.size.size.width as usize,
             args.size.size.height as usize,
         );
         let width = PANELS.len() * w + (PANELS.len() - 1) * GAP;
         let mut animation = Animation::create(
-            &dir.join("flight.png"),
+            &folder.file(ANIMATION),
             width as u32,
             h as u32,
             args.frames as u32,
@@ -172,16 +195,17 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     crate::experiment::paper::paper_view(map, &pyramid, 5.0, spec.size, spec.lod)?
         .placement
         .print();
-    if let Some(dir) = &args.out {
+    if let Some(folder) = folder {
         for m in &result.modes {
-            let path = dir.join(format!("cut_{}.png", m.mode));
+            let path = folder.file(&cut_name(m.mode));
             write_png(&path, result.frames as u32, args.size.size.height, &m.cut)?;
         }
+        folder.finish()?;
     }
     if args.format.json {
-        println!("{}", serde_json::to_string(&result)?);
+        crate::outln!("{}", serde_json::to_string(&result)?)?;
     } else {
-        print!("{}", flight::markdown(&result));
+        crate::out!("{}", flight::markdown(&result))?;
     }
     Ok(())
 }

@@ -146,30 +146,38 @@ impl GlintArgs {
 pub fn glint(args: &GlintArgs) -> Result<()> {
     let spec = args.spec()?;
     if !args.measure {
-        println!("{ABOUT}");
+        crate::outln!("{ABOUT}")?;
         return Ok(());
     }
+    // The images go into a temporary folder, and into --out only when all are written (and
+    // none of their names there is a folder or a special file): all of them, or none.
+    let folder = args
+        .out
+        .as_deref()
+        .map(|dir| crate::output::Folder::create("--out", dir))
+        .transpose()?;
     let pyramid = args.map.pyramid()?;
     let map = pyramid.map();
     let bar = super::progress(args.frames as u64, "frames", args.format.json);
     let result = glint::run(map, &pyramid, &spec, || bar.inc(1))?;
     bar.finish_and_clear();
-    if let Some(dir) = &args.out {
+    if let Some(folder) = folder {
         let (w, h) = (result.width, result.height);
         for r in result.runs.iter().chain(std::iter::once(&result.reference)) {
-            write_png(&dir.join(writer::frame_file(&result, r)), w, h, &r.last)?;
+            write_png(&folder.file(&writer::frame_file(&result, r)), w, h, &r.last)?;
             write_png(
-                &dir.join(writer::cut_file(&result, r)),
+                &folder.file(&writer::cut_file(&result, r)),
                 result.frames as u32,
                 h,
                 &r.cut,
             )?;
         }
+        folder.finish()?;
     }
     if args.format.json {
-        println!("{}", serde_json::to_string(&result)?);
+        crate::outln!("{}", serde_json::to_string(&result)?)?;
     } else {
-        print!("{}", writer::markdown(&result));
+        crate::out!("{}", writer::markdown(&result))?;
     }
     Ok(())
 }

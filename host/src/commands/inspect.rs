@@ -127,7 +127,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             }),
         );
         if !args.format.json {
-            println!(
+            crate::outln!(
                 "pixel {},{} ({}): {} samples, colour #{:02x}{:02x}{:02x}",
                 p.row,
                 p.col,
@@ -136,7 +136,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
                 color.r,
                 color.g,
                 color.b
-            );
+            )?;
         }
     }
     if args.footprint {
@@ -145,14 +145,17 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         write_png(&path_for("footprint"), pic.width, pic.height, &pic.pixels)?;
         json.insert("footprint".into(), serde_json::to_value(counts)?);
         if !args.format.json {
-            println!(
+            crate::outln!(
                 "footprint ({}): {} sampled, {} visible but unsampled, {} hidden",
-                args.mode, counts.sampled, counts.unsampled, counts.hidden
-            );
+                args.mode,
+                counts.sampled,
+                counts.unsampled,
+                counts.hidden
+            )?;
         }
     }
     if args.format.json {
-        println!("{}", serde_json::Value::Object(json));
+        crate::outln!("{}", serde_json::Value::Object(json))?;
     }
     view.warn_mirrored(&args.camera)
 }

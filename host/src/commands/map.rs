@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::output::Target;
+
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use serde::Serialize;
@@ -153,38 +155,41 @@ fn info(args: &InfoArgs) -> Result<()> {
         pyramid_levels: levels,
     };
     if args.format.json {
-        println!("{}", serde_json::to_string(&json)?);
+        crate::outln!("{}", serde_json::to_string(&json)?)?;
         return Ok(());
     }
-    println!("file      {}", json.file);
-    println!("format    {} ({})", json.format, json.detail);
-    println!("size      {} × {} ({} cells)", m.width, m.height, m.len());
-    println!("spacing   {:.3} m ({})", m.spacing_m, json.spacing_note);
-    println!(
+    crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
+    crate::outln!("format    {} ({})", json.format, json.detail)?;
+    crate::outln!("size      {} × {} ({} cells)", m.width, m.height, m.len())?;
+    crate::outln!("spacing   {:.3} m ({})", m.spacing_m, json.spacing_note)?;
+    crate::outln!(
         "heights   {:.2} to {:.2} m (range {:.2} m)",
         json.min_m,
         json.max_m,
         json.max_m - json.min_m
-    );
-    println!(
+    )?;
+    crate::outln!(
         "stored    height units of {} m above {} m: {lo} to {hi}",
-        m.height_scale_m, m.base_m
-    );
-    println!(
+        m.height_scale_m,
+        m.base_m
+    )?;
+    crate::outln!(
         "scale     {} m per height unit ({})",
-        m.height_scale_m, json.height_note
-    );
+        m.height_scale_m,
+        json.height_note
+    )?;
     if let Some(hint) = &json.relief_hint {
-        println!("hint      {hint}");
+        crate::outln!("hint      {hint}")?;
     }
-    println!(
+    crate::outln!(
         "voids     {} filled from their neighbours",
         loaded.voids_filled
-    );
-    println!(
+    )?;
+    crate::outln!(
         "pyramid   {levels} levels ({}×{} down to 1×1)",
-        m.width, m.height
-    );
+        m.width,
+        m.height
+    )?;
     Ok(())
 }
 
@@ -200,9 +205,9 @@ fn convert(args: &ConvertArgs) -> Result<()> {
         Ok(())
     })
     .with_context(|| format!("converting {}", describe("height map", &args.input)))?;
-    println!(
+    let mut summary = format!(
         "wrote {}: {to}, {}×{}, heights {:.2} to {:.2} m, spacing {:.3} m, {} voids filled",
-        args.output.display(),
+        crate::output::shown(&args.output),
         m.width,
         m.height,
         loaded.range_m.0,
@@ -211,16 +216,25 @@ fn convert(args: &ConvertArgs) -> Result<()> {
         loaded.voids_filled
     );
     match to {
-        Format::Png => println!(
-            "the PNG holds height units: render it with --spacing {} --height-scale {} (unit 0 is \
-             {} m above the datum)",
+        Format::Png => summary.push_str(&format!(
+            "\nthe PNG holds height units: render it with --spacing {} --height-scale {} (unit 0 \
+             is {} m above the datum)",
             m.spacing_m, m.height_scale_m, m.base_m
-        ),
-        Format::Hgt => println!(
-            "a .hgt tile's spacing comes from its name (e.g. N46E008.hgt); else give --spacing {}",
+        )),
+        Format::Hgt => summary.push_str(&format!(
+            "\na .hgt tile's spacing comes from its name (e.g. N46E008.hgt); else give --spacing {}",
             m.spacing_m
-        ),
+        )),
         Format::Asc | Format::Tiff => {}
+    }
+    // Written to standard output, the map is followed by nothing: the summary goes to stderr.
+    if matches!(
+        crate::output::target(&args.output),
+        Ok(Target::Descriptor(1))
+    ) {
+        crate::note!("{summary}");
+    } else {
+        crate::outln!("{summary}")?;
     }
     Ok(())
 }

@@ -82,7 +82,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 &mut counts,
             )?;
             let pixels = (frame.width() * frame.height()).max(1) as f64;
-            eprintln!(
+            crate::note!(
                 "lit by the sun, specular {}: {:.2} samples lit and {:.2} highlight evaluations per pixel",
                 args.light.specular,
                 counts.total.normals as f64 / pixels,
@@ -115,12 +115,12 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             map: &view.map().source,
         };
         if args.format.json {
-            println!("{}", counts::json(&summary)?);
+            crate::outln!("{}", counts::json(&summary)?)?;
         } else {
-            print!("{}", counts::text(&summary));
+            crate::out!("{}", counts::text(&summary))?;
         }
     } else if args.out.is_none() {
-        eprintln!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");
+        crate::note!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");
     }
     view.warn_mirrored(&args.camera)
 }

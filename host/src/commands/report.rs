@@ -302,7 +302,10 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     write_text(&file("report.json"), &serde_json::to_string_pretty(&data)?)?;
     folder.finish()?;
     bar.finish_and_clear();
-    println!("wrote {}", args.out.join("REPORT.md").display());
+    crate::outln!(
+        "wrote {}",
+        crate::output::shown(&args.out.join("REPORT.md"))
+    )?;
     Ok(())
 }
 

@@ -1,7 +1,6 @@
 //! `footprint specular`: the plates, Figures 2 and 3, and the measurements of Amanatides'
 //! specular antialiasing.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
@@ -123,6 +122,12 @@ pub fn specular(args: &SpecularArgs) -> Result<()> {
 fn plate(args: &SpecularArgs, name: SceneName, mode: Mode) -> Result<()> {
     let scene = Scene::new(name);
     let grids = args.grids();
+    let side = u64::from(args.side());
+    crate::memory::check(
+        (side * side).checked_mul(exp::PLATE_BYTES_PER_PIXEL + crate::memory::BYTES_PER_PIXEL),
+        &format!("--size {side}"),
+        "the plate and its PNG",
+    )?;
     let frame = scene::render_with(&scene, args.side(), 0.0, mode, grids)?;
     if let Some(out) = &args.out {
         write_png(out, frame.size, frame.size, &frame.image)?;
@@ -141,7 +146,7 @@ fn plate(args: &SpecularArgs, name: SceneName, mode: Mode) -> Result<()> {
     }
     let record = PlateRecord::new(name, mode, grids, &frame);
     if args.format.json {
-        println!("{}", serde_json::to_string(&record)?);
+        crate::outln!("{}", serde_json::to_string(&record)?)?;
         return Ok(());
     }
     // The smallest and largest grid among the pixels that were supersampled (side > 1).
@@ -159,7 +164,7 @@ fn plate(args: &SpecularArgs, name: SceneName, mode: Mode) -> Result<()> {
     } else {
         String::new()
     };
-    println!(
+    crate::outln!(
         "{} {}  {}x{}  fragments {}  flagged {}  shades/pixel {:.3}{grid}{cap}",
         name.as_str(),
         mode,
@@ -168,9 +173,9 @@ fn plate(args: &SpecularArgs, name: SceneName, mode: Mode) -> Result<()> {
         record.fragments,
         record.flagged,
         record.shades_per_pixel
-    );
+    )?;
     if args.out.is_none() && args.rate_out.is_none() {
-        eprintln!("nothing written (give --out FILE.png)");
+        crate::note!("nothing written (give --out FILE.png)");
     }
     Ok(())
 }
@@ -188,10 +193,10 @@ fn figure(args: &SpecularArgs, fig: u8) -> Result<()> {
         }
         if !args.csv {
             let at = &rows[499];
-            println!(
+            crate::outln!(
                 "Figure 2: at n = {}, 90 % of the power is below {}, 99 % below {}, 99.9 % below {}",
                 at.n, at.p90, at.p99, at.p999
-            );
+            )?;
         }
     } else {
         let f = exp::figure3();
@@ -219,14 +224,14 @@ fn figure(args: &SpecularArgs, fig: u8) -> Result<()> {
                     format!("n′={np}: {}", m.map_or("—".into(), |m| m.to_string()))
                 })
                 .collect();
-            println!(
+            crate::outln!(
                 "Figure 3: first frequency where the clamped component falls below half of cos^160's: {}",
                 half.join(", ")
-            );
+            )?;
         }
     }
     if args.csv {
-        std::io::stdout().write_all(csv.as_bytes())?;
+        crate::console::out_bytes(csv.as_bytes())?;
     }
     Ok(())
 }
@@ -247,10 +252,10 @@ fn measure(args: &SpecularArgs) -> Result<()> {
     let records = exp::measure(&scenes, &cfg, &|| bar.inc(1))?;
     bar.finish_and_clear();
     if args.format.json {
-        println!("{}", serde_json::to_string(&records)?);
+        crate::outln!("{}", serde_json::to_string(&records)?)?;
         return Ok(());
     }
-    println!(
+    crate::outln!(
         "{}x{} · {} frames turning {}°/frame · reference {}×{} · crow up to {}×{} · RMSE and flicker in full scale",
         cfg.size,
         cfg.size,
@@ -260,14 +265,22 @@ fn measure(args: &SpecularArgs) -> Result<()> {
         cfg.reference_grid,
         cfg.crow_max,
         cfg.crow_max
-    );
-    println!(
+    )?;
+    crate::outln!(
         "{:7} {:10} {:13} {:>9} {:>9} {:>10} {:>8} {:>8} {:>8}",
-        "scene", "mode", "table", "rmse", "flicker", "excess", "shades", "hit", "false"
-    );
+        "scene",
+        "mode",
+        "table",
+        "rmse",
+        "flicker",
+        "excess",
+        "shades",
+        "hit",
+        "false"
+    )?;
     let opt = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.3}"));
     for r in &records {
-        println!(
+        crate::outln!(
             "{:7} {:10} {:13} {:9.5} {:9.5} {:10.5} {:8.2} {:>8} {:>8}",
             r.scene,
             r.mode,
@@ -278,7 +291,7 @@ fn measure(args: &SpecularArgs) -> Result<()> {
             r.shades_per_pixel,
             opt(r.flagged_where_differs),
             opt(r.flagged_where_agrees)
-        );
+        )?;
     }
     Ok(())
 }

@@ -96,11 +96,11 @@ pub fn table(args: &TableArgs) -> Result<()> {
         case.view.print();
     }
     if args.format.json {
-        println!("{}", serde_json::to_string(&result)?);
+        crate::outln!("{}", serde_json::to_string(&result)?)?;
     } else if args.csv {
-        print!("{}", tables::csv(&result));
+        crate::out!("{}", tables::csv(&result))?;
     } else {
-        print!("{}", tables::markdown(&result, &map.source));
+        crate::out!("{}", tables::markdown(&result, &map.source))?;
     }
     Ok(())
 }

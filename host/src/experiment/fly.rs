@@ -60,15 +60,54 @@ impl FlySpec {
             Some(0)
         };
         let streamed = w * h * 4 * (n_modes + panels as u64) * chunk;
+        // Every frame's camera is computed up front.
+        let cameras = (self.frames as u64).checked_mul(std::mem::size_of::<
+            footprint_core::terrain::camera::CameraParams,
+        >() as u64);
         crate::memory::check(
-            cuts.and_then(|c| c.checked_add(streamed)),
+            cuts.and_then(|c| c.checked_add(streamed))
+                .and_then(|c| c.checked_add(cameras?)),
             &format!("--frames {}", self.frames),
-            &format!(
-                "the cut-in-time images ({h} rows × {} frames per mode) and frames in flight",
-                self.frames
-            ),
+            &if self.keep_cut {
+                format!(
+                    "the cameras, the cut-in-time images ({h} rows × {} frames per mode) and \
+                     the frames in flight",
+                    self.frames
+                )
+            } else {
+                format!(
+                    "the cameras ({} frames) and the frames in flight",
+                    self.frames
+                )
+            },
         )
     }
+}
+
+/// How far a flight may go from its start, metres: cameras are valid to ±10¹² m, and the
+/// start is on the map.
+pub const MAX_REACH_M: f64 = 1e11;
+
+/// Refuses, naming `--step`, a step that is not finite or that `frames` frames would take
+/// beyond [`MAX_REACH_M`] (the camera's position would leave the range its constructor takes).
+pub fn check_reach(step_m: f64, frames: usize) -> Result<()> {
+    // Huge steps as the user would write them (1e308, not 309 digits).
+    let step = if step_m.abs() >= 1e15 {
+        format!("{step_m:e}")
+    } else {
+        format!("{step_m}")
+    };
+    if !step_m.is_finite() {
+        bail!("--step {step}: not a finite number");
+    }
+    let reach = step_m.abs() * frames.saturating_sub(1) as f64;
+    if reach > MAX_REACH_M {
+        bail!(
+            "--step {step}: {frames} frames of it would fly beyond the {MAX_REACH_M:.0e} m a \
+             flight may cover"
+        );
+    }
+    Ok(())
 }
 
 /// One mode's flight.
@@ -135,9 +174,7 @@ pub fn run_with_frames(
             spec.frames
         );
     }
-    if !spec.step_m.is_finite() {
-        bail!("--step {}: not a finite number", spec.step_m);
-    }
+    check_reach(spec.step_m, spec.frames)?;
     let start = *paper_camera(map, pyramid, 5.0, spec.size, spec.lod)?.params();
     let (w, h) = (start.width as usize, start.height as usize);
     let column = spec.column.unwrap_or(w / 2);

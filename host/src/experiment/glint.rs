@@ -239,9 +239,7 @@ pub fn run(
             spec.frames
         );
     }
-    if !spec.step_m.is_finite() {
-        bail!("--step {}: not a finite number", spec.step_m);
-    }
+    super::fly::check_reach(spec.step_m, spec.frames)?;
     let el = spec.sun_elevation_deg;
     if !(el > 0.0 && el <= 90.0) {
         bail!("--sun-elevation {el}: outside (0, 90] degrees");

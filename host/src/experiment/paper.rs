@@ -104,10 +104,10 @@ impl ViewPlacement {
     /// Prints the note and the warning, one line each on standard error.
     pub fn print(&self) {
         if let Some(n) = &self.note {
-            eprintln!("note: {n}");
+            crate::note!("note: {n}");
         }
         if let Some(w) = &self.warning {
-            eprintln!("warning: {w}");
+            crate::note!("warning: {w}");
         }
     }
 }

@@ -10,7 +10,7 @@
 
 use std::path::Path;
 
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use footprint_core::terrain::camera::CameraParams;
 use footprint_core::trig::sin_cos_deg;
 use serde::{Deserialize, Serialize};
@@ -68,8 +68,9 @@ impl FlightPath {
 
     /// Reads a path file (see the module docs).
     pub fn load(path: &Path) -> Result<Self> {
-        let name = path.display().to_string();
-        let bytes = std::fs::read(path).with_context(|| format!("--path {name}"))?;
+        let name = crate::output::shown(path);
+        // Never blocks on a FIFO with no writer; a stream at most the memory budget.
+        let bytes = footprint_maps::input::read_all(path, &format!("--path {name}"))?;
         let json = match path.extension().and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("json") => true,
             Some(e) if e.eq_ignore_ascii_case("csv") => false,

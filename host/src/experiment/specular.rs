@@ -170,6 +170,29 @@ pub struct MeasureConfig {
     pub crow_max: u8,
 }
 
+/// Bytes per pixel of a plate while it is drawn: colour (3), depth (2), the flagged, covered
+/// and grid maps (1 each).
+pub const PLATE_BYTES_PER_PIXEL: u64 = 8;
+
+impl MeasureConfig {
+    /// The bytes `--measure` keeps and uses with `threads` threads: each frame's image in every
+    /// mode (for the flicker), and per thread one frame of every mode being drawn, with its
+    /// per-pixel flags.
+    pub fn bytes(&self, threads: u64) -> Option<u64> {
+        let px = u64::from(self.size).checked_mul(u64::from(self.size))?;
+        let modes = Mode::ALL.len() as u64;
+        let kept = px
+            .checked_mul(3)?
+            .checked_mul(modes)?
+            .checked_mul(u64::from(self.frames.max(2)))?;
+        let drawn = px
+            .checked_mul(PLATE_BYTES_PER_PIXEL + 1)?
+            .checked_mul(modes)?
+            .checked_mul(threads.max(1))?;
+        kept.checked_add(drawn)
+    }
+}
+
 impl Default for MeasureConfig {
     fn default() -> Self {
         Self {
@@ -301,6 +324,11 @@ pub fn measure(
         .map(|n| n.get())
         .unwrap_or(1)
         .min(frames as usize);
+    crate::memory::check(
+        cfg.bytes(threads as u64),
+        &format!("--size {} --frames {frames}", cfg.size),
+        "the measured images (every frame of every mode is kept for the flicker) and the frames in flight",
+    )?;
     for &name in scenes {
         let scene = Scene::new(name);
         let next = AtomicUsize::new(0);

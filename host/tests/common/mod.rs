@@ -44,3 +44,55 @@ pub fn fails_writing(prefix: &[&str], args: &[&str], names: &str) {
         "{args:?}: temporary files left behind"
     );
 }
+
+/// Runs `cmd` (standard input closed, the outputs captured) for at most `secs` seconds: its
+/// output, or an error saying it hung (it is then killed).
+pub fn run_bounded(cmd: &mut Command, secs: u64) -> Result<Output, String> {
+    use std::io::Read;
+    use std::process::Stdio;
+    use std::time::{Duration, Instant};
+    let mut child = cmd
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot run it: {e}"))?;
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            let _ = r.read_to_end(&mut v);
+            v
+        })
+    };
+    let out = drain(Box::new(child.stdout.take().expect("piped")));
+    let err = drain(Box::new(child.stderr.take().expect("piped")));
+    let started = Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
+            return Ok(Output {
+                status,
+                stdout: out.join().unwrap_or_default(),
+                stderr: err.join().unwrap_or_default(),
+            });
+        }
+        if started.elapsed() > Duration::from_secs(secs) {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!("{cmd:?} hung: killed after {secs} s"));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// `footprint ARGS…`, bounded as [`run_bounded`] does.
+pub fn footprint_bounded(args: &[&str], secs: u64) -> Result<Output, String> {
+    run_bounded(
+        Command::new(env!("CARGO_BIN_EXE_footprint")).args(args),
+        secs,
+    )
+}
+
+/// Makes a FIFO at `path`; false if `mkfifo` is not available.
+pub fn mkfifo(path: &std::path::Path) -> bool {
+    matches!(Command::new("mkfifo").arg(path).status(), Ok(s) if s.success())
+}

@@ -1,0 +1,77 @@
+//! Standard output and standard error, written with their failures handled (never the panic of
+//! `println!`): a failed write to standard output (a full disk, a closed pipe) is an error,
+//! [`StdoutError`], that stops the command ([`crate::cli::main`] turns a closed pipe into the
+//! quiet exit of SIGPIPE and anything else into one line and exit code 2); a failed write to
+//! standard error is ignored, as there is nowhere left to report it.
+//!
+//! Write with [`outln!`](crate::outln) and [`out!`](crate::out) (standard output, `?` after
+//! them) and [`note!`](crate::note) (a line on standard error, its control characters escaped).
+
+use std::fmt;
+use std::io::{self, Write};
+
+/// A failed write to standard output.
+#[derive(Debug)]
+pub struct StdoutError(pub io::Error);
+
+impl fmt::Display for StdoutError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "standard output: {}", self.0)
+    }
+}
+
+impl std::error::Error for StdoutError {}
+
+/// Writes to standard output.
+pub fn out(args: fmt::Arguments<'_>) -> Result<(), StdoutError> {
+    io::stdout().lock().write_fmt(args).map_err(StdoutError)
+}
+
+/// Writes bytes to standard output.
+pub fn out_bytes(bytes: &[u8]) -> Result<(), StdoutError> {
+    io::stdout().lock().write_all(bytes).map_err(StdoutError)
+}
+
+/// Flushes standard output (what `print!` left in its buffer).
+pub fn flush() -> Result<(), StdoutError> {
+    io::stdout().lock().flush().map_err(StdoutError)
+}
+
+/// Writes to standard error, its control characters but newlines escaped (a file name's
+/// escape sequences never reach the terminal); a failure is ignored.
+pub fn note(args: fmt::Arguments<'_>) {
+    let text = args.to_string();
+    let clean: String = text
+        .split('\n')
+        .map(crate::output::escape_controls)
+        .collect::<Vec<_>>()
+        .join("\n");
+    let _ = io::stderr().lock().write_all(clean.as_bytes());
+}
+
+/// `println!` that returns a [`StdoutError`] instead of panicking.
+#[macro_export]
+macro_rules! outln {
+    () => {
+        $crate::console::out(format_args!("\n"))
+    };
+    ($($arg:tt)*) => {
+        $crate::console::out(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// `print!` that returns a [`StdoutError`] instead of panicking.
+#[macro_export]
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::console::out(format_args!($($arg)*))
+    };
+}
+
+/// `eprintln!` that never panics and escapes control characters.
+#[macro_export]
+macro_rules! note {
+    ($($arg:tt)*) => {
+        $crate::console::note(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
