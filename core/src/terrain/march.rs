@@ -339,7 +339,19 @@ impl<'a, 't> March<'a, 't> {
     ) -> (RideEnd, u32) {
         let ceiling = ceiling.to_bits();
         let heights = self.heights;
-        let (du, dv_step, shift, dn) = (self.du, self.dv_step, 32 + self.l, self.dn);
+        let (du, dv_step, dn) = (self.du, self.dv_step, self.dn);
+        // Across the ray, the walk needs only the fraction of the cross coordinate in level-l
+        // cells (`frac`): a step adds `dv_step >> l` to it exactly (`dv_step` is a multiple of
+        // 2^(l+1)), and the ray enters the next cell across exactly when the add carries out
+        // of 32 bits. Moving the other way, the fraction is kept complemented (`!frac` grows by
+        // what `frac` loses, and carries when `frac` would borrow). One 32-bit add and its
+        // carry per step, instead of a 64-bit add, shift and compare.
+        let flip = if dv_step < 0 { u32::MAX } else { 0 };
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "|dv_step| ≤ 2^(31+l) (|dv| ≤ ½ in `Frame::new`), so |dv_step >> l| ≤ 2^31"
+        )]
+        let d_frac = (dv_step >> self.l).unsigned_abs() as u32;
         let mut rise = ray.slope.to_bits().wrapping_mul(dn);
         let mut h = ray.h.to_bits();
         let mut test = !step_first;
@@ -351,7 +363,8 @@ impl<'a, 't> March<'a, 't> {
         }
         loop {
             let start = self.run.min(limit);
-            let (mut left, mut idx, mut v, mut cv) = (start, self.idx, self.v, self.cv);
+            let (mut left, mut idx, mut cv) = (start, self.idx, self.cv);
+            let mut frac = self.frac() ^ flip;
             let (dcross, mut cross_left) = (self.dcross, self.cross_left);
             let mut mark = start;
             // The tight loop: one voxel per iteration, until a hit that returns, the run's
@@ -360,7 +373,7 @@ impl<'a, 't> March<'a, 't> {
                 let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
                 if test && top > h {
                     let crossed = self.cross_left - cross_left;
-                    let voxel = self.voxel_at(idx, v, cv, crossed, start - left);
+                    let voxel = self.voxel_at(idx, frac ^ flip, cv, crossed, start - left);
                     ray.h = Height::from_bits(h);
                     let steps = unreported + (mark - left);
                     (unreported, mark) = (0, left);
@@ -381,15 +394,15 @@ impl<'a, 't> March<'a, 't> {
                 left -= 1;
                 idx = idx.wrapping_add_signed(du);
                 h = h.wrapping_add(rise);
-                v += dv_step;
-                let c = v >> shift;
-                if c != cv {
+                let crossing;
+                (frac, crossing) = frac.overflowing_add(d_frac);
+                if crossing {
                     if cross_left == 0 {
                         break Stop::Edge;
                     }
                     // Into the next cell across the ray: one row over.
                     cross_left -= 1;
-                    cv = c;
+                    cv += if flip == 0 { 1 } else { -1 };
                     idx = idx.wrapping_add_signed(dcross);
                 }
             };
@@ -397,6 +410,8 @@ impl<'a, 't> March<'a, 't> {
             self.idx = idx;
             self.commit(start - left);
             unreported += mark - left;
+            // The cross coordinate, once per ride's exit: exact, as the steps added it.
+            let v = self.v + dv_step * i64::from(start - left);
             match found {
                 Stop::Edge => {
                     // A mirror edge across the ray: the general crossing, then the same run.
@@ -676,22 +691,33 @@ impl<'a, 't> March<'a, 't> {
         self.v as f64 / 4_294_967_296.0
     }
 
+    /// The fraction of the cross coordinate in level-`l` cells, 32 bits (centres at ½).
+    #[inline(always)]
+    fn frac(&self) -> u32 {
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "the low 32 bits of v / 2^l are the fraction of the cell: the truncation is the point"
+        )]
+        let frac = (self.v >> self.l) as u32;
+        frac
+    }
+
     /// The current voxel as a sampler sees it.
     #[inline(always)]
     pub fn voxel(&self) -> Voxel<'_> {
-        self.voxel_at(self.idx, self.v, self.cv, 0, 0)
+        self.voxel_at(self.idx, self.frac(), self.cv, 0, 0)
     }
 
-    /// The voxel at array index `idx`, cross coordinate `v` and cross cell `cv`, `crossed`
+    /// The voxel at array index `idx`, cross fraction `frac` and cross cell `cv`, `crossed`
     /// crossings across the ray and `taken` steps into the current run beyond what the cursor's
     /// fields record (a ride's locals, not yet written back). Only these five words are
     /// written per hit: everything else a sampler may ask is read from the cursor when asked.
     #[inline(always)]
-    fn voxel_at(&self, idx: usize, v: i64, cv: i64, crossed: u32, taken: u32) -> Voxel<'_> {
+    fn voxel_at(&self, idx: usize, frac: u32, cv: i64, crossed: u32, taken: u32) -> Voxel<'_> {
         Voxel {
             march: self,
             idx,
-            v,
+            frac,
             cv,
             crossed,
             taken,
@@ -748,8 +774,8 @@ pub struct Voxel<'v> {
     march: &'v March<'v, 'v>,
     /// The voxel's index in the level's arrays.
     idx: usize,
-    /// The ray's cross coordinate, raw I32F32 level-0 voxels.
-    v: i64,
+    /// The fraction of the ray's cross coordinate in the voxel's cell, 32 bits (centre at ½).
+    frac: u32,
     /// The cell index across.
     cv: i64,
     /// Crossings across the ray since the cursor's `pv` was recorded.
@@ -825,7 +851,7 @@ impl Voxel<'_> {
     pub fn sample_linear(&self) -> Color16 {
         // Position in level cells, 32 fractional bits; centres sit at +½.
         let m = self.march;
-        let frac = (self.v >> m.l) as u64 & 0xFFFF_FFFF; // the fraction of v / 2^l
+        let frac = u64::from(self.frac);
         let (pv, len, stride) = (self.pv(), m.len_v, m.stride_v as isize);
         // The neighbour across is one row from the current voxel: the mirrored index moves by
         // one cell, or stays at an edge of the map (where the mirror repeats the edge voxel).
