@@ -43,9 +43,15 @@ fn main() {
     match built {
         Ok(path) => {
             fs::copy(&path, &wasm).expect("copy the page's WebAssembly into OUT_DIR");
+            println!("cargo:rustc-env=FOOTPRINT_WASM_MISSING=");
         }
         Err(why) => {
             fs::write(&wasm, b"").expect("write OUT_DIR/footprint_web.wasm");
+            // Why, for `serve`'s one-line refusal.
+            println!(
+                "cargo:rustc-env=FOOTPRINT_WASM_MISSING={}",
+                why.replace(['\n', '\r'], " ")
+            );
             println!(
                 "cargo:warning=footprint serve will not work: the page's WebAssembly was not \
                  built ({why}); run `rustup target add wasm32-unknown-unknown` and build again"

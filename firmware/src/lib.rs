@@ -39,7 +39,7 @@ pub mod scene {
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
 
-/// The glint frame (issue 16): the firmware's terrain frame lit by a low sun straight ahead
+/// The glint frame: the firmware's terrain frame lit by a low sun straight ahead
 /// (`scene::GLINT_AZIMUTH`, `scene::GLINT_ELEVATION`, baked from
 /// `footprint_scenes::firmware::Scene::glint_sun`), the core's `AMBIENT_DIFFUSE`, the paper's
 /// AS and Amanatides' aggressive clamp keeping 99 % of the highlight's power.

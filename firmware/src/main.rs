@@ -16,12 +16,12 @@
 //! It exits 0 over semihosting when every check passed, and non-zero on a failed check, a
 //! panic (`panic-semihosting` with `exit`) or a hard fault.
 //!
-//! After the four terrain modes it renders the glint frame (issue 16): the same view lit by a
+//! After the four terrain modes it renders the glint frame: the same view lit by a
 //! low sun straight ahead (the camera's heading, at its pitch), AS with Amanatides' `clamp99`
 //! and the default materials, and prints its `frame` line (hash, hits, samples lit, highlight
 //! evaluations) and what lighting adds in instructions over the unlit AS frame. Then the rolled
 //! frame (30° of roll, the exact projection's fan) and the same view level in the exact
-//! projection (issue 13's unrolled frame).
+//! projection (the unrolled frame).
 //!
 //! After the terrain frames it renders the specular plate that `build.rs` baked from the host's
 //! `experiment::firmware::plate()` (Plate 2's cylinders at 64×64, conservative clamping) with

@@ -236,7 +236,7 @@ impl fmt::Debug for Rendered {
     }
 }
 
-/// Renders one frame lit by `sun` (issue 16): the walk's samples shaded by a [`Shader`] into
+/// Renders one frame lit by `sun`: the walk's samples shaded by a [`Shader`] into
 /// their own grid (sky where no terrain was sampled), resampled like the colour image. The
 /// eye and the pixel's angle come from `camera`.
 pub fn render_lit<C: Cost>(

@@ -43,7 +43,7 @@ use crate::trig::{sin_cos_deg, sqrt};
 /// The paper's rule (Sect. 3) takes the level nearest the footprint in log2, a switch at `√2`:
 /// a level-`L` voxel is then 0.7–1.4 footprints wide, and because the coarse voxels are fixed
 /// 2^L-blocks that do not line up with the pixel, area sampling averages over up to twice the
-/// pixel's footprint. Issue 12's study (README, "The pyramid's error") measured that blur as
+/// pixel's footprint. A study (docs/measurements.md, "The pyramid's error") measured that blur as
 /// most of the LOD error on smooth survey-like maps: seen from the paper's (mirrored) views, AS
 /// at pitch 5° had 2.2–2.4× the RMSE of the same mode on level 0 at `√2`, 1.2–1.3× at 2,
 /// 1.1–1.2× at 2.4 and 1.0× at 2.8 (where those views never climb). At 2.4 a level-`L` voxel is

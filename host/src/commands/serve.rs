@@ -51,9 +51,16 @@ struct Asset {
 pub fn serve(args: &ServeArgs) -> Result<()> {
     let map = map_files(args)?;
     if WASM.is_empty() {
+        // One line with the one command that fixes it (host/build.rs says why it was left out).
+        if env!("FOOTPRINT_WASM_MISSING").contains("FOOTPRINT_NO_WASM") {
+            bail!(
+                "serve: this binary was built with FOOTPRINT_NO_WASM set, without the page; \
+                 build it without: `cargo run --release -- serve`"
+            );
+        }
         bail!(
-            "serve: this binary was built without the page's WebAssembly: run `rustup target add \
-             wasm32-unknown-unknown` and build again (cargo run --release -- serve)"
+            "serve: the page needs the WebAssembly target, once: `rustup target add \
+             wasm32-unknown-unknown`, then `cargo run --release -- serve` again"
         );
     }
     let addr = SocketAddr::from((Ipv4Addr::LOCALHOST, args.port));
