@@ -23,7 +23,10 @@ fn the_main_command_prints_one_line_and_no_warning() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{stderr}");
-    assert!(stderr.trim().is_empty(), "a first run says nothing on stderr: {stderr}");
+    assert!(
+        stderr.trim().is_empty(),
+        "a first run says nothing on stderr: {stderr}"
+    );
     let lines: Vec<&str> = stdout.lines().collect();
     assert_eq!(lines.len(), 1, "{stdout}");
     let prefix = format!("wrote {}: 400x400, as, ", out.display());
@@ -63,7 +66,8 @@ fn the_overview_shows_only_the_map() {
         };
         let mut params = overview_params(pyramid.map(), 400, 400);
         let probe = Camera::new(params).unwrap();
-        params.far_m = default_far_voxels(DEFAULT_SIZE, DEFAULT_SIZE, probe.pixel_angle()) * pyramid.map().spacing_m;
+        params.far_m = default_far_voxels(DEFAULT_SIZE, DEFAULT_SIZE, probe.pixel_angle())
+            * pyramid.map().spacing_m;
         let camera = Camera::new(params).unwrap();
         let terrain = pyramid.terrain(true).unwrap();
         let mut tables = Tables::new(&camera);
@@ -97,7 +101,11 @@ fn no_help_text_mentions_an_issue() {
     visit(&mut cmd, "footprint", &mut found);
     assert!(found.is_empty(), "{}", found.join("\n\n"));
     // And as the binary prints it.
-    for args in [&["--help"][..], &["render", "--help"], &["map", "info", "--help"]] {
+    for args in [
+        &["--help"][..],
+        &["render", "--help"],
+        &["map", "info", "--help"],
+    ] {
         let o = footprint(args);
         assert!(o.status.success());
         let text = String::from_utf8_lossy(&o.stdout).to_lowercase();

@@ -287,6 +287,26 @@ pub struct Column {
 }
 
 impl Column {
+    /// An empty column, [`Column::default`] as a constant: the initial value of a column
+    /// table, so that a firmware's table can be a `static` (`[Column::EMPTY; W]`) sized at
+    /// compile time. [`Frame::new`] fills it.
+    pub const EMPTY: Column = Column {
+        axis: Axis::X,
+        sign: 0,
+        kc: Coord::ZERO,
+        n_eye: Height::ZERO,
+        v_base: Coord::ZERO,
+        dv: Coord::ZERO,
+        n_start: 0,
+        n_far: 0,
+        lod_base: [0; 2],
+        run: 0.0,
+        first_row: 0,
+        end_row: 0,
+    };
+}
+
+impl Column {
     /// Where the walk climbs at `switch`: level L+1 begins `lod_base·2^L` half-voxels ahead of
     /// the eye.
     pub(crate) fn lod_base(&self, switch: Switch) -> i64 {

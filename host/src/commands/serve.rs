@@ -16,9 +16,10 @@ use crate::map::{self, LoadOptions};
 
 /// The page's WebAssembly core, built by `host/build.rs` (empty if it could not be built).
 const WASM: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/footprint_web.wasm"));
-const INDEX: &str = include_str!("../../../web/static/index.html");
-const SCRIPT: &str = include_str!("../../../web/static/app.js");
-const STYLE: &str = include_str!("../../../web/static/style.css");
+// Copied from web/static by host/build.rs, so that the packaged crate builds too.
+const INDEX: &str = include_str!(concat!(env!("OUT_DIR"), "/index.html"));
+const SCRIPT: &str = include_str!(concat!(env!("OUT_DIR"), "/app.js"));
+const STYLE: &str = include_str!(concat!(env!("OUT_DIR"), "/style.css"));
 
 /// `footprint serve`.
 #[derive(Args, Debug)]
