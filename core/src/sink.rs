@@ -3,7 +3,7 @@
 //! into a display's own pixel format ([`crate::terrain::column::render`],
 //! [`crate::mode::Mode::render`]). The 3-byte [`Rgb`] is one such format, written as it is;
 //! with the `embedded-graphics` feature, `Rgb565` and `Rgb888` are others
-//! ([`crate::embedded`]).
+//! (`footprint_core::embedded`).
 
 use crate::color::Rgb;
 
