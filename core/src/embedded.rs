@@ -20,7 +20,9 @@ use crate::error::Error;
 use crate::mode::Mode;
 use crate::sink::PixelSink;
 use crate::terrain::camera::Frame;
+use crate::terrain::column;
 use crate::terrain::cost::Cost;
+use crate::terrain::sampler::Sampler;
 use crate::terrain::Terrain;
 use crate::Rgb;
 
@@ -88,7 +90,8 @@ where
 /// Renders `frame` (the paper's projection, `Options::default()`) in `mode`, counting with
 /// `cost`, into `buffer` in the display's own colour (`W × H` pixels, row-major from the top:
 /// no [`Rgb`] image is needed), and draws it into `target` at its origin. The pixels are the
-/// [`Rgb`] render's, converted ([`PixelSink::from_rgb`]).
+/// [`Rgb`] render's, converted ([`PixelSink::from_rgb`]). [`Mode::render`] links every
+/// sampler; [`render_with`] takes one.
 ///
 /// Errors: a frame of the exact projection ([`RenderError::ExactProjection`]), a `buffer` of
 /// the wrong length, or the display's own error.
@@ -110,6 +113,38 @@ where
     }
     mode.render(frame, terrain, cost, buffer)
         .map_err(RenderError::Core)?;
+    fill(target, frame, buffer)
+}
+
+/// [`render`] with one sampler type (`ParallelArea` for the paper's `as`, …), which is all a
+/// firmware that renders one mode links.
+pub fn render_with<D, S, C>(
+    target: &mut D,
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    sampler: &S,
+    cost: &mut C,
+    buffer: &mut [D::Color],
+) -> Result<(), RenderError<D::Error>>
+where
+    D: DrawTarget,
+    D::Color: PixelSink,
+    S: Sampler + Clone,
+    C: Cost,
+{
+    if frame.fan().is_some() {
+        return Err(RenderError::ExactProjection);
+    }
+    column::render(frame, terrain, sampler, cost, buffer).map_err(RenderError::Core)?;
+    fill(target, frame, buffer)
+}
+
+/// Draws the rendered `buffer` (the frame's image) into `target` at its origin.
+fn fill<D: DrawTarget>(
+    target: &mut D,
+    frame: &Frame<'_>,
+    buffer: &[D::Color],
+) -> Result<(), RenderError<D::Error>> {
     let (w, h) = frame.image_size();
     let size = Size::new(
         u32::try_from(w).unwrap_or(u32::MAX),
