@@ -28,7 +28,8 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Render one frame to PNG, and optionally print its cost counters.
+    /// Render one frame to PNG (without view options, the map itself from above its south
+    /// edge; with any, the paper's view), and optionally print its cost counters.
     Render(Box<RenderArgs>),
     /// Time every mode in the paper's three views and the classic renderer's view, interleaved:
     /// ms per frame on one thread and on all, ratios to classic and to PS, steps per frame.
