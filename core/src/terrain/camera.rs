@@ -318,37 +318,44 @@ impl Column {
     }
 
     /// The horizontal distance, in voxels, from the eye to the voxel centred at `n`.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn distance(&self, n: i64) -> f64 {
         (n as f64 - self.n_eye.to_num::<f64>()) * self.run
     }
 
     /// The axis the column steps along.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn axis(&self) -> Axis {
         self.axis
     }
 
     /// The first voxel centre of the walk.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn n_start(&self) -> i64 {
         self.n_start
     }
 
     /// The eye's position along the column, half-voxels.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn n_eye(&self) -> Height {
         self.n_eye
     }
 
     /// The last voxel centre within the far distance.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn n_far(&self) -> i64 {
         self.n_far
     }
 
     /// +1 when the column's rays move towards increasing major coordinate, −1 otherwise.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn sign(&self) -> i8 {
         self.sign
     }
 
     /// The level-0 cell across the column at `n` half-voxels along it: `⌊v_base + n·dv⌋`, the
     /// same arithmetic as the walk's cross coordinate.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn cross_at(&self, n: i64) -> i64 {
         self.v_base
             .to_bits()
@@ -642,6 +649,7 @@ impl<'t> Frame<'t> {
     /// product, floored, saturated to 64 bits: [`mul_floor_32`], in 64-bit arithmetic for
     /// every sane view), which the walk pays once per pixel.
     #[inline]
+    #[doc(hidden)] // the walk's own ray, for the tests
     pub fn ray(&self, column: &Column, i: usize) -> Line {
         let row = self.rows.get(i).map_or(0, |r| r.to_bits());
         // I32F32 × I32F32 → I32F32 (floor, saturating), then to I40F24 (floor), clamped.
