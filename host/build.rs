@@ -33,7 +33,26 @@ fn main() {
         println!("cargo:rerun-if-changed={}", root.join(dir).display());
     }
     println!("cargo:rerun-if-changed=build.rs");
+    println!(
+        "cargo:rerun-if-changed={}",
+        root.join("web/static").display()
+    );
     println!("cargo:rerun-if-env-changed=FOOTPRINT_NO_WASM");
+    // The page's files, beside the WebAssembly: copied from web/static, or (in a packaged
+    // crate, which has no web/ beside it) a page that says so.
+    for name in ["index.html", "app.js", "style.css"] {
+        let from = root.join("web/static").join(name);
+        let to = out.join(name);
+        if fs::copy(&from, &to).is_err() {
+            let text = if name == "index.html" {
+                "<!doctype html><p>This build of footprint has no browser page: build it from \
+                 the repository (web/ beside host/).</p>"
+            } else {
+                ""
+            };
+            fs::write(&to, text).expect("write the page's placeholder into OUT_DIR");
+        }
+    }
     let wasm = out.join("footprint_web.wasm");
     let built = if env::var_os("FOOTPRINT_NO_WASM").is_some() {
         Err("FOOTPRINT_NO_WASM is set".to_owned())
@@ -43,9 +62,15 @@ fn main() {
     match built {
         Ok(path) => {
             fs::copy(&path, &wasm).expect("copy the page's WebAssembly into OUT_DIR");
+            println!("cargo:rustc-env=FOOTPRINT_WASM_MISSING=");
         }
         Err(why) => {
             fs::write(&wasm, b"").expect("write OUT_DIR/footprint_web.wasm");
+            // Why, for `serve`'s one-line refusal.
+            println!(
+                "cargo:rustc-env=FOOTPRINT_WASM_MISSING={}",
+                why.replace(['\n', '\r'], " ")
+            );
             println!(
                 "cargo:warning=footprint serve will not work: the page's WebAssembly was not \
                  built ({why}); run `rustup target add wasm32-unknown-unknown` and build again"

@@ -13,6 +13,9 @@ pub struct Rgb {
 }
 
 impl Rgb {
+    /// Black, `(0, 0, 0)`: a buffer's initial value.
+    pub const BLACK: Rgb = Rgb::new(0, 0, 0);
+
     /// A colour from its three channels.
     pub const fn new(r: u8, g: u8, b: u8) -> Self {
         Self { r, g, b }

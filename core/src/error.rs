@@ -3,7 +3,11 @@
 use core::fmt;
 
 /// Why a constructor refused its input. Each variant names the parameter that is wrong.
+///
+/// With the `defmt` feature it is `defmt::Format`: a firmware logs it without linking the
+/// core's float formatting (`Display` links about 15 KiB of it).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Error {
     /// A map side is zero or exceeds `max` (the terrain room's `MAX_SIDE`).
     MapSize {

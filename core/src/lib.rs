@@ -53,6 +53,38 @@
 //! ([`terrain::camera::Frame`]) → column walk ([`terrain::column::walk()`]) → per-hit sampler
 //! ([`terrain::sampler::Sampler`]) → pixel.
 //!
+//! **The front door.** [`prelude`] imports what a frame needs; [`Mode`] names the sampling
+//! modes and renders a frame in any of them ([`Mode::render`]), into any pixel format
+//! ([`sink::PixelSink`]; with the `embedded-graphics` feature, into any `DrawTarget`:
+//! `embedded`). Every buffer size is a `const fn` ([`terrain::pyramid::cells`],
+//! [`terrain::pyramid::levels`], [`terrain::next_size`], [`terrain::camera::Column::EMPTY`]),
+//! so a firmware's buffers can be statics:
+//!
+//! ```
+//! use footprint_core::prelude::*;
+//! const MAP: u32 = 16;
+//! const CELLS: usize = pyramid::cells(MAP, MAP); // 8² + 4² + 2² + 1
+//! let heights = [10u16; (MAP * MAP) as usize];
+//! let colors = [Rgb::new(40, 120, 40); (MAP * MAP) as usize];
+//! let (mut pyramid_heights, mut pyramid_colors) = ([0u16; 3 * CELLS], [Rgb::BLACK; CELLS]);
+//! let level0 = Level::new(MAP, MAP, &heights, &colors)?;
+//! pyramid::build(&level0, HeightFilter::Silhouette, &mut pyramid_heights, &mut pyramid_colors)?;
+//! let scale = Scale::new(30.0, 0.1)?;
+//! let terrain = pyramid::assemble(level0, scale, &pyramid_heights, &pyramid_colors, true)?;
+//! let camera = Camera::new(CameraParams {
+//!     x_m: 240.0, y_m: 240.0, eye_m: 100.0, heading_deg: 0.0, pitch_deg: 20.0, roll_deg: 0.0,
+//!     fov_deg: 10.0, width: 8, height: 8, far_m: 30_000.0,
+//! })?;
+//! let (mut rows, mut columns) = ([Coord::ZERO; 9], [Column::EMPTY; 8]);
+//! let frame = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut columns)?;
+//! let mut image = [Rgb::BLACK; 64];
+//! Mode::As.render(&frame, &terrain, &mut NoCost, &mut image)?;
+//! assert_eq!(image[63], Rgb::new(40, 120, 40)); // the bottom row sees the flat green ground
+//! # Ok::<(), footprint_core::Error>(())
+//! ```
+//!
+//! The same frame from the modules themselves, with one sampler type:
+//!
 //! ```
 //! use footprint_core::terrain::{camera::*, column, cost::NoCost, sampler::Area, *};
 //! use footprint_core::{num::Coord, Rgb};
@@ -85,5 +117,14 @@ pub mod trig;
 pub mod specular;
 pub mod terrain;
 
+// The front door: the modes by name, the pixel formats, and what an embedder imports.
+pub mod mode;
+pub mod prelude;
+pub mod sink;
+
+#[cfg(feature = "embedded-graphics")]
+pub mod embedded;
+
 pub use color::Rgb;
 pub use error::Error;
+pub use mode::Mode;

@@ -39,7 +39,7 @@ pub mod scene {
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
 
-/// The glint frame (issue 16): the firmware's terrain frame lit by a low sun straight ahead
+/// The glint frame: the firmware's terrain frame lit by a low sun straight ahead
 /// (`scene::GLINT_AZIMUTH`, `scene::GLINT_ELEVATION`, baked from
 /// `footprint_scenes::firmware::Scene::glint_sun`), the core's `AMBIENT_DIFFUSE`, the paper's
 /// AS and Amanatides' aggressive clamp keeping 99 % of the highlight's power.
@@ -65,6 +65,92 @@ impl GlintBuffers {
         Some(Self {
             lit: cortex_m::singleton!(
                 GLINT_LIT: [Rgb; WIDTH * HEIGHT] = [Rgb::new(0, 0, 0); WIDTH * HEIGHT]
+            )?,
+        })
+    }
+}
+
+/// The `as` frame through the embedded-graphics sink (`footprint_core::embedded`): the walk
+/// writes the display's `Rgb565` into [`DisplayBuffer`], which is drawn into a [`Checking`]
+/// display.
+pub mod display {
+    use core::convert::Infallible;
+
+    use embedded_graphics_core::draw_target::DrawTarget;
+    use embedded_graphics_core::geometry::{OriginDimensions, Size};
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use embedded_graphics_core::Pixel;
+    use footprint_core::sink::PixelSink;
+    use footprint_core::Rgb;
+
+    use crate::scene::{HEIGHT, WIDTH};
+
+    /// A `WIDTH × HEIGHT` display of `Rgb565` that stores nothing: each pixel drawn is compared
+    /// with the pixel of the `Rgb` render it should show, converted as embedded-graphics
+    /// converts `Rgb888` ([`PixelSink::from_rgb`]).
+    pub struct Checking<'a> {
+        expected: &'a [Rgb],
+        /// Pixels drawn inside the display.
+        pub checked: u32,
+        /// Pixels drawn that are not the `Rgb` render's, or outside the display.
+        pub differ: u32,
+    }
+
+    impl<'a> Checking<'a> {
+        /// A display that expects `expected`, row-major from the top.
+        pub fn new(expected: &'a [Rgb]) -> Self {
+            Self {
+                expected,
+                checked: 0,
+                differ: 0,
+            }
+        }
+    }
+
+    impl OriginDimensions for Checking<'_> {
+        fn size(&self) -> Size {
+            Size::new(WIDTH as u32, HEIGHT as u32)
+        }
+    }
+
+    impl DrawTarget for Checking<'_> {
+        type Color = Rgb565;
+        type Error = Infallible;
+
+        fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+        where
+            I: IntoIterator<Item = Pixel<Rgb565>>,
+        {
+            for Pixel(p, color) in pixels {
+                let at = usize::try_from(p.y)
+                    .ok()
+                    .zip(usize::try_from(p.x).ok())
+                    .filter(|&(y, x)| x < WIDTH && y < HEIGHT)
+                    .and_then(|(y, x)| self.expected.get(y * WIDTH + x));
+                match at {
+                    Some(&rgb) if Rgb565::from_rgb(rgb) == color => self.checked += 1,
+                    _ => self.differ += 1,
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+/// The display buffer of the embedded-graphics frame ([`display`]), in `.bss`: 2 bytes a pixel.
+pub struct DisplayBuffer {
+    /// The frame in the display's colour, row-major from the top.
+    pub pixels: &'static mut [embedded_graphics_core::pixelcolor::Rgb565; WIDTH * HEIGHT],
+}
+
+impl DisplayBuffer {
+    /// Takes the buffer: `Some` the first time only.
+    #[inline(never)]
+    pub fn take() -> Option<Self> {
+        use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+        Some(Self {
+            pixels: cortex_m::singleton!(
+                DISPLAY: [Rgb565; WIDTH * HEIGHT] = [Rgb565::BLACK; WIDTH * HEIGHT]
             )?,
         })
     }

@@ -16,12 +16,12 @@
 //! It exits 0 over semihosting when every check passed, and non-zero on a failed check, a
 //! panic (`panic-semihosting` with `exit`) or a hard fault.
 //!
-//! After the four terrain modes it renders the glint frame (issue 16): the same view lit by a
+//! After the four terrain modes it renders the glint frame: the same view lit by a
 //! low sun straight ahead (the camera's heading, at its pitch), AS with Amanatides' `clamp99`
 //! and the default materials, and prints its `frame` line (hash, hits, samples lit, highlight
 //! evaluations) and what lighting adds in instructions over the unlit AS frame. Then the rolled
 //! frame (30° of roll, the exact projection's fan) and the same view level in the exact
-//! projection (issue 13's unrolled frame).
+//! projection (the unrolled frame).
 //!
 //! After the terrain frames it renders the specular plate that `build.rs` baked from the host's
 //! `experiment::firmware::plate()` (Plate 2's cylinders at 64×64, conservative clamping) with
@@ -39,6 +39,8 @@ use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 
+use embedded_graphics_core::pixelcolor::Rgb565;
+use footprint_core::embedded::{self, RenderError};
 use footprint_core::num::Coord;
 use footprint_core::specular::raster::Target;
 use footprint_core::specular::{Light, Material, Normal, Phong};
@@ -57,7 +59,8 @@ use footprint_firmware::scene::{
     PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M, WIDTH,
 };
 use footprint_firmware::{
-    core_calls, glint, image_hash, stack, Buffers, FanBuffers, GlintBuffers, PlateBuffers, Ratio,
+    core_calls, display, glint, image_hash, stack, Buffers, DisplayBuffer, FanBuffers,
+    GlintBuffers, PlateBuffers, Ratio,
 };
 
 #[exception]
@@ -114,6 +117,50 @@ fn run_mode<S: Sampler + Clone>(
         return Ok(None);
     }
     Ok(Some(render))
+}
+
+/// Renders the paper's `as` frame again through the embedded-graphics sink
+/// (`footprint_core::embedded::render_with`): the walk writes `Rgb565` into `buffer`, which is
+/// drawn into a [`display::Checking`] display that compares every pixel with `image`, the `Rgb`
+/// render of the same frame. Prints a `#` line; `Ok(false)` if any pixel differs.
+fn run_display(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    image: &[Rgb],
+    buffer: &mut [Rgb565],
+) -> Result<bool, Error> {
+    let mut screen = display::Checking::new(image);
+    let (render, result) = instructions(|| {
+        embedded::render_with(
+            &mut screen,
+            frame,
+            terrain,
+            &ParallelArea::new(),
+            &mut NoCost,
+            buffer,
+        )
+    });
+    match result {
+        Ok(()) => {}
+        Err(RenderError::Core(e)) => return Err(e),
+        Err(_) => {
+            hprintln!("FAIL embedded-graphics: the frame was not drawn");
+            return Ok(false);
+        }
+    }
+    let pixels = (WIDTH * HEIGHT) as u64;
+    hprintln!(
+        "# embedded-graphics as: {} pixels drawn as Rgb565, {} unlike the Rgb render; render and draw {} instructions, {} per pixel",
+        screen.checked,
+        screen.differ,
+        render,
+        Ratio::tenths(render, pixels)
+    );
+    if screen.differ != 0 || u64::from(screen.checked) != pixels {
+        hprintln!("FAIL embedded-graphics: the display is not the Rgb render");
+        return Ok(false);
+    }
+    Ok(true)
 }
 
 /// Renders the glint frame ([`glint`]): the terrain frame `frame` of `camera` lit by a low sun
@@ -443,6 +490,10 @@ fn run() -> Result<bool, Error> {
         hprintln!("FAIL: the glint frame's buffer was taken twice");
         return Ok(false);
     };
+    let Some(display) = DisplayBuffer::take() else {
+        hprintln!("FAIL: the display's buffer was taken twice");
+        return Ok(false);
+    };
     let Some(mut fan_buffers) = FanBuffers::take() else {
         hprintln!("FAIL: the fan's buffers were taken twice");
         return Ok(false);
@@ -486,6 +537,7 @@ fn run() -> Result<bool, Error> {
     let ss8 = run_mode("ss8", &Super::<8>::new(), &frame, &terrain, tables, image)?;
     let area = run_mode("as-exact", &Area::new(), &frame, &terrain, tables, image)?;
     let paper = run_mode("as", &ParallelArea::new(), &frame, &terrain, tables, image)?;
+    ok &= run_display(&frame, &terrain, image, display.pixels)?;
     match (ps, ss8, area, paper) {
         (Some(ps), Some(_), Some(area), Some(paper)) => {
             hprintln!(

@@ -37,7 +37,7 @@ struct Input {
     mode: u8,
     lod: bool,
     mean_heights: bool,
-    /// A sun (azimuth, elevation, specular method) to light the frame with, issue 16.
+    /// A sun (azimuth, elevation, specular method) to light the frame with.
     sun: Option<(f64, f64, u8)>,
 }
 

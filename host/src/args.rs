@@ -73,7 +73,7 @@ impl DefaultModes for FlyModes {
     const MODES: &'static str = "as,as-exact,ps,ss8,ss16";
 }
 
-/// The modes of `footprint bench` (issue 10's list: the classic baseline first).
+/// The modes of `footprint bench` (the classic baseline first).
 #[derive(Clone, Debug)]
 pub struct BenchModes;
 impl DefaultModes for BenchModes {

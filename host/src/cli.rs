@@ -28,7 +28,8 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Render one frame to PNG, and optionally print its cost counters.
+    /// Render one frame to PNG (without view options, the map itself from above its south
+    /// edge; with any, the paper's view), and optionally print its cost counters.
     Render(Box<RenderArgs>),
     /// Time every mode in the paper's three views and the classic renderer's view, interleaved:
     /// ms per frame on one thread and on all, ratios to classic and to PS, steps per frame.
@@ -39,7 +40,7 @@ pub enum Command {
     Specular(Box<commands::SpecularArgs>),
     /// The flight of Sect. 5: Table 6 (pixel changes between frames) and Fig. 14 (a column over time).
     Fly(Box<FlyArgs>),
-    /// Sun glint on water in the flight (issue 16): each specular antialiasing method against
+    /// Sun glint on water in the flight: each specular antialiasing method against
     /// the supersampled reference: RMSE, flicker (Table 6's bins) and shading work.
     Glint(Box<commands::GlintArgs>),
     /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9).

@@ -1,4 +1,4 @@
-//! The sun on the terrain (issue 16): `--sun AZ,EL`, `--specular METHOD`,
+//! The sun on the terrain: `--sun AZ,EL`, `--specular METHOD`,
 //! `--material water|wet|FILE.png`, turned into the core's [`Sun`].
 
 use std::fmt;

@@ -11,6 +11,7 @@ use crate::camera::{place, Eye};
 use crate::map::{self, Map};
 use crate::pyramid::Pyramid;
 use footprint_scenes::survey::{survey, Kind};
+use footprint_scenes::view::{overview_params, PAPER_FOV_DEG};
 
 /// An image size `WxH`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -218,24 +219,24 @@ pub struct CameraArgs {
     /// (the paper's Table 1 rule); the default when --height is absent.
     #[arg(long)]
     pub fit_first_hit: bool,
-    /// Heading, degrees clockwise from north (up the map).
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub heading: f64,
-    /// Pitch, degrees, positive looking down; in (-90, 90).
-    #[arg(long, default_value_t = 20.0, allow_hyphen_values = true)]
-    pub pitch: f64,
+    /// Heading, degrees clockwise from north (up the map) [default: 0].
+    #[arg(long, allow_hyphen_values = true)]
+    pub heading: Option<f64>,
+    /// Pitch, degrees, positive looking down; in (-90, 90) [default: 20].
+    #[arg(long, allow_hyphen_values = true)]
+    pub pitch: Option<f64>,
     /// Roll, degrees, positive banking right (the horizon rises to the right); any finite
-    /// angle, wrapped into (-180, 180]. Needs --projection exact.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub roll: f64,
+    /// angle, wrapped into (-180, 180]. Needs --projection exact [default: 0].
+    #[arg(long, allow_hyphen_values = true)]
+    pub roll: Option<f64>,
     /// How pixels map to the walk's vertical planes: exact (a pinhole camera at any pitch and
     /// roll, walked along the fan of vertical planes and resampled) or paper (each image
     /// column a vertical plane, as the paper renders: exact at pitch 0 only, no roll).
     #[arg(long, value_enum, default_value_t = ProjectionArg::Exact)]
     pub projection: ProjectionArg,
-    /// Vertical field of view, degrees; in (0, 180).
-    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
-    pub fov: f64,
+    /// Vertical field of view, degrees; in (0, 180) [default: 10, the paper's].
+    #[arg(long, allow_hyphen_values = true)]
+    pub fov: Option<f64>,
     /// Image size WxH.
     #[arg(long, default_value = "400x400")]
     pub size: Size,
@@ -246,6 +247,27 @@ pub struct CameraArgs {
     /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
     #[arg(long, value_enum, default_value_t = Switch::On)]
     pub lod: Switch,
+}
+
+/// The pitch of the paper's middle view, the default of `--pitch`, degrees.
+pub const DEFAULT_PITCH_DEG: f64 = 20.0;
+
+impl CameraArgs {
+    /// True when no option places or aims the camera (`--x`, `--y`, `--height`,
+    /// `--fit-first-hit`, `--heading`, `--pitch`, `--roll`, `--fov`, `--far`): `render` then
+    /// shows the map itself ([`View::overview`]). `--size`, `--projection` and `--lod` do not
+    /// count.
+    pub fn is_unset(&self) -> bool {
+        self.x.is_none()
+            && self.y.is_none()
+            && self.height.is_none()
+            && !self.fit_first_hit
+            && self.heading.is_none()
+            && self.pitch.is_none()
+            && self.roll.is_none()
+            && self.fov.is_none()
+            && self.far.is_none()
+    }
 }
 
 /// A loaded map with its pyramid, and the view of it.
@@ -273,11 +295,7 @@ impl View {
             "the images",
         )?;
         let pyramid = map_args.pyramid()?;
-        let options = Options {
-            lod: cam.lod == Switch::On,
-            projection: cam.projection.into(),
-            ..Options::default()
-        };
+        let options = cam.options();
         let camera = resolve_camera(&pyramid, cam, options)?;
         crate::camera::warn_degenerate(&pyramid, &camera, options);
         Ok(Self {
@@ -285,6 +303,40 @@ impl View {
             camera,
             options,
         })
+    }
+
+    /// Loads the map and looks at it from above its south edge
+    /// ([`footprint_scenes::view::overview_params`]): the view of `footprint render` without
+    /// view options ([`CameraArgs::is_unset`]), which shows the map itself, none of its
+    /// mirrored copies. `cam` gives the size, the projection and the LOD switch.
+    pub fn overview(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
+        let (w, h) = (cam.size.width, cam.size.height);
+        crate::memory::check(
+            crate::memory::image_bytes(w, h),
+            &format!("--size {w}x{h}"),
+            "the images",
+        )?;
+        let pyramid = map_args.pyramid()?;
+        let options = cam.options();
+        let params = overview_params(pyramid.map(), w, h);
+        let camera = place(&pyramid, params, None, Eye::Placed(params.eye_m), options)?;
+        crate::camera::warn_degenerate(&pyramid, &camera, options);
+        Ok(Self {
+            pyramid,
+            camera,
+            options,
+        })
+    }
+}
+
+impl CameraArgs {
+    /// The frame options these arguments give.
+    fn options(&self) -> Options {
+        Options {
+            lod: self.lod == Switch::On,
+            projection: self.projection.into(),
+            ..Options::default()
+        }
     }
 }
 
@@ -309,10 +361,10 @@ pub fn resolve_camera(pyramid: &Pyramid, cam: &CameraArgs, options: Options) -> 
         x_m: cam.x.unwrap_or_else(|| centre(map.width)),
         y_m: cam.y.unwrap_or_else(|| centre(map.height)),
         eye_m: 0.0,
-        heading_deg: cam.heading,
-        pitch_deg: cam.pitch,
-        roll_deg: cam.roll,
-        fov_deg: cam.fov,
+        heading_deg: cam.heading.unwrap_or(0.0),
+        pitch_deg: cam.pitch.unwrap_or(DEFAULT_PITCH_DEG),
+        roll_deg: cam.roll.unwrap_or(0.0),
+        fov_deg: cam.fov.unwrap_or(PAPER_FOV_DEG),
         width: cam.size.width,
         height: cam.size.height,
         far_m: 1.0,

@@ -15,7 +15,7 @@ use base64::Engine as _;
 
 mod common;
 
-use common::browser::{chromium, http_get, Browser, Served};
+use common::browser::{chromium, http_get, page_or_warn, Browser, Served};
 use common::{assert_one_line_error, footprint};
 
 /// FNV-1a-64 of a PNG's RGB bytes, row-major from the top.
@@ -51,7 +51,7 @@ fn browser_or_warn() -> Option<PathBuf> {
     if exe.is_none() {
         eprintln!("WARNING: chromium is not installed: the browser test is skipped");
     }
-    exe
+    exe.filter(|_| page_or_warn())
 }
 
 #[test]
@@ -139,6 +139,9 @@ fn a_bad_map_file_shows_the_clis_error_and_keeps_the_map() {
 
 #[test]
 fn serve_refuses_a_port_in_use() {
+    if !page_or_warn() {
+        return;
+    }
     let taken = TcpListener::bind((Ipv4Addr::LOCALHOST, 0)).unwrap();
     let port = taken.local_addr().unwrap().port().to_string();
     let o = footprint(&["serve", "--port", &port]);
@@ -148,6 +151,9 @@ fn serve_refuses_a_port_in_use() {
 
 #[test]
 fn serve_listens_on_loopback_only() {
+    if !page_or_warn() {
+        return;
+    }
     let served = Served::start(&[]);
     let page = String::from_utf8(http_get(served.port, "/")).unwrap();
     assert!(page.contains("<canvas"), "the page: {page:.200}");

@@ -185,7 +185,8 @@ fn messages_name_the_option_the_user_gave() {
     };
     short(&["--fov", "1e-300"], "--fov 1e-300");
     short(&["--fov", "0.0001"], "--fov 0.0001");
-    short(&["--size", "16384x16384"], "--size");
+    // The fitted eye (without a view option `render` shows the overview, which fits nothing).
+    short(&["--size", "16384x16384", "--fit-first-hit"], "--size");
     short(&["--pitch", "89.9999"], "--pitch 89.9999");
     short(&["--far", "1e-300"], "--far 1e-300 m");
     short(&["--far", "1e300"], "--far 1e300 m");
@@ -577,6 +578,9 @@ fn a_sun_lights_the_frame_and_a_material_map_is_read() {
             "64",
             "--size",
             "48x32",
+            // The paper's middle view, where the sun ahead glints.
+            "--pitch",
+            "20",
             "--out",
             out.to_str().unwrap(),
         ];

@@ -192,7 +192,9 @@ fn render_warns_only_when_the_view_is_mostly_mirrored() {
         args.extend_from_slice(extra);
         stderr_of(&args).0
     };
-    let err = render(&[]);
+    // `--pitch` makes it the paper's view (without a view option `render` shows the overview,
+    // which is on the map: tests/first_run.rs).
+    let err = render(&["--pitch", "20"]);
     let warnings = mirror_warnings(&err);
     assert_eq!(warnings.len(), 1, "{err}");
     assert!(

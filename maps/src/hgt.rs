@@ -157,7 +157,7 @@ pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>
     Ok(())
 }
 
-/// Checks that `map` can be written as a `.hgt` tile (see [`write`]).
+/// Checks that `map` can be written as a `.hgt` tile (see [`write()`]).
 pub fn check_writable(map: &Map, what: &str) -> Result<(), MapError> {
     if map.width != map.height || arcsec_for_side(map.width).is_none() {
         return Err(MapError::Invalid {

@@ -33,7 +33,7 @@ pub const WIDTH: u32 = 160;
 /// The firmware's image height, pixels.
 pub const HEIGHT: u32 = 120;
 
-/// The firmware's pitch, degrees (the README's default view; FOV 10°, fit-first-hit).
+/// The firmware's pitch, degrees (the paper's middle view; FOV 10°, fit-first-hit).
 pub const PITCH_DEG: f64 = 20.0;
 
 /// The roll of the firmware's rolled frame, degrees: the same view banked, drawn in the exact
@@ -44,10 +44,10 @@ pub const ROLL_DEG: f64 = 30.0;
 pub const ROLLED_NAME: &str = "as-roll30";
 
 /// The name of the level frame in the exact projection ([`Scene::level`]): the rolled frame's
-/// view and walk without the roll, the unrolled frame issue 13's cost target compares with.
+/// view and walk without the roll, the unrolled frame a rolled frame's cost is compared with.
 pub const LEVEL_NAME: &str = "as-roll0";
 
-/// The name of the glint frame (issue 16) in the firmware's `frame` and `# icount` lines: the
+/// The name of the glint frame in the firmware's `frame` and `# icount` lines: the
 /// view lit by [`Scene::glint_sun`], the paper's AS with [`GLINT_SPECULAR`].
 pub const GLINT_NAME: &str = "glint-as-clamp99";
 

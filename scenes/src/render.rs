@@ -4,220 +4,18 @@
 //! call it column by column.
 
 use std::fmt;
-use std::str::FromStr;
 
 use footprint_core::color::Color16;
 use footprint_core::num::Weight;
-use footprint_core::terrain::camera::{Camera, Frame, Switch};
-use footprint_core::terrain::classic;
-use footprint_core::terrain::column::{render, walk};
+use footprint_core::terrain::camera::{Camera, Frame};
 use footprint_core::terrain::cost::{Cost, Counts, Tally};
-use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::shade::{Shader, Sun};
 use footprint_core::terrain::visibility::visit_visible;
 use footprint_core::terrain::Terrain;
 use footprint_core::{Error, Rgb};
 
-/// A sampling mode of the paper: PS, LI, SS_N (N = 2, 4, …, 256), AS as the paper costs it,
-/// or the perspective-exact AS.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Mode {
-    /// Point sampling (Fig. 4).
-    Ps,
-    /// Linear interpolation (Eq. 4).
-    Li,
-    /// Supersampling at rate N (Fig. 8).
-    Ss(Rate),
-    /// Area sampling as the paper writes and costs it (Fig. 12: parallel rays within a pixel,
-    /// weights in visible height, one division per pixel).
-    As,
-    /// Perspective-exact area sampling: weights in visible angle, the next ray through each
-    /// voxel's top from the eye (a division per hit); samples exactly the visible voxels.
-    AsExact,
-    /// The classic voxel-space renderer (y-buffer, growing steps, level 0, no coherence): the
-    /// baseline, not a mode of the paper (`footprint_core::terrain::classic`).
-    Classic,
-}
-
-/// A supersampling rate `N`: a power of two from 2 to 256, the rates `Super<N>` is compiled
-/// for. A rate that is not one of them (3, say) cannot be constructed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[repr(u32)]
-pub enum Rate {
-    /// N = 2.
-    N2 = 2,
-    /// N = 4.
-    N4 = 4,
-    /// N = 8.
-    N8 = 8,
-    /// N = 16.
-    N16 = 16,
-    /// N = 32.
-    N32 = 32,
-    /// N = 64.
-    N64 = 64,
-    /// N = 128.
-    N128 = 128,
-    /// N = 256.
-    N256 = 256,
-}
-
-impl Rate {
-    /// Every rate, smallest first.
-    pub const ALL: [Rate; 8] = [
-        Rate::N2,
-        Rate::N4,
-        Rate::N8,
-        Rate::N16,
-        Rate::N32,
-        Rate::N64,
-        Rate::N128,
-        Rate::N256,
-    ];
-
-    /// `N`.
-    pub const fn n(self) -> u32 {
-        self as u32
-    }
-
-    /// The rate `n`, if the renderer has it.
-    pub fn new(n: u32) -> Option<Rate> {
-        Rate::ALL.into_iter().find(|r| r.n() == n)
-    }
-}
-
-/// The supersampling rates the renderer is compiled for.
-pub const SS_RATES: [Rate; 8] = Rate::ALL;
-
-impl FromStr for Mode {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s.to_ascii_lowercase().as_str() {
-            "ps" => Ok(Mode::Ps),
-            "li" => Ok(Mode::Li),
-            "as" => Ok(Mode::As),
-            "as-exact" => Ok(Mode::AsExact),
-            "classic" => Ok(Mode::Classic),
-            other => match other
-                .strip_prefix("ss")
-                .and_then(|n| n.parse::<u32>().ok())
-                .and_then(Rate::new)
-            {
-                Some(rate) => Ok(Mode::Ss(rate)),
-                None => Err(format!(
-                    "unknown mode {s:?}: expected ps, li, as, as-exact, classic, or ss2, ss4, …, ss256"
-                )),
-            },
-        }
-    }
-}
-
-/// A mode serializes as its CLI name (`"ps"`, `"ss8"`, `"as-exact"`, …): JSON readers see the
-/// names the CLI takes.
-#[cfg(feature = "cli")]
-impl serde::Serialize for Mode {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_str(self)
-    }
-}
-
-impl Mode {
-    /// How the exact projection's fan is resampled for this mode: the cell under each pixel's
-    /// centre for the point-sampling modes (PS, LI, classic), the pixel's box for the
-    /// area-sampling ones (SS_N, AS), whose cells are averages over their footprints.
-    pub fn filter(self) -> Filter {
-        match self {
-            Mode::Ps | Mode::Li | Mode::Classic => Filter::Nearest,
-            Mode::Ss(_) | Mode::As | Mode::AsExact => Filter::Box,
-        }
-    }
-}
-
-impl fmt::Display for Mode {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Mode::Ps => write!(f, "ps"),
-            Mode::Li => write!(f, "li"),
-            Mode::Ss(r) => write!(f, "ss{}", r.n()),
-            Mode::As => write!(f, "as"),
-            Mode::AsExact => write!(f, "as-exact"),
-            Mode::Classic => write!(f, "classic"),
-        }
-    }
-}
-
-/// Runs `$body` with `$s` bound to a fresh sampler of `$mode`'s type: the one place where a
-/// run-time mode becomes a monomorphized `Sampler`; `classic`, which is not a sampler of the
-/// walk, runs `$classic`.
-macro_rules! with_sampler {
-    ($mode:expr, $s:ident => $body:expr, classic => $classic:expr) => {
-        match $mode {
-            Mode::Classic => $classic,
-            Mode::Ps => {
-                let $s = Point;
-                $body
-            }
-            Mode::Li => {
-                let $s = Linear;
-                $body
-            }
-            Mode::As => {
-                let $s = ParallelArea::new();
-                $body
-            }
-            Mode::AsExact => {
-                let $s = Area::new();
-                $body
-            }
-            Mode::Ss(Rate::N2) => {
-                let $s = Super::<2>::new();
-                $body
-            }
-            Mode::Ss(Rate::N4) => {
-                let $s = Super::<4>::new();
-                $body
-            }
-            Mode::Ss(Rate::N8) => {
-                let $s = Super::<8>::new();
-                $body
-            }
-            Mode::Ss(Rate::N16) => {
-                let $s = Super::<16>::new();
-                $body
-            }
-            Mode::Ss(Rate::N32) => {
-                let $s = Super::<32>::new();
-                $body
-            }
-            Mode::Ss(Rate::N64) => {
-                let $s = Super::<64>::new();
-                $body
-            }
-            Mode::Ss(Rate::N128) => {
-                let $s = Super::<128>::new();
-                $body
-            }
-            Mode::Ss(Rate::N256) => {
-                let $s = Super::<256>::new();
-                $body
-            }
-        }
-    };
-}
-
-impl Mode {
-    /// Where the walk climbs pyramid levels for this mode: its sampler's [`Sampler::SWITCH`]
-    /// (the paper's nearest level for PS, LI, SS2 and SS4, later for SS8 and up and AS).
-    /// `classic` walks level 0 and takes the paper's rule for its visibility counts.
-    pub fn switch(self) -> Switch {
-        fn of<S: Sampler>(_: &S) -> Switch {
-            S::SWITCH
-        }
-        with_sampler!(self, s => of(&s), classic => Switch::Nearest)
-    }
-}
+pub use footprint_core::mode::{Mode, ParseModeError, Rate, SS_RATES};
 
 /// A rendered frame.
 pub struct Rendered {
@@ -236,7 +34,7 @@ impl fmt::Debug for Rendered {
     }
 }
 
-/// Renders one frame lit by `sun` (issue 16): the walk's samples shaded by a [`Shader`] into
+/// Renders one frame lit by `sun`: the walk's samples shaded by a [`Shader`] into
 /// their own grid (sky where no terrain was sampled), resampled like the colour image. The
 /// eye and the pixel's angle come from `camera`.
 pub fn render_lit<C: Cost>(
@@ -260,8 +58,7 @@ pub fn render_lit<C: Cost>(
         &mut lit,
         cost,
     )?;
-    with_sampler!(mode, s => render(frame, terrain, &s, &mut shader, &mut grid),
-        classic => classic::render(frame, terrain, &mut shader, &mut grid))?;
+    mode.render(frame, terrain, &mut shader, &mut grid)?;
     finish(frame, lit, mode)
 }
 
@@ -275,8 +72,7 @@ pub fn render_with<C: Cost>(
 ) -> Result<Rendered, Error> {
     let (w, h) = (frame.width(), frame.height());
     let mut grid = vec![Rgb::default(); w * h];
-    with_sampler!(mode, s => render(frame, terrain, &s, cost, &mut grid),
-        classic => classic::render(frame, terrain, cost, &mut grid))?;
+    mode.render(frame, terrain, cost, &mut grid)?;
     finish(frame, grid, mode)
 }
 
@@ -309,12 +105,7 @@ pub fn walk_mode<C: Cost>(
     cost: &mut C,
     out: &mut [Rgb],
 ) {
-    let rows = frame.column(x).map_or(0..0, |c| c.rows());
-    let first = rows.start.min(out.len());
-    with_sampler!(mode, s => {
-        let mut s = s;
-        walk(frame, terrain, x, rows, &mut s, cost, &mut out[first..])
-    }, classic => classic::walk(frame, terrain, x, cost, out));
+    mode.walk_column(frame, terrain, x, cost, out);
 }
 
 /// The counts of one frame: totals with `V` filled by the exact visibility pass, one tally per

@@ -1,6 +1,6 @@
 //! Survey-like terrains: the kinds of real elevation data the built-in mountains are not.
 //!
-//! Issue 12 measured footprint on a 10 m survey DEM (smooth, eroded slopes, a few hundred metres
+//! footprint was measured on a 10 m survey DEM (smooth, eroded slopes, a few hundred metres
 //! of relief) and on maps with large flat areas (flood plains, lakes), where the pyramid's error
 //! and the paper's claims behave differently from the built-in terrain's 30 m mountains. These
 //! generators make such maps from a seed, so that the claims and the LOD-error target are tested

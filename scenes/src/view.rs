@@ -97,6 +97,57 @@ pub fn paper_params(map: &Map, pitch_deg: f64, width: u32, height: u32) -> Camer
     }
 }
 
+/// The depression of [`overview_params`]' top row, degrees, on a map whose relief is small
+/// against its extent (the built-in terrain): the pitch is this plus half the field of view.
+pub const OVERVIEW_TOP_RAY_DEG: f64 = 20.0;
+
+/// The steepest top row [`overview_params`] takes on a map of high relief, degrees.
+pub const OVERVIEW_MAX_TOP_RAY_DEG: f64 = 55.0;
+
+/// The vertical field of view of [`overview_params`], degrees.
+pub const OVERVIEW_FOV_DEG: f64 = 30.0;
+
+/// The share of the map's north–south extent at which [`overview_params`]' top row meets the
+/// map's lowest ground: a margin for the top corners, whose rays descend less steeply than the
+/// top row's centre.
+pub const OVERVIEW_REACH: f64 = 0.9;
+
+/// A view of the map itself, for a first look (`footprint render` without view options):
+/// the eye above the middle of the south edge, heading north, FOV [`OVERVIEW_FOV_DEG`], at
+/// least a quarter above the map's relief, and pitched so that the top row's ray meets the
+/// map's lowest ground at [`OVERVIEW_REACH`] of the way to the north edge (its depression is
+/// [`OVERVIEW_TOP_RAY_DEG`], or steeper, up to [`OVERVIEW_MAX_TOP_RAY_DEG`], on a map of high
+/// relief). Every ray then meets the ground before the north edge, so (for a map not much
+/// narrower than it is long) the image shows the map and none of its mirrored copies; on the
+/// built-in terrain at about one voxel per pixel, pitch 35°. Unlike the paper's views
+/// ([`paper_params`]), it does not use the rule of [`fit_first_hit`]. `far_m` is 1 m until
+/// the caller sets it.
+pub fn overview_params(map: &Map, width: u32, height: u32) -> CameraParams {
+    let depth_m = f64::from(map.height) * map.spacing_m;
+    let lowest = map.heights.iter().copied().min().unwrap_or(0);
+    let highest = map.heights.iter().copied().max().unwrap_or(0);
+    let relief_m = f64::from(highest - lowest) * map.height_scale_m;
+    let reach_m = OVERVIEW_REACH * depth_m;
+    // The eye's height above the lowest ground, and the top row's depression.
+    let above = (reach_m * OVERVIEW_TOP_RAY_DEG.to_radians().tan()).max(1.25 * relief_m);
+    let top_ray = (above / reach_m)
+        .atan()
+        .to_degrees()
+        .min(OVERVIEW_MAX_TOP_RAY_DEG);
+    CameraParams {
+        x_m: f64::from(map.width) * map.spacing_m / 2.0,
+        y_m: depth_m,
+        eye_m: f64::from(lowest) * map.height_scale_m + above,
+        heading_deg: 0.0,
+        pitch_deg: top_ray + OVERVIEW_FOV_DEG / 2.0,
+        roll_deg: 0.0,
+        fov_deg: OVERVIEW_FOV_DEG,
+        width,
+        height,
+        far_m: 1.0,
+    }
+}
+
 /// The paper's camera on the map of `pyramid` ([`paper_params`]), with the default far
 /// distance ([`default_far_voxels`]) and the eye fitted by [`fit_first_hit`] on the pyramid
 /// with `options` (LOD or not).

@@ -9,7 +9,7 @@ use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 use footprint_maps::{memory, LoadOptions};
 use footprint_scenes::flight::{self, bin, luminance};
-use footprint_scenes::render::{count, image_hash, render_with, Mode};
+use footprint_scenes::render::{count, image_hash, render_with, Mode, ParseModeError};
 use footprint_scenes::view::{self, Tables};
 use footprint_scenes::{procedural, Map, Pyramid};
 
@@ -276,7 +276,9 @@ impl App {
 
     /// Sets the mode of half `half` from its CLI name (`ps`, `as`, `ss8`, `classic`, …).
     pub fn set_mode(&mut self, half: usize, name: &str) -> Result<(), String> {
-        let mode: Mode = name.parse().map_err(|e: String| format!("--mode: {e}"))?;
+        let mode: Mode = name
+            .parse()
+            .map_err(|e: ParseModeError| format!("--mode: unknown mode {name:?}: {e}"))?;
         let h = self
             .halves
             .get_mut(half)

@@ -26,7 +26,7 @@
 //! taken by Parseval's theorem: the mean square over a period of `Σ_m c_m·cos(mα)` is
 //! `c_0² + Σ_{m>0} c_m²/2` (the constant term is not halved, every cosine is), so frequency 0
 //! weighs `P_0 = c_0²` and frequency `m > 0` weighs `P_m = c_m²/2`. (Weighing every frequency
-//! by `c_m²`, as this crate did before issue 16, counts the constant term half as heavily and
+//! by `c_m²`, as this crate first did, counts the constant term half as heavily and
 //! gives a `K_p(n)` 2 higher at some even `n`: 48 of the 90 % table's entries for `n ≤ 1000`,
 //! 34 of the 99 % table's and 28 of the 99.9 % table's, the first at `n` = 6, 68 and 32.
 //! Odd `n` have no constant term and are the same either way, and so is the paper's example
@@ -287,7 +287,7 @@ mod tests {
     /// Every `K_p(n)`, `n ≤ N_MAX`, p = 90, 99, 99.9 %, equals the exact cutoff with Parseval's
     /// weights: with `b_k = C(n, k)`, `2^n·c_m = b_k` at `m = 0` and `2b_k` at `m = n − 2k > 0`,
     /// so `4^n·P_0 = b²` and `4^n·P_m = (2b)²/2 = 2b²`. The old convention (`c_m²` at every
-    /// `m`, `4^n·c_m² = b²` or `4b²`) differs exactly where issue 16 says.
+    /// `m`, `4^n·c_m² = b²` or `4b²`) differs exactly there.
     #[test]
     fn cutoffs_are_exact_with_parsevals_weights() {
         const P: [(Power, u64); 3] = [(Power::P90, 900), (Power::P99, 990), (Power::P999, 999)];

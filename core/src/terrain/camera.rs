@@ -43,7 +43,7 @@ use crate::trig::{sin_cos_deg, sqrt};
 /// The paper's rule (Sect. 3) takes the level nearest the footprint in log2, a switch at `√2`:
 /// a level-`L` voxel is then 0.7–1.4 footprints wide, and because the coarse voxels are fixed
 /// 2^L-blocks that do not line up with the pixel, area sampling averages over up to twice the
-/// pixel's footprint. Issue 12's study (README, "The pyramid's error") measured that blur as
+/// pixel's footprint. A study (docs/measurements.md, "The pyramid's error") measured that blur as
 /// most of the LOD error on smooth survey-like maps: seen from the paper's (mirrored) views, AS
 /// at pitch 5° had 2.2–2.4× the RMSE of the same mode on level 0 at `√2`, 1.2–1.3× at 2,
 /// 1.1–1.2× at 2.4 and 1.0× at 2.8 (where those views never climb). At 2.4 a level-`L` voxel is
@@ -287,6 +287,26 @@ pub struct Column {
 }
 
 impl Column {
+    /// An empty column, [`Column::default`] as a constant: the initial value of a column
+    /// table, so that a firmware's table can be a `static` (`[Column::EMPTY; W]`) sized at
+    /// compile time. [`Frame::new`] fills it.
+    pub const EMPTY: Column = Column {
+        axis: Axis::X,
+        sign: 0,
+        kc: Coord::ZERO,
+        n_eye: Height::ZERO,
+        v_base: Coord::ZERO,
+        dv: Coord::ZERO,
+        n_start: 0,
+        n_far: 0,
+        lod_base: [0; 2],
+        run: 0.0,
+        first_row: 0,
+        end_row: 0,
+    };
+}
+
+impl Column {
     /// Where the walk climbs at `switch`: level L+1 begins `lod_base·2^L` half-voxels ahead of
     /// the eye.
     pub(crate) fn lod_base(&self, switch: Switch) -> i64 {
@@ -298,37 +318,44 @@ impl Column {
     }
 
     /// The horizontal distance, in voxels, from the eye to the voxel centred at `n`.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn distance(&self, n: i64) -> f64 {
         (n as f64 - self.n_eye.to_num::<f64>()) * self.run
     }
 
     /// The axis the column steps along.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn axis(&self) -> Axis {
         self.axis
     }
 
     /// The first voxel centre of the walk.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn n_start(&self) -> i64 {
         self.n_start
     }
 
     /// The eye's position along the column, half-voxels.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn n_eye(&self) -> Height {
         self.n_eye
     }
 
     /// The last voxel centre within the far distance.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn n_far(&self) -> i64 {
         self.n_far
     }
 
     /// +1 when the column's rays move towards increasing major coordinate, −1 otherwise.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn sign(&self) -> i8 {
         self.sign
     }
 
     /// The level-0 cell across the column at `n` half-voxels along it: `⌊v_base + n·dv⌋`, the
     /// same arithmetic as the walk's cross coordinate.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn cross_at(&self, n: i64) -> i64 {
         self.v_base
             .to_bits()
@@ -622,6 +649,7 @@ impl<'t> Frame<'t> {
     /// product, floored, saturated to 64 bits: [`mul_floor_32`], in 64-bit arithmetic for
     /// every sane view), which the walk pays once per pixel.
     #[inline]
+    #[doc(hidden)] // the walk's own ray, for the tests
     pub fn ray(&self, column: &Column, i: usize) -> Line {
         let row = self.rows.get(i).map_or(0, |r| r.to_bits());
         // I32F32 × I32F32 → I32F32 (floor, saturating), then to I40F24 (floor), clamped.

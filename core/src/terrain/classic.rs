@@ -21,6 +21,7 @@
 use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::height;
+use crate::sink::PixelSink;
 use crate::terrain::camera::Frame;
 use crate::terrain::column::{render_frame, ColumnOut};
 use crate::terrain::cost::Cost;
@@ -44,8 +45,8 @@ pub fn walk<C: Cost>(
     walk_into(frame, terrain, col, cost, out);
 }
 
-/// [`walk`] into any [`ColumnOut`].
-pub fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
+/// [`walk`] into any `ColumnOut`.
+pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
@@ -111,12 +112,12 @@ pub fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
 }
 
 /// Renders the whole frame into `image`, row-major from the top: the classic counterpart of
-/// [`crate::terrain::column::render`].
-pub fn render<C: Cost>(
+/// [`crate::terrain::column::render`], in any pixel format ([`PixelSink`]).
+pub fn render<C: Cost, P: PixelSink>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     cost: &mut C,
-    image: &mut [Rgb],
+    image: &mut [P],
 ) -> Result<(), Error> {
     render_frame(frame, image, |x, out| {
         walk_into(frame, terrain, x, cost, out)

@@ -15,6 +15,7 @@ use core::ops::Range;
 use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::{Eye, Height, Line};
+use crate::sink::PixelSink;
 use crate::terrain::camera::{Column, Frame};
 use crate::terrain::cost::Cost;
 use crate::terrain::march::{Flow, Hits, March, RideEnd, Voxel};
@@ -23,7 +24,7 @@ use crate::terrain::Terrain;
 
 /// Where a column walk writes its pixels: pixel `k` of the walked rows, counted from the first
 /// (the lowest).
-pub trait ColumnOut {
+pub(crate) trait ColumnOut {
     /// How many pixels it holds.
     fn rows(&self) -> usize;
     /// Writes pixel `k`; beyond [`ColumnOut::rows`], nothing.
@@ -46,8 +47,8 @@ impl ColumnOut for [Rgb] {
 /// Column `x` of a row-major image `W` pixels wide and `H` high (`image[y·W + x]`, `y` from the
 /// top), written from the bottom row up: a frame is drawn in place, with no scratch column to
 /// copy.
-pub struct ImageColumn<'i> {
-    image: &'i mut [Rgb],
+pub(crate) struct ImageColumn<'i, P = Rgb> {
+    image: &'i mut [P],
     x: usize,
     w: usize,
     h: usize,
@@ -55,7 +56,7 @@ pub struct ImageColumn<'i> {
     bottom: usize,
 }
 
-impl core::fmt::Debug for ImageColumn<'_> {
+impl<P> core::fmt::Debug for ImageColumn<'_, P> {
     /// The column and the image's size; the pixels are far too many to print.
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("ImageColumn")
@@ -66,17 +67,17 @@ impl core::fmt::Debug for ImageColumn<'_> {
     }
 }
 
-impl ImageColumn<'_> {
+impl<P> ImageColumn<'_, P> {
     /// Makes row `first` (from the bottom) the column's pixel 0, for a walk of the rows from
     /// `first` up ([`walk`] writes row `i` to pixel `i − first`).
-    pub fn start_at(&mut self, first: usize) {
+    pub(crate) fn start_at(&mut self, first: usize) {
         let first = first.min(self.h);
         self.h -= first;
         self.bottom = self.bottom.wrapping_sub(first.wrapping_mul(self.w));
     }
 }
 
-impl ColumnOut for ImageColumn<'_> {
+impl<P: PixelSink> ColumnOut for ImageColumn<'_, P> {
     #[inline(always)]
     fn rows(&self) -> usize {
         self.h
@@ -88,7 +89,7 @@ impl ColumnOut for ImageColumn<'_> {
         // written there.
         let at = self.bottom.wrapping_sub(k.wrapping_mul(self.w));
         if let Some(px) = self.image.get_mut(at) {
-            *px = color;
+            *px = P::from_rgb(color);
         }
     }
 }
@@ -213,7 +214,7 @@ fn out_of_reach(ray: &Ray, max_h: Height, n: i64, n_far: i64) -> bool {
 }
 
 /// [`walk`] into any [`ColumnOut`] (pixel `i` to `out.set(i − rows.start, …)`).
-pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
@@ -338,13 +339,14 @@ pub fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
 }
 
 /// Renders the whole frame with a fresh copy of `sampler` per column into `image`, row-major
-/// from the top (`image[y·W + x]`).
-pub fn render<S: Sampler + Clone, C: Cost>(
+/// from the top (`image[y·W + x]`), in any pixel format ([`PixelSink`]: the 3-byte [`Rgb`],
+/// or a display's own colour).
+pub fn render<S: Sampler + Clone, C: Cost, P: PixelSink>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampler: &S,
     cost: &mut C,
-    image: &mut [Rgb],
+    image: &mut [P],
 ) -> Result<(), Error> {
     render_frame(frame, image, |x, out| {
         let rows = frame.column(x).map_or(0..0, Column::rows);
@@ -357,10 +359,10 @@ pub fn render<S: Sampler + Clone, C: Cost>(
 /// Runs `walk_column(x, out)` for every column `x` of `frame`, where `out` is column `x` of
 /// `image` (row-major from the top), written from the bottom up. Errors if `image` does not
 /// hold `W × H` pixels.
-pub fn render_frame(
+pub(crate) fn render_frame<P>(
     frame: &Frame<'_>,
-    image: &mut [Rgb],
-    mut walk_column: impl FnMut(usize, &mut ImageColumn<'_>),
+    image: &mut [P],
+    mut walk_column: impl FnMut(usize, &mut ImageColumn<'_, P>),
 ) -> Result<(), Error> {
     let (w, h) = (frame.width(), frame.height());
     if image.len() != w * h {

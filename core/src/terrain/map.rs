@@ -119,7 +119,7 @@ pub(crate) fn check_len(what: &'static str, expected: usize, actual: usize) -> R
 }
 
 /// The size of the level above a `width × height` level, or `None` at 1×1.
-pub fn next_size(width: u32, height: u32) -> Option<(u32, u32)> {
+pub const fn next_size(width: u32, height: u32) -> Option<(u32, u32)> {
     if width <= 1 && height <= 1 {
         None
     } else {

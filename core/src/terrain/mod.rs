@@ -15,6 +15,10 @@ pub mod column;
 pub mod cost;
 pub mod fan;
 pub mod map;
+// The voxel sequence under a column: the walk's internals. Public for the tests and the
+// project's own crates, hidden from the documentation; a `Cost` or `Sampler` sees only
+// [`Voxel`], re-exported below.
+#[doc(hidden)]
 pub mod march;
 pub mod pyramid;
 pub mod sampler;
@@ -22,3 +26,4 @@ pub mod shade;
 pub mod visibility;
 
 pub use map::{mirror, next_size, Axis, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
+pub use march::Voxel;

@@ -157,8 +157,9 @@ impl Level<'_> {
 
 /// The cells of every level above level 0 of a `width × height` map, summed down to 1×1: what
 /// the colour buffer of [`build`] holds (its height buffer holds three times as many: the
-/// heights along x, along y, and the conservative maximum).
-pub fn cells(width: u32, height: u32) -> usize {
+/// heights along x, along y, and the conservative maximum). A `const fn`, so a firmware sizes
+/// its static pyramid buffers at compile time.
+pub const fn cells(width: u32, height: u32) -> usize {
     let (mut w, mut h, mut total) = (width, height, 0);
     while let Some((nw, nh)) = next_size(w, h) {
         total += nw as usize * nh as usize;
@@ -168,7 +169,8 @@ pub fn cells(width: u32, height: u32) -> usize {
 }
 
 /// The number of levels of the whole pyramid of a `width × height` map, level 0 included.
-pub fn levels(width: u32, height: u32) -> usize {
+/// A `const fn`, like [`cells`].
+pub const fn levels(width: u32, height: u32) -> usize {
     let (mut w, mut h, mut n) = (width, height, 1);
     while let Some(next) = next_size(w, h) {
         (w, h) = next;

@@ -1,4 +1,4 @@
-//! Sun-lit terrain: the two papers in one frame (issue 16).
+//! Sun-lit terrain: the two papers in one frame.
 //!
 //! The terrain is lit by a distant sun: each sample a mode takes is shaded with a diffuse term
 //! and a Phong highlight `K_spec·cos^n α` (Amanatides' "Detecting Specular Aliasing"), with
@@ -65,7 +65,7 @@ use crate::trig::sin_cos_deg;
 /// times the colour (the CLI's `--sun` and the firmware's glint frame).
 pub const AMBIENT_DIFFUSE: (f64, f64) = (0.35, 0.65);
 
-/// How a pixel's highlight is antialiased (issue 16).
+/// How a pixel's highlight is antialiased.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Specular {
     /// No antialiasing: the material's `n` at the pixel's mean normal.
@@ -114,7 +114,7 @@ impl Materials<'_> {
     }
 
     /// After rain: [water](Self::water) by colour, and wet rock with `n = 256`,
-    /// `K_spec = 0.5`, a highlight on every slope that faces the glint (the issue's "wet
+    /// `K_spec = 0.5`, a highlight on every slope that faces the glint ("wet
     /// rock"), where the normals under a distant pixel spread and the highlight can alias.
     pub fn wet() -> Materials<'static> {
         Materials::ByColor {

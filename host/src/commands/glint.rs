@@ -1,5 +1,5 @@
 //! `footprint glint --measure`: the sun's glint on water in the flight of Sect. 5, each
-//! specular antialiasing method against the supersampled reference (issue 16).
+//! specular antialiasing method against the supersampled reference.
 
 use std::path::PathBuf;
 

@@ -24,13 +24,13 @@ pub struct RenderArgs {
     /// The camera.
     pub camera: CameraArgs,
     #[command(flatten)]
-    /// The sun (issue 16).
+    /// The sun.
     pub light: LightArgs,
     /// Sampling mode: ps, li, ss2, ss4, …, ss256, as (area sampling as the paper's Fig. 12
     /// writes it: parallel rays within a pixel, one division per pixel), or as-exact (area
     /// sampling with the exact ray through each voxel's top: every visible voxel, only those).
     /// The default is `as`: on the paper's three views it has the same error against the ground
-    /// truth as as-exact and is about a quarter faster (README, "Measured").
+    /// truth as as-exact and is about a quarter faster (docs/cli.md, "The modes").
     #[arg(long, default_value = "as")]
     pub mode: Mode,
     /// Output PNG.
@@ -50,7 +50,12 @@ pub struct RenderArgs {
 
 /// Runs `footprint render`.
 pub fn render(args: &RenderArgs) -> Result<()> {
-    let view = View::new(&args.map, &args.camera)?;
+    let overview = args.camera.is_unset();
+    let view = if overview {
+        View::overview(&args.map, &args.camera)?
+    } else {
+        View::new(&args.map, &args.camera)?
+    };
     let terrain = view.pyramid.terrain(view.options.lod)?;
     let mut tables = Tables::new(&view.camera);
     let frame = tables.frame(&view.camera, &terrain, view.options)?;
@@ -94,6 +99,15 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     if let Some(out) = &args.out {
         let (w, h) = rendered.size;
         write_png(out, w, h, &rendered.image)?;
+        if !args.format.json {
+            // The one line a first run prints: what was written, how big, how, how fast.
+            println!(
+                "wrote {}: {w}x{h}, {}, {} ms",
+                out.display(),
+                args.mode,
+                Millis(ms_threads)
+            );
+        }
     }
     if args.counts || args.format.json {
         let (_, measured) = count(&frame, &terrain, args.mode)?;
@@ -122,5 +136,24 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     } else if args.out.is_none() {
         crate::note!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");
     }
-    view.warn_mirrored(&args.camera)
+    if overview {
+        // The overview is placed over the map itself: nothing mirrored to warn about.
+        Ok(())
+    } else {
+        view.warn_mirrored(&args.camera)
+    }
+}
+
+/// A time in milliseconds for the one-line summary: whole milliseconds from 10 ms, one
+/// decimal below.
+struct Millis(f64);
+
+impl std::fmt::Display for Millis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.0 >= 10.0 {
+            write!(f, "{:.0}", self.0)
+        } else {
+            write!(f, "{:.1}", self.0)
+        }
+    }
 }

@@ -28,9 +28,10 @@ use crate::map::{self, LoadOptions};
 
 /// The page's WebAssembly core, built by `host/build.rs` (empty if it could not be built).
 const WASM: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/footprint_web.wasm"));
-const INDEX: &str = include_str!("../../../web/static/index.html");
-const SCRIPT: &str = include_str!("../../../web/static/app.js");
-const STYLE: &str = include_str!("../../../web/static/style.css");
+// Copied from web/static by host/build.rs, so that the packaged crate builds too.
+const INDEX: &str = include_str!(concat!(env!("OUT_DIR"), "/index.html"));
+const SCRIPT: &str = include_str!(concat!(env!("OUT_DIR"), "/app.js"));
+const STYLE: &str = include_str!(concat!(env!("OUT_DIR"), "/style.css"));
 
 /// Connections served at once; one more is answered 503 and closed.
 pub const MAX_CONNECTIONS: usize = 256;
@@ -84,9 +85,16 @@ impl Site {
 pub fn serve(args: &ServeArgs) -> Result<()> {
     let map = map_files(args)?;
     if WASM.is_empty() {
+        // One line with the one command that fixes it (host/build.rs says why it was left out).
+        if env!("FOOTPRINT_WASM_MISSING").contains("FOOTPRINT_NO_WASM") {
+            bail!(
+                "serve: this binary was built with FOOTPRINT_NO_WASM set, without the page; \
+                 build it without: `cargo run --release -- serve`"
+            );
+        }
         bail!(
-            "serve: this binary was built without the page's WebAssembly: run `rustup target add \
-             wasm32-unknown-unknown` and build again (cargo run --release -- serve)"
+            "serve: the page needs the WebAssembly target, once: `rustup target add \
+             wasm32-unknown-unknown`, then `cargo run --release -- serve` again"
         );
     }
     let mut assets = vec![

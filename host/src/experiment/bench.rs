@@ -39,8 +39,7 @@ pub struct ModeTime {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ratio_to_unrolled: Option<f64>,
     /// `ms / ms` of the same mode and pitch in the exact projection without roll, fastest
-    /// against fastest (for the rolled views, when `--roll` has 0): what the roll alone costs,
-    /// issue 13's target.
+    /// against fastest (for the rolled views, when `--roll` has 0): what the roll alone costs.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ratio_to_level: Option<f64>,
     /// Traversal steps per frame (term `a`, from a counted render of the same frame).

@@ -1,4 +1,4 @@
-//! The host's reference for the firmware's scenes (issue 6).
+//! The host's reference for the firmware's scenes.
 //!
 //! `firmware/` runs `footprint-core` on an emulated Cortex-M4F (QEMU `mps2-an386`). Its
 //! `build.rs` calls [`scene`] (from `footprint-scenes`, which builds over the core alone) to
@@ -22,14 +22,14 @@
 //! thing there as here. (Every constructor error is tested on the host by
 //! `tests/tests/analytic.rs`'s `constructor_errors`.)
 //!
-//! After the terrain modes comes the glint frame of issue 16 ([`glint_line`]): the same view lit
+//! After the terrain modes comes the glint frame ([`glint_line`]): the same view lit
 //! by a low sun straight ahead, AS with `clamp99`:
 //!
 //! ```text
 //! frame glint-as-clamp99 160x120 fnv1a=<16 hex digits> hits=… normals=… shading=…
 //! ```
 //!
-//! The second scene is the specular plate of the specular issue: [`plate`] gives `build.rs`
+//! The second scene is the specular plate: [`plate`] gives `build.rs`
 //! Plate 2's triangles as the host's tiler receives them at 64×64, and
 //! [`plate_reference_line`] renders them here with the core's tiler and conservative clamping
 //! (checking the result against `footprint_scenes::plates::render`), printed after the terrain frames:

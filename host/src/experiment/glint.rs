@@ -1,4 +1,4 @@
-//! Sun glint in flight (issue 16): the flight of Sect. 5 with a low sun straight ahead, over
+//! Sun glint in flight: the flight of Sect. 5 with a low sun straight ahead, over
 //! water, lit with each specular antialiasing method, against the supersampled reference.
 //!
 //! Every frame is rendered once per method and sampling mode through the pyramid, and once as

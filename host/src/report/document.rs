@@ -79,7 +79,7 @@ pub struct Document<'a> {
     pub cuts: &'a str,
     /// The Fig. 13 pixel.
     pub pixel: &'a PixelChoice,
-    /// The sun-glint flight (issue 16).
+    /// The sun-glint flight.
     pub glint: &'a Glint,
     /// What the glint section says about its map first (empty if it is the report's).
     pub glint_note: &'a str,

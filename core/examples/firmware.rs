@@ -1,0 +1,37 @@
+//! One frame as a firmware renders it: every buffer sized by a `const`, so on a chip each can
+//! be a `static` (e.g. through `cortex_m::singleton!`); the paper's area sampling (`as`).
+//! `cargo run -p footprint-core --example firmware`
+use footprint_core::prelude::*;
+
+const MAP: u32 = 64; // a 64×64 map of 30 m voxels
+const W: u32 = 160;
+const H: u32 = 120;
+const CELLS: usize = pyramid::cells(MAP, MAP); // every pyramid level above level 0
+#[rustfmt::skip]
+const VIEW: CameraParams = CameraParams {
+    x_m: 960.0, y_m: 1900.0, eye_m: 800.0, heading_deg: 0.0, pitch_deg: 40.0, roll_deg: 0.0,
+    fov_deg: 30.0, width: W, height: H, far_m: 20_000.0,
+};
+
+fn main() -> Result<(), Error> {
+    // In flash on a chip; here a bowl between ridges, in 0.1 m units.
+    let heights: [u16; (MAP * MAP) as usize] = core::array::from_fn(|i| {
+        let (x, y) = (i as i32 % 64 - 32, i as i32 / 64 - 32);
+        (3 * (x * x + y * y) + 400 * (x / 8 % 2).abs()) as u16
+    });
+    let colors = heights.map(|h| Rgb::new(60 + (h / 40) as u8, 110, 50));
+    let (mut hs, mut cs) = ([0u16; 3 * CELLS], [Rgb::BLACK; CELLS]); // the pyramid
+    let (mut rows, mut cols) = ([Coord::ZERO; H as usize + 1], [Column::EMPTY; W as usize]);
+    let mut image = [Rgb::BLACK; (W * H) as usize];
+
+    let level0 = Level::new(MAP, MAP, &heights, &colors)?;
+    pyramid::build(&level0, HeightFilter::Silhouette, &mut hs, &mut cs)?;
+    let scale = Scale::new(30.0, 0.1)?; // metres per voxel, metres per height unit
+    let terrain = pyramid::assemble(level0, scale, &hs, &cs, true)?;
+    let camera = Camera::new(VIEW)?;
+    let frame = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut cols)?;
+    Mode::As.render(&frame, &terrain, &mut NoCost, &mut image)?;
+    let green: u64 = image.iter().map(|c| u64::from(c.g)).sum();
+    println!("{W}x{H} as: mean green {}", green / u64::from(W * H));
+    Ok(())
+}

@@ -1,0 +1,41 @@
+//! What a frame needs, in one import: `use footprint_core::prelude::*;`.
+//!
+//! The map and its pyramid ([`Level`], [`Scale`], [`Terrain`], [`pyramid`], [`HeightFilter`]),
+//! the camera and its per-frame tables ([`Camera`], [`CameraParams`], [`Frame`], [`Options`],
+//! [`Projection`], [`Column`], [`Coord`]), the modes ([`Mode`], [`Rate`]), the counters
+//! ([`NoCost`], [`Counts`]), the pixel formats ([`Rgb`], [`PixelSink`]) and [`Error`]. The
+//! walk's internals are not here; the modules under [`crate::terrain`] have the rest.
+
+pub use crate::color::Rgb;
+pub use crate::error::Error;
+pub use crate::mode::{Mode, Rate};
+pub use crate::num::Coord;
+pub use crate::sink::PixelSink;
+pub use crate::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Projection};
+pub use crate::terrain::cost::{Counts, NoCost};
+pub use crate::terrain::pyramid::{self, HeightFilter};
+pub use crate::terrain::{Level, Scale, Terrain};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The buffer sizes are constants: a `static` can be sized by them, and they agree with
+    /// the run-time values.
+    #[test]
+    fn buffer_sizes_are_const() {
+        const CELLS: usize = pyramid::cells(128, 128);
+        const LEVELS: usize = pyramid::levels(128, 96);
+        const NEXT: Option<(u32, u32)> = crate::terrain::next_size(5, 3);
+        static COLUMNS: [Column; 4] = [Column::EMPTY; 4];
+        static PYRAMID: [u16; 3 * CELLS] = [0; 3 * CELLS];
+        assert_eq!(
+            CELLS,
+            64 * 64 + 32 * 32 + 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1
+        );
+        assert_eq!(LEVELS, 8);
+        assert_eq!(NEXT, Some((3, 2)));
+        assert_eq!(PYRAMID.len(), 3 * CELLS);
+        assert!(COLUMNS.iter().all(|c| *c == Column::default()));
+    }
+}

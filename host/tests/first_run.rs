@@ -1,0 +1,147 @@
+//! The first run, as a new user meets it: the README's main command renders the built-in map
+//! itself, says in one line what it wrote and warns about nothing; no help text speaks of
+//! the project's issue tracker.
+
+mod common;
+
+use clap::CommandFactory;
+use common::footprint;
+use footprint_core::terrain::camera::{Camera, Options, Projection};
+use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_host::cli::Cli;
+use footprint_scenes::procedural::{procedural, DEFAULT_SIZE};
+use footprint_scenes::pyramid::Pyramid;
+use footprint_scenes::view::{coverage, default_far_voxels, overview_params, Tables};
+
+/// `footprint render --out terrain.png`: one line on stdout, `wrote FILE: WxH, MODE, N ms`,
+/// nothing on stderr (no warning), and the PNG.
+#[test]
+fn the_main_command_prints_one_line_and_no_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("terrain.png");
+    let o = footprint(&["render", "--out", out.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.trim().is_empty(),
+        "a first run says nothing on stderr: {stderr}"
+    );
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 1, "{stdout}");
+    let prefix = format!("wrote {}: 400x400, as, ", out.display());
+    let ms = lines[0]
+        .strip_prefix(&prefix)
+        .and_then(|rest| rest.strip_suffix(" ms"))
+        .unwrap_or_else(|| panic!("{:?} is not {prefix:?}… ms", lines[0]));
+    assert!(ms.parse::<f64>().unwrap() > 0.0, "{ms}");
+    assert!(std::fs::metadata(&out).unwrap().len() > 0);
+}
+
+/// A view option brings back the paper's view, and its warning on the built-in terrain (it
+/// looks 69 km ahead, beyond the map); `--size` alone keeps the overview.
+#[test]
+fn a_view_option_brings_back_the_papers_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v.png");
+    let o = footprint(&["render", "--pitch", "20", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("mirrored copies of the map"), "{stderr}");
+    let o = footprint(&["render", "--size", "48x40", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && stderr.trim().is_empty(), "{stderr}");
+}
+
+/// The overview shows the built-in map itself: every terrain pixel's first hit lies on the
+/// map, none on a mirrored copy, and no pixel is sky; in both projections.
+#[test]
+fn the_overview_shows_only_the_map() {
+    // The CLI's built-in terrain: seed 1, 1024², silhouette heights.
+    let pyramid = Pyramid::build(procedural(1, DEFAULT_SIZE), HeightFilter::Silhouette).unwrap();
+    for projection in [Projection::Exact, Projection::Paper] {
+        let options = Options {
+            projection,
+            ..Options::default()
+        };
+        let mut params = overview_params(pyramid.map(), 400, 400);
+        let probe = Camera::new(params).unwrap();
+        params.far_m = default_far_voxels(DEFAULT_SIZE, DEFAULT_SIZE, probe.pixel_angle())
+            * pyramid.map().spacing_m;
+        let camera = Camera::new(params).unwrap();
+        let terrain = pyramid.terrain(true).unwrap();
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options).unwrap();
+        let c = coverage(pyramid.map(), &frame, &terrain);
+        assert_eq!(c.mirrored, 0, "{projection:?}: {c:?}");
+        assert!(c.on_map > 0, "{projection:?}: {c:?}");
+    }
+}
+
+/// No help text, of the binary or of any subcommand at any depth, speaks of "issue N".
+#[test]
+fn no_help_text_mentions_an_issue() {
+    fn visit(cmd: &mut clap::Command, path: &str, found: &mut Vec<String>) {
+        for help in [
+            cmd.render_help().to_string(),
+            cmd.render_long_help().to_string(),
+        ] {
+            if help.to_lowercase().contains("issue") {
+                found.push(format!("{path}: {help}"));
+            }
+        }
+        for sub in cmd.get_subcommands_mut() {
+            let name = format!("{path} {}", sub.get_name());
+            visit(sub, &name, found);
+        }
+    }
+    let mut cmd = Cli::command();
+    cmd.build();
+    let mut found = Vec::new();
+    visit(&mut cmd, "footprint", &mut found);
+    assert!(found.is_empty(), "{}", found.join("\n\n"));
+    // And as the binary prints it.
+    for args in [
+        &["--help"][..],
+        &["render", "--help"],
+        &["map", "info", "--help"],
+    ] {
+        let o = footprint(args);
+        assert!(o.status.success());
+        let text = String::from_utf8_lossy(&o.stdout).to_lowercase();
+        assert!(!text.contains("issue"), "{args:?}: {text}");
+    }
+}
+
+/// `serve` built without the page's WebAssembly (no wasm32 target, or `FOOTPRINT_NO_WASM`)
+/// refuses in one line naming the one command that fixes it; built with it, it serves (and is
+/// stopped here).
+#[test]
+fn serve_without_the_page_names_the_fix_in_one_line() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(["serve", "--port", "0", "--terrain-size", "16"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    if first.starts_with("serving the page at http://127.0.0.1:") {
+        child.kill().unwrap();
+        child.wait().unwrap();
+        return;
+    }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("`rustup target add wasm32-unknown-unknown`")
+            || stderr.contains("FOOTPRINT_NO_WASM"),
+        "{stderr}"
+    );
+}
