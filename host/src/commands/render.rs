@@ -101,12 +101,12 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         write_png(out, w, h, &rendered.image)?;
         if !args.format.json {
             // The one line a first run prints: what was written, how big, how, how fast.
-            println!(
+            crate::outln!(
                 "wrote {}: {w}x{h}, {}, {} ms",
-                out.display(),
+                crate::output::shown(out),
                 args.mode,
                 Millis(ms_threads)
-            );
+            )?;
         }
     }
     if args.counts || args.format.json {
