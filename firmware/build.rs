@@ -39,8 +39,6 @@ fn main() {
     let scene = scene().expect("the firmware scene");
     let map = &scene.map;
     let p = &scene.params;
-    let cells = map.heights.len();
-    let pyramid_cells = footprint_core::terrain::pyramid::cells(map.width, map.height);
 
     let mut s = String::new();
     writeln!(
@@ -66,12 +64,14 @@ fn main() {
     .unwrap();
     writeln!(
         s,
-        "/// Voxels in level 0.\npub const CELLS: usize = {cells};"
+        "/// Voxels in level 0.\npub const CELLS: usize = MAP_WIDTH as usize * MAP_HEIGHT as usize;"
     )
     .unwrap();
+    // Sized by the core's `const fn`, when the firmware compiles: the build script bakes the
+    // map, not the sizes of the buffers built from it.
     writeln!(
         s,
-        "/// Voxels in pyramid levels 1 and up (built on the chip).\npub const PYRAMID_CELLS: usize = {pyramid_cells};"
+        "/// Voxels in pyramid levels 1 and up (built on the chip).\npub const PYRAMID_CELLS: usize = footprint_core::terrain::pyramid::cells(MAP_WIDTH, MAP_HEIGHT);"
     )
     .unwrap();
     writeln!(
