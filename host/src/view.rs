@@ -288,20 +288,8 @@ impl View {
 
     /// Loads the map and resolves the camera (fitting the eye height if asked).
     pub fn new(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
-        let (w, h) = (cam.size.width, cam.size.height);
-        crate::memory::check(
-            crate::memory::image_bytes(w, h),
-            &format!("--size {w}x{h}"),
-            "the images",
-        )?;
-        let pyramid = map_args.pyramid()?;
-        let options = cam.options();
-        let camera = resolve_camera(&pyramid, cam, options)?;
-        crate::camera::warn_degenerate(&pyramid, &camera, options);
-        Ok(Self {
-            pyramid,
-            camera,
-            options,
+        Self::with_camera(map_args, cam, |pyramid, options| {
+            resolve_camera(pyramid, cam, options)
         })
     }
 
@@ -311,6 +299,21 @@ impl View {
     /// mirrored copies. `cam` gives the size, the projection and the LOD switch.
     pub fn overview(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
         let (w, h) = (cam.size.width, cam.size.height);
+        Self::with_camera(map_args, cam, |pyramid, options| {
+            let params = overview_params(pyramid.map(), w, h);
+            place(pyramid, params, None, Eye::Placed(params.eye_m), options)
+        })
+    }
+
+    /// Checks the images against the memory budget, loads the map, and places the camera
+    /// with `camera` (warning about degenerate views): what [`View::new`] and
+    /// [`View::overview`] share.
+    fn with_camera(
+        map_args: &MapArgs,
+        cam: &CameraArgs,
+        camera: impl FnOnce(&Pyramid, Options) -> Result<Camera>,
+    ) -> Result<Self> {
+        let (w, h) = (cam.size.width, cam.size.height);
         crate::memory::check(
             crate::memory::image_bytes(w, h),
             &format!("--size {w}x{h}"),
@@ -318,8 +321,7 @@ impl View {
         )?;
         let pyramid = map_args.pyramid()?;
         let options = cam.options();
-        let params = overview_params(pyramid.map(), w, h);
-        let camera = place(&pyramid, params, None, Eye::Placed(params.eye_m), options)?;
+        let camera = camera(&pyramid, options)?;
         crate::camera::warn_degenerate(&pyramid, &camera, options);
         Ok(Self {
             pyramid,
