@@ -108,12 +108,9 @@ where
     D::Color: PixelSink,
     C: Cost,
 {
-    if frame.fan().is_some() {
-        return Err(RenderError::ExactProjection);
-    }
-    mode.render(frame, terrain, cost, buffer)
-        .map_err(RenderError::Core)?;
-    fill(target, frame, buffer)
+    render_and_fill(target, frame, buffer, |buffer| {
+        mode.render(frame, terrain, cost, buffer)
+    })
 }
 
 /// [`render`] with one sampler type (`ParallelArea` for the paper's `as`, …), which is all a
@@ -132,19 +129,24 @@ where
     S: Sampler + Clone,
     C: Cost,
 {
+    render_and_fill(target, frame, buffer, |buffer| {
+        column::render(frame, terrain, sampler, cost, buffer)
+    })
+}
+
+/// What [`render`] and [`render_with`] share: refuses a frame of the exact projection, runs
+/// `walk` into `buffer`, and draws the rendered `buffer` (the frame's image) into `target` at
+/// its origin.
+fn render_and_fill<D: DrawTarget>(
+    target: &mut D,
+    frame: &Frame<'_>,
+    buffer: &mut [D::Color],
+    walk: impl FnOnce(&mut [D::Color]) -> Result<(), Error>,
+) -> Result<(), RenderError<D::Error>> {
     if frame.fan().is_some() {
         return Err(RenderError::ExactProjection);
     }
-    column::render(frame, terrain, sampler, cost, buffer).map_err(RenderError::Core)?;
-    fill(target, frame, buffer)
-}
-
-/// Draws the rendered `buffer` (the frame's image) into `target` at its origin.
-fn fill<D: DrawTarget>(
-    target: &mut D,
-    frame: &Frame<'_>,
-    buffer: &[D::Color],
-) -> Result<(), RenderError<D::Error>> {
+    walk(&mut *buffer).map_err(RenderError::Core)?;
     let (w, h) = frame.image_size();
     let size = Size::new(
         u32::try_from(w).unwrap_or(u32::MAX),

@@ -636,17 +636,23 @@ fn glint_names_a_bad_material() {
     assert_one_line_error(&footprint(&args), &args, "--material");
 }
 
-/// Class 4 (issue 28): a full stdout or stderr ends the run with one line and exit code 2.
-/// Before: `map info g.asc --json > /dev/full` panicked (exit 101).
-#[test]
-fn a_full_stdout_or_stderr_is_an_error_not_a_panic() {
-    let dir = tempfile::tempdir().unwrap();
-    let grid = dir.path().join("g.asc");
+/// A 3×2 ESRI ASCII grid `g.asc` in `dir`: the smallest map the readers take.
+fn tiny_grid(dir: &std::path::Path) -> std::path::PathBuf {
+    let grid = dir.join("g.asc");
     std::fs::write(
         &grid,
         "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n1 2 3\n4 5 6\n",
     )
     .unwrap();
+    grid
+}
+
+/// Class 4 (issue 28): a full stdout or stderr ends the run with one line and exit code 2.
+/// Before: `map info g.asc --json > /dev/full` panicked (exit 101).
+#[test]
+fn a_full_stdout_or_stderr_is_an_error_not_a_panic() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = tiny_grid(dir.path());
     let g = grid.to_str().unwrap();
     let full = || {
         std::fs::OpenOptions::new()
@@ -701,12 +707,7 @@ fn a_full_stdout_or_stderr_is_an_error_not_a_panic() {
 fn messages_name_the_option_and_escape_the_file() {
     let evil = "/nonexistent/\u{1b}[31mred\u{7}.asc";
     let dir = tempfile::tempdir().unwrap();
-    let grid = dir.path().join("g.asc");
-    std::fs::write(
-        &grid,
-        "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n1 2 3\n4 5 6\n",
-    )
-    .unwrap();
+    let grid = tiny_grid(dir.path());
     for args in [
         &["map", "info", evil][..],
         &["render", "--dem", evil][..],

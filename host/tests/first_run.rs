@@ -118,18 +118,7 @@ fn no_help_text_mentions_an_issue() {
 /// stopped here).
 #[test]
 fn serve_without_the_page_names_the_fix_in_one_line() {
-    use std::io::{BufRead, BufReader};
-    use std::process::{Command, Stdio};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
-        .args(["serve", "--port", "0", "--terrain-size", "16"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    let mut first = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut first)
-        .unwrap();
+    let (mut child, first) = common::browser::spawn_serve(&["--terrain-size", "16"]);
     if first.starts_with("serving the page at http://127.0.0.1:") {
         child.kill().unwrap();
         child.wait().unwrap();

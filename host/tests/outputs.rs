@@ -297,7 +297,7 @@ fn fly_out_into_an_existing_folder_writes_all_or_nothing() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("cut_as.png")).unwrap();
     std::fs::write(dir.path().join("keep.txt"), b"k").unwrap();
-    let o = common::footprint(&[
+    let fly = [
         "fly",
         "--terrain-size",
         "64",
@@ -310,7 +310,8 @@ fn fly_out_into_an_existing_folder_writes_all_or_nothing() {
         "--column-only",
         "--out",
         dir.path().to_str().unwrap(),
-    ]);
+    ];
+    let o = common::footprint(&fly);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
@@ -330,20 +331,7 @@ fn fly_out_into_an_existing_folder_writes_all_or_nothing() {
     );
     // Without the obstacle, both appear and the other file stays.
     std::fs::remove_dir(dir.path().join("cut_as.png")).unwrap();
-    let o = common::footprint(&[
-        "fly",
-        "--terrain-size",
-        "64",
-        "--size",
-        "16x12",
-        "--frames",
-        "3",
-        "--modes",
-        "ps,as",
-        "--column-only",
-        "--out",
-        dir.path().to_str().unwrap(),
-    ]);
+    let o = common::footprint(&fly);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in ["cut_ps.png", "cut_as.png", "keep.txt"] {
         assert!(dir.path().join(f).is_file(), "{f}");

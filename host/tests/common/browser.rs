@@ -13,6 +13,23 @@ use std::time::{Duration, Instant};
 use base64::Engine as _;
 use serde_json::{json, Value};
 
+/// Starts `footprint serve --port 0 ARGS…` and reads the first line it prints on stdout (the
+/// address it serves, or nothing if it refused: its stderr says why).
+pub fn spawn_serve(args: &[&str]) -> (Child, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
+        .args(["serve", "--port", "0"])
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("footprint serve starts");
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    (child, line)
+}
+
 /// A running `footprint serve --port 0 ARGS…`, killed when dropped.
 pub struct Served {
     child: Child,
@@ -23,17 +40,7 @@ pub struct Served {
 impl Served {
     /// Starts it.
     pub fn start(args: &[&str]) -> Self {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
-            .args(["serve", "--port", "0"])
-            .args(args)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("footprint serve starts");
-        let mut line = String::new();
-        BufReader::new(child.stdout.take().unwrap())
-            .read_line(&mut line)
-            .unwrap();
+        let (mut child, line) = spawn_serve(args);
         let port = line
             .split("127.0.0.1:")
             .nth(1)
@@ -242,16 +249,7 @@ impl Drop for Browser {
 /// for a missing Chromium, and the caller skips its test: `cargo test --workspace` passes on a
 /// machine without the wasm32 target. CI installs the target, so there the tests run.
 pub fn page_or_warn() -> bool {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_footprint"))
-        .args(["serve", "--port", "0", "--terrain-size", "16"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("footprint serve starts");
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
+    let (mut child, line) = spawn_serve(&["--terrain-size", "16"]);
     if line.starts_with("serving the page") {
         let _ = child.kill();
         let _ = child.wait();
