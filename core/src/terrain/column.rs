@@ -18,7 +18,7 @@ use crate::num::{Eye, Height, Line};
 use crate::sink::PixelSink;
 use crate::terrain::camera::{Column, Frame};
 use crate::terrain::cost::Cost;
-use crate::terrain::march::{Flow, Hits, March, RideEnd, Voxel};
+use crate::terrain::march::{Flow, Hits, March, Voxel};
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
@@ -263,9 +263,6 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     let skips = march.can_skip();
 
     if march.n() <= column.n_far {
-        // Whether the current voxel is done with (sampled, or the ray is above it), so that
-        // the next ride begins with a step.
-        let mut step_first = false;
         loop {
             // Ride the run while the voxels stay at or below the ray (the inner loop).
             let rise = Height::from_bits(ray.slope.to_bits() * march.step());
@@ -289,22 +286,18 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
             } else {
                 1
             };
-            let (end_of_ride, steps) = if ray.slope >= 0 {
-                march.ride::<true>(&mut ray, max_h, limit, step_first, &mut px)
+            let steps = if ray.slope >= 0 {
+                march.ride::<true>(&mut ray, max_h, limit, &mut px)
             } else {
-                march.ride::<false>(&mut ray, max_h, limit, step_first, &mut px)
+                march.ride::<false>(&mut ray, max_h, limit, &mut px)
             };
             px.cost.steps(steps, px.in_footprint);
             if px.finished {
                 px.cost.end_column();
                 return;
             }
-            if end_of_ride == RideEnd::Hit {
-                step_first = true;
-                continue;
-            }
-            // The run ended (or the ray rose above everything): the step out of it.
-            step_first = false;
+            // The ride ended on a voxel that is done with (the hit it returned on, its run's
+            // last voxel, or the ray above everything): the step out of it.
             if ray.slope >= 0 && ray.h > max_h {
                 break;
             }

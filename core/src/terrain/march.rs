@@ -319,24 +319,22 @@ impl<'a, 't> March<'a, 't> {
     /// On a hit — a voxel whose top is above the ray — `on_hit.hit(voxel, top, ray, steps)` gets
     /// the voxel, its top, the ray (which it may raise, or replace by the next pixel's) and the
     /// steps taken since the last report; [`Flow::Continue`] steps on with the ray it leaves.
-    /// The ride returns [`RideEnd::Hit`] (the cursor on the hit voxel) when `on_hit` says
-    /// [`Flow::Stop`], when `limit` is finite (the walk is crossing empty air a step at a time)
-    /// or when the ray's slope changed sign (`ASCENDING` no longer holds); and
-    /// [`RideEnd::Run`] when the run ends (the cursor on its last voxel, which the ray passes
-    /// above; [`March::advance`] takes the step out of it) or, with `ASCENDING` (a ray that does
-    /// not descend), on the first voxel where the ray is above `ceiling` (the highest point of
-    /// the terrain: nothing further can be hit). With `step_first` the current voxel is not
-    /// tested (it is done with): the ride begins with a step. Returns the steps taken since the
-    /// last report to `on_hit`.
+    /// The ride returns, the cursor on a voxel that is done with (the caller takes the step out
+    /// of it, [`March::advance`]): the hit voxel when `on_hit` says [`Flow::Stop`], when `limit`
+    /// is finite (the walk is crossing empty air a step at a time) or when the ray's slope
+    /// changed sign (`ASCENDING` no longer holds); the run's last voxel, which the ray passes
+    /// above; or, with `ASCENDING` (a ray that does not descend), the first voxel where the
+    /// ray is above `ceiling` (the highest point of the terrain: nothing further can be hit).
+    /// The current voxel is tested first. Returns the steps taken since the last report to
+    /// `on_hit`.
     #[inline(always)]
     pub fn ride<const ASCENDING: bool>(
         &mut self,
         ray: &mut Ray,
         ceiling: Height,
         limit: u32,
-        step_first: bool,
         on_hit: &mut impl Hits,
-    ) -> (RideEnd, u32) {
+    ) -> u32 {
         let ceiling = ceiling.to_bits();
         let heights = self.heights;
         let (du, dv_step, dn) = (self.du, self.dv_step, self.dn);
@@ -346,7 +344,9 @@ impl<'a, 't> March<'a, 't> {
         // of 32 bits. Moving the other way, the fraction is kept complemented (`!frac` grows by
         // what `frac` loses, and carries when `frac` would borrow). One 32-bit add and its
         // carry per step, instead of a 64-bit add, shift and compare.
-        let flip = if dv_step < 0 { u32::MAX } else { 0 };
+        // (A ray that does not move across counts as moving down, as `plan_cross` has it; it
+        // never carries.)
+        let flip = if dv_step > 0 { 0 } else { u32::MAX };
         #[allow(
             clippy::cast_possible_truncation,
             reason = "|dv_step| ≤ 2^(31+l) (|dv| ≤ ½ in `Frame::new`), so |dv_step >> l| ≤ 2^31"
@@ -354,7 +354,6 @@ impl<'a, 't> March<'a, 't> {
         let d_frac = (dv_step >> self.l).unsigned_abs() as u32;
         let mut rise = ray.slope.to_bits().wrapping_mul(dn);
         let mut h = ray.h.to_bits();
-        let mut test = !step_first;
         let mut unreported = 0;
         enum Stop {
             Hit,
@@ -371,9 +370,8 @@ impl<'a, 't> March<'a, 't> {
             // end, or a mirror edge across the ray.
             let found = loop {
                 let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
-                if test && top > h {
-                    let crossed = self.cross_left - cross_left;
-                    let voxel = self.voxel_at(idx, frac ^ flip, cv, crossed, start - left);
+                if top > h {
+                    let voxel = self.voxel_at(idx, frac ^ flip, cv, cross_left, start - left);
                     ray.h = Height::from_bits(h);
                     let steps = unreported + (mark - left);
                     (unreported, mark) = (0, left);
@@ -387,7 +385,6 @@ impl<'a, 't> March<'a, 't> {
                     h = ray.h.to_bits();
                     rise = ray.slope.to_bits().wrapping_mul(dn);
                 }
-                test = true;
                 if left == 0 || (ASCENDING && h > ceiling) {
                     break Stop::End;
                 }
@@ -420,12 +417,12 @@ impl<'a, 't> March<'a, 't> {
                 }
                 Stop::Hit => {
                     self.v = v;
-                    return (RideEnd::Hit, unreported);
+                    return unreported;
                 }
                 Stop::End => {
                     self.v = v;
                     ray.h = Height::from_bits(h);
-                    return (RideEnd::Run, unreported);
+                    return unreported;
                 }
             }
         }
@@ -705,21 +702,22 @@ impl<'a, 't> March<'a, 't> {
     /// The current voxel as a sampler sees it.
     #[inline(always)]
     pub fn voxel(&self) -> Voxel<'_> {
-        self.voxel_at(self.idx, self.frac(), self.cv, 0, 0)
+        self.voxel_at(self.idx, self.frac(), self.cv, self.cross_left, 0)
     }
 
-    /// The voxel at array index `idx`, cross fraction `frac` and cross cell `cv`, `crossed`
-    /// crossings across the ray and `taken` steps into the current run beyond what the cursor's
-    /// fields record (a ride's locals, not yet written back). Only these five words are
-    /// written per hit: everything else a sampler may ask is read from the cursor when asked.
+    /// The voxel at array index `idx`, cross fraction `frac` and cross cell `cv`, with
+    /// `cross_left` crossings left before a mirror edge across the ray, `taken` steps into the
+    /// current run beyond what the cursor's fields record (a ride's locals, not yet written
+    /// back). Only these five words are written per hit: everything else a sampler may ask is
+    /// read from the cursor when asked.
     #[inline(always)]
-    fn voxel_at(&self, idx: usize, frac: u32, cv: i64, crossed: u32, taken: u32) -> Voxel<'_> {
+    fn voxel_at(&self, idx: usize, frac: u32, cv: i64, cross_left: u32, taken: u32) -> Voxel<'_> {
         Voxel {
             march: self,
             idx,
             frac,
             cv,
-            crossed,
+            cross_left,
             taken,
         }
     }
@@ -753,17 +751,6 @@ pub enum Flow {
     Stop,
 }
 
-/// How a ride ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RideEnd {
-    /// The run ended, or a non-descending ray rose above the ceiling: the cursor is on the
-    /// run's last voxel, which the ray passes above ([`March::advance`] takes the next step).
-    Run,
-    /// A hit, after which the ride returned (the hit handler said [`Flow::Stop`], the ride
-    /// had a step limit, or the ray's slope changed sign): the cursor is on the hit voxel.
-    Hit,
-}
-
 /// The voxel the walk stands on, as a sampler sees it (Sect. 4): where its colour is, the
 /// ray's cross-axis position over it, and its place in the voxel sequence. Built from a ride's
 /// locals and a borrow of the cursor, so a hit writes five words, and a sampler that reads
@@ -778,8 +765,9 @@ pub struct Voxel<'v> {
     frac: u32,
     /// The cell index across.
     cv: i64,
-    /// Crossings across the ray since the cursor's `pv` was recorded.
-    crossed: u32,
+    /// Crossings into the next cell across, in the direction the ray moves across, before a
+    /// mirror edge (see [`March::plan_cross`]).
+    cross_left: u32,
     /// Steps into the run beyond the cursor's own count.
     taken: u32,
 }
@@ -830,76 +818,51 @@ impl Voxel<'_> {
         self.march.colors.get(self.idx).copied().unwrap_or_default()
     }
 
-    /// The voxel's position in the mirrored period across the ray.
-    #[inline(always)]
-    fn pv(&self) -> u32 {
-        let (m, crossed) = (self.march, self.crossed);
-        if crossed == 0 {
-            m.pv
-        } else if m.len_v == 1 {
-            m.pv ^ (crossed & 1)
-        } else if m.dv_step > 0 {
-            m.pv + crossed
-        } else {
-            m.pv - crossed
-        }
-    }
-
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose
     /// centres straddle the ray's cross-axis position, weighted by distance (8-bit weights).
     #[inline(always)]
     pub fn sample_linear(&self) -> Color16 {
-        // Position in level cells, 32 fractional bits; centres sit at +½.
         let m = self.march;
-        let frac = u64::from(self.frac);
-        let (pv, len, stride) = (self.pv(), m.len_v, m.stride_v as isize);
-        // The neighbour across is one row from the current voxel: the mirrored index moves by
-        // one cell, or stays at an edge of the map (where the mirror repeats the edge voxel).
-        #[allow(
-            clippy::cast_possible_truncation,
-            reason = "frac < 2^32 (masked above), so each weight (frac ± 2^31) >> 24 is below 2^9"
-        )]
-        let (near, f) = if frac >= 1 << 31 {
-            // The next cell, period position pv + 1.
-            let step = if pv + 1 == len || pv + 1 == 2 * len {
-                0
-            } else if pv < len {
-                stride
+        // The fraction's top byte `b` (centre at 128): the neighbour across is on the side of
+        // the centre the ray is on, and takes the weight |b − 128| of 256 (Eq. 4's distance).
+        let b = self.frac >> 24;
+        let w_there = b.abs_diff(128);
+        // Which way the neighbour lies in the array: one cell in the direction the ray moves
+        // across (`dcross`, or 0 at a mirror edge, where the mirror repeats the edge voxel),
+        // or one back (the cells behind, up to the other mirror edge, number
+        // `len − 1 − cross_left`). On a one-cell-wide axis `dcross` is 0 either way.
+        let ahead = (b >= 128) == (m.dv_step > 0);
+        let near = if ahead {
+            if self.cross_left > 0 {
+                m.dcross
             } else {
-                -stride
-            };
-            (step, ((frac - (1 << 31)) >> 24) as u32)
+                0
+            }
+        } else if self.cross_left < m.len_v.saturating_sub(1) {
+            -m.dcross
         } else {
-            // The previous cell, period position pv − 1.
-            let step = if pv == 0 || pv == len {
-                0
-            } else if pv < len {
-                -stride
-            } else {
-                stride
-            };
-            (step, ((frac + (1 << 31)) >> 24) as u32)
+            0
         };
         let colors = m.colors;
         let at = |i: usize| colors.get(i).copied().unwrap_or_default();
         let (here, there) = (at(self.idx), at(self.idx.wrapping_add_signed(near)));
-        // The lower voxel takes 256 − f, the upper f: here is the lower one past the centre.
-        let (w_here, w_there) = if frac >= 1 << 31 {
-            (256 - f, f)
-        } else {
-            (f, 256 - f)
-        };
+        let w_here = 256 - w_there;
         // Red and blue in two 16-bit lanes of one word (each mix is at most 255·256 < 2^16, so
         // no lane carries into the next, and the masks drop nothing), green alone: four
         // multiplies instead of six.
         let rb = |c: Rgb| u32::from(c.r) | u32::from(c.b) << 16;
         let mixed = rb(here) * w_here + rb(there) * w_there;
         let g = u32::from(here.g) * w_here + u32::from(there.g) * w_there;
-        [
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "each lane is at most 255·256 < 2^16 (the weights sum to 256)"
+        )]
+        let mix = [
             (mixed & 0xFFFF) as u16,
             (g & 0xFFFF) as u16,
             (mixed >> 16) as u16,
-        ]
+        ];
+        mix
     }
 }
 
