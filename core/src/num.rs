@@ -79,15 +79,32 @@ pub fn mul_floor_24(a: i64, b: i64) -> i64 {
 /// takes the 128-bit product (which the Cortex-M4 does in software, about 40 instructions).
 #[inline(always)]
 pub fn mul_floor_32(a: i64, b: i64) -> i64 {
-    const LIMIT: i64 = 1 << 47;
-    if (-LIMIT..=LIMIT).contains(&a) && (0..LIMIT).contains(&b) {
-        let (p, q) = (a >> 32, a & 0xFFFF_FFFF);
-        let (r, s) = (b >> 32, b & 0xFFFF_FFFF);
-        ((p * r) << 32) + p * s + q * r + ((q as u64 * s as u64) >> 32) as i64
+    if (-MUL_32_LIMIT..=MUL_32_LIMIT).contains(&a) && (0..MUL_32_LIMIT).contains(&b) {
+        mul_floor_32_in_range(a, b)
     } else {
         let x = (i128::from(a) * i128::from(b)) >> 32;
         i64::try_from(x).unwrap_or(if x < 0 { i64::MIN } else { i64::MAX })
     }
+}
+
+/// The bound of [`mul_floor_32`]'s 64-bit arithmetic: `|a| ≤ 2^47`, `0 ≤ b < 2^47`.
+pub(crate) const MUL_32_LIMIT: i64 = 1 << 47;
+
+/// [`mul_floor_32`] for operands within its 64-bit bound ([`MUL_32_LIMIT`]), which the caller
+/// has proved: `|a| ≤ 2^47` and `0 ≤ b < 2^47`. Outside it the result wraps (no panic).
+#[inline(always)]
+pub(crate) fn mul_floor_32_in_range(a: i64, b: i64) -> i64 {
+    let (p, q) = (a >> 32, a & 0xFFFF_FFFF);
+    let (r, s) = (b >> 32, b & 0xFFFF_FFFF);
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "q, s < 2^32, so (q·s) >> 32 < 2^32"
+    )]
+    let low = ((q as u64).wrapping_mul(s as u64) >> 32) as i64;
+    (p.wrapping_mul(r) << 32)
+        .wrapping_add(p.wrapping_mul(s))
+        .wrapping_add(q.wrapping_mul(r))
+        .wrapping_add(low)
 }
 
 /// A ray `H(n) = base + n·slope`: Eq. 3 in the walk's coordinates.

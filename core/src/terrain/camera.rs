@@ -30,8 +30,8 @@
 use crate::color::Rgb;
 use crate::error::{check, check_in, Error};
 use crate::num::{
-    fixed_from_f64, mul_floor_24, mul_floor_32, Coord, Height, Line, Slope, MAX_COORD,
-    MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE_BITS,
+    fixed_from_f64, mul_floor_24, mul_floor_32, mul_floor_32_in_range, Coord, Height, Line, Slope,
+    MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE_BITS, MUL_32_LIMIT,
 };
 use crate::terrain::fan::{Fan, Filter};
 use crate::terrain::map::{Axis, Terrain};
@@ -373,6 +373,10 @@ pub struct Frame<'t> {
     sky: Rgb,
     lod: bool,
     fan: Option<Fan>,
+    /// Every row slope times every column's `kc` is within [`mul_floor_32`]'s 64-bit bound and
+    /// needs no clamp to [`MAX_SLOPE`] (proved once, in [`Frame::new`]): [`Frame::ray`] then
+    /// takes the products without range tests.
+    rays_in_range: bool,
 }
 
 impl<'t> Frame<'t> {
@@ -544,6 +548,7 @@ impl<'t> Frame<'t> {
         if let Some(fan) = &fan {
             fan.set_line_rows(rows, columns);
         }
+        let rays_in_range = rays_in_range(rows, columns);
         Ok(Self {
             rows,
             columns,
@@ -551,6 +556,7 @@ impl<'t> Frame<'t> {
             sky: options.sky,
             lod: options.lod,
             fan,
+            rays_in_range,
         })
     }
 
@@ -648,20 +654,115 @@ impl<'t> Frame<'t> {
     /// The arithmetic is `fixed`'s saturating multiplication written out (a 64×64-bit
     /// product, floored, saturated to 64 bits: [`mul_floor_32`], in 64-bit arithmetic for
     /// every sane view), which the walk pays once per pixel.
+    ///
+    /// When [`Frame::new`] has proved every row's product in range (every sane view), the
+    /// walk's per-pixel ray is the 64-bit product alone, with no range test and no clamp.
     #[inline]
     #[doc(hidden)] // the walk's own ray, for the tests
     pub fn ray(&self, column: &Column, i: usize) -> Line {
         let row = self.rows.get(i).map_or(0, |r| r.to_bits());
+        let kc = column.kc.to_bits();
         // I32F32 × I32F32 → I32F32 (floor, saturating), then to I40F24 (floor), clamped.
-        let q32 = mul_floor_32(row, column.kc.to_bits());
-        let limit = MAX_SLOPE_BITS;
-        let slope = (q32 >> 8).clamp(-limit, limit);
+        let slope = if self.rays_in_range {
+            mul_floor_32_in_range(row, kc) >> 8
+        } else {
+            let limit = MAX_SLOPE_BITS;
+            (mul_floor_32(row, kc) >> 8).clamp(-limit, limit)
+        };
         // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 half-voxels
-        // (the eye is within ±MAX_COORD) and |slope| ≤ 2^39 raw (clamped above).
+        // (the eye is within ±MAX_COORD) and |slope| ≤ 2^39 raw (clamped above), so
+        // |m| ≤ 2^61 raw; with |eye| ≤ 2^46 raw the difference cannot wrap.
         let m = mul_floor_24(column.n_eye.to_bits(), slope);
         Line {
-            base: Height::from_bits(self.eye.to_bits().saturating_sub(m)),
+            base: Height::from_bits(self.eye.to_bits().wrapping_sub(m)),
             slope: Slope::from_bits(slope),
+        }
+    }
+}
+
+/// Whether every row slope times every column's `kc` can take [`mul_floor_32`]'s 64-bit
+/// path and, shifted to I40F24, lies within ±[`MAX_SLOPE`] (so that [`Frame::ray`] needs neither
+/// the range test nor the clamp): `|row| ≤ 2^47`, `0 ≤ kc < 2^47` and `|row|·kc ≤ 2^79`
+/// (then `|⌊row·kc / 2^40⌋| ≤ 2^39`). Once per frame.
+fn rays_in_range(rows: &[Coord], columns: &[Column]) -> bool {
+    let row_max = rows
+        .iter()
+        .map(|r| r.to_bits().unsigned_abs())
+        .max()
+        .unwrap_or(0);
+    let kc_max = columns.iter().map(|c| c.kc.to_bits()).max().unwrap_or(0);
+    let kc_min = columns.iter().map(|c| c.kc.to_bits()).min().unwrap_or(0);
+    row_max <= MUL_32_LIMIT.unsigned_abs()
+        && kc_min >= 0
+        && kc_max < MUL_32_LIMIT
+        && u128::from(row_max) * u128::from(kc_max.unsigned_abs()) <= 1u128 << 79
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::map::{Level, Scale};
+
+    /// `Frame::ray` by the definition: the 128-bit product floored and saturated to 64 bits,
+    /// shifted to I40F24, clamped to ±MAX_SLOPE; the base `eye − ⌊n_eye·slope / 2^24⌋`.
+    fn reference(frame: &Frame<'_>, column: &Column, i: usize) -> (i64, i64) {
+        let row = i128::from(frame.rows[i].to_bits());
+        let q32 = (row * i128::from(column.kc.to_bits())) >> 32;
+        let q32 = q32.clamp(i128::from(i64::MIN), i128::from(i64::MAX));
+        let slope = (q32 >> 8).clamp(-i128::from(MAX_SLOPE_BITS), i128::from(MAX_SLOPE_BITS));
+        let m = (i128::from(column.n_eye.to_bits()) * slope) >> 24;
+        let base = i128::from(frame.eye.to_bits()) - m;
+        (i64::try_from(base).unwrap(), i64::try_from(slope).unwrap())
+    }
+
+    /// The per-pixel ray without range tests (a frame whose products `rays_in_range` proved)
+    /// and the one with them (a frame it could not prove: near-vertical rows over a map of
+    /// voxels 65,536 height units wide, whose slopes clamp) both equal the
+    /// 128-bit definition at every row of every column.
+    #[test]
+    fn rays_with_and_without_the_range_proof_equal_the_128_bit_definition() {
+        let heights = [0u16; 4];
+        let colors = [Rgb::new(1, 2, 3); 4];
+        let level = Level::new(2, 2, &heights, &colors).unwrap();
+        for (scale, pitch, fov, proved) in [
+            (Scale::new(30.0, 0.1).unwrap(), 20.0, 10.0, true),
+            (Scale::new(30.0, 0.1).unwrap(), -85.0, 170.0, true),
+            (Scale::new(65_536.0, 1.0).unwrap(), 89.0, 179.0, false),
+        ] {
+            let terrain = Terrain::new(level, scale);
+            let camera = Camera::new(CameraParams {
+                x_m: 10.0,
+                y_m: -20.0,
+                eye_m: 500.0,
+                heading_deg: 30.0,
+                pitch_deg: pitch,
+                roll_deg: 0.0,
+                fov_deg: fov,
+                width: 8,
+                height: 8,
+                far_m: 1000.0,
+            })
+            .unwrap();
+            let (mut rows, mut columns) = ([Coord::ZERO; 9], [Column::default(); 8]);
+            let frame = Frame::new(
+                &camera,
+                &terrain,
+                Options::default(),
+                &mut rows,
+                &mut columns,
+            )
+            .unwrap();
+            assert_eq!(frame.rays_in_range, proved, "pitch {pitch}, fov {fov}");
+            for column in frame.columns() {
+                for i in 0..=frame.height() {
+                    let ray = frame.ray(column, i);
+                    assert_eq!(
+                        (ray.base.to_bits(), ray.slope.to_bits()),
+                        reference(&frame, column, i),
+                        "pitch {pitch}, row {i}"
+                    );
+                }
+            }
         }
     }
 }
