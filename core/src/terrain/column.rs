@@ -162,6 +162,11 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O
     #[inline(always)]
     fn hit(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, steps: u32) -> Flow {
         self.cost.steps(steps, self.in_footprint);
+        let mut flow = if S::KEEPS_SLOPE {
+            Flow::Continue
+        } else {
+            Flow::NewSlope
+        };
         let mut again = Some(top);
         while let Some(top) = again {
             again = None;
@@ -186,12 +191,13 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O
                         return Flow::Stop;
                     }
                     *ray = self.begin(self.upper, voxel.n());
+                    flow = Flow::NewSlope;
                     again = (top > ray.h).then_some(top);
                 }
                 Hit::Rejected => {}
             }
         }
-        Flow::Continue
+        flow
     }
 }
 

@@ -73,6 +73,9 @@ pub struct March<'a, 't> {
     v: i64,
     dv: i64,
     dv_step: i64,
+    /// `0` when the ray moves up across (`dv > 0`), all ones otherwise: a fraction of the cross
+    /// coordinate XOR `flip` grows in the direction the ray moves across ([`March::ride`]).
+    flip: u32,
     /// Infinite cross-axis cell index at level `l`.
     cv: i64,
     /// Positions in the mirrored periods of the major and cross axes.
@@ -140,6 +143,8 @@ impl<'a, 't> March<'a, 't> {
                 .saturating_add(column.dv.to_bits().saturating_mul(column.n_start)),
             dv: column.dv.to_bits(),
             dv_step: 0,
+            // A ray that does not move across counts as moving down, as `plan_cross` has it.
+            flip: if column.dv.to_bits() > 0 { 0 } else { u32::MAX },
             cv: 0,
             pu: 0,
             pv: 0,
@@ -318,7 +323,8 @@ impl<'a, 't> March<'a, 't> {
     /// The ray is `ray` here (its slope per half-voxel times the step gives the rise per step).
     /// On a hit — a voxel whose top is above the ray — `on_hit.hit(voxel, top, ray, steps)` gets
     /// the voxel, its top, the ray (which it may raise, or replace by the next pixel's) and the
-    /// steps taken since the last report; [`Flow::Continue`] steps on with the ray it leaves.
+    /// steps taken since the last report; [`Flow::Continue`] steps on with the ray it leaves
+    /// (its height; [`Flow::NewSlope`] if it may have changed the slope too).
     /// The ride returns, the cursor on a voxel that is done with (the caller takes the step out
     /// of it, [`March::advance`]): the hit voxel when `on_hit` says [`Flow::Stop`], when `limit`
     /// is finite (the walk is crossing empty air a step at a time) or when the ray's slope
@@ -344,9 +350,7 @@ impl<'a, 't> March<'a, 't> {
         // of 32 bits. Moving the other way, the fraction is kept complemented (`!frac` grows by
         // what `frac` loses, and carries when `frac` would borrow). One 32-bit add and its
         // carry per step, instead of a 64-bit add, shift and compare.
-        // (A ray that does not move across counts as moving down, as `plan_cross` has it; it
-        // never carries.)
-        let flip = if dv_step > 0 { 0 } else { u32::MAX };
+        let flip = self.flip;
         #[allow(
             clippy::cast_possible_truncation,
             reason = "|dv_step| ≤ 2^(31+l) (|dv| ≤ ½ in `Frame::new`), so |dv_step >> l| ≤ 2^31"
@@ -371,19 +375,21 @@ impl<'a, 't> March<'a, 't> {
             let found = loop {
                 let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
                 if top > h {
-                    let voxel = self.voxel_at(idx, frac ^ flip, cv, cross_left, start - left);
+                    let voxel = self.voxel_at(idx, frac, cv, cross_left, start - left);
                     ray.h = Height::from_bits(h);
                     let steps = unreported + (mark - left);
                     (unreported, mark) = (0, left);
                     let flow = on_hit.hit(&voxel, Height::from_bits(top), ray, steps);
-                    if flow == Flow::Stop
-                        || limit != u32::MAX
-                        || (ray.slope.to_bits() >= 0) != ASCENDING
-                    {
+                    if flow == Flow::Stop || limit != u32::MAX {
                         break Stop::Hit;
                     }
+                    if flow == Flow::NewSlope {
+                        if (ray.slope.to_bits() >= 0) != ASCENDING {
+                            break Stop::Hit;
+                        }
+                        rise = ray.slope.to_bits().wrapping_mul(dn);
+                    }
                     h = ray.h.to_bits();
-                    rise = ray.slope.to_bits().wrapping_mul(dn);
                 }
                 if left == 0 || (ASCENDING && h > ceiling) {
                     break Stop::End;
@@ -702,20 +708,26 @@ impl<'a, 't> March<'a, 't> {
     /// The current voxel as a sampler sees it.
     #[inline(always)]
     pub fn voxel(&self) -> Voxel<'_> {
-        self.voxel_at(self.idx, self.frac(), self.cv, self.cross_left, 0)
+        self.voxel_at(
+            self.idx,
+            self.frac() ^ self.flip,
+            self.cv,
+            self.cross_left,
+            0,
+        )
     }
 
-    /// The voxel at array index `idx`, cross fraction `frac` and cross cell `cv`, with
+    /// The voxel at array index `idx`, cross fraction `toward` (XOR `flip`) and cross cell `cv`, with
     /// `cross_left` crossings left before a mirror edge across the ray, `taken` steps into the
     /// current run beyond what the cursor's fields record (a ride's locals, not yet written
     /// back). Only these five words are written per hit: everything else a sampler may ask is
     /// read from the cursor when asked.
     #[inline(always)]
-    fn voxel_at(&self, idx: usize, frac: u32, cv: i64, cross_left: u32, taken: u32) -> Voxel<'_> {
+    fn voxel_at(&self, idx: usize, toward: u32, cv: i64, cross_left: u32, taken: u32) -> Voxel<'_> {
         Voxel {
             march: self,
             idx,
-            frac,
+            toward,
             cv,
             cross_left,
             taken,
@@ -745,8 +757,13 @@ pub trait Hits {
 /// What a ride does after a sampler has dealt with a hit ([`March::ride`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Flow {
-    /// Step on along the run with the (possibly new) ray.
+    /// Step on along the run with the ray at its (possibly raised) height; its slope is the
+    /// one it had.
     Continue,
+    /// Step on along the run with a ray whose slope may have changed (a new pixel's, or one
+    /// a sampler turned): the ride derives its rise per step again, and returns if the slope
+    /// changed sign.
+    NewSlope,
     /// Return to the walk: the column is finished, or it must choose again how to ride.
     Stop,
 }
@@ -761,8 +778,10 @@ pub struct Voxel<'v> {
     march: &'v March<'v, 'v>,
     /// The voxel's index in the level's arrays.
     idx: usize,
-    /// The fraction of the ray's cross coordinate in the voxel's cell, 32 bits (centre at ½).
-    frac: u32,
+    /// The fraction of the ray's cross coordinate in the voxel's cell, 32 bits (centre at ½),
+    /// XOR the cursor's `flip`: it is at or past ½ when the ray is on the side of the centre
+    /// it moves towards.
+    toward: u32,
     /// The cell index across.
     cv: i64,
     /// Crossings into the next cell across, in the direction the ray moves across, before a
@@ -825,13 +844,13 @@ impl Voxel<'_> {
         let m = self.march;
         // The fraction's top byte `b` (centre at 128): the neighbour across is on the side of
         // the centre the ray is on, and takes the weight |b − 128| of 256 (Eq. 4's distance).
-        let b = self.frac >> 24;
+        let b = (self.toward ^ m.flip) >> 24;
         let w_there = b.abs_diff(128);
         // Which way the neighbour lies in the array: one cell in the direction the ray moves
         // across (`dcross`, or 0 at a mirror edge, where the mirror repeats the edge voxel),
         // or one back (the cells behind, up to the other mirror edge, number
         // `len − 1 − cross_left`). On a one-cell-wide axis `dcross` is 0 either way.
-        let ahead = (b >= 128) == (m.dv_step > 0);
+        let ahead = self.toward >= 1 << 31;
         let near = if ahead {
             if self.cross_left > 0 {
                 m.dcross

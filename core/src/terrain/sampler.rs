@@ -56,6 +56,10 @@ pub trait Sampler {
     /// Where the walk climbs pyramid levels for this mode (Sect. 3): the paper's nearest level
     /// unless the mode integrates the footprint ([`Switch`]).
     const SWITCH: Switch = Switch::Nearest;
+    /// Whether [`Sampler::hit`] leaves the ray's slope as it found it whenever it does not
+    /// finish the pixel (it may raise the ray's height): then the walk keeps its rise per step
+    /// across the hit. The default, `false`, is always correct.
+    const KEEPS_SLOPE: bool = false;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
@@ -70,6 +74,8 @@ pub trait Sampler {
 pub struct Point;
 
 impl Sampler for Point {
+    /// Every hit finishes the pixel.
+    const KEEPS_SLOPE: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
@@ -91,6 +97,8 @@ impl Sampler for Point {
 pub struct Linear;
 
 impl Sampler for Linear {
+    /// Every hit finishes the pixel.
+    const KEEPS_SLOPE: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
@@ -184,6 +192,8 @@ impl<const N: u32> Sampler for Super<N> {
     } else {
         Switch::Nearest
     };
+    /// The next sub-ray is the ray raised by `Δ`: parallel.
+    const KEEPS_SLOPE: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         self.sum = [0; 3];
@@ -461,6 +471,8 @@ impl ParallelArea {
 
 impl Sampler for ParallelArea {
     const SWITCH: Switch = Switch::Late;
+    /// The ray resumes at the voxel's top with the pixel's slope (the parallel-ray assumption).
+    const KEEPS_SLOPE: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
         // The sums and the span are set by the pixel's first hit (`first_hit`); until then
@@ -530,6 +542,8 @@ pub struct FirstHit {
 }
 
 impl Sampler for FirstHit {
+    /// Every hit finishes the pixel.
+    const KEEPS_SLOPE: bool = true;
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
         self.n.get_or_insert(voxel.n());
