@@ -446,11 +446,10 @@ impl<'a, 't> March<'a, 't> {
     /// If the level-`k` block of the maximum pyramid that holds the current voxel is at or
     /// below the ray (at `ray` here, rising by `rise` per step, raw) over every voxel of the run
     /// that lies in it, the number of those voxels; `None` if it reaches the ray, or if level
-    /// `k` has no maximum grid.
-    fn clear_block(&self, k: u32, ray: i64, rise: i64) -> Option<u32> {
+    /// `k` has no maximum grid. `(fu, fv)` is the current voxel's folded cell at this level.
+    fn clear_block(&self, k: u32, (fu, fv): (u32, u32), ray: i64, rise: i64) -> Option<u32> {
         let level = self.terrain.levels().get(k as usize)?;
         let max = level.max_heights()?;
-        let (fu, fv) = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
         let d = k - self.l;
         // The block's extent in this level's (folded) cells, along and across the ray.
         let extent = |f: u32, len: u32| {
@@ -473,14 +472,24 @@ impl<'a, 't> March<'a, 't> {
             .min(self.cross_left);
             if allow.saturating_add(1) < s {
                 let (a, shift) = (i64::from(allow), 32 + self.l);
-                let inside = if self.dv_step > 0 {
+                // Whether the ray is still inside the block across at the s-th voxel, by one
+                // product (s ≤ 2^(k−l), the block's side in level-l cells, and |dv_step| ≤
+                // 2^(32+l), so the product is below 2^(32+k) ≤ 2^48: exact); only if it is
+                // not, the division that counts the voxels inside.
+                let last = self.v + i64::from(s - 1) * self.dv_step;
+                if self.dv_step > 0 {
                     let edge = (self.cv + a + 1) << shift;
-                    (edge - self.v + self.dv_step - 1) / self.dv_step
+                    if last >= edge {
+                        let inside = (edge - self.v + self.dv_step - 1) / self.dv_step;
+                        s = s.min(u32::try_from(inside.max(0)).unwrap_or(u32::MAX));
+                    }
                 } else {
                     let edge = (self.cv - a) << shift;
-                    (self.v - edge) / -self.dv_step + 1
-                };
-                s = s.min(u32::try_from(inside.max(0)).unwrap_or(u32::MAX));
+                    if last < edge {
+                        let inside = (self.v - edge) / -self.dv_step + 1;
+                        s = s.min(u32::try_from(inside.max(0)).unwrap_or(u32::MAX));
+                    }
+                }
             }
         }
         if s == 0 {
@@ -524,13 +533,14 @@ impl<'a, 't> March<'a, 't> {
             return 0;
         }
         let first = self.skip_level.clamp(self.l + 1, top);
+        let here = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
         let mut best = 0;
-        if let Some(s) = self.clear_block(first, ray, rise_bits) {
+        if let Some(s) = self.clear_block(first, here, ray, rise_bits) {
             best = s;
             self.skip_level = first;
             let mut k = first + 1;
             while best < self.run && k <= top {
-                match self.clear_block(k, ray, rise_bits) {
+                match self.clear_block(k, here, ray, rise_bits) {
                     Some(s) => (best, self.skip_level) = (s, k),
                     None => break,
                 }
@@ -540,7 +550,7 @@ impl<'a, 't> March<'a, 't> {
             let mut k = first;
             while k > self.l + 1 {
                 k -= 1;
-                if let Some(s) = self.clear_block(k, ray, rise_bits) {
+                if let Some(s) = self.clear_block(k, here, ray, rise_bits) {
                     best = s;
                     break;
                 }
