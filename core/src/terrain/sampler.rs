@@ -377,13 +377,15 @@ impl Sampler for Area {
 pub struct ParallelArea {
     /// `R_{i+1} − R_i`: the line whose height at `n` is the pixel's span there.
     gap: Line,
-    /// The pixel's span `H(R_{i+1}) − H(R_i)` (raw), 0 before the first hit.
-    span: i64,
-    /// How far up the span the ray has been raised (raw).
+    /// How far up the span the ray has been raised (raw), 0 at the pixel's first hit.
     offset: i64,
-    /// The quantizing shift of the span, and the offset quantized (`offset >> shift`,
-    /// below 2^16), so that a hit shifts only its new offset.
+    /// What is left of the span above the ray, `span − offset` (raw): a hit whose top is
+    /// that far above the ray or more reaches `R_{i+1}` and finishes the pixel.
+    room: i64,
+    /// The quantizing shift of the span (`span >> shift < 2^16`), the span quantized, and
+    /// the offset quantized (`offset >> shift`), so that a hit shifts only its new offset.
     shift: u32,
+    span_q: u32,
     quantized: u32,
     sum: [u32; 3],
     wsum: u32,
@@ -395,9 +397,10 @@ impl ParallelArea {
     pub const fn new() -> Self {
         Self {
             gap: Line::ZERO,
-            span: 0,
             offset: 0,
+            room: 0,
             shift: 0,
+            span_q: 0,
             quantized: 0,
             sum: [0; 3],
             wsum: 0,
@@ -413,9 +416,11 @@ impl ParallelArea {
     #[inline(never)]
     fn first_hit(&mut self, n: i64) {
         // H(R_{i+1}) − H(R_i) at n: exact in wrapping arithmetic, as `Line::at` is.
-        self.span = self.gap.at(n).to_bits().max(1);
-        self.shift = (64 - self.span.leading_zeros()).saturating_sub(16);
+        let span = self.gap.at(n).to_bits().max(1);
+        self.shift = (64 - span.leading_zeros()).saturating_sub(16);
         self.offset = 0;
+        self.room = span;
+        self.span_q = self.quantize(span);
         self.quantized = 0;
         self.sum = [0; 3];
         self.wsum = 0;
@@ -433,14 +438,13 @@ impl ParallelArea {
         q
     }
 
-    /// Raises the ray's offset in the span to `to` (raw, `offset ≤ to ≤ span`) and adds the
-    /// quantized weight times `c`.
+    /// Raises the ray's quantized offset in the span to `q` (`quantized ≤ q ≤ span_q`) and adds
+    /// the quantized weight `q − quantized` times `c`; returns the weight.
     #[inline(always)]
-    fn accumulate<C: Cost>(&mut self, to: i64, c: Color16, cost: &mut C) -> u32 {
+    fn accumulate<C: Cost>(&mut self, q: u32, c: Color16, cost: &mut C) -> u32 {
         cost.as_hit();
-        let q = self.quantize(to);
         let w = q - self.quantized;
-        (self.offset, self.quantized) = (to, q);
+        self.quantized = q;
         for (s, c) in self.sum.iter_mut().zip(c) {
             *s += w * u32::from(c);
         }
@@ -502,22 +506,20 @@ impl Sampler for ParallelArea {
             self.first_hit(voxel.n());
         }
         let color = voxel.sample_linear();
-        // H′ − H(R), as an offset into the span: the voxel's top, or the pixel's upper edge.
-        // Exact without saturation: a hit has H(R) < top ≤ 2^40 (raw) and H(R) > −2^62 (the
-        // ray heights of `num`), so 0 < top − H(R) < 2^63; and 0 ≤ offset ≤ span, so the room
+        // H′ − H(R): the voxel's top, or the pixel's upper edge if the top reaches it. Exact
+        // without saturation: a hit has H(R) < top ≤ 2^40 (raw) and H(R) > −2^62 (the ray
+        // heights of `num`), so 0 < top − H(R) < 2^63; and 0 ≤ offset ≤ span, so the room
         // left, span − offset, is in range too.
         let visible = top.to_bits().wrapping_sub(ray.h.to_bits());
-        let room = self.span - self.offset;
-        let to = if visible >= room {
-            self.span
-        } else {
-            self.offset + visible
-        };
-        let w = self.accumulate(to, color, cost);
-        cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
-        if to == self.span {
+        if visible >= self.room {
+            let w = self.accumulate(self.span_q, color, cost);
+            cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
             return Hit::Done(self.finish(color, cost));
         }
+        self.room -= visible;
+        self.offset += visible;
+        let w = self.accumulate(self.quantize(self.offset), color, cost);
+        cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
         ray.h = top;
         Hit::Next
     }
@@ -527,7 +529,7 @@ impl Sampler for ParallelArea {
             return None;
         }
         let sky16 = to_color16(sky);
-        let w = self.accumulate(self.span, sky16, cost);
+        let w = self.accumulate(self.span_q, sky16, cost);
         cost.sky_sample(sky16, Weight::from_bits(i64::from(w)));
         Some(self.finish(sky16, cost))
     }
