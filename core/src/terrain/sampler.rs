@@ -60,6 +60,10 @@ pub trait Sampler {
     /// finish the pixel (it may raise the ray's height): then the walk keeps its rise per step
     /// across the hit. The default, `false`, is always correct.
     const KEEPS_SLOPE: bool = false;
+    /// Whether every hit finishes the pixel (point sampling, linear interpolation): the walk
+    /// then keeps the step to the next pixel inline with the hit, its main work; for the modes
+    /// that hit several voxels per pixel it takes it out of line. A matter of speed only.
+    const ONE_HIT_PER_PIXEL: bool = false;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
@@ -76,6 +80,7 @@ pub struct Point;
 impl Sampler for Point {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
+    const ONE_HIT_PER_PIXEL: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
@@ -99,6 +104,7 @@ pub struct Linear;
 impl Sampler for Linear {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
+    const ONE_HIT_PER_PIXEL: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
@@ -546,6 +552,7 @@ pub struct FirstHit {
 impl Sampler for FirstHit {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
+    const ONE_HIT_PER_PIXEL: bool = true;
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
         self.n.get_or_insert(voxel.n());
