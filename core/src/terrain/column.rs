@@ -153,9 +153,7 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
             slope: lower.slope,
         }
     }
-}
 
-impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
     /// Pixel `i` is finished with `color`: writes it and begins the next one, whose lower ray
     /// resumes at `voxel` (into `ray`); `false` if it was the last.
     #[inline(always)]
@@ -172,7 +170,7 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
 
     /// [`Pixels::next_pixel`] out of the ride's loop, for the modes that hit several voxels
     /// per pixel: inlined, the next pixel's rays (Eqs. 2–3) take registers from their
-    /// per-hit work (M4 `as` 770 → 731 instructions per pixel; PS, whose every hit finishes
+    /// per-hit work (M4 `as` 770.4 → 729.0 instructions per pixel; PS, whose every hit finishes
     /// a pixel, keeps it inline).
     #[inline(never)]
     fn next_pixel_out_of_line(&mut self, color: Rgb, voxel: &Voxel<'_>, ray: &mut Ray) -> bool {
