@@ -374,7 +374,7 @@ pub struct Frame<'t> {
     lod: bool,
     fan: Option<Fan>,
     /// Every row slope times every column's `kc` is within [`mul_floor_32`]'s 64-bit bound and
-    /// needs no clamp to [`MAX_SLOPE`] (proved once, in [`Frame::new`]): [`Frame::ray`] then
+    /// needs no clamp to [`crate::num::MAX_SLOPE`] (proved once, in [`Frame::new`]): [`Frame::ray`] then
     /// takes the products without range tests.
     rays_in_range: bool,
 }
@@ -681,7 +681,7 @@ impl<'t> Frame<'t> {
 }
 
 /// Whether every row slope times every column's `kc` can take [`mul_floor_32`]'s 64-bit
-/// path and, shifted to I40F24, lies within ±[`MAX_SLOPE`] (so that [`Frame::ray`] needs neither
+/// path and, shifted to I40F24, lies within ±[`crate::num::MAX_SLOPE`] (so that [`Frame::ray`] needs neither
 /// the range test nor the clamp): `|row| ≤ 2^47`, `0 ≤ kc < 2^47` and `|row|·kc ≤ 2^79`
 /// (then `|⌊row·kc / 2^40⌋| ≤ 2^39`). Once per frame.
 fn rays_in_range(rows: &[Coord], columns: &[Column]) -> bool {
