@@ -26,7 +26,7 @@ use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::visibility::{count_visible, visit, visit_visible};
-use footprint_core::terrain::{Scale, Terrain};
+use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::Rgb;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
@@ -474,6 +474,41 @@ proptest! {
                 visit_visible(frame, terrain, col, switch, |m| skipped.push(m.step_index()));
                 prop_assert_eq!(&all, &skipped, "column {} {:?}", col, switch);
             }
+            Ok(())
+        })
+        .unwrap_or(Ok(()))?;
+    }
+
+    /// The walk's empty-air skip (the conservative maximum pyramid) passes over exactly the
+    /// voxels the steps would have found below the ray: without the maximum grids, where the
+    /// walk steps voxel by voxel, every mode draws the same bytes.
+    #[test]
+    fn skipping_empty_air_changes_no_pixel(case in case()) {
+        let map = pyramid(&case);
+        let levels: Vec<Level<'_>> = map
+            .levels
+            .iter()
+            .map(|l| Level::directional(l.w, l.h, &l.heights, &l.along_y, &l.colors).expect("valid level"))
+            .collect();
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            let mut stepping = Terrain::new(levels[0], terrain.scale());
+            for l in &levels[1..] {
+                stepping.push_level(*l).expect("the same levels");
+            }
+            prop_assert!(!stepping.levels().iter().any(|l| l.max_heights().is_some()));
+            prop_assert_eq!(image(frame, terrain, &Point), image(frame, &stepping, &Point), "PS");
+            prop_assert_eq!(image(frame, terrain, &Linear), image(frame, &stepping, &Linear), "LI");
+            prop_assert_eq!(
+                image(frame, terrain, &Super::<8>::new()),
+                image(frame, &stepping, &Super::<8>::new()),
+                "SS8"
+            );
+            prop_assert_eq!(
+                image(frame, terrain, &ParallelArea::new()),
+                image(frame, &stepping, &ParallelArea::new()),
+                "AS (paper)"
+            );
+            prop_assert_eq!(image(frame, terrain, &Area::new()), image(frame, &stepping, &Area::new()), "AS");
             Ok(())
         })
         .unwrap_or(Ok(()))?;
