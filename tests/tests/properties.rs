@@ -18,13 +18,16 @@ mod common;
 
 use common::SKY;
 use footprint_core::color::Color16;
+use footprint_core::num::Height;
 use footprint_core::num::{Coord, Weight};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Switch};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::sampler::{
+    Area, Hit, Linear, ParallelArea, Pixel, Point, Ray, Sampler, Super,
+};
 use footprint_core::terrain::visibility::{count_visible, visit, visit_visible};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::Rgb;
@@ -409,6 +412,27 @@ fn image<S: Sampler + Clone>(frame: &Frame<'_>, terrain: &Terrain<'_>, sampler: 
     image.iter().flat_map(|p| [p.r, p.g, p.b]).collect()
 }
 
+/// A sampler that samples every hit afresh: `S` with [`Sampler::hit_again`] ignoring `again`
+/// (the trait's default), so that the colour the walk's samplers reuse can be checked against
+/// the colour they would compute.
+#[derive(Clone)]
+struct Fresh<S>(S);
+
+impl<S: Sampler> Sampler for Fresh<S> {
+    const SWITCH: Switch = S::SWITCH;
+    const KEEPS_SLOPE: bool = S::KEEPS_SLOPE;
+    const ONE_HIT_PER_PIXEL: bool = S::ONE_HIT_PER_PIXEL;
+    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+        self.0.begin_pixel(pixel, cost);
+    }
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+        self.0.hit(voxel, top, ray, cost)
+    }
+    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+        self.0.sky(ray, sky, cost)
+    }
+}
+
 /// 256 cases (a fraction of a second), or `PROPTEST_CASES` for a longer search.
 fn config() -> Config {
     let base = Config::default();
@@ -509,6 +533,32 @@ proptest! {
                 "AS (paper)"
             );
             prop_assert_eq!(image(frame, terrain, &Area::new()), image(frame, &stepping, &Area::new()), "AS");
+            Ok(())
+        })
+        .unwrap_or(Ok(()))?;
+    }
+
+    /// The samplers that reuse the colour they last sampled when the walk hits the same voxel
+    /// again (the next pixel's first hit on the voxel that finished the last, SS_N's next
+    /// sub-ray) draw the same bytes as the same samplers sampling every hit afresh.
+    #[test]
+    fn reusing_the_last_colour_changes_no_pixel(case in case()) {
+        with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
+            prop_assert_eq!(
+                image(frame, terrain, &Super::<8>::new()),
+                image(frame, terrain, &Fresh(Super::<8>::new())),
+                "SS8"
+            );
+            prop_assert_eq!(
+                image(frame, terrain, &Super::<2>::new()),
+                image(frame, terrain, &Fresh(Super::<2>::new())),
+                "SS2"
+            );
+            prop_assert_eq!(
+                image(frame, terrain, &ParallelArea::new()),
+                image(frame, terrain, &Fresh(ParallelArea::new())),
+                "AS (paper)"
+            );
             Ok(())
         })
         .unwrap_or(Ok(()))?;

@@ -190,10 +190,15 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O
         } else {
             Flow::NewSlope
         };
+        // The first sample of the voxel, then the same voxel again while the ray (raised, or
+        // the next pixel's) is still below its top.
         let mut again = Some(top);
+        let mut first = true;
         while let Some(top) = again {
             again = None;
-            match self.sampler.hit(voxel, top, ray, self.cost) {
+            let hit = self.sampler.hit_again(voxel, top, ray, self.cost, !first);
+            first = false;
+            match hit {
                 Hit::Sampled => {
                     self.cost.hit();
                     self.in_footprint = true;

@@ -272,15 +272,26 @@ impl<'a, 't> March<'a, 't> {
         (self.dcross, self.cross_left) = fold_run(self.dv_step > 0, pv, len, stride);
     }
 
-    /// Records `crossed` crossings into the next cell across the ray in the direction of `dv`,
-    /// none of them over a mirror edge (a one-cell-wide axis, whose period is 2, excepted),
-    /// arriving in cell `cv`; the caller has moved `idx` with them.
+    /// The cell index across after `crossed` more crossings in the direction the ray moves
+    /// across (one cell each): the ride counts only the crossings left, not the cell.
     #[inline(always)]
-    fn take_crossings(&mut self, crossed: u32, cv: i64) {
+    fn cv_after(&self, crossed: u32) -> i64 {
+        if self.flip == 0 {
+            self.cv + i64::from(crossed)
+        } else {
+            self.cv - i64::from(crossed)
+        }
+    }
+
+    /// Records `crossed` crossings into the next cell across the ray in the direction of `dv`,
+    /// none of them over a mirror edge (a one-cell-wide axis, whose period is 2, excepted);
+    /// the caller has moved `idx` with them.
+    #[inline(always)]
+    fn take_crossings(&mut self, crossed: u32) {
         if crossed == 0 {
             return;
         }
-        self.cv = cv;
+        self.cv = self.cv_after(crossed);
         self.cross_left -= crossed;
         self.off_v = self
             .off_v
@@ -366,7 +377,7 @@ impl<'a, 't> March<'a, 't> {
         }
         loop {
             let start = self.run.min(limit);
-            let (mut left, mut idx, mut cv) = (start, self.idx, self.cv);
+            let (mut left, mut idx) = (start, self.idx);
             let mut frac = self.frac() ^ flip;
             let (dcross, mut cross_left) = (self.dcross, self.cross_left);
             let mut mark = start;
@@ -375,7 +386,7 @@ impl<'a, 't> March<'a, 't> {
             let found = loop {
                 let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
                 if top > h {
-                    let voxel = self.voxel_at(idx, frac, cv, cross_left, start - left);
+                    let voxel = self.voxel_at(idx, frac, cross_left, start - left);
                     ray.h = Height::from_bits(h);
                     let steps = unreported + (mark - left);
                     (unreported, mark) = (0, left);
@@ -403,13 +414,13 @@ impl<'a, 't> March<'a, 't> {
                     if cross_left == 0 {
                         break Stop::Edge;
                     }
-                    // Into the next cell across the ray: one row over.
+                    // Into the next cell across the ray: one row over (the cell index across
+                    // follows from the crossings left, `March::cv_after`).
                     cross_left -= 1;
-                    cv += if flip == 0 { 1 } else { -1 };
                     idx = idx.wrapping_add_signed(dcross);
                 }
             };
-            self.take_crossings(self.cross_left - cross_left, cv);
+            self.take_crossings(self.cross_left - cross_left);
             self.idx = idx;
             self.commit(start - left);
             unreported += mark - left;
@@ -574,7 +585,7 @@ impl<'a, 't> March<'a, 't> {
             self.idx = self
                 .idx
                 .wrapping_add_signed(self.du * inner as isize + self.dcross * crossed as isize);
-            self.take_crossings(crossed, cv);
+            self.take_crossings(crossed);
             self.v = v;
             self.commit(inner);
         }
@@ -718,27 +729,21 @@ impl<'a, 't> March<'a, 't> {
     /// The current voxel as a sampler sees it.
     #[inline(always)]
     pub fn voxel(&self) -> Voxel<'_> {
-        self.voxel_at(
-            self.idx,
-            self.frac() ^ self.flip,
-            self.cv,
-            self.cross_left,
-            0,
-        )
+        self.voxel_at(self.idx, self.frac() ^ self.flip, self.cross_left, 0)
     }
 
-    /// The voxel at array index `idx`, cross fraction `toward` (XOR `flip`) and cross cell `cv`, with
-    /// `cross_left` crossings left before a mirror edge across the ray, `taken` steps into the
-    /// current run beyond what the cursor's fields record (a ride's locals, not yet written
-    /// back). Only these five words are written per hit: everything else a sampler may ask is
-    /// read from the cursor when asked.
+    /// The voxel at array index `idx` and cross fraction `toward` (XOR `flip`), with
+    /// `cross_left` crossings left before a mirror edge across the ray (which also gives its
+    /// cell across, [`March::cv_after`]), `taken` steps into the current run beyond what the
+    /// cursor's fields record (a ride's locals, not yet written back). Only these four words
+    /// are written per hit: everything else a sampler may ask is read from the cursor when
+    /// asked.
     #[inline(always)]
-    fn voxel_at(&self, idx: usize, toward: u32, cv: i64, cross_left: u32, taken: u32) -> Voxel<'_> {
+    fn voxel_at(&self, idx: usize, toward: u32, cross_left: u32, taken: u32) -> Voxel<'_> {
         Voxel {
             march: self,
             idx,
             toward,
-            cv,
             cross_left,
             taken,
         }
@@ -780,7 +785,7 @@ pub enum Flow {
 
 /// The voxel the walk stands on, as a sampler sees it (Sect. 4): where its colour is, the
 /// ray's cross-axis position over it, and its place in the voxel sequence. Built from a ride's
-/// locals and a borrow of the cursor, so a hit writes five words, and a sampler that reads
+/// locals and a borrow of the cursor, so a hit writes four words, and a sampler that reads
 /// only the colour costs only the colour's load.
 #[derive(Clone, Copy, Debug)]
 pub struct Voxel<'v> {
@@ -792,8 +797,6 @@ pub struct Voxel<'v> {
     /// XOR the cursor's `flip`: it is at or past ½ when the ray is on the side of the centre
     /// it moves towards.
     toward: u32,
-    /// The cell index across.
-    cv: i64,
     /// Crossings into the next cell across, in the direction the ray moves across, before a
     /// mirror edge (see [`March::plan_cross`]).
     cross_left: u32,
@@ -830,8 +833,8 @@ impl Voxel<'_> {
         let j = m.j + i64::from(m.taken() + self.taken);
         let u = if m.forward { j } else { -j - 1 };
         match m.axis {
-            Axis::X => (u, self.cv),
-            Axis::Y => (self.cv, u),
+            Axis::X => (u, m.cv_after(m.cross_left - self.cross_left)),
+            Axis::Y => (m.cv_after(m.cross_left - self.cross_left), u),
         }
     }
 

@@ -1,7 +1,8 @@
 //! The per-hit code of each sampling mode (Figs. 4, 8 and 12).
 //!
 //! The traversal ([`crate::terrain::column::walk`]) is written once. When the current ray `R` passes
-//! below the current voxel's top — a hit, `H(V_k) > H(R)` — it calls [`Sampler::hit`], which
+//! below the current voxel's top — a hit, `H(V_k) > H(R)` — it calls [`Sampler::hit_again`]
+//! (which is [`Sampler::hit`] unless the sampler reuses the colour it last sampled), which
 //! samples, may raise `R` and says whether the pixel is finished. Each mode is a small type,
 //! and the walk is monomorphized for it.
 //!
@@ -68,6 +69,24 @@ pub trait Sampler {
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit;
+    /// [`Sampler::hit`], told whether the voxel is the one of the last call (`again`), hit
+    /// again by the ray that call left or by the next pixel's: a voxel that finished a pixel
+    /// goes on into the next, and `SS_N`'s next sub-ray may hit the voxel its last one hit.
+    /// Eq. 4's inputs (the voxel and the ray's position across, which every ray of a column
+    /// shares) have not changed, so a sampler that keeps the colour it sampled may reuse it.
+    /// The walk calls this; the default ignores `again`.
+    #[inline(always)]
+    fn hit_again<C: Cost>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+        again: bool,
+    ) -> Hit {
+        let _ = again;
+        self.hit(voxel, top, ray, cost)
+    }
     /// The walk ended (far distance, or nothing left to hit) inside this pixel. Returns the
     /// pixel's colour if terrain was seen in it, `None` if it is all sky.
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
@@ -132,6 +151,8 @@ impl Sampler for Linear {
 #[derive(Clone, Copy, Debug)]
 pub struct Super<const N: u32> {
     sum: [u32; 3],
+    /// The colour of the last sample ([`Sampler::hit_again`]).
+    last: Color16,
     j: u32,
     delta: Height,
     lower: Line,
@@ -160,6 +181,7 @@ impl<const N: u32> Super<N> {
         };
         Self {
             sum: [0; 3],
+            last: [0; 3],
             j: 0,
             delta: Height::ZERO,
             lower: Line::ZERO,
@@ -180,6 +202,35 @@ impl<const N: u32> Super<N> {
             (s[1] >> Self::LOG2) as u16,
             (s[2] >> Self::LOG2) as u16,
         ])
+    }
+
+    /// A sub-ray samples `voxel`, whose Eq. 4 colour is `c`.
+    #[inline(always)]
+    fn sample<C: Cost>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        c: Color16,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
+        cost.ss_hit();
+        if self.j == 0 {
+            let n = voxel.n();
+            let gap = self.upper.at(n).saturating_sub(self.lower.at(n));
+            self.delta = (gap >> Self::LOG2).max(Height::ZERO);
+        }
+        self.last = c;
+        cost.sample(voxel, c, Weight::ONE);
+        for (s, c) in self.sum.iter_mut().zip(c) {
+            *s += u32::from(c);
+        }
+        self.j += 1;
+        if self.j == N {
+            Hit::Done(self.finish(cost))
+        } else {
+            ray.h = ray.h.saturating_add(self.delta);
+            Hit::Sampled
+        }
     }
 }
 
@@ -208,25 +259,26 @@ impl<const N: u32> Sampler for Super<N> {
         self.upper = pixel.upper;
     }
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, ray: &mut Ray, cost: &mut C) -> Hit {
-        cost.ss_hit();
-        if self.j == 0 {
-            let n = voxel.n();
-            let gap = self.upper.at(n).saturating_sub(self.lower.at(n));
-            self.delta = (gap >> Self::LOG2).max(Height::ZERO);
-        }
-        let c = voxel.sample_linear();
-        cost.sample(voxel, c, Weight::ONE);
-        for (s, c) in self.sum.iter_mut().zip(c) {
-            *s += u32::from(c);
-        }
-        self.j += 1;
-        if self.j == N {
-            Hit::Done(self.finish(cost))
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+        self.hit_again(voxel, top, ray, cost, false)
+    }
+    /// The next sub-ray (or the next pixel's first) on the voxel the last one sampled takes
+    /// its colour again.
+    #[inline(always)]
+    fn hit_again<C: Cost>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        _: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+        again: bool,
+    ) -> Hit {
+        let c = if again {
+            self.last
         } else {
-            ray.h = ray.h.saturating_add(self.delta);
-            Hit::Sampled
-        }
+            voxel.sample_linear()
+        };
+        self.sample(voxel, c, ray, cost)
     }
     fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         if self.j == 0 {
@@ -381,8 +433,8 @@ impl Sampler for Area {
 /// work is 32-bit (three multiply-adds), and the pixel's three divisions are 32-bit.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ParallelArea {
-    /// `R_{i+1} − R_i`: the line whose height at `n` is the pixel's span there.
-    gap: Line,
+    /// `R_{i+1}`: its height at the pixel's first hit, less the ray's, is the pixel's span.
+    upper: Line,
     /// How far up the span the ray has been raised (raw), 0 at the pixel's first hit.
     offset: i64,
     /// What is left of the span above the ray, `span − offset` (raw): a hit whose top is
@@ -396,13 +448,15 @@ pub struct ParallelArea {
     sum: [u32; 3],
     wsum: u32,
     seen: bool,
+    /// The colour of the last sample ([`Sampler::hit_again`]).
+    last: Color16,
 }
 
 impl ParallelArea {
     /// A fresh sampler.
     pub const fn new() -> Self {
         Self {
-            gap: Line::ZERO,
+            upper: Line::ZERO,
             offset: 0,
             room: 0,
             shift: 0,
@@ -411,18 +465,19 @@ impl ParallelArea {
             sum: [0; 3],
             wsum: 0,
             seen: false,
+            last: [0; 3],
         }
     }
 
-    /// The pixel's first hit, at the voxel centred at `n`: its span here and the shift that
-    /// quantizes it. The ray is `R_i` itself there (since the pixel began it has only been
-    /// stepped, by exact products of its own slope), so its offset in the span is 0. Once per
-    /// pixel, so kept out of the walk's loop (inlined, its 64-bit product costs the loop
-    /// registers).
+    /// The pixel's first hit, at the voxel centred at `n`, where the ray is at `h`: the
+    /// pixel's span here and the shift that quantizes it. The ray is `R_i` itself there (since
+    /// the pixel began it has only been stepped, by exact products of its own slope: `h` is
+    /// `H(R_i)` at `n`), so its offset in the span is 0. Once per pixel, so kept out of the
+    /// walk's loop (inlined, its 64-bit product costs the loop registers).
     #[inline(never)]
-    fn first_hit(&mut self, n: i64) {
+    fn first_hit(&mut self, n: i64, h: Height) {
         // H(R_{i+1}) − H(R_i) at n: exact in wrapping arithmetic, as `Line::at` is.
-        let span = self.gap.at(n).to_bits().max(1);
+        let span = self.upper.at(n).to_bits().wrapping_sub(h.to_bits()).max(1);
         self.shift = (64 - span.leading_zeros()).saturating_sub(16);
         self.offset = 0;
         self.room = span;
@@ -467,6 +522,41 @@ impl ParallelArea {
         self.divide()
     }
 
+    /// `voxel`, whose Eq. 4 colour is `color`, is visible from the ray at `ray` up to its top
+    /// `top` (Fig. 12).
+    #[inline(always)]
+    fn sample<C: Cost>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        color: Color16,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
+        if !self.seen {
+            self.first_hit(voxel.n(), ray.h);
+        }
+        // H′ − H(R): the voxel's top, or the pixel's upper edge if the top reaches it. Exact
+        // without saturation: a hit has H(R) < top ≤ 2^40 (raw) and H(R) > −2^62 (the ray
+        // heights of `num`), so 0 < top − H(R) < 2^63; and 0 ≤ offset ≤ span, so the room
+        // left, span − offset, is in range too.
+        let visible = top.to_bits().wrapping_sub(ray.h.to_bits());
+        if visible >= self.room {
+            // Only a voxel that finishes the pixel is hit again (by the next pixel's ray): a
+            // hit that does not raises the ray to the voxel's top.
+            self.last = color;
+            let w = self.accumulate(self.span_q, color, cost);
+            cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
+            return Hit::Done(self.finish(color, cost));
+        }
+        self.room -= visible;
+        self.offset += visible;
+        let w = self.accumulate(self.quantize(self.offset), color, cost);
+        cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
+        ray.h = top;
+        Hit::Next
+    }
+
     /// `Σc / Σw` per channel, once per pixel: out of the walk's loop, whose registers the three
     /// divisions would otherwise take.
     #[inline(never)]
@@ -488,46 +578,31 @@ impl Sampler for ParallelArea {
         // The sums and the span are set by the pixel's first hit (`first_hit`); until then
         // `seen` is false and nothing reads them.
         self.seen = false;
-        self.gap = Line {
-            base: Height::from_bits(
-                pixel
-                    .upper
-                    .base
-                    .to_bits()
-                    .wrapping_sub(pixel.lower.base.to_bits()),
-            ),
-            slope: Slope::from_bits(
-                pixel
-                    .upper
-                    .slope
-                    .to_bits()
-                    .wrapping_sub(pixel.lower.slope.to_bits()),
-            ),
-        };
+        self.upper = pixel.upper;
     }
 
     #[inline(always)]
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
-        if !self.seen {
-            self.first_hit(voxel.n());
-        }
-        let color = voxel.sample_linear();
-        // H′ − H(R): the voxel's top, or the pixel's upper edge if the top reaches it. Exact
-        // without saturation: a hit has H(R) < top ≤ 2^40 (raw) and H(R) > −2^62 (the ray
-        // heights of `num`), so 0 < top − H(R) < 2^63; and 0 ≤ offset ≤ span, so the room
-        // left, span − offset, is in range too.
-        let visible = top.to_bits().wrapping_sub(ray.h.to_bits());
-        if visible >= self.room {
-            let w = self.accumulate(self.span_q, color, cost);
-            cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
-            return Hit::Done(self.finish(color, cost));
-        }
-        self.room -= visible;
-        self.offset += visible;
-        let w = self.accumulate(self.quantize(self.offset), color, cost);
-        cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
-        ray.h = top;
-        Hit::Next
+        self.hit_again(voxel, top, ray, cost, false)
+    }
+
+    /// The next pixel's first hit on the voxel that finished the last pixel takes its colour
+    /// again.
+    #[inline(always)]
+    fn hit_again<C: Cost>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+        again: bool,
+    ) -> Hit {
+        let color = if again {
+            self.last
+        } else {
+            voxel.sample_linear()
+        };
+        self.sample(voxel, color, top, ray, cost)
     }
 
     fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
