@@ -86,6 +86,9 @@ pub struct March<'a, 't> {
     len_v: u32,
     stride_u: usize,
     stride_v: usize,
+    /// `len_v − 1`: the most cells a ray can have behind it across, in one mirrored stretch
+    /// (Eq. 4's neighbour behind, [`Voxel::sample_linear`]).
+    last_v: u32,
     /// The array offset of the current cross-axis cell, `fold(pv)·stride_v`.
     off_v: usize,
     /// What crossing into the next cell across the ray adds to `idx` (`±stride_v`, or 0 on a
@@ -150,6 +153,7 @@ impl<'a, 't> March<'a, 't> {
             pv: 0,
             len_u: 0,
             len_v: 0,
+            last_v: 0,
             stride_u: 0,
             stride_v: 0,
             off_v: 0,
@@ -179,6 +183,7 @@ impl<'a, 't> March<'a, 't> {
         };
         self.len_u = len_u;
         self.len_v = len_v;
+        self.last_v = len_v.saturating_sub(1);
         self.stride_u = stride_u;
         self.stride_v = stride_v;
         self.dn = 2i64 << self.l;
@@ -870,7 +875,7 @@ impl Voxel<'_> {
             } else {
                 0
             }
-        } else if self.cross_left < m.len_v.saturating_sub(1) {
+        } else if self.cross_left < m.last_v {
             -m.dcross
         } else {
             0
