@@ -142,16 +142,18 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
         self.cost.new_ray();
         self.upper = self.frame.ray(self.column, self.i + 1);
         self.cost.begin_pixel(self.i);
+        let ray = Ray {
+            h: lower.at(n),
+            slope: lower.slope,
+        };
         let pixel = Pixel {
             lower,
             upper: self.upper,
             eye: self.eye,
+            start: (n, ray.h),
         };
         self.sampler.begin_pixel(&pixel, self.cost);
-        Ray {
-            h: lower.at(n),
-            slope: lower.slope,
-        }
+        ray
     }
 
     /// Pixel `i` is finished with `color`: writes it and begins the next one, whose lower ray

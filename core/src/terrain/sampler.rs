@@ -35,6 +35,9 @@ pub struct Pixel {
     pub upper: Line,
     /// The eye.
     pub eye: Eye,
+    /// Where the walk resumes for the pixel: the centre of the current voxel (half-voxels)
+    /// and `R_i`'s height there (Fig. 3).
+    pub start: (i64, Height),
 }
 
 /// What a sampler did with a hit.
@@ -469,13 +472,20 @@ impl ParallelArea {
         }
     }
 
-    /// The pixel's first hit, at the voxel centred at `n`, where the ray is at `h`: the
-    /// pixel's span here and the shift that quantizes it. The ray is `R_i` itself there (since
-    /// the pixel began it has only been stepped, by exact products of its own slope: `h` is
-    /// `H(R_i)` at `n`), so its offset in the span is 0. Once per pixel, so kept out of the
+    /// The pixel's first hit, at the voxel centred at `n`, where the ray is at `h`, when it is
+    /// not the voxel the pixel began at: the pixel's span measured here. The ray is `R_i`
+    /// itself there (since the pixel began it has only been stepped, by exact products of its
+    /// own slope: `h` is `H(R_i)` at `n`), so its offset in the span is 0. Kept out of the
     /// walk's loop (inlined, its 64-bit product costs the loop registers).
     #[inline(never)]
     fn first_hit(&mut self, n: i64, h: Height) {
+        self.measure_span(n, h);
+    }
+
+    /// The pixel's span at the voxel centred at `n`, where `R_i` is at `h`, the shift that
+    /// quantizes it, and the sums emptied: the state of a pixel before its first sample.
+    #[inline(always)]
+    fn measure_span(&mut self, n: i64, h: Height) {
         // H(R_{i+1}) − H(R_i) at n: exact in wrapping arithmetic, as `Line::at` is.
         let span = self.upper.at(n).to_bits().wrapping_sub(h.to_bits()).max(1);
         self.shift = (64 - span.leading_zeros()).saturating_sub(16);
@@ -485,7 +495,6 @@ impl ParallelArea {
         self.quantized = 0;
         self.sum = [0; 3];
         self.wsum = 0;
-        self.seen = true;
     }
 
     /// An offset into the span (`0 ≤ offset ≤ span`), quantized: below 2^16.
@@ -529,12 +538,17 @@ impl ParallelArea {
         &mut self,
         voxel: &Voxel<'_>,
         color: Color16,
+        again: bool,
         top: Height,
         ray: &mut Ray,
         cost: &mut C,
     ) -> Hit {
         if !self.seen {
-            self.first_hit(voxel.n(), ray.h);
+            // A first hit on the voxel the pixel began at (`again`) finds the span measured.
+            if !again {
+                self.first_hit(voxel.n(), ray.h);
+            }
+            self.seen = true;
         }
         // H′ − H(R): the voxel's top, or the pixel's upper edge if the top reaches it. Exact
         // without saturation: a hit has H(R) < top ≤ 2^40 (raw) and H(R) > −2^62 (the ray
@@ -575,10 +589,13 @@ impl Sampler for ParallelArea {
     const KEEPS_SLOPE: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
-        // The sums and the span are set by the pixel's first hit (`first_hit`); until then
-        // `seen` is false and nothing reads them.
+        // The span is measured where the walk resumes: the pixel's first hit is nearly always
+        // there (the voxel that finished the last pixel reaches into this one, `hit_again`);
+        // a first hit further on measures it again (`first_hit`). Until a hit, `seen` is false.
         self.seen = false;
         self.upper = pixel.upper;
+        let (n, h) = pixel.start;
+        self.measure_span(n, h);
     }
 
     #[inline(always)]
@@ -602,7 +619,7 @@ impl Sampler for ParallelArea {
         } else {
             voxel.sample_linear()
         };
-        self.sample(voxel, color, top, ray, cost)
+        self.sample(voxel, color, again, top, ray, cost)
     }
 
     fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
