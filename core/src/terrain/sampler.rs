@@ -439,10 +439,10 @@ pub struct ParallelArea {
     /// `R_{i+1}`: its height at the pixel's first hit, less the ray's, is the pixel's span.
     upper: Line,
     /// How far up the span the ray has been raised (raw), 0 at the pixel's first hit.
-    offset: i64,
-    /// What is left of the span above the ray, `span − offset` (raw): a hit whose top is
-    /// that far above the ray or more reaches `R_{i+1}` and finishes the pixel.
-    room: i64,
+    offset: u64,
+    /// The pixel's span (raw): a hit whose top is that far above `R_i` or more reaches
+    /// `R_{i+1}` and finishes the pixel.
+    span: u64,
     /// The quantizing shift of the span (`span >> shift < 2^16`), the span quantized, and
     /// the offset quantized (`offset >> shift`), so that a hit shifts only its new offset.
     shift: u32,
@@ -461,7 +461,7 @@ impl ParallelArea {
         Self {
             upper: Line::ZERO,
             offset: 0,
-            room: 0,
+            span: 0,
             shift: 0,
             span_q: 0,
             quantized: 0,
@@ -487,10 +487,16 @@ impl ParallelArea {
     #[inline(always)]
     fn measure_span(&mut self, n: i64, h: Height) {
         // H(R_{i+1}) − H(R_i) at n: exact in wrapping arithmetic, as `Line::at` is.
-        let span = self.upper.at(n).to_bits().wrapping_sub(h.to_bits()).max(1);
+        let span = self
+            .upper
+            .at(n)
+            .to_bits()
+            .wrapping_sub(h.to_bits())
+            .max(1)
+            .unsigned_abs();
         self.shift = (64 - span.leading_zeros()).saturating_sub(16);
         self.offset = 0;
-        self.room = span;
+        self.span = span;
         self.span_q = self.quantize(span);
         self.quantized = 0;
         self.sum = [0; 3];
@@ -499,7 +505,7 @@ impl ParallelArea {
 
     /// An offset into the span (`0 ≤ offset ≤ span`), quantized: below 2^16.
     #[inline(always)]
-    fn quantize(&self, offset: i64) -> u32 {
+    fn quantize(&self, offset: u64) -> u32 {
         #[allow(
             clippy::cast_possible_truncation,
             reason = "0 ≤ offset ≤ span and span >> shift < 2^16 (`first_hit` chooses the shift)"
@@ -552,10 +558,11 @@ impl ParallelArea {
         }
         // H′ − H(R): the voxel's top, or the pixel's upper edge if the top reaches it. Exact
         // without saturation: a hit has H(R) < top ≤ 2^40 (raw) and H(R) > −2^62 (the ray
-        // heights of `num`), so 0 < top − H(R) < 2^63; and 0 ≤ offset ≤ span, so the room
-        // left, span − offset, is in range too.
-        let visible = top.to_bits().wrapping_sub(ray.h.to_bits());
-        if visible >= self.room {
+        // heights of `num`), so 0 < top − H(R) < 2^63; and 0 ≤ offset < span < 2^63, so the
+        // offset the hit reaches is below 2^64.
+        let visible = top.to_bits().wrapping_sub(ray.h.to_bits()).unsigned_abs();
+        let reached = self.offset + visible;
+        if reached >= self.span {
             // Only a voxel that finishes the pixel is hit again (by the next pixel's ray): a
             // hit that does not raises the ray to the voxel's top.
             self.last = color;
@@ -563,9 +570,8 @@ impl ParallelArea {
             cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
             return Hit::Done(self.finish(color, cost));
         }
-        self.room -= visible;
-        self.offset += visible;
-        let w = self.accumulate(self.quantize(self.offset), color, cost);
+        self.offset = reached;
+        let w = self.accumulate(self.quantize(reached), color, cost);
         cost.sample(voxel, color, Weight::from_bits(i64::from(w)));
         ray.h = top;
         Hit::Next
