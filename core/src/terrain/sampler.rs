@@ -508,7 +508,7 @@ impl ParallelArea {
     fn quantize(&self, offset: u64) -> u32 {
         #[allow(
             clippy::cast_possible_truncation,
-            reason = "0 ≤ offset ≤ span and span >> shift < 2^16 (`first_hit` chooses the shift)"
+            reason = "0 ≤ offset ≤ span and span >> shift < 2^16 (`measure_span` chooses the shift)"
         )]
         let q = (offset >> self.shift) as u32;
         q
