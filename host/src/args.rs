@@ -4,15 +4,27 @@
 //! everywhere.
 
 use std::marker::PhantomData;
+use std::str::FromStr;
 
 use anyhow::{bail, Result};
 use clap::Args;
 
+use crate::experiment::fly::FlyMode;
 use crate::render::Mode;
 use crate::view::Size;
 
 /// The default of a command's `--modes`: the modes it compares when none are given.
 pub trait DefaultModes: Clone + Send + Sync + 'static {
+    /// What a name in the list stands for: a [`Mode`], or (for `fly`) a mode or the
+    /// reference flight.
+    type Item: FromStr<Err: std::error::Error + Send + Sync + 'static>
+        + Clone
+        + Copy
+        + PartialEq
+        + Send
+        + Sync
+        + std::fmt::Debug
+        + 'static;
     /// Comma-separated mode names (as `--modes` takes them).
     const MODES: &'static str;
 }
@@ -20,17 +32,18 @@ pub trait DefaultModes: Clone + Send + Sync + 'static {
 /// `--modes`: the sampling modes to compare, comma-separated, with the command's default `D`.
 #[derive(Args, Clone, Debug)]
 pub struct ModesArg<D: DefaultModes> {
-    /// Modes (comma-separated): classic, ps, li, ss2 … ss256, as, as-exact.
+    /// Modes (comma-separated): classic, ps, li, ss2 … ss256, as, as-exact (and, for `fly`,
+    /// reference: the ground truth's own flight).
     #[arg(long = "modes", value_delimiter = ',', default_value = D::MODES)]
-    pub list: Vec<Mode>,
+    pub list: Vec<D::Item>,
     #[arg(skip)]
     default: PhantomData<D>,
 }
 
 impl<D: DefaultModes> ModesArg<D> {
     /// The modes, each once, in the order given; an error naming `--modes` if there are none.
-    pub fn modes(&self) -> Result<Vec<Mode>> {
-        let mut modes: Vec<Mode> = Vec::with_capacity(self.list.len());
+    pub fn modes(&self) -> Result<Vec<D::Item>> {
+        let mut modes: Vec<D::Item> = Vec::with_capacity(self.list.len());
         for &m in &self.list {
             if !modes.contains(&m) {
                 modes.push(m);
@@ -63,13 +76,15 @@ pub struct OutputFormat {
 #[derive(Clone, Debug)]
 pub struct TableModes;
 impl DefaultModes for TableModes {
+    type Item = Mode;
     const MODES: &'static str = "as,as-exact,ps,ss2,ss4,ss8,ss16,ss32";
 }
 
-/// The modes of `footprint fly` (Table 6's).
+/// The modes of `footprint fly` (Table 6's; `reference` may be listed too).
 #[derive(Clone, Debug)]
 pub struct FlyModes;
 impl DefaultModes for FlyModes {
+    type Item = FlyMode;
     const MODES: &'static str = "as,as-exact,ps,ss8,ss16";
 }
 
@@ -77,6 +92,7 @@ impl DefaultModes for FlyModes {
 #[derive(Clone, Debug)]
 pub struct BenchModes;
 impl DefaultModes for BenchModes {
+    type Item = Mode;
     const MODES: &'static str = "classic,ps,li,ss8,ss16,as,as-exact";
 }
 
@@ -108,8 +124,16 @@ mod tests {
         );
         assert!(!cli.format.json);
         let cli = Cli::try_parse_from(["x", "--modes", "ps,as,ps", "--json"]).unwrap();
-        assert_eq!(cli.modes.modes().unwrap(), vec![Mode::Ps, Mode::As]);
+        assert_eq!(
+            cli.modes.modes().unwrap(),
+            vec![FlyMode::Mode(Mode::Ps), FlyMode::Mode(Mode::As)]
+        );
         assert!(cli.format.json);
+        let cli = Cli::try_parse_from(["x", "--modes", "as,Reference"]).unwrap();
+        assert_eq!(
+            cli.modes.modes().unwrap(),
+            vec![FlyMode::Mode(Mode::As), FlyMode::Reference]
+        );
         let cli = Cli::try_parse_from(["x", "--modes="]);
         assert!(cli.is_err() || cli.unwrap().modes.modes().is_err());
         assert!(Cli::try_parse_from(["x", "--modes", "ss3"]).is_err());

@@ -318,6 +318,9 @@ fn experiments_refuse_bad_arguments() {
     fails_with(&["table", "--case", "7"], "case");
     fails_with(&["fly", "--frames", "0"], "frames");
     fails_with(&["fly", "--size", "40x40", "--column", "40"], "column");
+    fails_with(&["fly", "--columns-per-pixel", "0"], "--columns-per-pixel");
+    fails_with(&["fly", "--reference-columns", "65"], "--reference-columns");
+    fails_with(&["fly", "--modes", "ps,references"], "reference");
     fails_with(&["fly", "--modes", "xx"], "mode");
     fails_with(&["fly", "--out", "/no/such/folder"], "--out");
     fails_with(&["fly", "--animation"], "--out");
@@ -401,6 +404,81 @@ fn fly_json_has_table_6_bins() {
         .sum();
     assert_eq!(total, 5 * 32, "5 frame pairs × 32 pixels of one column");
     assert!(m["all_columns"].is_object());
+}
+
+/// `fly --modes ps,as,reference --json`: the reference is listed beside the modes with the
+/// same fields; every whole-frame histogram sums to frame pairs × pixels; each mode's excess is
+/// its count less the reference's, bin by bin; the reference's excess and RMSE are zero.
+#[test]
+fn fly_json_lists_the_reference_and_every_modes_excess_over_it() {
+    let o = footprint(&[
+        "fly",
+        "--terrain-size",
+        "128",
+        "--size",
+        "32x24",
+        "--frames",
+        "6",
+        "--modes",
+        "ps,as,reference",
+        "--reference-columns",
+        "4",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["reference_columns"], 4);
+    let modes = v["modes"].as_array().unwrap();
+    let names: Vec<&str> = modes.iter().map(|m| m["mode"].as_str().unwrap()).collect();
+    assert_eq!(names, ["ps", "as", "reference"]);
+    let bins = ["0", "1", "2", "3", "4", "5", "6-60", ">60"];
+    let counts = |m: &serde_json::Value, key: &str| -> Vec<i64> {
+        bins.iter().map(|b| m[key][b].as_i64().unwrap()).collect()
+    };
+    let truth = &modes[2];
+    let keys = |m: &serde_json::Value| {
+        let mut k: Vec<String> = m.as_object().unwrap().keys().cloned().collect();
+        k.sort();
+        k
+    };
+    for m in modes {
+        assert_eq!(
+            keys(m),
+            keys(&modes[0]),
+            "the same fields for {}",
+            m["mode"]
+        );
+        let all = counts(m, "all_columns");
+        assert_eq!(
+            all.iter().sum::<i64>(),
+            5 * 32 * 24,
+            "5 frame pairs × 32×24 pixels"
+        );
+        assert_eq!(m["large_changes"].as_i64().unwrap(), all[6] + all[7]);
+        let excess: Vec<i64> = m["excess"]["all_columns_bins"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_i64().unwrap())
+            .collect();
+        let expected: Vec<i64> = all
+            .iter()
+            .zip(counts(truth, "all_columns"))
+            .map(|(a, r)| a - r)
+            .collect();
+        assert_eq!(excess, expected, "{}", m["mode"]);
+        assert_eq!(
+            m["excess"]["all_columns"].as_i64().unwrap(),
+            expected[6] + expected[7]
+        );
+    }
+    assert_eq!(truth["excess"]["all_columns"], 0);
+    assert_eq!(truth["rmse"].as_f64().unwrap(), 0.0);
+    assert!(
+        modes[0]["rmse"].as_f64().unwrap() > 0.0,
+        "PS differs from the truth"
+    );
+    assert_eq!(v["reference"]["large_changes"], truth["large_changes"]);
 }
 
 #[test]

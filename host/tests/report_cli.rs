@@ -289,6 +289,51 @@ fn the_differences_are_the_maps_own() {
 }
 
 /// The Fig. 13 pixel is chosen from the data, and the report says how.
+/// Table 6's claim is stated twice, at its two scopes, each with the flight's own numbers:
+/// for the one column (changes of 6–60) and for the whole frame (6 and more, in excess of the
+/// reference flight), in report.json and in REPORT.md.
+#[test]
+fn table_6_is_claimed_for_the_column_and_for_the_frame() {
+    let r = run();
+    let claims = r.json["claims"].as_array().unwrap();
+    let find = |start: &str| {
+        claims
+            .iter()
+            .find(|c| c["claim"].as_str().unwrap().starts_with(start))
+            .unwrap_or_else(|| panic!("no claim starts with {start:?}: {claims:?}"))
+    };
+    let column = find("In Table 6 (one column)");
+    let frame = find("Over the whole frame");
+    let fly = &r.json["fly"];
+    let mode = |name: &str| {
+        fly["modes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|m| m["mode"] == name)
+            .unwrap()
+            .clone()
+    };
+    let (ps, as_) = (mode("ps"), mode("as"));
+    let evidence = frame["evidence"].as_str().unwrap();
+    let excess = |m: &Value| m["excess"]["all_columns"].as_i64().unwrap();
+    assert!(
+        evidence.contains(&format!("AS {}", excess(&as_)))
+            && evidence.contains(&format!("PS {}", excess(&ps))),
+        "{evidence}"
+    );
+    let holds = excess(&as_) < excess(&mode("ss16")) && excess(&as_).max(0) * 10 <= excess(&ps);
+    assert_eq!(frame["holds"], holds);
+    let column_evidence = column["evidence"].as_str().unwrap();
+    assert!(
+        column_evidence.contains(&format!("AS {}", as_["histogram"]["6-60"])),
+        "{column_evidence}"
+    );
+    for c in [column, frame] {
+        assert!(r.md.contains(c["claim"].as_str().unwrap()));
+    }
+}
+
 #[test]
 fn the_fig13_pixel_is_chosen_and_explained() {
     let r = run();

@@ -7,14 +7,15 @@ use clap::Args;
 use footprint_core::Rgb;
 
 use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg};
-use crate::experiment::fly::{self, FlySpec};
+use crate::experiment::fly::{self, FlyMode, FlySpec};
 use crate::experiment::path::FlightPath;
+use crate::experiment::reference::REFERENCE_COLUMNS;
 use crate::output::Folder;
 use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
-use crate::view::{MapArgs, ProjectionArg};
+use crate::view::{MapArgs, ProjectionArg, Switch};
 
 /// The modes of `--animation`, left to right.
 const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
@@ -26,7 +27,7 @@ const GAP: usize = 2;
 const ANIMATION: &str = "flight.png";
 
 /// The cut-in-time image's file name in `--out` for `mode`.
-fn cut_name(mode: Mode) -> String {
+fn cut_name(mode: FlyMode) -> String {
     format!("cut_{mode}.png")
 }
 
@@ -66,6 +67,22 @@ pub struct FlyArgs {
     /// Histogram only the chosen column (much faster; no all-columns sum).
     #[arg(long)]
     pub column_only: bool,
+    /// Walk the pyramid (on), or level 0 voxel by voxel (off): the modes' frames and the
+    /// start's fitted eye (the reference walks level 0 either way).
+    #[arg(long, value_enum, default_value_t = Switch::On)]
+    pub lod: Switch,
+    /// Columns the modes walk per pixel, box-filtered to one (1–64; the paper's is 1): with
+    /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
+    #[arg(long, default_value_t = 1, value_name = "K")]
+    pub columns_per_pixel: u32,
+    /// Columns per pixel of the reference flight (1–64): the ground truth's settings are
+    /// as-exact at level 0 with 16.
+    #[arg(long, default_value_t = REFERENCE_COLUMNS, value_name = "K")]
+    pub reference_columns: u32,
+    /// Do not fly the reference (faster; no excess over it, no RMSE). Listing `reference` in
+    /// --modes flies it anyway.
+    #[arg(long)]
+    pub no_reference: bool,
     /// Also write `DIR/flight.png`, an animated PNG of the flight at 25 frames per second:
     /// point sampling (left) and area sampling (right) side by side.
     #[arg(long, requires = "out")]
@@ -131,8 +148,12 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         size: args.size.size,
         all_columns: !args.column_only,
         keep_cut: args.out.is_some(),
-        lod: true,
+        lod: args.lod == Switch::On,
+        columns_per_pixel: args.columns_per_pixel,
+        reference: !args.no_reference,
+        reference_columns: args.reference_columns,
     };
+    spec.check()?;
     spec.check_memory(if args.animation { PANELS.len() } else { 0 })?;
     // Every file goes into a temporary folder first, and into --out only when all are
     // written: a failure leaves none of them. A file of the same name that is a folder or a

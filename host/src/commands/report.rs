@@ -295,8 +295,12 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     });
     write_text(&file("REPORT.md"), &md)?;
     write_text(&file("index.html"), &html::page("footprint report", &md))?;
+    let claims: Vec<_> = crate::experiment::claims::claims(&tables, &flight)
+        .into_iter()
+        .map(|(claim, holds, evidence)| json!({"claim": claim, "holds": holds, "evidence": evidence}))
+        .collect();
     let data = json!({"command": command, "command_words": regenerate_words(args),
-        "lod": value_name(&args.lod), "tables": tables, "fly": flight,
+        "lod": value_name(&args.lod), "tables": tables, "fly": flight, "claims": claims,
         "fig13_pixel": choice, "pixel": pixel_json, "footprint": fp_json,
         "pyramid_heights_pitch5": study, "differences": diffs, "glint": glint});
     write_text(&file("report.json"), &serde_json::to_string_pretty(&data)?)?;

@@ -269,12 +269,7 @@ pub fn differences(
             })
             .collect(),
     });
-    let count = |m: Mode| {
-        f.modes
-            .iter()
-            .find(|x| x.mode == m)
-            .map(|x| x.histogram.get("6-60"))
-    };
+    let count = |m: Mode| f.mode(m).map(|x| x.histogram.get("6-60"));
     let table6: Vec<(String, u64, u64)> = PAPER_TABLE6
         .iter()
         .filter_map(|&(m, paper)| count(m).map(|ours| (m.to_string(), ours, paper)))

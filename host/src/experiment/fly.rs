@@ -1,6 +1,15 @@
 //! The flight of Sect. 5: from the pitch-5° view the camera moves forward a little each frame,
 //! and we count how much each pixel's colour changes between consecutive frames (Table 6) and
 //! draw one column over time (Fig. 14).
+//!
+//! Table 6 counts one column; the paper's one reservation (Sect. 8, "along the horizontal axis
+//! the sampling is naive") lives across columns, so every column is counted as well. Part of
+//! every change is the terrain's own motion, which the truth has too: the reference flight
+//! (the ground truth's settings, [`super::reference`]) is flown beside the modes, and each
+//! mode's *excess* is its count less the reference's, in the column and over the frame.
+
+use std::fmt;
+use std::str::FromStr;
 
 use anyhow::{bail, Result};
 use footprint_core::terrain::camera::{Camera, Options, Projection};
@@ -12,10 +21,78 @@ pub use footprint_scenes::flight::{self, bin, luminance, Histogram, BINS};
 
 use super::paper::paper_camera;
 use super::path::FlightPath;
+use super::reference::{box_columns, rmse, supersampled};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column, render_with, Mode, Tables};
 use crate::view::Size;
+
+/// What a flight flies: one of the core's sampling modes, or the reference flight itself
+/// (`reference`), listed beside the modes with the same fields.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FlyMode {
+    /// A sampling mode, walked as the flight says (`--lod`, `--columns-per-pixel`).
+    Mode(Mode),
+    /// The ground truth's flight: exact area sampling (`as-exact`) at level 0, with
+    /// [`FlySpec::reference_columns`] columns per pixel box-filtered to one
+    /// ([`super::reference`]).
+    Reference,
+}
+
+impl FlyMode {
+    /// The name `--modes` takes: a mode's ([`Mode::name`]) or `reference`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            FlyMode::Mode(m) => m.name(),
+            FlyMode::Reference => "reference",
+        }
+    }
+}
+
+impl From<Mode> for FlyMode {
+    fn from(m: Mode) -> Self {
+        FlyMode::Mode(m)
+    }
+}
+
+impl fmt::Display for FlyMode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name [`FlyMode::from_str`] does not know.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ParseFlyModeError;
+
+impl fmt::Display for ParseFlyModeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("expected ps, li, as, as-exact, classic, ss2, ss4, …, ss256, or reference")
+    }
+}
+
+impl std::error::Error for ParseFlyModeError {}
+
+impl FromStr for FlyMode {
+    type Err = ParseFlyModeError;
+
+    /// `reference`, or a mode by its name, in any case.
+    fn from_str(s: &str) -> Result<Self, ParseFlyModeError> {
+        if s.eq_ignore_ascii_case(FlyMode::Reference.name()) {
+            return Ok(FlyMode::Reference);
+        }
+        s.parse::<Mode>()
+            .map(FlyMode::Mode)
+            .map_err(|_| ParseFlyModeError)
+    }
+}
+
+/// A flown mode serializes as its name (`"ps"`, `"as-exact"`, `"reference"`).
+impl Serialize for FlyMode {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
 
 /// What to fly.
 #[derive(Clone, Debug)]
@@ -26,8 +103,8 @@ pub struct FlySpec {
     pub step_m: f64,
     /// The column of Table 6 and Fig. 14 (default: the middle one).
     pub column: Option<usize>,
-    /// Modes.
-    pub modes: Vec<Mode>,
+    /// Modes, and the reference if listed.
+    pub modes: Vec<FlyMode>,
     /// Image size.
     pub size: Size,
     /// Also histogram every column (renders whole frames; otherwise only the one column).
@@ -41,14 +118,65 @@ pub struct FlySpec {
     /// The projection of every frame.
     pub projection: Projection,
     /// Walk the multiresolution pyramid (`true`), or level 0 voxel by voxel (`false`): the
-    /// start's fitted eye height and every frame.
+    /// start's fitted eye height and every frame of the modes (the reference walks level 0).
     pub lod: bool,
+    /// Columns the modes walk per pixel (1, the paper's, to 64), box-filtered to one: with
+    /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
+    pub columns_per_pixel: u32,
+    /// Fly the reference too, and give every mode its excess over it (it is flown whenever
+    /// `modes` lists it).
+    pub reference: bool,
+    /// Columns per pixel of the reference flight (1–64; the ground truth's is
+    /// [`REFERENCE_COLUMNS`](super::reference::REFERENCE_COLUMNS)).
+    pub reference_columns: u32,
 }
 
 impl FlySpec {
+    /// Refuses, naming the option, fewer than 2 frames, columns per pixel outside 1–64, and a
+    /// step that would leave the camera's range ([`check_reach`]).
+    pub fn check(&self) -> Result<()> {
+        if self.frames < 2 {
+            bail!(
+                "--frames {}: at least 2 frames are needed to see a change",
+                self.frames
+            );
+        }
+        for (name, k) in [
+            ("--columns-per-pixel", self.columns_per_pixel),
+            ("--reference-columns", self.reference_columns),
+        ] {
+            if !(1..=64).contains(&k) {
+                bail!("{name} {k}: outside 1–64");
+            }
+        }
+        check_reach(self.step_m, self.frames)
+    }
+
+    /// Whether the reference is flown.
+    pub fn flies_reference(&self) -> bool {
+        self.reference || self.modes.contains(&FlyMode::Reference)
+    }
+
+    /// How `m` is rendered: its sampling mode, whether it walks the pyramid, and its columns
+    /// per pixel.
+    fn setting(&self, m: FlyMode) -> Setting {
+        match m {
+            FlyMode::Mode(mode) => Setting {
+                mode,
+                lod: self.lod,
+                columns: self.columns_per_pixel,
+            },
+            FlyMode::Reference => Setting {
+                mode: Mode::AsExact,
+                lod: false,
+                columns: self.reference_columns,
+            },
+        }
+    }
+
     /// Refuses, naming `--frames`, a flight whose kept images exceed the memory budget: the
     /// cut-in-time images (if kept) and the frames in flight (4 per thread, each with its
-    /// images and luminances), plus `panels` whole images per frame.
+    /// images, luminances and walked columns), plus `panels` whole images per frame.
     pub fn check_memory(&self, panels: usize) -> Result<()> {
         let (w, h) = (u64::from(self.size.width), u64::from(self.size.height));
         let n_modes = self.modes.len() as u64;
@@ -59,7 +187,14 @@ impl FlySpec {
         } else {
             Some(0)
         };
-        let streamed = w * h * 4 * (n_modes + panels as u64) * chunk;
+        // Each series: its image and luminance; one at a time, the widest walked grid.
+        let widest = u64::from(self.columns_per_pixel.max(if self.flies_reference() {
+            self.reference_columns
+        } else {
+            1
+        }));
+        let series = n_modes + panels as u64 + u64::from(self.flies_reference());
+        let streamed = w * h * 4 * (series + 3 * widest) * chunk;
         // Every frame's camera is computed up front.
         let cameras = (self.frames as u64).checked_mul(std::mem::size_of::<
             footprint_core::terrain::camera::CameraParams,
@@ -82,6 +217,81 @@ impl FlySpec {
             },
         )
     }
+}
+
+/// How one flown series is rendered.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Setting {
+    /// The sampler.
+    mode: Mode,
+    /// The pyramid (`true`) or level 0.
+    lod: bool,
+    /// Columns walked per pixel, box-filtered to one.
+    columns: u32,
+}
+
+/// One series in one frame: the chosen column (bottom to top), and the whole image
+/// (row-major from the top) when it was rendered.
+struct Shot {
+    column: Vec<Rgb>,
+    image: Option<Vec<Rgb>>,
+}
+
+/// Renders `setting`'s view from `camera`: the whole image if `whole` (or if the projection
+/// is exact, whose walked columns are not image columns), else only `column`'s walked
+/// columns, box-filtered as the whole image would be.
+fn shoot(
+    camera: &Camera,
+    pyramid: &Pyramid,
+    projection: Projection,
+    setting: Setting,
+    column: usize,
+    whole: bool,
+) -> Result<Shot> {
+    let options = Options {
+        lod: setting.lod,
+        columns_per_pixel: setting.columns,
+        projection,
+        ..Options::default()
+    };
+    let h = camera.height();
+    if whole || projection == Projection::Exact {
+        let image = if setting.columns > 1 {
+            supersampled(camera, pyramid, setting.mode, options)?
+        } else {
+            let terrain = pyramid.terrain(setting.lod)?;
+            let mut tables = Tables::new(camera);
+            let frame = tables.frame(camera, &terrain, options)?;
+            render_with(
+                &frame,
+                &terrain,
+                setting.mode,
+                &mut footprint_core::terrain::cost::NoCost,
+            )?
+            .image
+        };
+        let w = camera.width();
+        let column = (0..h).map(|i| image[(h - 1 - i) * w + column]).collect();
+        return Ok(Shot {
+            column,
+            image: Some(image),
+        });
+    }
+    let terrain = pyramid.terrain(setting.lod)?;
+    let mut tables = Tables::new(camera);
+    let frame = tables.frame(camera, &terrain, options)?;
+    let k = setting.columns.max(1) as usize;
+    let walked: Vec<Vec<Rgb>> = (column * k..(column + 1) * k)
+        .map(|x| render_column(&frame, &terrain, setting.mode, x))
+        .collect();
+    // The `k` walked columns as `h` rows of `k` pixels, box-filtered to one per row.
+    let wide: Vec<Rgb> = (0..h)
+        .flat_map(|i| walked.iter().map(move |c| c[i]))
+        .collect();
+    Ok(Shot {
+        column: box_columns(&wide, 1, h, k),
+        image: None,
+    })
 }
 
 /// How far a flight may go from its start, metres: cameras are valid to ±10¹² m, and the
@@ -110,16 +320,66 @@ pub fn check_reach(step_m: f64, frames: usize) -> Result<()> {
     Ok(())
 }
 
+/// Changes of 6 levels and more (Table 6's bins `6-60` and `>60`): the changes that flicker.
+pub fn large_changes(h: &Histogram) -> u64 {
+    h.0[6] + h.0[7]
+}
+
+/// A series' changes less the reference's: the flicker it adds to the truth's own.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Excess {
+    /// Large changes (6 and more) in the chosen column, less the reference's there.
+    pub column: i64,
+    /// Per bin of Table 6, the chosen column's count less the reference's.
+    pub column_bins: [i64; 8],
+    /// Large changes over every column, less the reference's (when every column was counted).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub all_columns: Option<i64>,
+    /// Per bin, every column's count less the reference's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub all_columns_bins: Option<[i64; 8]>,
+}
+
+impl Excess {
+    /// `mine` less `truth`, for the column and (when both have them) every column.
+    fn of(mine: (&Histogram, Option<&Histogram>), truth: (&Histogram, Option<&Histogram>)) -> Self {
+        let bins = |a: &Histogram, b: &Histogram| -> [i64; 8] {
+            std::array::from_fn(|i| a.0[i] as i64 - b.0[i] as i64)
+        };
+        let large =
+            |a: &Histogram, b: &Histogram| large_changes(a) as i64 - large_changes(b) as i64;
+        let all = mine.1.zip(truth.1);
+        Excess {
+            column: large(mine.0, truth.0),
+            column_bins: bins(mine.0, truth.0),
+            all_columns: all.map(|(a, b)| large(a, b)),
+            all_columns_bins: all.map(|(a, b)| bins(a, b)),
+        }
+    }
+}
+
 /// One mode's flight.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModeFly {
-    /// The mode.
-    pub mode: Mode,
+    /// The mode (or `reference`).
+    pub mode: FlyMode,
     /// Table 6: changes of the chosen column's pixels.
     pub histogram: Histogram,
     /// The same, summed over every column (when asked for).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub all_columns: Option<Histogram>,
+    /// Large changes (6 and more) in the chosen column.
+    pub column_large_changes: u64,
+    /// Large changes over every column (when counted).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub large_changes: Option<u64>,
+    /// The changes less the reference flight's (when it was flown; zero for the reference).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub excess: Option<Excess>,
+    /// RMSE against the reference frame, 8-bit levels, the mean over frames (when the
+    /// reference was flown and every column rendered).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rmse: Option<f64>,
     /// Fig. 14: the column over time, `H` rows × `frames` columns, row-major from the top.
     #[serde(skip)]
     pub cut: Vec<Rgb>,
@@ -134,17 +394,35 @@ pub struct Fly {
     pub frames: usize,
     /// Metres per frame.
     pub step: f64,
+    /// Image width and height, pixels.
+    pub size: (u32, u32),
     /// The starting eye height (fit-first-hit at pitch 5°), metres above sea level.
     pub height: f64,
     /// `exact` or `paper`.
     pub projection: &'static str,
-    /// Whether the frames walked the pyramid (`--lod on`) or level 0 alone.
+    /// Whether the modes walked the pyramid (`--lod on`) or level 0 alone.
     pub lod: bool,
+    /// Columns the modes walked per pixel.
+    pub columns_per_pixel: u32,
+    /// Columns per pixel of the reference flight, if it was flown.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference_columns: Option<u32>,
     /// The key frames flown, if a path was given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path: Option<FlightPath>,
     /// Every mode.
     pub modes: Vec<ModeFly>,
+    /// The reference flight's own changes, when it was flown (its excess is zero).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ModeFly>,
+}
+
+impl Fly {
+    /// The flight of `mode`, if flown.
+    pub fn mode(&self, mode: impl Into<FlyMode>) -> Option<&ModeFly> {
+        let mode = mode.into();
+        self.modes.iter().find(|m| m.mode == mode)
+    }
 }
 
 /// Flies `spec` over `map`, rendering frames on all cores; calls `progress` once per frame.
@@ -155,6 +433,15 @@ pub fn run(
     progress: impl Fn() + Sync,
 ) -> Result<Fly> {
     run_with_frames(map, pyramid, spec, &[], progress, |_, _| Ok(()))
+}
+
+/// One series' tallies over the flight.
+#[derive(Clone, Default)]
+struct Tally {
+    column: Histogram,
+    all: Histogram,
+    rmse_sum: f64,
+    cut: Vec<Rgb>,
 }
 
 /// [`run`], and also hands `on_frame(t, images)` the whole image of each mode of `panels`
@@ -168,13 +455,7 @@ pub fn run_with_frames(
     progress: impl Fn() + Sync,
     mut on_frame: impl FnMut(usize, &[Vec<Rgb>]) -> Result<()>,
 ) -> Result<Fly> {
-    if spec.frames < 2 {
-        bail!(
-            "--frames {}: at least 2 frames are needed to see a change",
-            spec.frames
-        );
-    }
-    check_reach(spec.step_m, spec.frames)?;
+    spec.check()?;
     let start = *paper_camera(map, pyramid, 5.0, spec.size, spec.lod)?.params();
     let (w, h) = (start.width as usize, start.height as usize);
     let column = spec.column.unwrap_or(w / 2);
@@ -183,12 +464,6 @@ pub fn run_with_frames(
     }
     spec.check_memory(panels.len())?;
     let chunk = 4 * rayon::current_num_threads().max(1);
-    let terrain = pyramid.terrain(spec.lod)?;
-    let options = Options {
-        lod: spec.lod,
-        projection: spec.projection,
-        ..Options::default()
-    };
     // Every frame's camera: the paper's straight flight, or the path's.
     let cameras = match &spec.path {
         Some(path) => path.cameras(&start, spec.frames, spec.step_m),
@@ -196,59 +471,96 @@ pub fn run_with_frames(
             .map(|t| flight::moved(&start, t, spec.step_m))
             .collect(),
     };
-    // Each frame: per mode of `spec.modes`, the chosen column (bottom to top) and, if asked,
-    // the luminance of the whole image; then the whole image of each panel.
+    // The series: the reference first (when flown), then every mode that is not it.
+    let reference = spec.flies_reference();
+    let series: Vec<FlyMode> = reference
+        .then_some(FlyMode::Reference)
+        .into_iter()
+        .chain(
+            spec.modes
+                .iter()
+                .copied()
+                .filter(|&m| m != FlyMode::Reference),
+        )
+        .collect();
+    let lum = |img: &[Rgb]| img.iter().map(|&p| luminance(p)).collect::<Vec<u8>>();
+    // Each frame: per series, the chosen column and, if asked, the whole image's luminance and
+    // its RMSE against the reference; then the whole image of each panel.
+    struct Measured {
+        column: Vec<Rgb>,
+        lum: Option<Vec<u8>>,
+        rmse: Option<f64>,
+    }
     struct Rendered {
-        measured: Vec<(Vec<Rgb>, Option<Vec<u8>>)>,
+        measured: Vec<Measured>,
         panels: Vec<Vec<Rgb>>,
     }
     let render_frame = |t: usize| -> Result<Rendered> {
         let camera = Camera::new(cameras[t]).map_err(|e| anyhow::anyhow!("frame {t}: {e}"))?;
-        let mut tables = Tables::new(&camera);
-        let frame = tables.frame(&camera, &terrain, options)?;
-        let whole = |mode: Mode| -> Result<Vec<Rgb>> {
-            Ok(render_with(
-                &frame,
-                &terrain,
-                mode,
-                &mut footprint_core::terrain::cost::NoCost,
-            )?
-            .image)
-        };
+        let mut truth: Option<Vec<Rgb>> = None;
         let mut panel_images: Vec<Option<Vec<Rgb>>> = vec![None; panels.len()];
-        let mut measured = Vec::with_capacity(spec.modes.len());
-        for &mode in &spec.modes {
-            let panel = panels.iter().position(|&p| p == mode);
-            // A fan's walked columns are not image columns: take the column from the image.
-            let whole_frame = spec.all_columns || panel.is_some() || frame.fan().is_some();
-            measured.push(if whole_frame {
-                let img = whole(mode)?;
-                let col = (0..h).map(|i| img[(h - 1 - i) * w + column]).collect();
-                let lum = spec
-                    .all_columns
-                    .then(|| img.iter().map(|&p| luminance(p)).collect());
-                if let Some(k) = panel {
-                    panel_images[k] = Some(img);
-                }
-                (col, lum)
-            } else {
-                (render_column(&frame, &terrain, mode, column), None)
+        let mut measured = Vec::with_capacity(series.len());
+        for &m in &series {
+            let panel = match m {
+                FlyMode::Mode(mode) => panels.iter().position(|&p| p == mode),
+                FlyMode::Reference => None,
+            };
+            let shot = shoot(
+                &camera,
+                pyramid,
+                spec.projection,
+                spec.setting(m),
+                column,
+                spec.all_columns || panel.is_some(),
+            )?;
+            let (l, e) = match (&shot.image, spec.all_columns) {
+                (Some(img), true) => (Some(lum(img)), truth.as_deref().map(|r| rmse(img, r))),
+                _ => (None, None),
+            };
+            measured.push(Measured {
+                column: shot.column,
+                lum: l,
+                rmse: e,
             });
+            match (m, shot.image) {
+                (FlyMode::Reference, Some(img)) => truth = Some(img),
+                (_, Some(img)) => {
+                    if let Some(k) = panel {
+                        panel_images[k] = Some(img);
+                    }
+                }
+                _ => {}
+            }
         }
         let panels = panels
             .iter()
             .zip(panel_images)
-            .map(|(&mode, img)| img.map_or_else(|| whole(mode), Ok))
+            .map(|(&mode, img)| match img {
+                Some(img) => Ok(img),
+                None => Ok(shoot(
+                    &camera,
+                    pyramid,
+                    spec.projection,
+                    spec.setting(FlyMode::Mode(mode)),
+                    column,
+                    true,
+                )?
+                .image
+                .unwrap_or_default()),
+            })
             .collect::<Result<Vec<_>>>()?;
         progress();
         Ok(Rendered { measured, panels })
     };
 
-    let n_modes = spec.modes.len();
-    let mut column_hist = vec![Histogram::default(); n_modes];
-    let mut all_hist = vec![Histogram::default(); n_modes];
     let cut_len = if spec.keep_cut { h * spec.frames } else { 0 };
-    let mut cuts = vec![vec![Rgb::default(); cut_len]; n_modes];
+    let mut tallies = vec![
+        Tally {
+            cut: vec![Rgb::default(); cut_len],
+            ..Tally::default()
+        };
+        series.len()
+    ];
     let mut previous: Option<Rendered> = None;
     for first in (0..spec.frames).step_by(chunk) {
         let frames: Vec<Rendered> = (first..(first + chunk).min(spec.frames))
@@ -260,45 +572,67 @@ pub fn run_with_frames(
             if !panels.is_empty() {
                 on_frame(t, &rendered.panels)?;
             }
-            for (m, (col, lum)) in rendered.measured.iter().enumerate() {
+            for (s, now) in rendered.measured.iter().enumerate() {
+                let tally = &mut tallies[s];
                 if spec.keep_cut {
-                    for (i, px) in col.iter().enumerate() {
-                        cuts[m][(h - 1 - i) * spec.frames + t] = *px;
+                    for (i, px) in now.column.iter().enumerate() {
+                        tally.cut[(h - 1 - i) * spec.frames + t] = *px;
                     }
                 }
-                if let Some((pcol, plum)) = previous.as_ref().map(|p| &p.measured[m]) {
-                    let a: Vec<u8> = pcol.iter().map(|&p| luminance(p)).collect();
-                    let b: Vec<u8> = col.iter().map(|&p| luminance(p)).collect();
-                    column_hist[m].add(&a, &b);
-                    if let (Some(pl), Some(l)) = (plum, lum) {
-                        all_hist[m].add(pl, l);
+                tally.rmse_sum += now.rmse.unwrap_or(0.0);
+                if let Some(before) = previous.as_ref().map(|p| &p.measured[s]) {
+                    tally.column.add(&lum(&before.column), &lum(&now.column));
+                    if let (Some(pl), Some(l)) = (&before.lum, &now.lum) {
+                        tally.all.add(pl, l);
                     }
                 }
             }
             previous = Some(rendered);
         }
     }
+    let truth = reference.then(|| (tallies[0].column, tallies[0].all));
+    let all = |h: Histogram| spec.all_columns.then_some(h);
+    let mut flown = |mode: FlyMode| {
+        let s = series
+            .iter()
+            .position(|&m| m == mode)
+            .expect("every mode is a series");
+        let (column_h, all_h) = (tallies[s].column, all(tallies[s].all));
+        ModeFly {
+            mode,
+            histogram: column_h,
+            all_columns: all_h,
+            column_large_changes: large_changes(&column_h),
+            large_changes: all_h.as_ref().map(large_changes),
+            excess: truth
+                .map(|(rc, ra)| Excess::of((&column_h, all_h.as_ref()), (&rc, all(ra).as_ref()))),
+            rmse: (reference && spec.all_columns).then(|| tallies[s].rmse_sum / spec.frames as f64),
+            cut: std::mem::take(&mut tallies[s].cut),
+        }
+    };
+    let modes: Vec<ModeFly> = spec.modes.iter().map(|&m| flown(m)).collect();
+    let reference_flight = match modes.iter().find(|m| m.mode == FlyMode::Reference) {
+        Some(listed) => Some(ModeFly {
+            cut: Vec::new(),
+            ..listed.clone()
+        }),
+        None => reference.then(|| flown(FlyMode::Reference)),
+    };
     Ok(Fly {
         column,
         frames: spec.frames,
         step: spec.step_m,
+        size: (start.width, start.height),
         height: start.eye_m + map.base_m,
         projection: match spec.projection {
             Projection::Exact => "exact",
             Projection::Paper => "paper",
         },
         lod: spec.lod,
+        columns_per_pixel: spec.columns_per_pixel,
+        reference_columns: reference.then_some(spec.reference_columns),
         path: spec.path.clone(),
-        modes: spec
-            .modes
-            .iter()
-            .enumerate()
-            .map(|(m, &mode)| ModeFly {
-                mode,
-                histogram: column_hist[m],
-                all_columns: spec.all_columns.then_some(all_hist[m]),
-                cut: std::mem::take(&mut cuts[m]),
-            })
-            .collect(),
+        modes,
+        reference: reference_flight,
     })
 }

@@ -23,24 +23,40 @@ pub fn reference(
     sky: Rgb,
     projection: Projection,
 ) -> Result<Vec<Rgb>> {
-    let terrain = pyramid.terrain(false)?;
-    let options = Options {
-        sky,
-        lod: false,
-        columns_per_pixel: REFERENCE_COLUMNS,
-        projection,
-    };
+    supersampled(
+        camera,
+        pyramid,
+        Mode::AsExact,
+        Options {
+            sky,
+            lod: false,
+            columns_per_pixel: REFERENCE_COLUMNS,
+            projection,
+        },
+    )
+}
+
+/// Renders `camera`'s view in `mode` with `options`, walking `options.columns_per_pixel`
+/// columns per pixel and box-filtering them down to one (row-major from the top): the
+/// reference's settings with any mode, LOD and number of columns.
+pub fn supersampled(
+    camera: &Camera,
+    pyramid: &Pyramid,
+    mode: Mode,
+    options: Options,
+) -> Result<Vec<Rgb>> {
+    let terrain = pyramid.terrain(options.lod)?;
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
-    let wide = render_parallel(&frame, &terrain, Mode::AsExact)?;
-    if projection == Projection::Exact {
+    let wide = render_parallel(&frame, &terrain, mode)?;
+    if options.projection == Projection::Exact || options.columns_per_pixel <= 1 {
         return Ok(wide.image);
     }
     Ok(box_columns(
         &wide.image,
         camera.width(),
         camera.height(),
-        REFERENCE_COLUMNS as usize,
+        options.columns_per_pixel as usize,
     ))
 }
 

@@ -1,26 +1,75 @@
-//! Table 6 (the changes between frames of the flight, Sect. 5) as Markdown.
+//! Table 6 (the changes between frames of the flight, Sect. 5) as Markdown: the chosen column,
+//! every column, and each mode's excess over the reference flight.
 
 use crate::experiment::fly::{self, BINS};
 
-/// Table 6 as Markdown: the chosen column, then (when measured) every column.
-pub fn markdown(f: &fly::Fly) -> String {
-    let table = |get: &dyn Fn(&fly::ModeFly) -> Option<fly::Histogram>| {
-        let mut s = String::from("| Change |");
+/// One Table 6 of `f`'s modes: a row per bin, a column per mode, `get` choosing the
+/// histogram (a mode without one shows 0).
+fn table(f: &fly::Fly, get: &dyn Fn(&fly::ModeFly) -> Option<fly::Histogram>) -> String {
+    let mut s = String::from("| Change |");
+    for m in &f.modes {
+        s += &format!(" {} |", m.mode.to_string().to_uppercase());
+    }
+    s += "\n|---|";
+    s += &"---|".repeat(f.modes.len());
+    s += "\n";
+    for (b, name) in BINS.iter().enumerate() {
+        s += &format!("| {name} |");
         for m in &f.modes {
-            s += &format!(" {} |", m.mode.to_string().to_uppercase());
+            s += &format!(" {} |", get(m).map_or(0, |h| h.0[b]));
         }
-        s += "\n|---|";
-        s += &"---|".repeat(f.modes.len());
         s += "\n";
-        for (b, name) in BINS.iter().enumerate() {
-            s += &format!("| {name} |");
-            for m in &f.modes {
-                s += &format!(" {} |", get(m).map_or(0, |h| h.0[b]));
-            }
-            s += "\n";
+    }
+    s
+}
+
+/// The excess over the reference: per mode, its large changes (6 and more) and the
+/// reference's, in the column and over every column, and the RMSE against the reference.
+fn excess(f: &fly::Fly, reference: &fly::ModeFly) -> String {
+    let frame = f.modes.iter().any(|m| m.large_changes.is_some());
+    let mut s = format!(
+        "\nAgainst the reference flight (`as-exact` at level 0, {} columns per pixel): large \
+         changes (6 and more) and the excess over the reference's own ({} in the column{}).\n\n",
+        f.reference_columns.unwrap_or(0),
+        reference.column_large_changes,
+        reference
+            .large_changes
+            .map_or(String::new(), |c| format!(", {c} over the frame"))
+    );
+    s += "| Mode | column | column excess |";
+    if frame {
+        s += " frame | frame excess | RMSE |";
+    }
+    s += "\n|---|---|---|";
+    if frame {
+        s += "---|---|---|";
+    }
+    s += "\n";
+    for m in &f.modes {
+        let e = m.excess;
+        s += &format!(
+            "| {} | {} | {} |",
+            m.mode.to_string().to_uppercase(),
+            m.column_large_changes,
+            e.map_or("—".into(), |e| format!("{:+}", e.column))
+        );
+        if frame {
+            s += &format!(
+                " {} | {} | {} |",
+                m.large_changes.map_or("—".into(), |c| c.to_string()),
+                e.and_then(|e| e.all_columns)
+                    .map_or("—".into(), |c| format!("{c:+}")),
+                m.rmse.map_or("—".into(), |r| format!("{r:.3}"))
+            );
         }
-        s
-    };
+        s += "\n";
+    }
+    s
+}
+
+/// Table 6 as Markdown: the chosen column, then (when measured) every column, then the excess
+/// over the reference flight (when flown).
+pub fn markdown(f: &fly::Fly) -> String {
     let flown = match &f.path {
         Some(p) => format!(
             "along a path of {} key frames (heading, pitch, roll interpolated)",
@@ -28,14 +77,29 @@ pub fn markdown(f: &fly::Fly) -> String {
         ),
         None => "straight ahead at pitch 5°".to_owned(),
     };
+    let walk = match (f.lod, f.columns_per_pixel) {
+        (true, 1) => String::new(),
+        (lod, k) => format!(
+            ", the modes walking {}{}",
+            if lod { "the pyramid" } else { "level 0" },
+            if k > 1 {
+                format!(" with {k} columns per pixel")
+            } else {
+                String::new()
+            }
+        ),
+    };
     let mut s = format!(
-        "**Table 6.** Changes in the 8-bit luminance of the pixels of column {}, between consecutive frames of {} ({} m per frame, {flown}, {} projection).\n\n",
+        "**Table 6.** Changes in the 8-bit luminance of the pixels of column {}, between consecutive frames of {} ({} m per frame, {flown}, {} projection{walk}).\n\n",
         f.column, f.frames, f.step, f.projection
     );
-    s += &table(&|m| Some(m.histogram));
+    s += &table(f, &|m| Some(m.histogram));
     if f.modes.iter().any(|m| m.all_columns.is_some()) {
         s += "\nSummed over every column:\n\n";
-        s += &table(&|m| m.all_columns);
+        s += &table(f, &|m| m.all_columns);
+    }
+    if let Some(reference) = &f.reference {
+        s += &excess(f, reference);
     }
     s
 }
