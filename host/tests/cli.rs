@@ -321,6 +321,7 @@ fn experiments_refuse_bad_arguments() {
     fails_with(&["fly", "--columns-per-pixel", "0"], "--columns-per-pixel");
     fails_with(&["fly", "--reference-columns", "65"], "--reference-columns");
     fails_with(&["fly", "--modes", "ps,references"], "reference");
+    fails_with(&["fly", "--causes", "--projection", "exact"], "--causes");
     fails_with(&["fly", "--modes", "xx"], "mode");
     fails_with(&["fly", "--out", "/no/such/folder"], "--out");
     fails_with(&["fly", "--animation"], "--out");
@@ -423,6 +424,7 @@ fn fly_json_lists_the_reference_and_every_modes_excess_over_it() {
         "ps,as,reference",
         "--reference-columns",
         "4",
+        "--causes",
         "--json",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -471,6 +473,24 @@ fn fly_json_lists_the_reference_and_every_modes_excess_over_it() {
             m["excess"]["all_columns"].as_i64().unwrap(),
             expected[6] + expected[7]
         );
+    }
+    for m in modes {
+        // --causes splits every column's changes: the classes sum to the whole frame's.
+        let classes = m["classes"].as_array().unwrap();
+        let names: Vec<&str> = classes
+            .iter()
+            .map(|c| c["class"].as_str().unwrap())
+            .collect();
+        assert_eq!(names, ["seam", "magnified", "rest"]);
+        let sum = |key: &str| {
+            classes
+                .iter()
+                .map(|c| c[key].as_i64().unwrap())
+                .sum::<i64>()
+        };
+        assert_eq!(sum("pixels"), 5 * 32 * 24);
+        assert_eq!(sum("large_changes"), m["large_changes"].as_i64().unwrap());
+        assert_eq!(sum("excess"), m["excess"]["all_columns"].as_i64().unwrap());
     }
     assert_eq!(truth["excess"]["all_columns"], 0);
     assert_eq!(truth["rmse"].as_f64().unwrap(), 0.0);

@@ -79,6 +79,11 @@ pub struct FlyArgs {
     /// as-exact at level 0 with 16.
     #[arg(long, default_value_t = REFERENCE_COLUMNS, value_name = "K")]
     pub reference_columns: u32,
+    /// Split every column's changes by the class of the pixel's footprint: at a seam of the
+    /// mirrored map, magnified (narrower than a voxel), or the rest; each class's large changes
+    /// and excess over the reference (JSON `classes`).
+    #[arg(long, conflicts_with = "column_only")]
+    pub causes: bool,
     /// Do not fly the reference (faster; no excess over it, no RMSE). Listing `reference` in
     /// --modes flies it anyway.
     #[arg(long)]
@@ -151,6 +156,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         lod: args.lod == Switch::On,
         columns_per_pixel: args.columns_per_pixel,
         reference: !args.no_reference,
+        causes: args.causes,
         reference_columns: args.reference_columns,
     };
     spec.check()?;

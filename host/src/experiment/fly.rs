@@ -19,6 +19,7 @@ use serde::Serialize;
 
 pub use footprint_scenes::flight::{self, bin, luminance, Histogram, BINS};
 
+use super::causes::{classify, ClassFlicker, CLASSES};
 use super::paper::paper_camera;
 use super::path::FlightPath;
 use super::reference::{box_columns, rmse, supersampled};
@@ -126,6 +127,10 @@ pub struct FlySpec {
     /// Fly the reference too, and give every mode its excess over it (it is flown whenever
     /// `modes` lists it).
     pub reference: bool,
+    /// Split every column's changes by the class of the pixel's footprint
+    /// ([`super::causes`]: at a mirrored seam, magnified, the rest); needs `all_columns` and
+    /// the paper's projection.
+    pub causes: bool,
     /// Columns per pixel of the reference flight (1–64; the ground truth's is
     /// [`REFERENCE_COLUMNS`](super::reference::REFERENCE_COLUMNS)).
     pub reference_columns: u32,
@@ -148,6 +153,12 @@ impl FlySpec {
             if !(1..=64).contains(&k) {
                 bail!("{name} {k}: outside 1–64");
             }
+        }
+        if self.causes && !(self.all_columns && self.projection == Projection::Paper) {
+            bail!(
+                "--causes: needs every column counted (not --column-only) and the paper's \
+                 projection (--projection paper)"
+            );
         }
         check_reach(self.step_m, self.frames)
     }
@@ -380,6 +391,9 @@ pub struct ModeFly {
     /// reference was flown and every column rendered).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rmse: Option<f64>,
+    /// Every column's changes split by the class of the pixel's footprint (`--causes`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub classes: Option<Vec<ClassFlicker>>,
     /// Fig. 14: the column over time, `H` rows × `frames` columns, row-major from the top.
     #[serde(skip)]
     pub cut: Vec<Rgb>,
@@ -440,6 +454,8 @@ pub fn run(
 struct Tally {
     column: Histogram,
     all: Histogram,
+    /// `all`, split by the class of the pixel's footprint ([`CLASSES`]).
+    by_class: [Histogram; CLASSES.len()],
     rmse_sum: f64,
     cut: Vec<Rgb>,
 }
@@ -494,6 +510,7 @@ pub fn run_with_frames(
     struct Rendered {
         measured: Vec<Measured>,
         panels: Vec<Vec<Rgb>>,
+        classes: Option<Vec<u8>>,
     }
     let render_frame = |t: usize| -> Result<Rendered> {
         let camera = Camera::new(cameras[t]).map_err(|e| anyhow::anyhow!("frame {t}: {e}"))?;
@@ -549,8 +566,16 @@ pub fn run_with_frames(
                 .unwrap_or_default()),
             })
             .collect::<Result<Vec<_>>>()?;
+        let classes = spec
+            .causes
+            .then(|| classify(&camera, pyramid))
+            .transpose()?;
         progress();
-        Ok(Rendered { measured, panels })
+        Ok(Rendered {
+            measured,
+            panels,
+            classes,
+        })
     };
 
     let cut_len = if spec.keep_cut { h * spec.frames } else { 0 };
@@ -584,13 +609,18 @@ pub fn run_with_frames(
                     tally.column.add(&lum(&before.column), &lum(&now.column));
                     if let (Some(pl), Some(l)) = (&before.lum, &now.lum) {
                         tally.all.add(pl, l);
+                        if let Some(classes) = &rendered.classes {
+                            for ((&a, &b), &c) in pl.iter().zip(l).zip(classes) {
+                                tally.by_class[usize::from(c)].0[bin(a.abs_diff(b))] += 1;
+                            }
+                        }
                     }
                 }
             }
             previous = Some(rendered);
         }
     }
-    let truth = reference.then(|| (tallies[0].column, tallies[0].all));
+    let truth = reference.then(|| (tallies[0].column, tallies[0].all, tallies[0].by_class));
     let all = |h: Histogram| spec.all_columns.then_some(h);
     let mut flown = |mode: FlyMode| {
         let s = series
@@ -604,9 +634,27 @@ pub fn run_with_frames(
             all_columns: all_h,
             column_large_changes: large_changes(&column_h),
             large_changes: all_h.as_ref().map(large_changes),
-            excess: truth
-                .map(|(rc, ra)| Excess::of((&column_h, all_h.as_ref()), (&rc, all(ra).as_ref()))),
+            excess: truth.map(|(rc, ra, _)| {
+                Excess::of((&column_h, all_h.as_ref()), (&rc, all(ra).as_ref()))
+            }),
             rmse: (reference && spec.all_columns).then(|| tallies[s].rmse_sum / spec.frames as f64),
+            classes: spec.causes.then(|| {
+                CLASSES
+                    .iter()
+                    .enumerate()
+                    .map(|(c, &class)| {
+                        let mine = &tallies[s].by_class[c];
+                        ClassFlicker {
+                            class,
+                            pixels: mine.0.iter().sum(),
+                            large_changes: large_changes(mine),
+                            excess: truth.map(|(_, _, r)| {
+                                large_changes(mine) as i64 - large_changes(&r[c]) as i64
+                            }),
+                        }
+                    })
+                    .collect()
+            }),
             cut: std::mem::take(&mut tallies[s].cut),
         }
     };

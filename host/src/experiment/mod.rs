@@ -1,6 +1,7 @@
 //! Experiments: each returns data and prints nothing.
 
 pub mod bench;
+pub mod causes;
 pub mod claims;
 pub mod differences;
 pub mod firmware;

@@ -55,6 +55,7 @@ pub fn paper_flight(frames: usize) -> FlySpec {
         columns_per_pixel: 1,
         reference: true,
         reference_columns: REFERENCE_COLUMNS,
+        causes: false,
     }
 }
 

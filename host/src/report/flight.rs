@@ -101,5 +101,52 @@ pub fn markdown(f: &fly::Fly) -> String {
     if let Some(reference) = &f.reference {
         s += &excess(f, reference);
     }
+    if f.modes.iter().any(|m| m.classes.is_some()) {
+        s += &classes(f);
+    }
+    s
+}
+
+/// Every column's large changes split by the class of the pixel's footprint
+/// ([`crate::experiment::causes`]), with each class's excess over the reference.
+fn classes(f: &fly::Fly) -> String {
+    let names = crate::experiment::causes::CLASSES;
+    let mut s = String::from(
+        "\nEvery column's large changes (6 and more) by the pixel's footprint: at a seam of the \
+         mirrored map, magnified (narrower than a voxel), the rest; the excess over the \
+         reference in brackets.\n\n| Mode |",
+    );
+    for n in names {
+        s += &format!(" {n} |");
+    }
+    s += "\n|---|";
+    s += &"---|".repeat(names.len());
+    s += "\n";
+    for m in &f.modes {
+        let Some(classes) = &m.classes else {
+            continue;
+        };
+        s += &format!("| {} |", m.mode.to_string().to_uppercase());
+        for c in classes {
+            s += &format!(
+                " {}{} |",
+                c.large_changes,
+                c.excess.map_or(String::new(), |e| format!(" ({e:+})"))
+            );
+        }
+        s += "\n";
+    }
+    let pixels = f
+        .modes
+        .iter()
+        .find_map(|m| m.classes.as_ref())
+        .map(|c| {
+            c.iter()
+                .map(|c| format!("{} {}", c.class, c.pixels))
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+        .unwrap_or_default();
+    s += &format!("\nPixel changes counted per class: {pixels}.\n");
     s
 }
