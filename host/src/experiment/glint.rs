@@ -20,7 +20,7 @@ use footprint_scenes::render::render_lit;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::fly::{flight, luminance, Histogram, BINS};
+use super::fly::{flight, large_changes, luminance, Histogram};
 use super::paper::paper_camera;
 use super::reference::{box_columns, rmse};
 use crate::lighting::{LoadedMaterials, MaterialArg, Method, AMBIENT_DIFFUSE};
@@ -41,8 +41,7 @@ pub const METHODS: [Method; 5] = [
 /// The reference's method.
 pub const REFERENCE: Method = Method(Specular::Reference);
 
-/// The bins of Table 6 that count as flicker: changes of 6 levels and more (`6-60`, `>60`).
-pub const FLICKER_BINS: std::ops::Range<usize> = 6..BINS.len();
+pub use super::fly::FLICKER_BINS;
 
 /// What to fly.
 #[derive(Clone, Debug)]
@@ -369,11 +368,10 @@ pub fn run(
         }
     }
 
-    let large = |hist: &Histogram| FLICKER_BINS.map(|b| hist.0[b]).sum::<u64>();
     let reference_flicker = acc[0].flicker;
     let reference_column = acc[0].column;
     let finish = |a: Acc, method: Method, mode: Mode| -> GlintRun {
-        let lc = large(&a.flicker);
+        let lc = large_changes(&a.flicker);
         let total_pixels = pixels * spec.frames as f64;
         GlintRun {
             method,
@@ -383,8 +381,9 @@ pub fn run(
             column: a.column,
             flicker: a.flicker,
             large_changes: lc,
-            excess_flicker: lc as i64 - large(&reference_flicker) as i64,
-            column_excess_flicker: large(&a.column) as i64 - large(&reference_column) as i64,
+            excess_flicker: lc as i64 - large_changes(&reference_flicker) as i64,
+            column_excess_flicker: large_changes(&a.column) as i64
+                - large_changes(&reference_column) as i64,
             excess_bins: std::array::from_fn(|b| {
                 a.flicker.0[b] as i64 - reference_flicker.0[b] as i64
             }),

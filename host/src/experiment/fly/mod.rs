@@ -5,11 +5,8 @@
 //! Table 6 counts one column; the paper's one reservation (Sect. 8, "along the horizontal axis
 //! the sampling is naive") lives across columns, so every column is counted as well. Part of
 //! every change is the terrain's own motion, which the truth has too: the reference flight
-//! (the ground truth's settings, [`super::reference`]) is flown beside the modes, and each
+//! (the ground truth's settings, [`crate::experiment::reference`]) is flown beside the modes, and each
 //! mode's *excess* is its count less the reference's, in the column and over the frame.
-
-use std::fmt;
-use std::str::FromStr;
 
 use anyhow::{bail, Result};
 use footprint_core::terrain::camera::{Camera, Options, Projection};
@@ -19,81 +16,20 @@ use serde::Serialize;
 
 pub use footprint_scenes::flight::{self, bin, luminance, Histogram, BINS};
 
-use super::causes::{classify, ClassFlicker, CLASSES};
-use super::paper::paper_camera;
-use super::path::FlightPath;
-use super::reference::{box_columns, rmse, supersampled};
+mod excess;
+mod mode;
+
+pub use excess::{large_changes, Excess, FLICKER_BINS};
+pub use mode::{FlyMode, ParseFlyModeError};
+
+use crate::experiment::causes::{classify, ClassFlicker, CLASSES};
+use crate::experiment::paper::paper_camera;
+use crate::experiment::path::FlightPath;
+use crate::experiment::reference::{box_columns, rmse, supersampled};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column, render_with, Mode, Tables};
 use crate::view::Size;
-
-/// What a flight flies: one of the core's sampling modes, or the reference flight itself
-/// (`reference`), listed beside the modes with the same fields.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FlyMode {
-    /// A sampling mode, walked as the flight says (`--lod`, `--columns-per-pixel`).
-    Mode(Mode),
-    /// The ground truth's flight: exact area sampling (`as-exact`) at level 0, with
-    /// [`FlySpec::reference_columns`] columns per pixel box-filtered to one
-    /// ([`super::reference`]).
-    Reference,
-}
-
-impl FlyMode {
-    /// The name `--modes` takes: a mode's ([`Mode::name`]) or `reference`.
-    pub const fn name(self) -> &'static str {
-        match self {
-            FlyMode::Mode(m) => m.name(),
-            FlyMode::Reference => "reference",
-        }
-    }
-}
-
-impl From<Mode> for FlyMode {
-    fn from(m: Mode) -> Self {
-        FlyMode::Mode(m)
-    }
-}
-
-impl fmt::Display for FlyMode {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// A name [`FlyMode::from_str`] does not know.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ParseFlyModeError;
-
-impl fmt::Display for ParseFlyModeError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("expected ps, li, as, as-exact, classic, ss2, ss4, …, ss256, or reference")
-    }
-}
-
-impl std::error::Error for ParseFlyModeError {}
-
-impl FromStr for FlyMode {
-    type Err = ParseFlyModeError;
-
-    /// `reference`, or a mode by its name, in any case.
-    fn from_str(s: &str) -> Result<Self, ParseFlyModeError> {
-        if s.eq_ignore_ascii_case(FlyMode::Reference.name()) {
-            return Ok(FlyMode::Reference);
-        }
-        s.parse::<Mode>()
-            .map(FlyMode::Mode)
-            .map_err(|_| ParseFlyModeError)
-    }
-}
-
-/// A flown mode serializes as its name (`"ps"`, `"as-exact"`, `"reference"`).
-impl Serialize for FlyMode {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(self.name())
-    }
-}
 
 /// What to fly.
 #[derive(Clone, Debug)]
@@ -128,11 +64,11 @@ pub struct FlySpec {
     /// `modes` lists it).
     pub reference: bool,
     /// Split every column's changes by the class of the pixel's footprint
-    /// ([`super::causes`]: at a mirrored seam, magnified, the rest); needs `all_columns` and
+    /// ([`crate::experiment::causes`]: at a mirrored seam, magnified, the rest); needs `all_columns` and
     /// the paper's projection.
     pub causes: bool,
     /// Columns per pixel of the reference flight (1–64; the ground truth's is
-    /// [`REFERENCE_COLUMNS`](super::reference::REFERENCE_COLUMNS)).
+    /// [`REFERENCE_COLUMNS`](crate::experiment::reference::REFERENCE_COLUMNS)).
     pub reference_columns: u32,
 }
 
@@ -329,44 +265,6 @@ pub fn check_reach(step_m: f64, frames: usize) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// Changes of 6 levels and more (Table 6's bins `6-60` and `>60`): the changes that flicker.
-pub fn large_changes(h: &Histogram) -> u64 {
-    h.0[6] + h.0[7]
-}
-
-/// A series' changes less the reference's: the flicker it adds to the truth's own.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct Excess {
-    /// Large changes (6 and more) in the chosen column, less the reference's there.
-    pub column: i64,
-    /// Per bin of Table 6, the chosen column's count less the reference's.
-    pub column_bins: [i64; 8],
-    /// Large changes over every column, less the reference's (when every column was counted).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub all_columns: Option<i64>,
-    /// Per bin, every column's count less the reference's.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub all_columns_bins: Option<[i64; 8]>,
-}
-
-impl Excess {
-    /// `mine` less `truth`, for the column and (when both have them) every column.
-    fn of(mine: (&Histogram, Option<&Histogram>), truth: (&Histogram, Option<&Histogram>)) -> Self {
-        let bins = |a: &Histogram, b: &Histogram| -> [i64; 8] {
-            std::array::from_fn(|i| a.0[i] as i64 - b.0[i] as i64)
-        };
-        let large =
-            |a: &Histogram, b: &Histogram| large_changes(a) as i64 - large_changes(b) as i64;
-        let all = mine.1.zip(truth.1);
-        Excess {
-            column: large(mine.0, truth.0),
-            column_bins: bins(mine.0, truth.0),
-            all_columns: all.map(|(a, b)| large(a, b)),
-            all_columns_bins: all.map(|(a, b)| bins(a, b)),
-        }
-    }
 }
 
 /// One mode's flight.

@@ -1,0 +1,76 @@
+//! What a flight flies: a sampling mode of the core, or the reference flight (`reference`),
+//! by the names `--modes` takes.
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::Serialize;
+
+use crate::render::Mode;
+
+/// What a flight flies: one of the core's sampling modes, or the reference flight itself
+/// (`reference`), listed beside the modes with the same fields.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FlyMode {
+    /// A sampling mode, walked as the flight says (`--lod`, `--columns-per-pixel`).
+    Mode(Mode),
+    /// The ground truth's flight: exact area sampling (`as-exact`) at level 0, with
+    /// [`FlySpec::reference_columns`](super::FlySpec::reference_columns) columns per pixel box-filtered to one
+    /// ([`crate::experiment::reference`]).
+    Reference,
+}
+
+impl FlyMode {
+    /// The name `--modes` takes: a mode's ([`Mode::name`]) or `reference`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            FlyMode::Mode(m) => m.name(),
+            FlyMode::Reference => "reference",
+        }
+    }
+}
+
+impl From<Mode> for FlyMode {
+    fn from(m: Mode) -> Self {
+        FlyMode::Mode(m)
+    }
+}
+
+impl fmt::Display for FlyMode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name [`FlyMode::from_str`] does not know.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ParseFlyModeError;
+
+impl fmt::Display for ParseFlyModeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("expected ps, li, as, as-exact, classic, ss2, ss4, …, ss256, or reference")
+    }
+}
+
+impl std::error::Error for ParseFlyModeError {}
+
+impl FromStr for FlyMode {
+    type Err = ParseFlyModeError;
+
+    /// `reference`, or a mode by its name, in any case.
+    fn from_str(s: &str) -> Result<Self, ParseFlyModeError> {
+        if s.eq_ignore_ascii_case(FlyMode::Reference.name()) {
+            return Ok(FlyMode::Reference);
+        }
+        s.parse::<Mode>()
+            .map(FlyMode::Mode)
+            .map_err(|_| ParseFlyModeError)
+    }
+}
+
+/// A flown mode serializes as its name (`"ps"`, `"as-exact"`, `"reference"`).
+impl Serialize for FlyMode {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
