@@ -32,7 +32,7 @@ fn results() -> &'static (Tables15, Fly) {
         let spec = FlySpec {
             size: SIZE,
             all_columns: false,
-            ..footprint_host::experiment::paper::paper_flight(400)
+            ..FlySpec::paper(400)
         };
         let flight = fly::run(&map, &pyramid, &spec, || {}).unwrap();
         (tables, flight)

@@ -29,7 +29,7 @@ fn claims_on(kind: Kind) -> Vec<(String, bool, String)> {
     let spec = FlySpec {
         size: SIZE,
         all_columns: false,
-        ..footprint_host::experiment::paper::paper_flight(100)
+        ..FlySpec::paper(100)
     };
     let flight = fly::run(&map, &pyramid, &spec, || {}).unwrap();
     claims(&tables, &flight)

@@ -14,7 +14,7 @@ use crate::experiment::fly::{self, FlySpec, BINS};
 use crate::experiment::glint::{self, GlintSpec};
 use crate::experiment::heights;
 use crate::experiment::inspect;
-use crate::experiment::paper::{paper_camera, paper_flight, PAPER_PITCHES};
+use crate::experiment::paper::{paper_camera, PAPER_PITCHES};
 use crate::experiment::table;
 use crate::lighting::MaterialArg;
 use crate::output::Folder;
@@ -129,7 +129,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let lod = args.lod == Switch::On;
     let fly_spec = FlySpec {
         lod,
-        ..paper_flight(args.frames)
+        ..FlySpec::paper(args.frames)
     };
     fly_spec.check_memory(0)?;
     let size = fly_spec.size;

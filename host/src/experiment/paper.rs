@@ -3,13 +3,11 @@
 //! no CLI types.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options, Projection};
+use footprint_core::terrain::camera::{Camera, Options};
 use footprint_scenes::view::{self, Placement};
 use serde::Serialize;
 
 use crate::camera::{default_far_voxels, mirrored_warning, place, placement_note, Eye, Why};
-use crate::experiment::fly::{FlyMode, FlySpec};
-use crate::experiment::reference::REFERENCE_COLUMNS;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{Mode, Rate};
@@ -23,40 +21,6 @@ pub fn paper_modes() -> Vec<Mode> {
     let mut m = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Li];
     m.extend([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss));
     m
-}
-
-/// Sect. 5's flight with `frames` frames: from the pitch-5° view, 0.5 m forward per frame, the
-/// middle column, 400×400, Table 6's modes (AS, the exact AS, PS, SS8, SS16), every column
-/// histogrammed and the cut-in-time images kept, walking the pyramid one column per pixel,
-/// beside the reference flight (the ground truth's settings).
-pub fn paper_flight(frames: usize) -> FlySpec {
-    FlySpec {
-        frames,
-        step_m: 0.5,
-        column: None,
-        modes: [
-            Mode::As,
-            Mode::AsExact,
-            Mode::Ps,
-            Mode::Ss(Rate::N8),
-            Mode::Ss(Rate::N16),
-        ]
-        .map(FlyMode::Mode)
-        .to_vec(),
-        size: Size {
-            width: 400,
-            height: 400,
-        },
-        all_columns: true,
-        path: None,
-        projection: Projection::Paper,
-        keep_cut: true,
-        lod: true,
-        columns_per_pixel: 1,
-        reference: true,
-        reference_columns: REFERENCE_COLUMNS,
-        causes: false,
-    }
 }
 
 /// The camera of a paper case on `map`: FOV 10°, `size` pixels (the paper's is 400×400), the

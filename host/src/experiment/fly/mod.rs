@@ -25,10 +25,10 @@ pub use mode::{FlyMode, ParseFlyModeError};
 use crate::experiment::causes::{classify, ClassFlicker, CLASSES};
 use crate::experiment::paper::paper_camera;
 use crate::experiment::path::FlightPath;
-use crate::experiment::reference::{box_columns, rmse, supersampled};
+use crate::experiment::reference::{box_columns, rmse, supersampled, REFERENCE_COLUMNS};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{render_column, render_with, Mode, Tables};
+use crate::render::{render_column, render_with, Mode, Rate, Tables};
 use crate::view::Size;
 
 /// What to fly.
@@ -68,11 +68,45 @@ pub struct FlySpec {
     /// the paper's projection.
     pub causes: bool,
     /// Columns per pixel of the reference flight (1–64; the ground truth's is
-    /// [`REFERENCE_COLUMNS`](crate::experiment::reference::REFERENCE_COLUMNS)).
+    /// [`REFERENCE_COLUMNS`]).
     pub reference_columns: u32,
 }
 
 impl FlySpec {
+    /// Sect. 5's flight with `frames` frames: from the pitch-5° view, 0.5 m forward per frame,
+    /// the middle column, 400×400, Table 6's modes (AS, the exact AS, PS, SS8, SS16), every
+    /// column histogrammed and the cut-in-time images kept, walking the pyramid one column per
+    /// pixel, beside the reference flight (the ground truth's settings).
+    pub fn paper(frames: usize) -> Self {
+        FlySpec {
+            frames,
+            step_m: 0.5,
+            column: None,
+            modes: [
+                Mode::As,
+                Mode::AsExact,
+                Mode::Ps,
+                Mode::Ss(Rate::N8),
+                Mode::Ss(Rate::N16),
+            ]
+            .map(FlyMode::Mode)
+            .to_vec(),
+            size: Size {
+                width: 400,
+                height: 400,
+            },
+            all_columns: true,
+            path: None,
+            projection: Projection::Paper,
+            keep_cut: true,
+            lod: true,
+            columns_per_pixel: 1,
+            reference: true,
+            reference_columns: REFERENCE_COLUMNS,
+            causes: false,
+        }
+    }
+
     /// Refuses, naming the option, fewer than 2 frames, columns per pixel outside 1–64, and a
     /// step that would leave the camera's range ([`check_reach`]).
     pub fn check(&self) -> Result<()> {
