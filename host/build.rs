@@ -66,6 +66,12 @@ fn main() {
         }
         Err(why) => {
             fs::write(&wasm, b"").expect("write OUT_DIR/footprint_web.wasm");
+            // Run again once the target appears: `rustup target add` rewrites the toolchain's
+            // list of installed components, so the next build after it builds the page (without
+            // this, cargo would keep the empty page until build.rs or the web sources change).
+            if let Some(components) = installed_components() {
+                println!("cargo:rerun-if-changed={}", components.display());
+            }
             // Why, for `serve`'s one-line refusal.
             println!(
                 "cargo:rustc-env=FOOTPRINT_WASM_MISSING={}",
@@ -77,6 +83,20 @@ fn main() {
             );
         }
     }
+}
+
+/// The toolchain's list of installed components, `<sysroot>/lib/rustlib/components`, which
+/// rustup rewrites whenever a target is added; `None` if there is no such file (a toolchain
+/// not installed by rustup).
+fn installed_components() -> Option<PathBuf> {
+    let rustc = env::var_os("RUSTC").unwrap_or_else(|| "rustc".into());
+    let out = Command::new(rustc)
+        .args(["--print", "sysroot"])
+        .output()
+        .ok()?;
+    let sysroot = String::from_utf8(out.stdout).ok()?;
+    let path = Path::new(sysroot.trim()).join("lib/rustlib/components");
+    path.is_file().then_some(path)
 }
 
 /// Runs the nested build; the path of the `.wasm`, or why it failed.
