@@ -41,7 +41,7 @@ use crate::num::{height, Height};
 use crate::terrain::camera::{Column, Frame, Switch};
 use crate::terrain::map::Axis;
 use crate::terrain::map::{fold, period, Level, Terrain};
-use crate::terrain::sampler::Ray;
+use crate::terrain::ray::Ray;
 
 /// A cursor on the voxel sequence of one column.
 #[derive(Clone, Debug)]

@@ -21,6 +21,7 @@ pub mod map;
 #[doc(hidden)]
 pub mod march;
 pub mod pyramid;
+pub mod ray;
 pub mod sampler;
 pub mod shade;
 pub mod visibility;

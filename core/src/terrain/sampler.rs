@@ -12,19 +12,12 @@
 
 use crate::color::Rgb;
 use crate::color::{to_color16, to_rgb, Color16};
-use crate::num::{Eye, Height, Line, Slope, Weight};
+use crate::num::{Eye, Height, Line, Weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::march::Voxel;
 
-/// The ray being walked: its height at the current voxel and its slope per half-voxel.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Ray {
-    /// `H(R)` at the current voxel centre.
-    pub h: Height,
-    /// Height gained per half-voxel.
-    pub slope: Slope,
-}
+pub use crate::terrain::ray::Ray;
 
 /// The rays that bound a pixel, and the eye they come from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
