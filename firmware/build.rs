@@ -118,7 +118,7 @@ fn main() {
     // The fan buffers hold the larger of the rolled and the level frame's fans.
     let fan = |params| {
         let camera = footprint_core::terrain::camera::Camera::new(params).expect("a fan camera");
-        footprint_core::terrain::camera::Frame::grid_size(&camera, scene.rolled_options())
+        footprint_core::terrain::frame::Frame::grid_size(&camera, scene.rolled_options())
             .expect("the frame's fan")
     };
     let ((rolled_lines, rolled_rows), (level_lines, level_rows)) =

@@ -50,7 +50,7 @@
 //! trigonometry) and [`error`] (every variant carries the limit it names). The rooms import the
 //! floor and never each other. In the terrain room data flows one way: map
 //! ([`terrain::Level`]) → pyramid ([`terrain::pyramid`], [`terrain::Terrain`]) → camera tables
-//! ([`terrain::camera::Frame`]) → column walk ([`terrain::column::walk()`]) → per-hit sampler
+//! ([`terrain::frame::Frame`]) → column walk ([`terrain::column::walk()`]) → per-hit sampler
 //! ([`terrain::sampler::Sampler`]) → pixel.
 //!
 //! **The front door.** [`prelude`] imports what a frame needs; [`Mode`] names the sampling

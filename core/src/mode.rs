@@ -14,11 +14,12 @@ use core::str::FromStr;
 
 use crate::error::Error;
 use crate::sink::PixelSink;
-use crate::terrain::camera::{Frame, Switch};
+use crate::terrain::camera::Switch;
 use crate::terrain::classic;
 use crate::terrain::column;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
+use crate::terrain::frame::Frame;
 use crate::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use crate::terrain::Terrain;
 use crate::Rgb;

@@ -124,7 +124,7 @@ impl Line {
     };
 
     /// The ray's height above the voxel centred at `n` (half-voxels), Eq. 3: exact for the
-    /// rays a [`crate::terrain::camera::Frame`] makes and any `n` within the ranges above (see the
+    /// rays a [`crate::terrain::frame::Frame`] makes and any `n` within the ranges above (see the
     /// module documentation); beyond them the result wraps (it never panics).
     #[inline(always)]
     pub fn at(&self, n: i64) -> Height {

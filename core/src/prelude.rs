@@ -11,8 +11,9 @@ pub use crate::error::Error;
 pub use crate::mode::{Mode, Rate};
 pub use crate::num::Coord;
 pub use crate::sink::PixelSink;
-pub use crate::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Projection};
+pub use crate::terrain::camera::{Camera, CameraParams, Column, Options, Projection};
 pub use crate::terrain::cost::{Counts, NoCost};
+pub use crate::terrain::frame::Frame;
 pub use crate::terrain::pyramid::{self, HeightFilter};
 pub use crate::terrain::{Level, Scale, Terrain};
 

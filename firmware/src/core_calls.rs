@@ -7,10 +7,11 @@
 use footprint_core::num::Coord;
 use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
-use footprint_core::terrain::camera::{Camera, Column, Frame, Options, Switch};
+use footprint_core::terrain::camera::{Camera, Column, Options, Switch};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts};
 use footprint_core::terrain::fan::Filter;
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::Sampler;
 use footprint_core::terrain::shade::{Shader, Sun};

@@ -7,10 +7,11 @@
 use arbitrary::Arbitrary;
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Power};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Switch};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
 use footprint_core::terrain::classic;
 use footprint_core::terrain::column::render;
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::shade::{Materials, Shader, Specular, Sun};

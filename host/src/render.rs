@@ -4,8 +4,8 @@
 use std::time::Instant;
 
 use anyhow::Result;
-use footprint_core::terrain::camera::Frame;
 use footprint_core::terrain::cost::NoCost;
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 

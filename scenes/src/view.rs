@@ -13,10 +13,11 @@ use std::fmt;
 
 use footprint_core::num::Height;
 use footprint_core::num::{Coord, MAX_EYE_HEIGHT, MAX_FAR};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Projection};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Projection};
 use footprint_core::terrain::column::walk;
 use footprint_core::terrain::cost::{Cost, NoCost};
 use footprint_core::terrain::fan::Fan;
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::mirror;
 use footprint_core::terrain::sampler::{FirstHit, Hit, Pixel, Ray, Sampler};

@@ -12,10 +12,11 @@ use common::*;
 use footprint_core::color::to_rgb;
 use footprint_core::num::{Coord, Height};
 use footprint_core::terrain::camera::{
-    Camera, CameraParams, Column, Frame, Options, Switch, MAX_IMAGE_SIDE,
+    Camera, CameraParams, Column, Options, Switch, MAX_IMAGE_SIDE,
 };
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::March;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, Linear, Point, Sampler, Super};

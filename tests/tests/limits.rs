@@ -4,9 +4,10 @@
 //! tests run with overflow checks on), and what can be predicted is checked.
 
 use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
 use footprint_core::terrain::column::render;
 use footprint_core::terrain::cost::{Counts, Tally};
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::sampler::{Area, Linear, Point, Sampler, Super};
 use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale, Terrain, MAX_SIDE};

@@ -20,9 +20,10 @@ use common::SKY;
 use footprint_core::color::Color16;
 use footprint_core::num::Height;
 use footprint_core::num::{Coord, Weight};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options, Switch};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{

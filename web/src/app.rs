@@ -2,8 +2,9 @@
 
 use std::path::Path;
 
-use footprint_core::terrain::camera::{Camera, CameraParams, Frame, Options, Projection};
+use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
 use footprint_core::terrain::cost::{NoCost, Tally};
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;

@@ -78,7 +78,7 @@ fn fixed(x: f64) -> i64 {
 }
 
 /// The geometry of one frame's fan (see the module docs): the grid the walk renders and the
-/// per-pixel map from the image into it. Built by [`Fan::new`]; [`super::camera::Frame`] keeps
+/// per-pixel map from the image into it. Built by [`Fan::new`]; [`super::frame::Frame`] keeps
 /// it when the projection is exact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Fan {

@@ -38,7 +38,8 @@
 
 use crate::color::{to_color16, Color16, Rgb};
 use crate::num::{height, Height};
-use crate::terrain::camera::{Column, Frame, Switch};
+use crate::terrain::camera::{Column, Switch};
+use crate::terrain::frame::Frame;
 use crate::terrain::map::Axis;
 use crate::terrain::map::{fold, period, Level, Terrain};
 use crate::terrain::ray::Ray;

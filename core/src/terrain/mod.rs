@@ -14,6 +14,7 @@ pub mod classic;
 pub mod column;
 pub mod cost;
 pub mod fan;
+pub mod frame;
 pub mod map;
 // The voxel sequence under a column: the walk's internals. Public for the tests and the
 // project's own crates, hidden from the documentation; a `Cost` or `Sampler` sees only

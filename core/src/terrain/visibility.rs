@@ -10,8 +10,9 @@
 //! coverage `M/V` measures the sampler against the geometry, not against itself.
 
 use crate::num::{Eye, Height, Line};
-use crate::terrain::camera::{Frame, Switch};
+use crate::terrain::camera::Switch;
 use crate::terrain::cost::Counts;
+use crate::terrain::frame::Frame;
 use crate::terrain::march::March;
 use crate::terrain::Terrain;
 

@@ -40,9 +40,10 @@
 
 use anyhow::{bail, Result};
 use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::Point;
 use footprint_core::terrain::shade::{Materials, Sun};

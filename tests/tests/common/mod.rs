@@ -8,9 +8,10 @@
 #![allow(dead_code)]
 
 use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Frame, Options};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
 use footprint_core::terrain::column;
 use footprint_core::terrain::cost::Cost;
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::Sampler;
 use footprint_core::terrain::{next_size, Level, Scale, Terrain};
