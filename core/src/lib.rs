@@ -86,7 +86,7 @@
 //! The same frame from the modules themselves, with one sampler type:
 //!
 //! ```
-//! use footprint_core::terrain::{camera::*, column, cost::NoCost, sampler::Area, *};
+//! use footprint_core::terrain::{camera::*, column, cost::NoCost, frame::Frame, sampler::Area, *};
 //! use footprint_core::{num::Coord, Rgb};
 //! let heights = [10u16; 16 * 16];
 //! let colors = [Rgb::new(40, 120, 40); 16 * 16];
@@ -116,6 +116,9 @@ pub mod trig;
 // The two rooms: one per paper.
 pub mod specular;
 pub mod terrain;
+
+// The room above both: the sun on the terrain, its highlight clamped by the visible normals.
+pub mod lit;
 
 // The front door: the modes by name, the pixel formats, and what an embedder imports.
 pub mod mode;

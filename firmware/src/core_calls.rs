@@ -4,6 +4,7 @@
 //! With them, the core's code is in symbols named `footprint_core::…` or
 //! `footprint_firmware::core_calls::…`, which `sizes.sh` counts as the core's.
 
+use footprint_core::lit::{Shader, Sun};
 use footprint_core::num::Coord;
 use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
@@ -14,7 +15,6 @@ use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::Sampler;
-use footprint_core::terrain::shade::{Shader, Sun};
 use footprint_core::terrain::visibility;
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};

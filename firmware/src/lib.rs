@@ -44,8 +44,8 @@ pub mod scene {
 /// `footprint_scenes::firmware::Scene::glint_sun`), the core's `AMBIENT_DIFFUSE`, the paper's
 /// AS and Amanatides' aggressive clamp keeping 99 % of the highlight's power.
 pub mod glint {
+    use footprint_core::lit::Specular;
     use footprint_core::specular::{Clamp, Power};
-    use footprint_core::terrain::shade::Specular;
 
     /// The highlight's antialiasing, `clamp99`: `footprint_scenes::firmware::GLINT_SPECULAR`
     /// (an enum the build script does not bake); the bit-exactness test fails if they differ.

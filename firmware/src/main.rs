@@ -41,6 +41,7 @@ use panic_semihosting as _;
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use footprint_core::embedded::{self, RenderError};
+use footprint_core::lit::{Materials, Sun, AMBIENT_DIFFUSE};
 use footprint_core::num::Coord;
 use footprint_core::specular::raster::Target;
 use footprint_core::specular::{Light, Material, Normal, Phong};
@@ -49,7 +50,6 @@ use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
-use footprint_core::terrain::shade::{Materials, Sun, AMBIENT_DIFFUSE};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};

@@ -5,6 +5,7 @@
 #![no_main]
 
 use arbitrary::Arbitrary;
+use footprint_core::lit::{Materials, Shader, Specular, Sun};
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
@@ -14,7 +15,6 @@ use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
-use footprint_core::terrain::shade::{Materials, Shader, Specular, Sun};
 use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale};
 use footprint_core::Rgb;

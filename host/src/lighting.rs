@@ -8,8 +8,8 @@ use std::str::FromStr;
 use anyhow::{Context, Result};
 use clap::Args;
 
+use footprint_core::lit::{Materials, Specular, Sun, Surface};
 use footprint_core::specular::{Clamp, Phong, Power};
-use footprint_core::terrain::shade::{Materials, Specular, Sun, Surface};
 use footprint_core::terrain::Terrain;
 
 /// A sun direction: azimuth clockwise from north and elevation above the horizon, degrees.
@@ -173,7 +173,7 @@ impl LoadedMaterials {
     }
 }
 
-pub use footprint_core::terrain::shade::AMBIENT_DIFFUSE;
+pub use footprint_core::lit::AMBIENT_DIFFUSE;
 
 /// The surfaces of a `--material` PNG, loaded for a `width × height` map.
 pub fn load_materials(path: &std::path::Path, width: u32, height: u32) -> Result<Vec<Surface>> {

@@ -75,7 +75,7 @@ pub fn render_lit_timed<C: footprint_core::terrain::cost::Cost>(
     terrain: &Terrain<'_>,
     camera: &footprint_core::terrain::camera::Camera,
     mode: Mode,
-    sun: &footprint_core::terrain::shade::Sun<'_>,
+    sun: &footprint_core::lit::Sun<'_>,
     repeats: usize,
     cost: &mut C,
 ) -> Result<(Rendered, f64)> {

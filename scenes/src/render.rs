@@ -6,12 +6,12 @@
 use std::fmt;
 
 use footprint_core::color::Color16;
+use footprint_core::lit::{Shader, Sun};
 use footprint_core::num::Weight;
 use footprint_core::terrain::camera::Camera;
 use footprint_core::terrain::cost::{Cost, Counts, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::shade::{Shader, Sun};
 use footprint_core::terrain::visibility::visit_visible;
 use footprint_core::terrain::Terrain;
 use footprint_core::{Error, Rgb};

@@ -10,6 +10,7 @@
 mod common;
 
 use common::{Map, SKY};
+use footprint_core::lit::{Materials, Shader, Specular, Sun};
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Phong, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
@@ -17,7 +18,6 @@ use footprint_core::terrain::column::render;
 use footprint_core::terrain::cost::Counts;
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::sampler::Area;
-use footprint_core::terrain::shade::{Materials, Shader, Specular, Sun};
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 use footprint_host::experiment::reference::box_columns;

@@ -68,7 +68,7 @@ pub trait Cost {
     #[inline(always)]
     fn terrain_pixel(&mut self) {}
     /// Shading: `count` samples lit, each with a normal from the level's heights, a view
-    /// direction and the diffuse term ([`crate::terrain::shade`]).
+    /// direction and the diffuse term ([`crate::lit`]).
     #[inline(always)]
     fn normals(&mut self, _count: u32) {}
     /// Shading: `count` Phong highlight evaluations (`K_spec·cos^n α`).
@@ -77,7 +77,7 @@ pub trait Cost {
 }
 
 /// A borrowed cost counts into what it borrows (so that a wrapper such as
-/// [`crate::terrain::shade::Shader`] can forward to a caller's counters).
+/// [`crate::lit::Shader`] can forward to a caller's counters).
 impl<C: Cost + ?Sized> Cost for &mut C {
     #[inline(always)]
     fn begin_column(&mut self, column: usize) {

@@ -5,9 +5,9 @@
 //! them ([`pyramid`]) → the camera's per-frame tables ([`camera`]) → the voxel sequence under
 //! a column ([`march`]) → the one column walk (Fig. 4, [`column`](mod@column)) → the per-hit sampler of
 //! each mode (Figs. 4, 8, 12, [`sampler`]) → the pixel. [`cost`] counts what the walk spends
-//! (Sect. 6), [`visibility`] counts what it should see (`V`), [`shade`] lights the samples
-//! with a sun and antialiases their highlight (both papers in one frame), and [`classic`] is the voxel-space
-//! baseline the paper's walk is measured against.
+//! (Sect. 6), [`visibility`] counts what it should see (`V`), and [`classic`] is the voxel-space
+//! baseline the paper's walk is measured against. The sun on the terrain, which joins both
+//! papers, is a room above this one ([`crate::lit`]).
 
 pub mod camera;
 pub mod classic;
@@ -24,7 +24,6 @@ pub mod march;
 pub mod pyramid;
 pub mod ray;
 pub mod sampler;
-pub mod shade;
 pub mod visibility;
 
 pub use map::{mirror, next_size, Axis, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};

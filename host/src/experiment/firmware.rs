@@ -39,6 +39,7 @@
 //! ```
 
 use anyhow::{bail, Result};
+use footprint_core::lit::{Materials, Sun};
 use footprint_core::num::Coord;
 use footprint_core::terrain::camera::{Camera, CameraParams, Column};
 use footprint_core::terrain::column;
@@ -46,7 +47,6 @@ use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::Point;
-use footprint_core::terrain::shade::{Materials, Sun};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 

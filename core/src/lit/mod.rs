@@ -1,4 +1,5 @@
-//! Sun-lit terrain: the two papers in one frame.
+//! Sun-lit terrain: the two papers in one frame, a room above both (it imports the terrain walk
+//! and the specular tables; neither imports it).
 //!
 //! The terrain is lit by a distant sun: each sample a mode takes is shaded with a diffuse term
 //! and a Phong highlight `K_spec·cos^n α` (Amanatides' "Detecting Specular Aliasing"), with
