@@ -1,6 +1,5 @@
 //! Map formats: chosen by file extension (or `--format`), read into a [`Map`], and written.
 
-use std::fmt;
 use std::io::Write;
 use std::path::Path;
 
@@ -11,6 +10,8 @@ use image::{ExtendedColorType, ImageEncoder};
 
 use super::grid::{Grid, Spacing};
 use super::input::{is_stdin, InMemory, Input};
+pub use super::kind::Format;
+pub use super::png::DEFAULT_PNG_HEIGHT_SCALE_M;
 use super::png::{self, load_color_map};
 use super::{asc, describe, hgt, tiff, tint::tint, Map, MapError};
 
@@ -18,39 +19,7 @@ use super::{asc, describe, hgt, tiff, tint::tint, Map, MapError};
 /// is not given: metres per voxel.
 pub const DEFAULT_SPACING_M: f64 = 30.0;
 
-/// The height scale of a PNG height map when `--height-scale` is not given: metres per unit.
-pub const DEFAULT_PNG_HEIGHT_SCALE_M: f64 = 0.1;
-
-/// A height map format.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-pub enum Format {
-    /// 8- or 16-bit greyscale PNG (`.png`): height units, with `--spacing` and `--height-scale`.
-    Png,
-    /// SRTM tile (`.hgt`): big-endian int16 metres, 1201² or 3601² cells.
-    Hgt,
-    /// ESRI ASCII grid (`.asc`).
-    Asc,
-    /// GeoTIFF or TIFF (`.tif`, `.tiff`): one band of int16, uint16, int32 or float32.
-    Tiff,
-}
-
 impl Format {
-    /// Every format.
-    pub const ALL: [Format; 4] = [Format::Png, Format::Hgt, Format::Asc, Format::Tiff];
-
-    /// The format of a file with this extension (case-insensitive), if known.
-    pub fn from_path(path: &Path) -> Option<Format> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        match ext.as_str() {
-            "png" => Some(Format::Png),
-            "hgt" => Some(Format::Hgt),
-            "asc" => Some(Format::Asc),
-            "tif" | "tiff" => Some(Format::Tiff),
-            _ => None,
-        }
-    }
-
     /// `format` if given, else the format from the extension of `path`; an error naming the
     /// file (`what`) if neither says.
     pub fn from_name(format: Option<Format>, path: &Path, what: &str) -> Result<Format, MapError> {
@@ -69,22 +38,6 @@ impl Format {
         input
             .format()
             .ok_or_else(|| unknown(input.path(), input.what(), Some(input.is_empty())))
-    }
-
-    /// The name used by `--format`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Format::Png => "png",
-            Format::Hgt => "hgt",
-            Format::Asc => "asc",
-            Format::Tiff => "tiff",
-        }
-    }
-}
-
-impl fmt::Display for Format {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
     }
 }
 

@@ -18,7 +18,8 @@ use std::io::{self, BufRead, BufReader, Cursor, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use super::{Format, MapError};
+use super::kind::Format;
+use super::MapError;
 
 /// How long a FIFO or device given as an input may take to start giving bytes (a writer that
 /// opens it a moment after `footprint` does) before it is refused.

@@ -24,6 +24,7 @@ pub mod format;
 pub mod grid;
 pub mod hgt;
 pub mod input;
+pub mod kind;
 pub mod memory;
 pub mod png;
 pub mod tiff;

@@ -43,15 +43,18 @@ pub fn load_png_pair(
     .map(|(map, _)| map)
 }
 
+/// The height scale of a PNG height map when `--height-scale` is not given: metres per unit.
+pub const DEFAULT_PNG_HEIGHT_SCALE_M: f64 = 0.1;
+
 /// The height scale of a PNG height map with `bit_depth` bits per sample when none is given:
 /// an 8-bit (or shallower) map is read in voxel-space units, one height unit per voxel
 /// spacing (the convention of game height maps: `spacing_m`); a 16-bit one in
-/// [`crate::format::DEFAULT_PNG_HEIGHT_SCALE_M`] (0.1 m).
+/// [`DEFAULT_PNG_HEIGHT_SCALE_M`] (0.1 m).
 pub fn default_height_scale(bit_depth: u8, spacing_m: f64) -> f64 {
     if bit_depth <= 8 {
         spacing_m
     } else {
-        crate::format::DEFAULT_PNG_HEIGHT_SCALE_M
+        DEFAULT_PNG_HEIGHT_SCALE_M
     }
 }
 
