@@ -934,3 +934,202 @@ fn period_step(p: u32, len: u32, up: bool) -> u32 {
         p - 1
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::vec::Vec;
+
+    use super::*;
+    use crate::num::Coord;
+    use crate::terrain::camera::{Camera, CameraParams, Options};
+    use crate::terrain::map::mirror;
+    use crate::terrain::pyramid::{self, HeightFilter};
+    use crate::terrain::{Level, Scale};
+
+    const MAP: u32 = 64;
+    const SPACING_M: f64 = 30.0;
+
+    /// Calls `f` with the one-column frame and the terrain of `heights` (64², 30 m voxels,
+    /// 1 m units, its pyramid built), seen from the voxel `(x, y)` at 500 m, heading
+    /// `heading_deg`, to `far_m`, walking the pyramid if `lod`.
+    fn with_column(
+        heights: &[u16],
+        (x, y): (f64, f64),
+        heading_deg: f64,
+        far_m: f64,
+        lod: bool,
+        f: impl FnOnce(&Frame<'_>, &Terrain<'_>, &Column),
+    ) {
+        let colors = [Rgb::BLACK; (MAP * MAP) as usize];
+        let cells = pyramid::cells(MAP, MAP);
+        let (mut hs, mut cs) = (std::vec![0u16; 3 * cells], std::vec![Rgb::BLACK; cells]);
+        let level0 = Level::new(MAP, MAP, heights, &colors).unwrap();
+        pyramid::build(&level0, HeightFilter::Silhouette, &mut hs, &mut cs).unwrap();
+        let scale = Scale::new(SPACING_M, 1.0).unwrap();
+        let terrain = pyramid::assemble(level0, scale, &hs, &cs, true).unwrap();
+        let camera = Camera::new(CameraParams {
+            x_m: x * SPACING_M,
+            y_m: y * SPACING_M,
+            eye_m: 500.0,
+            heading_deg,
+            pitch_deg: 5.0,
+            roll_deg: 0.0,
+            fov_deg: 10.0,
+            width: 1,
+            height: 4,
+            far_m,
+        })
+        .unwrap();
+        let options = Options {
+            lod,
+            ..Options::default()
+        };
+        let (mut rows, mut columns) = ([Coord::ZERO; 5], [Column::EMPTY; 1]);
+        let frame = Frame::new(&camera, &terrain, options, &mut rows, &mut columns).unwrap();
+        let column = *frame.column(0).unwrap();
+        f(&frame, &terrain, &column);
+    }
+
+    /// The map's height at the level-0 cell `(x, y)` of the infinite, mirrored grid.
+    fn at(heights: &[u16], (x, y): (i64, i64)) -> u16 {
+        heights[(mirror(y, MAP) * MAP + mirror(x, MAP)) as usize]
+    }
+
+    /// A ramp rising to the east, walked due east on level 0: one cell per step along x, the
+    /// row across fixed, each height the ramp's, and past the east edge the mirrored ramp
+    /// coming back down.
+    #[test]
+    fn a_ramp_is_read_cell_by_cell_and_mirrored_at_the_edge() {
+        let heights: Vec<u16> = (0..MAP * MAP).map(|i| (i % MAP) as u16 * 10).collect();
+        with_column(
+            &heights,
+            (10.5, 32.5),
+            90.0,
+            1e5,
+            false,
+            |frame, terrain, column| {
+                let mut march = March::new(frame, terrain, column, Switch::Nearest);
+                assert_eq!(march.cell_unmirrored(), (11, 32), "the first centre ahead");
+                for k in 0..150i64 {
+                    let cell = march.cell_unmirrored();
+                    assert_eq!(cell, (11 + k, 32));
+                    assert_eq!(march.level(), 0);
+                    let want = at(&heights, cell);
+                    assert_eq!(march.height(), height(want), "step {k}, cell {cell:?}");
+                    assert_eq!(march.advance(), 2, "one level-0 voxel, two half-voxels");
+                }
+            },
+        );
+    }
+
+    /// Heights that name their cell, walked at a slant: at every step the cell across is the
+    /// column's own `⌊v_base + n·dv⌋` and the height is that cell's, through both mirror edges.
+    #[test]
+    fn a_slanted_walk_reads_the_cell_its_ray_is_over() {
+        let heights: Vec<u16> = (0..MAP * MAP).map(|i| i as u16).collect();
+        with_column(
+            &heights,
+            (5.25, 40.7),
+            63.0,
+            1e5,
+            false,
+            |frame, terrain, column| {
+                let mut march = March::new(frame, terrain, column, Switch::Nearest);
+                let mut crossed = 0;
+                for k in 0..200 {
+                    let (x, y) = march.cell_unmirrored();
+                    assert_eq!(y, column.cross_at(march.n()), "step {k}");
+                    assert_eq!(march.height(), height(at(&heights, (x, y))), "step {k}");
+                    let before = y;
+                    march.advance();
+                    crossed += i64::from(march.cell_unmirrored().1 != before);
+                }
+                assert!(
+                    crossed > 50,
+                    "the walk moves across the map: {crossed} crossings"
+                );
+            },
+        );
+    }
+
+    /// A step inside a run never passes the far distance: the run ends at the last voxel
+    /// within it, and only the step that ends the run (which the walk tests) goes beyond.
+    #[test]
+    fn runs_stop_at_the_far_cut() {
+        let heights = [0u16; (MAP * MAP) as usize];
+        for far_m in [95.0, 300.0, 1234.5, 30_000.0] {
+            with_column(
+                &heights,
+                (3.5, 3.5),
+                75.0,
+                far_m,
+                true,
+                |frame, terrain, column| {
+                    let mut march = March::new(frame, terrain, column, Switch::Late);
+                    let n_far = column.n_far();
+                    assert!(n_far >= column.n_start() - 2, "far {far_m}");
+                    while march.n() <= n_far {
+                        if march.run_left() > 0 {
+                            assert!(
+                                march.n() + march.step() <= n_far,
+                                "far {far_m}: a step inside a run passes n_far {n_far} from n {}",
+                                march.n()
+                            );
+                        }
+                        march.advance();
+                    }
+                },
+            );
+        }
+    }
+
+    /// With LOD the walk climbs one level at a time, at the first odd cell at or past the
+    /// switch distance `n_eye + lod_base·2^L`, each voxel centred at an odd multiple of 2^L
+    /// and read from its level's grid for the column's axis.
+    #[test]
+    fn levels_climb_at_the_switch_one_at_a_time() {
+        let heights: Vec<u16> = (0..MAP * MAP).map(|i| ((i * 7919) % 1000) as u16).collect();
+        with_column(
+            &heights,
+            (20.5, 30.5),
+            90.0,
+            1e6,
+            true,
+            |frame, terrain, column| {
+                for switch in Switch::ALL {
+                    let mut march = March::new(frame, terrain, column, switch);
+                    let base = column.lod_base(switch);
+                    let n_eye = column.n_eye.to_num::<i64>();
+                    let mut level = 0;
+                    for _ in 0..400 {
+                        let (l, n) = (march.level(), march.n());
+                        assert!(l == level || l == level + 1, "one level at a time");
+                        if l == level + 1 {
+                            // The first odd level-L cell at or past the switch has its centre
+                            // less than two cells (2·2^(L+1) half-voxels) beyond it, and the
+                            // level-(L+1) voxel it begins is centred 3·2^L further on.
+                            let switch_n = n_eye + base * (1 << level);
+                            assert!(n >= switch_n, "climbed before the switch");
+                            assert!(
+                                n <= switch_n + 7 * (1 << level),
+                                "climbed late: n {n}, the switch at {switch_n}, level {level}"
+                            );
+                            level = l;
+                        }
+                        assert_eq!(n % (1 << l), 0, "centre of a level-{l} voxel: n {n}");
+                        assert_eq!((n >> l) & 1, 1, "an odd multiple of 2^{l}: n {n}");
+                        let lv = terrain.level(l as usize);
+                        let (x, y) = march.cell();
+                        let want = lv.heights(Axis::X)[(y * lv.width() + x) as usize];
+                        assert_eq!(march.height(), height(want), "level {l}, cell ({x}, {y})");
+                        march.advance();
+                    }
+                    assert!(
+                        level >= 3,
+                        "{switch:?}: the walk climbed to level {level} only"
+                    );
+                }
+            },
+        );
+    }
+}
