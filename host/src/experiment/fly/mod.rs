@@ -510,14 +510,19 @@ pub fn run_with_frames(
         })
     };
 
-    let cut_len = if spec.keep_cut { h * spec.frames } else { 0 };
-    let mut tallies = vec![
-        Tally {
-            cut: vec![Rgb::default(); cut_len],
+    // Fig. 14's cut in time for each listed series (the reference's only if listed: the
+    // memory check counts the listed modes' cuts).
+    let mut tallies: Vec<Tally> = series
+        .iter()
+        .map(|m| Tally {
+            cut: if spec.keep_cut && spec.modes.contains(m) {
+                vec![Rgb::default(); h * spec.frames]
+            } else {
+                Vec::new()
+            },
             ..Tally::default()
-        };
-        series.len()
-    ];
+        })
+        .collect();
     let mut previous: Option<Rendered> = None;
     for first in (0..spec.frames).step_by(chunk) {
         let frames: Vec<Rendered> = (first..(first + chunk).min(spec.frames))
@@ -531,7 +536,7 @@ pub fn run_with_frames(
             }
             for (s, now) in rendered.measured.iter().enumerate() {
                 let tally = &mut tallies[s];
-                if spec.keep_cut {
+                if !tally.cut.is_empty() {
                     for (i, px) in now.column.iter().enumerate() {
                         tally.cut[(h - 1 - i) * spec.frames + t] = *px;
                     }
