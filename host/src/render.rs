@@ -1,6 +1,7 @@
 //! One frame on the host: the sampling modes and the one-thread render come from
 //! `footprint_scenes::render`; here the columns are spread over every core (rayon) and timed.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use anyhow::Result;
@@ -14,10 +15,26 @@ pub use footprint_scenes::render::{
 };
 pub use footprint_scenes::view::{first_hit_distance, Tables};
 
+/// Whole-frame walks made by this module's renders since the process started.
+static WALKS: AtomicU64 = AtomicU64::new(0);
+
+/// The number of whole frames this process has walked through this module's renders (each
+/// render of a frame, timed or counted, is one): how a command shows that it walks its frame
+/// once.
+pub fn frame_walks() -> u64 {
+    WALKS.load(Ordering::Relaxed)
+}
+
+/// Notes one whole-frame walk.
+fn walked() {
+    WALKS.fetch_add(1, Ordering::Relaxed);
+}
+
 /// Renders without counting, one column per task on every core (rayon); the same pixels as
 /// [`render_with`], for runs where wall time is not measured.
 pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<Rendered> {
     use rayon::prelude::*;
+    walked();
     let (w, h) = (frame.width(), frame.height());
     let columns: Vec<Vec<Rgb>> = (0..w)
         .into_par_iter()
@@ -53,6 +70,7 @@ pub fn render_timed(
     repeats: usize,
 ) -> Result<(Rendered, f64)> {
     best_of(repeats, || {
+        walked();
         Ok(render_with(frame, terrain, mode, &mut NoCost)?)
     })
 }
@@ -68,29 +86,20 @@ pub fn render_timed_parallel(
     best_of(repeats, || render_parallel(frame, terrain, mode))
 }
 
-/// [`render_timed`] lit by `sun` (`footprint_scenes::render::render_lit`, one thread: the
-/// shader writes the whole lit image), with its cost `cost` counted in the last run only.
-pub fn render_lit_timed<C: footprint_core::terrain::cost::Cost>(
+/// Renders `frame` lit by `sun` (`footprint_scenes::render::render_lit`, one thread: the
+/// shader writes the whole lit image) with cost `cost`, once, and times it, ms.
+pub fn render_lit_once<C: footprint_core::terrain::cost::Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     camera: &footprint_core::terrain::camera::Camera,
     mode: Mode,
     sun: &footprint_core::lit::Sun<'_>,
-    repeats: usize,
     cost: &mut C,
 ) -> Result<(Rendered, f64)> {
-    let (_, ms) = best_of(repeats, || {
-        Ok(footprint_scenes::render::render_lit(
-            frame,
-            terrain,
-            camera,
-            mode,
-            sun,
-            &mut NoCost,
-        )?)
-    })?;
+    walked();
+    let t = Instant::now();
     let rendered = footprint_scenes::render::render_lit(frame, terrain, camera, mode, sun, cost)?;
-    Ok((rendered, ms))
+    Ok((rendered, t.elapsed().as_secs_f64() * 1e3))
 }
 
 /// The last of `repeats` renders (at least one) and the fastest one's wall time, ms.
@@ -114,6 +123,7 @@ fn best_of(
 /// its own counters, and summed, so the result is the same for any number of threads.
 pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Rendered, Measured)> {
     use rayon::prelude::*;
+    walked();
     let columns: Vec<ColumnCount> = (0..frame.width())
         .into_par_iter()
         .map(|x| footprint_scenes::render::count_column(frame, terrain, mode, x))

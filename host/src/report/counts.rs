@@ -30,11 +30,9 @@ pub struct RenderSummary<'a> {
     pub measured: &'a Measured,
     /// Include every column's counters in the JSON.
     pub per_column: bool,
-    /// Best of three one-thread renders, ms.
+    /// The wall time of the one render of the image (no counting) on `threads` threads, ms.
     pub ms: f64,
-    /// Best of three renders on `threads` threads, ms.
-    pub ms_threads: f64,
-    /// Threads of the parallel render.
+    /// Threads of that render.
     pub threads: usize,
     /// The map's source.
     pub map: &'a str,
@@ -106,7 +104,10 @@ struct RenderJson {
     counts: CountsJson,
     column_average: ColumnAverage,
     coverage: f64,
+    /// The wall time of the one render of the image, ms.
     ms: f64,
+    /// The same: kept for scripts that read it (it was the best of three renders on every
+    /// thread, `ms` the best of three on one).
     ms_threads: f64,
     threads: usize,
     lod: bool,
@@ -148,7 +149,7 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
         },
         coverage: t.coverage(),
         ms: s.ms,
-        ms_threads: s.ms_threads,
+        ms_threads: s.ms,
         threads: s.threads,
         lod: s.lod,
         projection: s.projection,
@@ -211,9 +212,9 @@ pub fn text(s: &RenderSummary<'_>) -> String {
     );
     let _ = writeln!(
         out,
-        "render {:.2} ms (best of 3, no counting, one thread); {:.2} ms on {} thread{}",
+        "render {:.2} ms on {} thread{} (one run, no counting; `footprint bench` repeats and \
+         compares)",
         s.ms,
-        s.ms_threads,
         s.threads,
         if s.threads == 1 { "" } else { "s" }
     );
