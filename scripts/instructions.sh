@@ -3,8 +3,11 @@
 # (instructions, not seconds: the same binary and inputs give the same count on a busy machine).
 #
 # For each mode and each of the paper's three views (pitch 40°, 20°, 5°; 400×400; FOV 10°;
-# fit-first-hit; built-in terrain), `footprint render` runs under callgrind, which collects only
-# inside the one-thread frame renders (`footprint_scenes::render::render_with`). `footprint render --counts` gives the same frames'
+# fit-first-hit; built-in terrain), `footprint render --threads 1` runs under callgrind, which
+# collects only inside its one frame render (`footprint_scenes::render::render_with`: on one
+# thread the frame is walked straight into its image, then the exact projection's resample).
+# Until 2026-11-26 `render` drew it three times that way and the script divided by 3; the
+# counts are the same. `footprint render --counts` gives the same frames'
 # traversal steps `a`, so the script prints instructions per frame (the three views together),
 # per traversal step and per pixel (3 × 400 × 400 pixels).
 #
@@ -27,15 +30,14 @@ for m in "${modes[@]}"; do
   instr=0
   steps=0
   for p in 40 20 5; do
-    # `render` draws the frame three times on one thread (`render_with`: the image buffers and
-    # `column::render` or `classic::render`), which callgrind counts; everything else (the map, the pyramid, the
-    # fit-first-hit probe, the parallel render) is not collected.
+    # `render` draws the frame once (`render_with` on one thread), which callgrind counts;
+    # everything else (the map, the pyramid, the fit-first-hit probe, the PNG) is not collected.
     valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
       --toggle-collect='footprint_scenes::render::render_with*' \
       "$bin" render "${args[@]}" --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
       >/dev/null 2>"$tmp/cg.err"
     i=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err")
-    instr=$((instr + i / 3))
+    instr=$((instr + i))
     json=$("$bin" render "${args[@]}" --pitch "$p" --mode "$m" --counts --json --out "$tmp/x.png")
     a=$(printf '%s' "$json" | python3 -c 'import json,sys; print(json.load(sys.stdin)["counts"]["a"])')
     steps=$((steps + a))

@@ -30,11 +30,16 @@ fn walked() {
     WALKS.fetch_add(1, Ordering::Relaxed);
 }
 
-/// Renders without counting, one column per task on every core (rayon); the same pixels as
-/// [`render_with`], for runs where wall time is not measured.
+/// Renders without counting, one column per task on every core (rayon), or on one thread
+/// straight into the image with [`render_with`] when the pool has one; the same pixels either
+/// way.
 pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<Rendered> {
     use rayon::prelude::*;
     walked();
+    if rayon::current_num_threads() == 1 {
+        // One thread (`--threads 1`): the frame straight into its image, no column buffers.
+        return Ok(render_with(frame, terrain, mode, &mut NoCost)?);
+    }
     let (w, h) = (frame.width(), frame.height());
     let columns: Vec<Vec<Rgb>> = (0..w)
         .into_par_iter()
