@@ -243,13 +243,14 @@ fn frame_flicker(f: &Fly) -> Option<(String, bool, String)> {
     ))
 }
 
-/// Why the frame's claim fails, from the same flight: the column it was checked on.
+/// Why the frame's claim fails, from the same flight: what the one column of Table 6 saw.
 fn frame_why(f: &Fly) -> String {
     let column = |m: Mode| f.mode(m).map_or(0, |x| x.column_large_changes);
     format!(
-        "the paper samples each row's rays naively across columns (Sect. 8) and switches \
-         pyramid levels in steps; the one column of Table 6 (AS {}, PS {} large changes there) \
-         does not see what crosses between columns",
+        "the paper samples each row's rays naively across columns, one ray per column (Sect. \
+         8), and what crosses between columns is not in the one column of Table 6 (AS {}, PS {} \
+         large changes there); `fly --columns-per-pixel 16` and `--causes` split the rest \
+         (docs/measurements.md, \"Whole-frame flicker\")",
         column(Mode::As),
         column(Mode::Ps)
     )
