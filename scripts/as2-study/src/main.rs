@@ -303,49 +303,12 @@ fn column(
         };
         let sigma = (height - p.eye_m) / (t * sp);
         if sigma > horizon {
-            // Visible from `horizon` to `sigma`: spread over the pixels it overlaps.
-            let (a, b) = (horizon, sigma.min(top));
-            let first = edges.partition_point(|&e| e <= a).saturating_sub(1);
-            for i in first..h {
-                let (e0, e1) = (edges[i], edges[i + 1]);
-                if e0 >= b {
-                    break;
-                }
-                let ov = b.min(e1) - a.max(e0);
-                if ov > 0.0 {
-                    let wgt = ov / (e1 - e0);
-                    for k in 0..3 {
-                        acc[i][k] += color[k] * wgt;
-                    }
-                    acc[i][3] += wgt;
-                }
-            }
+            deposit(&mut acc, &edges, horizon, sigma.min(top), color);
             horizon = sigma;
         }
         u += sign as i64;
     }
-    // The walk ended below the top: the sky fills the rest of a pixel that saw terrain.
-    for i in 0..h {
-        let (e0, e1) = (edges[i], edges[i + 1]);
-        if e1 > horizon && acc[i][3] > 0.0 {
-            let wgt = (e1 - horizon.max(e0)) / (e1 - e0);
-            let skyc = [sky.r, sky.g, sky.b];
-            for k in 0..3 {
-                acc[i][k] += f64::from(skyc[k]) * wgt;
-            }
-            acc[i][3] += wgt;
-        }
-    }
-    acc.iter()
-        .map(|a| {
-            if a[3] <= 0.0 {
-                sky
-            } else {
-                let q = |k: usize| (a[k] / a[3]).round().clamp(0.0, 255.0) as u8;
-                Rgb::new(q(0), q(1), q(2))
-            }
-        })
-        .collect()
+    finish(acc, &edges, horizon, sky)
 }
 
 /// P4 and P5: the walk in steps of real length along the major axis, each the box mean.
@@ -492,27 +455,32 @@ fn stepped(
         let color = [mean[1], mean[2], mean[3]];
         let sigma = (height - p.eye_m) / (t * sp);
         if sigma > horizon {
-            let (lo, hi) = (horizon, sigma.min(top));
-            let first = edges.partition_point(|&e| e <= lo).saturating_sub(1);
-            for i in first..h {
-                let (e0, e1) = (edges[i], edges[i + 1]);
-                if e0 >= hi {
-                    break;
-                }
-                let ov = hi.min(e1) - lo.max(e0);
-                if ov > 0.0 {
-                    let wgt = ov / (e1 - e0);
-                    for k in 0..3 {
-                        acc[i][k] += color[k] * wgt;
-                    }
-                    acc[i][3] += wgt;
-                }
-            }
+            deposit(&mut acc, edges, horizon, sigma.min(top), color);
             horizon = sigma;
         }
         a += len;
     }
     finish(acc, edges, horizon, sky)
+}
+
+/// Spreads `color`, visible from slope `lo` to `hi`, over the pixels it overlaps (weights in
+/// slope, each pixel's share of its own span).
+fn deposit(acc: &mut [[f64; 4]], edges: &[f64], lo: f64, hi: f64, color: [f64; 3]) {
+    let first = edges.partition_point(|&e| e <= lo).saturating_sub(1);
+    for i in first..acc.len() {
+        let (e0, e1) = (edges[i], edges[i + 1]);
+        if e0 >= hi {
+            break;
+        }
+        let ov = hi.min(e1) - lo.max(e0);
+        if ov > 0.0 {
+            let wgt = ov / (e1 - e0);
+            for k in 0..3 {
+                acc[i][k] += color[k] * wgt;
+            }
+            acc[i][3] += wgt;
+        }
+    }
 }
 
 fn finish(mut acc: Vec<[f64; 4]>, edges: &[f64], horizon: f64, sky: Rgb) -> Vec<Rgb> {
