@@ -131,7 +131,7 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
     walked();
     let columns: Vec<ColumnCount> = (0..frame.width())
         .into_par_iter()
-        .map(|x| footprint_scenes::render::count_column(frame, terrain, mode, x))
+        .map(|x| count_column(frame, terrain, mode, x))
         .collect();
     Ok(footprint_scenes::render::assemble(frame, mode, columns)?)
 }

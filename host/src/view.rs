@@ -271,6 +271,7 @@ impl CameraArgs {
 }
 
 /// A loaded map with its pyramid, and the view of it.
+#[derive(Debug)]
 pub struct View {
     /// The map's pyramid, which holds the map ([`View::map`]).
     pub pyramid: Pyramid,

@@ -735,7 +735,7 @@ fn glint_names_a_bad_material() {
 }
 
 /// A 3×2 ESRI ASCII grid `g.asc` in `dir`: the smallest map the readers take.
-fn tiny_grid(dir: &std::path::Path) -> std::path::PathBuf {
+fn tiny_grid(dir: &Path) -> PathBuf {
     let grid = dir.join("g.asc");
     std::fs::write(
         &grid,

@@ -227,7 +227,7 @@ fn stdout_paths_into_a_pipe_are_written_through() {
     let dir = tempfile::tempdir().unwrap();
     let grid = small_grid(dir.path());
     for out in ["/dev/stdout", "/proc/self/fd/1", "/dev/fd/1"] {
-        let o = common::footprint(&["map", "convert", grid.to_str().unwrap(), out, "--to", "asc"]);
+        let o = footprint(&["map", "convert", grid.to_str().unwrap(), out, "--to", "asc"]);
         assert!(
             o.status.success(),
             "{out}: {}",
@@ -237,7 +237,7 @@ fn stdout_paths_into_a_pipe_are_written_through() {
         assert!(text.starts_with("ncols"), "{out}: the pipe got {text:?}");
     }
     // A PNG render into a pipe too.
-    let o = common::footprint(&[
+    let o = footprint(&[
         "render",
         "--terrain-size",
         "64",
@@ -261,7 +261,7 @@ fn replaced_files_keep_their_mode_and_new_files_follow_the_umask() {
     let private = dir.path().join("private.asc");
     std::fs::write(&private, b"old").unwrap();
     std::fs::set_permissions(&private, std::fs::Permissions::from_mode(0o600)).unwrap();
-    let o = common::footprint(&[
+    let o = footprint(&[
         "map",
         "convert",
         grid.to_str().unwrap(),
@@ -311,7 +311,7 @@ fn fly_out_into_an_existing_folder_writes_all_or_nothing() {
         "--out",
         dir.path().to_str().unwrap(),
     ];
-    let o = common::footprint(&fly);
+    let o = footprint(&fly);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
@@ -331,7 +331,7 @@ fn fly_out_into_an_existing_folder_writes_all_or_nothing() {
     );
     // Without the obstacle, both appear and the other file stays.
     std::fs::remove_dir(dir.path().join("cut_as.png")).unwrap();
-    let o = common::footprint(&fly);
+    let o = footprint(&fly);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in ["cut_ps.png", "cut_as.png", "keep.txt"] {
         assert!(dir.path().join(f).is_file(), "{f}");

@@ -246,7 +246,7 @@ mod tests {
     #[test]
     fn pyramid_levels_match_the_pyramid() {
         for (w, h) in [(1, 1), (2, 2), (64, 64), (65, 17), (1201, 1201)] {
-            let map = crate::map::Map {
+            let map = map::Map {
                 width: w,
                 height: h,
                 heights: vec![0; (w * h) as usize],

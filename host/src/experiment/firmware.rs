@@ -205,7 +205,7 @@ pub fn glint_line(
     camera: &Camera,
     (azimuth, elevation): (f64, f64),
     frame: &Frame<'_>,
-    terrain: &footprint_core::terrain::Terrain<'_>,
+    terrain: &Terrain<'_>,
 ) -> Result<String> {
     let sun = Sun::new(
         terrain,
@@ -234,8 +234,8 @@ pub fn glint_line(
 /// walked along the fan and resampled: `frame NAME 160x120 fnv1a=… lines=… rows=…`.
 pub fn fan_line(
     scene: &Scene,
-    terrain: &footprint_core::terrain::Terrain<'_>,
-    params: footprint_core::terrain::camera::CameraParams,
+    terrain: &Terrain<'_>,
+    params: CameraParams,
     name: &str,
 ) -> Result<String> {
     let camera = Camera::new(params)?;

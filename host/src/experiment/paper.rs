@@ -85,6 +85,7 @@ impl ViewPlacement {
 }
 
 /// A paper case's camera ([`paper_camera`]) and how it was placed.
+#[derive(Debug)]
 pub struct PaperView {
     /// The camera.
     pub camera: Camera,

@@ -27,6 +27,15 @@ pub struct Animation {
     previous: Vec<Rgb>,
 }
 
+impl std::fmt::Debug for Animation {
+    /// The file it is written to; the encoder's state is not worth printing.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Animation")
+            .field("path", &self.path)
+            .finish_non_exhaustive()
+    }
+}
+
 /// The smallest rectangle `(x, y, w, h)` holding every pixel where `a` and `b` differ.
 fn changed_box(a: &[Rgb], b: &[Rgb], width: usize) -> Option<(usize, usize, usize, usize)> {
     let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);

@@ -39,7 +39,7 @@ pub struct RenderSummary<'a> {
 }
 
 /// The counters as JSON field names (the paper's letters).
-#[derive(Serialize)]
+#[derive(Debug, Serialize)]
 #[allow(non_snake_case)]
 pub struct CountsJson {
     L: u64,

@@ -177,9 +177,8 @@ impl FlySpec {
         let series = n_modes + panels as u64 + u64::from(self.flies_reference());
         let streamed = w * h * 4 * (series + 3 * widest) * chunk;
         // Every frame's camera is computed up front.
-        let cameras = (self.frames as u64).checked_mul(std::mem::size_of::<
-            footprint_core::terrain::camera::CameraParams,
-        >() as u64);
+        let cameras = (self.frames as u64)
+            .checked_mul(size_of::<footprint_core::terrain::camera::CameraParams>() as u64);
         crate::memory::check(
             cuts.and_then(|c| c.checked_add(streamed))
                 .and_then(|c| c.checked_add(cameras?)),
