@@ -4,7 +4,7 @@
 //! With them, the core's code is in symbols named `footprint_core::…` or
 //! `footprint_firmware::core_calls::…`, which `sizes.sh` counts as the core's.
 
-use footprint_core::lit::{Shader, Sun};
+use footprint_core::lit::{Sun, SunShader};
 use footprint_core::num::Coord;
 use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
@@ -33,7 +33,7 @@ pub fn render<S: Sampler + Clone, C: Cost>(
     column::render(frame, terrain, sampler, cost, image)
 }
 
-/// `column::render` with a [`Shader`] listening: the frame lit by `sun`. The walk draws the
+/// `column::render` with a [`SunShader`] listening: the frame lit by `sun`. The walk draws the
 /// colour map into `grid` as [`render`] does; the shader lights every sample it takes and
 /// writes the lit frame into `lit`, which is filled with the frame's sky first (the pixels that
 /// see only sky keep it), as `footprint_scenes::render::render_lit` does on the host. The eye
@@ -53,7 +53,7 @@ pub fn render_lit<'s, S: Sampler + Clone, C: Cost>(
 ) -> Result<C, Error> {
     lit.fill(frame.sky());
     let size = (frame.width(), frame.height());
-    let mut shader = Shader::new(sun, terrain, eye_m, pixel_angle, size, lit, inner)?;
+    let mut shader = SunShader::new(sun, terrain, eye_m, pixel_angle, size, lit, inner)?;
     column::render(frame, terrain, sampler, &mut shader, grid)?;
     Ok(shader.inner)
 }

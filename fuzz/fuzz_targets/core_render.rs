@@ -5,7 +5,7 @@
 #![no_main]
 
 use arbitrary::Arbitrary;
-use footprint_core::lit::{Materials, Shader, Specular, Sun};
+use footprint_core::lit::{Materials, Specular, Sun, SunShader};
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
@@ -179,7 +179,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         let p = camera.params();
         let mut lit = vec![Rgb::default(); cw * ch];
         let eye = [p.x_m, p.y_m, p.eye_m];
-        let Ok(mut shader) = Shader::new(
+        let Ok(mut shader) = SunShader::new(
             &sun,
             &terrain,
             eye,

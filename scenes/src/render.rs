@@ -6,7 +6,7 @@
 use std::fmt;
 
 use footprint_core::color::Color16;
-use footprint_core::lit::{Shader, Sun};
+use footprint_core::lit::{Sun, SunShader};
 use footprint_core::num::Weight;
 use footprint_core::terrain::camera::Camera;
 use footprint_core::terrain::cost::{Cost, Counts, Tally};
@@ -35,7 +35,7 @@ impl fmt::Debug for Rendered {
     }
 }
 
-/// Renders one frame lit by `sun`: the walk's samples shaded by a [`Shader`] into
+/// Renders one frame lit by `sun`: the walk's samples shaded by a [`SunShader`] into
 /// their own grid (sky where no terrain was sampled), resampled like the colour image. The
 /// eye and the pixel's angle come from `camera`.
 pub fn render_lit<C: Cost>(
@@ -50,7 +50,7 @@ pub fn render_lit<C: Cost>(
     let mut grid = vec![Rgb::default(); w * h];
     let mut lit = vec![frame.sky(); w * h];
     let p = camera.params();
-    let mut shader = Shader::new(
+    let mut shader = SunShader::new(
         sun,
         terrain,
         [p.x_m, p.y_m, p.eye_m],

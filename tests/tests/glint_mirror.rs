@@ -10,7 +10,7 @@
 mod common;
 
 use common::{Map, SKY};
-use footprint_core::lit::{Materials, Shader, Specular, Sun};
+use footprint_core::lit::{Materials, Specular, Sun, SunShader};
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Phong, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
@@ -94,7 +94,7 @@ fn image(
     let mut out = vec![SKY; w * h];
     let p = cam.params();
     let mut counts = Counts::new(&mut []);
-    let mut shader = Shader::new(
+    let mut shader = SunShader::new(
         &sun,
         terrain,
         [p.x_m, p.y_m, p.eye_m],

@@ -3,7 +3,7 @@
 //!
 //! The terrain is lit by a distant sun: each sample a mode takes is shaded with a diffuse term
 //! and a Phong highlight `K_spec·cos^n α` (Amanatides' "Detecting Specular Aliasing"), with
-//! `K_spec` and `n` from the voxel's [`Surface`]. Shading listens to the one walk: a [`Shader`]
+//! `K_spec` and `n` from the voxel's [`Surface`]. Shading listens to the one walk: a [`SunShader`]
 //! is a [`Cost`] that sees every sample the sampler takes with its weight (Sect. 4: one per
 //! PS/LI hit, one per `SS_N` sub-ray, the visible height of every visible voxel for AS), lights
 //! it, and writes its own image. Without a sun nothing of this runs, and every image is the
@@ -358,7 +358,7 @@ fn terrain_clamp(phong: &Phong, f: u16, policy: Clamp) -> Phong {
 ///
 /// Pixels the walk never begins, or that saw only sky, are left as the caller filled them
 /// (the sky colour).
-pub struct Shader<'s, 'o, C: Cost> {
+pub struct SunShader<'s, 'o, C: Cost> {
     sun: &'s Sun<'s>,
     terrain: &'s Terrain<'s>,
     /// The eye, in 1/65536 m (x east, y south, height).
@@ -378,7 +378,7 @@ pub struct Shader<'s, 'o, C: Cost> {
     pub inner: C,
 }
 
-impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
+impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
     /// A shader for a frame `width × height` whose eye is at `eye_m` (east, south, up, in
     /// metres) and whose pixels are `pixel_angle` radians tall, writing into `out`.
     ///
@@ -650,17 +650,17 @@ impl<'s, 'o, C: Cost> Shader<'s, 'o, C> {
     }
 }
 
-impl<C: Cost> core::fmt::Debug for Shader<'_, '_, C> {
+impl<C: Cost> core::fmt::Debug for SunShader<'_, '_, C> {
     /// The frame's size and the pixel being shaded; the image is far too large to print.
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("Shader")
+        f.debug_struct("SunShader")
             .field("size", &(self.width, self.height))
             .field("pixel", &(self.column, self.row))
             .finish_non_exhaustive()
     }
 }
 
-impl<C: Cost> Cost for Shader<'_, '_, C> {
+impl<C: Cost> Cost for SunShader<'_, '_, C> {
     fn begin_column(&mut self, column: usize) {
         self.finish_pixel();
         self.column = column;
@@ -810,10 +810,10 @@ mod tests {
         );
         let ok = Sun::new(&terrain, 0.0, 10.0, (0.35, 0.65), by_color, Specular::None).unwrap();
         let mut short = [Rgb::default(); 3];
-        let shader = Shader::new(&ok, &terrain, [0.0; 3], 0.01, (2, 2), &mut short, NoCost);
+        let shader = SunShader::new(&ok, &terrain, [0.0; 3], 0.01, (2, 2), &mut short, NoCost);
         assert!(shader.is_err(), "an image of 3 pixels for 2×2");
         let mut out = [Rgb::default(); 4];
-        let shader = Shader::new(
+        let shader = SunShader::new(
             &ok,
             &terrain,
             [f64::INFINITY, 0.0, 0.0],

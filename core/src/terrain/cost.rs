@@ -77,7 +77,7 @@ pub trait Cost {
 }
 
 /// A borrowed cost counts into what it borrows (so that a wrapper such as
-/// [`crate::lit::Shader`] can forward to a caller's counters).
+/// [`crate::lit::SunShader`] can forward to a caller's counters).
 impl<C: Cost + ?Sized> Cost for &mut C {
     #[inline(always)]
     fn begin_column(&mut self, column: usize) {
