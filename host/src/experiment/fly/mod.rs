@@ -28,7 +28,7 @@ use crate::experiment::path::FlightPath;
 use crate::experiment::reference::{box_columns, rmse, supersampled, REFERENCE_COLUMNS};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{render_column, render_with, Mode, Rate, Tables};
+use crate::render::{render_column, Mode, Rate, Tables};
 use crate::view::Size;
 
 /// What to fly.
@@ -236,20 +236,7 @@ fn shoot(
     };
     let h = camera.height();
     if whole || projection == Projection::Exact {
-        let image = if setting.columns > 1 {
-            supersampled(camera, pyramid, setting.mode, options)?
-        } else {
-            let terrain = pyramid.terrain(setting.lod)?;
-            let mut tables = Tables::new(camera);
-            let frame = tables.frame(camera, &terrain, options)?;
-            render_with(
-                &frame,
-                &terrain,
-                setting.mode,
-                &mut footprint_core::terrain::cost::NoCost,
-            )?
-            .image
-        };
+        let image = supersampled(camera, pyramid, setting.mode, options)?;
         let w = camera.width();
         let column = (0..h).map(|i| image[(h - 1 - i) * w + column]).collect();
         return Ok(Shot {
