@@ -21,7 +21,7 @@ fn main() -> Result<(), Error> {
     });
     let colors = heights.map(|h| Rgb::new(60 + (h / 40) as u8, 110, 50));
     let (mut hs, mut cs) = ([0u16; 3 * CELLS], [Rgb::BLACK; CELLS]); // the pyramid
-    let (mut rows, mut cols) = ([Coord::ZERO; H as usize + 1], [Column::EMPTY; W as usize]);
+    let mut buffers: frame_buffers!(W as usize, H as usize) = FrameBuffers::new();
     let mut image = [Rgb::BLACK; (W * H) as usize];
 
     let level0 = Level::new(MAP, MAP, &heights, &colors)?;
@@ -29,8 +29,8 @@ fn main() -> Result<(), Error> {
     let scale = Scale::new(30.0, 0.1)?; // metres per voxel, metres per height unit
     let terrain = pyramid::assemble(level0, scale, &hs, &cs, true)?;
     let camera = Camera::new(VIEW)?;
-    let frame = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut cols)?;
-    Mode::As.render(&frame, &terrain, &mut NoCost, &mut image)?;
+    let (frame, scratch) = buffers.frame(&camera, &terrain, Options::default())?;
+    frame.render(&terrain, &Mode::As, &mut NoCost, scratch, &mut image)?;
     let green: u64 = image.iter().map(|c| u64::from(c.g)).sum();
     println!("{W}x{H} as: mean green {}", green / u64::from(W * H));
     Ok(())

@@ -53,12 +53,14 @@
 //! ([`terrain::frame::Frame`]) → column walk ([`terrain::column::walk()`]) → per-hit sampler
 //! ([`terrain::sampler::Sampler`]) → pixel.
 //!
-//! **The front door.** [`prelude`] imports what a frame needs; [`Mode`] names the sampling
-//! modes and renders a frame in any of them ([`Mode::render`]), into any pixel format
-//! ([`sink::PixelSink`]; with the `embedded-graphics` feature, into any `DrawTarget`:
-//! `embedded`). Every buffer size is a `const fn` ([`terrain::pyramid::cells`],
-//! [`terrain::pyramid::levels`], [`terrain::next_size`], [`terrain::camera::Column::EMPTY`]),
-//! so a firmware's buffers can be statics:
+//! **The front door.** [`prelude`] imports what a frame needs. A [`Frame`](terrain::frame::Frame)
+//! renders its image ([`Frame::render`](terrain::frame::Frame::render)) for either projection,
+//! sampled by a [`Mode`] (every mode linked) or by one sampler type (that mode alone), into any
+//! pixel format ([`sink::PixelSink`]; with the `embedded-graphics` feature, into any
+//! `DrawTarget`: `embedded`). [`FrameBuffers`](terrain::buffers::FrameBuffers) holds every
+//! buffer a frame borrows, sized at compile time, and every other size is a `const fn`
+//! ([`terrain::pyramid::cells`], [`terrain::pyramid::levels`], [`terrain::next_size`]), so a
+//! firmware's buffers are statics:
 //!
 //! ```
 //! use footprint_core::prelude::*;
@@ -75,32 +77,34 @@
 //!     x_m: 240.0, y_m: 240.0, eye_m: 100.0, heading_deg: 0.0, pitch_deg: 20.0, roll_deg: 0.0,
 //!     fov_deg: 10.0, width: 8, height: 8, far_m: 30_000.0,
 //! })?;
-//! let (mut rows, mut columns) = ([Coord::ZERO; 9], [Column::EMPTY; 8]);
-//! let frame = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut columns)?;
+//! let mut buffers: frame_buffers!(8, 8) = FrameBuffers::new();
+//! let (frame, scratch) = buffers.frame(&camera, &terrain, Options::default())?;
 //! let mut image = [Rgb::BLACK; 64];
-//! Mode::As.render(&frame, &terrain, &mut NoCost, &mut image)?;
+//! frame.render(&terrain, &Mode::As, &mut NoCost, scratch, &mut image)?;
 //! assert_eq!(image[63], Rgb::new(40, 120, 40)); // the bottom row sees the flat green ground
 //! # Ok::<(), footprint_core::Error>(())
 //! ```
 //!
-//! The same frame from the modules themselves, with one sampler type:
+//! The same door takes the exact projection (a pinhole camera at any pitch and roll), whose
+//! walk draws a fan of vertical planes into the scratch grid and resamples it into the image,
+//! and one sampler type instead of a mode:
 //!
 //! ```
-//! use footprint_core::terrain::{camera::*, column, cost::NoCost, frame::Frame, sampler::Area, *};
-//! use footprint_core::{num::Coord, Rgb};
+//! use footprint_core::prelude::*;
+//! use footprint_core::terrain::sampler::Area;
 //! let heights = [10u16; 16 * 16];
 //! let colors = [Rgb::new(40, 120, 40); 16 * 16];
-//! let level0 = Level::new(16, 16, &heights, &colors)?;
-//! let terrain = Terrain::new(level0, Scale::new(30.0, 0.1)?);
+//! let terrain = Terrain::new(Level::new(16, 16, &heights, &colors)?, Scale::new(30.0, 0.1)?);
 //! let camera = Camera::new(CameraParams {
-//!     x_m: 240.0, y_m: 240.0, eye_m: 100.0, heading_deg: 0.0, pitch_deg: 20.0, roll_deg: 0.0,
+//!     x_m: 240.0, y_m: 240.0, eye_m: 100.0, heading_deg: 0.0, pitch_deg: 20.0, roll_deg: 5.0,
 //!     fov_deg: 10.0, width: 8, height: 8, far_m: 30_000.0,
 //! })?;
-//! let (mut rows, mut cols) = ([Coord::ZERO; 9], [Column::default(); 8]);
-//! let frame = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut cols)?;
-//! let mut image = [Rgb::default(); 64];
-//! column::render(&frame, &terrain, &Area::new(), &mut NoCost, &mut image)?;
-//! assert_eq!(image[63], Rgb::new(40, 120, 40)); // the bottom row sees the flat green ground
+//! let exact = Options { projection: Projection::Exact, ..Options::default() };
+//! let mut buffers: frame_buffers!(exact 16, 16) = FrameBuffers::new();
+//! let (frame, scratch) = buffers.frame(&camera, &terrain, exact)?;
+//! let mut image = [Rgb::BLACK; 64];
+//! frame.render(&terrain, &Area::new(), &mut NoCost, scratch, &mut image)?;
+//! assert_eq!(image[63], Rgb::new(40, 120, 40));
 //! # Ok::<(), footprint_core::Error>(())
 //! ```
 

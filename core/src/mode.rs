@@ -6,8 +6,9 @@
 //! Fig. 12 writes and costs it ([`ParallelArea`]) and with the exact ray through each voxel's
 //! top ([`Area`]); and the classic voxel-space renderer ([`classic`]), the baseline.
 //!
-//! A firmware that renders one mode only links that mode's sampler when it calls
-//! [`column::render`] with it; [`Mode::render`] links them all.
+//! A mode is a [`Sampling`]: [`Frame::render`] takes it, or one sampler. A firmware that
+//! renders one mode only links that mode's sampler when it hands [`Frame::render`] the sampler
+//! itself; a [`Mode`] links them all.
 
 use core::fmt;
 use core::str::FromStr;
@@ -16,10 +17,10 @@ use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::camera::Switch;
 use crate::terrain::classic;
-use crate::terrain::column;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
+use crate::terrain::image::Sampling;
 use crate::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use crate::terrain::Terrain;
 use crate::Rgb;
@@ -175,7 +176,8 @@ impl Mode {
         }
     }
 
-    /// How the exact projection's fan is resampled for this mode ([`Frame::resample`]): the
+    /// How the exact projection's fan is resampled for this mode ([`Frame::resample`],
+    /// the sampler's [`Sampler::FILTER`]): the
     /// cell under each pixel's centre for the point-sampling modes (PS, LI, classic), the
     /// pixel's box for the area-sampling ones (SS_N, AS), whose cells are averages over their
     /// footprints.
@@ -195,46 +197,36 @@ impl Mode {
         }
         with_sampler!(self, s => of(&s), classic => Switch::Nearest)
     }
+}
 
-    /// Renders `frame` in this mode, counting with `cost` ([`NoCost`](crate::terrain::cost::NoCost)
-    /// counts nothing), into `grid`, row-major from the top, in any pixel format
-    /// ([`PixelSink`]): [`column::render`] with a fresh sampler of the mode, or
-    /// [`classic::render`].
-    ///
-    /// With the paper's projection (`Options::default()`) `grid` is the image, `W × H`; with
-    /// the exact one it is the fan's grid ([`Frame::width`] × [`Frame::height`]), which
-    /// [`Frame::resample`] with [`Mode::filter`] turns into the image.
-    ///
-    /// Errors: a `grid` of the wrong length.
-    pub fn render<C: Cost, P: PixelSink>(
-        self,
-        frame: &Frame<'_>,
-        terrain: &Terrain<'_>,
-        cost: &mut C,
-        grid: &mut [P],
-    ) -> Result<(), Error> {
-        with_sampler!(self, s => column::render(frame, terrain, &s, cost, grid),
-            classic => classic::render(frame, terrain, cost, grid))
+/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]); `classic`
+/// walks [`classic`]'s own walk.
+impl Sampling for Mode {
+    fn filter(&self) -> Filter {
+        Mode::filter(*self)
     }
 
-    /// Walks column `x` of `frame` in this mode (a fresh sampler, or the classic walk),
-    /// counting with `cost`, into `out`, rows from the bottom: the rows the column walks
-    /// ([`Column::rows`](crate::terrain::camera::Column::rows)) land at their own index.
-    pub fn walk_column<C: Cost>(
-        self,
+    fn walk_column<C: Cost>(
+        &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
         x: usize,
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        let rows = frame.column(x).map_or(0..0, |c| c.rows());
-        let first = rows.start.min(out.len());
-        let rest = out.get_mut(first..).unwrap_or_default();
-        with_sampler!(self, s => {
-            let mut s = s;
-            column::walk(frame, terrain, x, rows, &mut s, cost, rest)
-        }, classic => classic::walk(frame, terrain, x, cost, out));
+        with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
+            classic => classic::walk(frame, terrain, x, cost, out));
+    }
+
+    fn walk_image<C: Cost, P: PixelSink>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        cost: &mut C,
+        image: &mut [P],
+    ) -> Result<(), Error> {
+        with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
+            classic => classic::render(frame, terrain, cost, image))
     }
 }
 

@@ -2,18 +2,24 @@
 //!
 //! The map and its pyramid ([`Level`], [`Scale`], [`Terrain`], [`pyramid`], [`HeightFilter`]),
 //! the camera and its per-frame tables ([`Camera`], [`CameraParams`], [`Frame`], [`Options`],
-//! [`Projection`], [`Column`], [`Coord`]), the modes ([`Mode`], [`Rate`]), the counters
+//! [`Projection`], [`Column`], [`Coord`]) and the buffers they borrow ([`FrameBuffers`],
+//! [`frame_buffers!`]), the modes ([`Mode`], [`Rate`], any [`Sampling`], the fan's
+//! [`Filter`]), the counters
 //! ([`NoCost`], [`Counts`]), the pixel formats ([`Rgb`], [`PixelSink`]) and [`Error`]. The
 //! walk's internals are not here; the modules under [`crate::terrain`] have the rest.
 
 pub use crate::color::Rgb;
 pub use crate::error::Error;
+pub use crate::frame_buffers;
 pub use crate::mode::{Mode, Rate};
 pub use crate::num::Coord;
 pub use crate::sink::PixelSink;
+pub use crate::terrain::buffers::FrameBuffers;
 pub use crate::terrain::camera::{Camera, CameraParams, Column, Options, Projection};
 pub use crate::terrain::cost::{Counts, NoCost};
+pub use crate::terrain::fan::Filter;
 pub use crate::terrain::frame::Frame;
+pub use crate::terrain::image::Sampling;
 pub use crate::terrain::pyramid::{self, HeightFilter};
 pub use crate::terrain::{Level, Scale, Terrain};
 

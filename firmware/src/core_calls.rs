@@ -6,39 +6,50 @@
 
 use footprint_core::lit::{Sun, SunShader};
 use footprint_core::num::Coord;
+use footprint_core::prelude::*;
 use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
-use footprint_core::terrain::camera::{Camera, Column, Options, Switch};
-use footprint_core::terrain::column;
-use footprint_core::terrain::cost::{Cost, Counts};
-use footprint_core::terrain::fan::Filter;
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::pyramid::{self, HeightFilter};
+use footprint_core::terrain::camera::Switch;
+use footprint_core::terrain::cost::Cost;
 use footprint_core::terrain::sampler::Sampler;
 use footprint_core::terrain::visibility;
-use footprint_core::terrain::{Level, Scale, Terrain};
-use footprint_core::{Error, Rgb};
 
 use crate::PlateVertex;
 
-/// `column::render`: one frame in one mode, with one kind of cost counter.
+/// `Frame::render`: one frame in one mode (a sampler, or a `Mode`), with one kind of cost
+/// counter; `scratch` is the exact projection's grid (empty for the paper's).
 #[inline(never)]
-pub fn render<S: Sampler + Clone, C: Cost>(
+pub fn render<S: Sampling, C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
-    sampler: &S,
+    sampling: &S,
     cost: &mut C,
+    scratch: &mut [Rgb],
     image: &mut [Rgb],
 ) -> Result<(), Error> {
-    column::render(frame, terrain, sampler, cost, image)
+    frame.render(terrain, sampling, cost, scratch, image)
 }
 
-/// `column::render` with a [`SunShader`] listening: the frame lit by `sun`. The walk draws the
-/// colour map into `grid` as [`render`] does; the shader lights every sample it takes and
-/// writes the lit frame into `lit`, which is filled with the frame's sky first (the pixels that
-/// see only sky keep it), as `footprint_scenes::render::render_lit` does on the host. The eye
-/// is at `eye_m` (east, south, up, metres) and the pixels are `pixel_angle` radians tall (the
-/// camera's). Returns the inner cost `inner` with everything the walk and the shader counted.
+/// `Frame::render_columns` over the whole frame: the walk alone, into the grid `grid` (the
+/// exact projection's fan, before [`resample`] makes it the image).
+#[inline(never)]
+pub fn walk<S: Sampling, C: Cost>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    sampling: &S,
+    cost: &mut C,
+    grid: &mut [Rgb],
+) -> Result<(), Error> {
+    frame.render_columns(terrain, sampling, cost, 0..frame.width(), grid)
+}
+
+/// `Frame::render_columns` with a [`SunShader`] listening: the frame lit by `sun`. The walk
+/// draws the colour map into `grid` (the walk's layout); the shader lights every sample it
+/// takes and writes the lit grid into `lit`, which is filled with the frame's sky first (the
+/// pixels that see only sky keep it), as `footprint_scenes::render::render_lit` does on the
+/// host; [`resample`] makes either the image. The eye is at `eye_m` (east, south, up, metres)
+/// and the pixels are `pixel_angle` radians tall (the camera's). Returns the inner cost `inner`
+/// with everything the walk and the shader counted.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 pub fn render_lit<'s, S: Sampler + Clone, C: Cost>(
@@ -54,11 +65,23 @@ pub fn render_lit<'s, S: Sampler + Clone, C: Cost>(
     lit.fill(frame.sky());
     let size = (frame.width(), frame.height());
     let mut shader = SunShader::new(sun, terrain, eye_m, pixel_angle, size, lit, inner)?;
-    column::render(frame, terrain, sampler, &mut shader, grid)?;
+    frame.render_columns(terrain, sampler, &mut shader, 0..frame.width(), grid)?;
     Ok(shader.inner)
 }
 
-/// `Frame::new`: the camera tables (soft-double trigonometry, once per frame).
+/// `FrameBuffers::frame`: the camera tables (soft-double trigonometry, once per frame) in
+/// `buffers`, and the frame's scratch.
+#[inline(never)]
+pub fn frame_in<'b, const COLUMNS: usize, const EDGES: usize, const CELLS: usize>(
+    buffers: &'b mut FrameBuffers<COLUMNS, EDGES, CELLS>,
+    camera: &Camera,
+    terrain: &Terrain<'_>,
+    options: Options,
+) -> Result<(Frame<'b>, &'b mut [Rgb]), Error> {
+    buffers.frame(camera, terrain, options)
+}
+
+/// `Frame::new`: the camera tables over loose buffers (for the error paths).
 #[inline(never)]
 pub fn frame<'t>(
     camera: &Camera,
@@ -70,8 +93,8 @@ pub fn frame<'t>(
     Frame::new(camera, terrain, options, rows, columns)
 }
 
-/// `Frame::resample`: the exact projection's fan resampled into the image (the area
-/// samplers' box).
+/// `Frame::resample`: the image from the walked grid (the exact projection's fan resampled
+/// with the area samplers' box; the paper's grid turned into rows).
 #[inline(never)]
 pub fn resample(frame: &Frame<'_>, grid: &[Rgb], image: &mut [Rgb]) -> Result<(), Error> {
     frame.resample(grid, Filter::Box, image)

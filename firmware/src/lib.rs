@@ -17,8 +17,7 @@
 
 use core::fmt;
 
-use footprint_core::num::Coord;
-use footprint_core::terrain::camera::Column;
+use footprint_core::prelude::{frame_buffers, FrameBuffers};
 use footprint_core::Rgb;
 
 use footprint_core::specular::raster::Vertex;
@@ -293,40 +292,20 @@ pub struct Buffers {
     pub pyramid_heights: &'static mut [u16; 3 * PYRAMID_CELLS],
     /// Colours of pyramid levels 1 and up.
     pub pyramid_colors: &'static mut [Rgb; PYRAMID_CELLS],
-    /// The frame's row table, `H + 1` slopes.
-    pub rows: &'static mut [Coord; HEIGHT + 1],
-    /// The frame's column table, `W` columns.
-    pub columns: &'static mut [Column; WIDTH],
+    /// The frame's tables (the paper's projection, `W × H`: `H + 1` row slopes, `W` columns).
+    pub frame: &'static mut frame_buffers!(WIDTH, HEIGHT),
     /// The image, row-major from the top.
     pub image: &'static mut [Rgb; WIDTH * HEIGHT],
 }
 
-/// The rolled frame's buffers (the exact projection's fan), in `.bss`.
-pub struct FanBuffers {
-    /// The fan's row table, `FAN_ROWS + 1` slopes.
-    pub rows: &'static mut [Coord; FAN_ROWS + 1],
-    /// The fan's lines, the walk's columns.
-    pub columns: &'static mut [Column; FAN_LINES],
-    /// The walked grid, row-major from the top, before it is resampled into the image.
-    pub grid: &'static mut [Rgb; FAN_LINES * FAN_ROWS],
-}
+/// The rolled and the level frame's buffers (the exact projection's fans, up to
+/// `FAN_LINES × FAN_ROWS`, with the walk's scratch grid), in `.bss`.
+pub type FanBuffers = &'static mut frame_buffers!(exact FAN_LINES, FAN_ROWS);
 
-impl FanBuffers {
-    /// Takes the buffers: `Some` the first time only.
-    #[inline(never)]
-    pub fn take() -> Option<Self> {
-        Some(Self {
-            rows: cortex_m::singleton!(
-                FAN_ROW_TABLE: [Coord; FAN_ROWS + 1] = [Coord::ZERO; FAN_ROWS + 1]
-            )?,
-            columns: cortex_m::singleton!(
-                FAN_COLUMNS: [Column; FAN_LINES] = [Column::default(); FAN_LINES]
-            )?,
-            grid: cortex_m::singleton!(
-                FAN_GRID: [Rgb; FAN_LINES * FAN_ROWS] = [Rgb::new(0, 0, 0); FAN_LINES * FAN_ROWS]
-            )?,
-        })
-    }
+/// Takes the fans' buffers: `Some` the first time only.
+#[inline(never)]
+pub fn take_fan_buffers() -> Option<FanBuffers> {
+    cortex_m::singleton!(FAN: frame_buffers!(exact FAN_LINES, FAN_ROWS) = FrameBuffers::new())
 }
 
 impl Buffers {
@@ -342,8 +321,7 @@ impl Buffers {
             pyramid_colors: cortex_m::singleton!(
                 PYRAMID_COLORS: [Rgb; PYRAMID_CELLS] = [Rgb::new(0, 0, 0); PYRAMID_CELLS]
             )?,
-            rows: cortex_m::singleton!(ROWS: [Coord; HEIGHT + 1] = [Coord::ZERO; HEIGHT + 1])?,
-            columns: cortex_m::singleton!(COLUMNS: [Column; WIDTH] = [Column::default(); WIDTH])?,
+            frame: cortex_m::singleton!(FRAME: frame_buffers!(WIDTH, HEIGHT) = FrameBuffers::new())?,
             image: cortex_m::singleton!(
                 IMAGE: [Rgb; WIDTH * HEIGHT] = [Rgb::new(0, 0, 0); WIDTH * HEIGHT]
             )?,

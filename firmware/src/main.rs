@@ -51,16 +51,18 @@ use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::{Level, Scale, Terrain};
+use footprint_core::{frame_buffers, terrain::buffers::FrameBuffers};
 use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
-    COLORS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS, HEIGHT_SCALE_M,
-    LEVEL_NAME, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT, PLATE_BACKGROUND, PLATE_COLORS,
-    PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD, PLATE_MODE, PLATE_N, PLATE_PIXELS,
-    PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M, WIDTH,
+    COLORS, FAN_LINES, FAN_ROWS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS,
+    HEIGHT_SCALE_M, LEVEL_NAME, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT, PLATE_BACKGROUND,
+    PLATE_COLORS, PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD, PLATE_MODE, PLATE_N,
+    PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M,
+    WIDTH,
 };
 use footprint_firmware::{
-    core_calls, display, glint, image_hash, stack, Buffers, DisplayBuffer, FanBuffers,
+    core_calls, display, glint, image_hash, stack, take_fan_buffers, Buffers, DisplayBuffer,
     GlintBuffers, PlateBuffers, Ratio,
 };
 
@@ -90,12 +92,12 @@ fn run_mode<S: Sampler + Clone>(
     image: &mut [Rgb],
 ) -> Result<Option<u64>, Error> {
     let (render, result) =
-        instructions(|| core_calls::render(frame, terrain, sampler, &mut NoCost, image));
+        instructions(|| core_calls::render(frame, terrain, sampler, &mut NoCost, &mut [], image));
     result?;
     let hash = image_hash(image);
 
     let mut counts = Counts::new(&mut []);
-    core_calls::render(frame, terrain, sampler, &mut counts, image)?;
+    core_calls::render(frame, terrain, sampler, &mut counts, &mut [], image)?;
     core_calls::count_visible(frame, terrain, S::SWITCH, &mut counts);
     let counted_hash = image_hash(image);
     let t: Tally = counts.total;
@@ -121,7 +123,7 @@ fn run_mode<S: Sampler + Clone>(
 }
 
 /// Renders the paper's `as` frame again through the embedded-graphics sink
-/// (`footprint_core::embedded::render_with`): the walk writes `Rgb565` into `buffer`, which is
+/// (`footprint_core::embedded::render`): the walk writes `Rgb565` into `buffer`, which is
 /// drawn into a [`display::Checking`] display that compares every pixel with `image`, the `Rgb`
 /// render of the same frame. Prints a `#` line; `Ok(false)` if any pixel differs.
 fn run_display(
@@ -132,12 +134,13 @@ fn run_display(
 ) -> Result<bool, Error> {
     let mut screen = display::Checking::new(image);
     let (render, result) = instructions(|| {
-        embedded::render_with(
+        embedded::render(
             &mut screen,
             frame,
             terrain,
             &ParallelArea::new(),
             &mut NoCost,
+            &mut [],
             buffer,
         )
     });
@@ -195,7 +198,9 @@ fn run_glint(
         core_calls::render_lit(frame, terrain, &sampler, &sun, view, NoCost, image, lit)
     });
     result?;
-    let hash = image_hash(lit);
+    // The lit grid (the walk's layout) as the image, into the colour grid's buffer.
+    core_calls::resample(frame, lit, image)?;
+    let hash = image_hash(image);
 
     let counts = core_calls::render_lit(
         frame,
@@ -207,7 +212,8 @@ fn run_glint(
         image,
         lit,
     )?;
-    let counted_hash = image_hash(lit);
+    core_calls::resample(frame, lit, image)?;
+    let counted_hash = image_hash(image);
     let t: Tally = counts.total;
     hprintln!(
         "frame {} {}x{} fnv1a={:016x} hits={} normals={} shading={}",
@@ -247,38 +253,21 @@ fn run_glint(
 /// the `#` instruction line.
 fn run_fan(
     terrain: &Terrain<'_>,
-    fan: &mut FanBuffers,
+    fan: &mut frame_buffers!(exact FAN_LINES, FAN_ROWS),
     image: &mut [Rgb],
     roll_deg: f64,
     name: &str,
 ) -> Result<(), Error> {
-    let FanBuffers {
-        rows,
-        columns,
-        grid,
-    } = fan;
     let camera = Camera::new(CameraParams { roll_deg, ..PARAMS })?;
     let options = Options {
         projection: Projection::Exact,
         ..Options::default()
     };
     // The buffers hold the larger fan (build.rs); this frame takes its own fan's share.
-    let (lines, fan_rows) = Frame::grid_size(&camera, options)?;
-    let capacity = grid.len();
-    let too_small = || Error::SliceLength {
-        what: "fan buffers",
-        expected: lines * fan_rows,
-        actual: capacity,
-    };
-    let rows = rows.get_mut(..fan_rows + 1).ok_or_else(too_small)?;
-    let columns = columns.get_mut(..lines).ok_or_else(too_small)?;
-    let grid = grid.get_mut(..lines * fan_rows).ok_or_else(too_small)?;
-    let (tables, frame) =
-        instructions(|| core_calls::frame(&camera, terrain, options, rows, columns));
-    let frame = frame?;
-    let (render, result) = instructions(|| {
-        core_calls::render(&frame, terrain, &ParallelArea::new(), &mut NoCost, grid)
-    });
+    let (tables, frame) = instructions(|| core_calls::frame_in(fan, &camera, terrain, options));
+    let (frame, grid) = frame?;
+    let (render, result) =
+        instructions(|| core_calls::walk(&frame, terrain, &ParallelArea::new(), &mut NoCost, grid));
     result?;
     let (resample, result) = instructions(|| core_calls::resample(&frame, grid, image));
     result?;
@@ -441,12 +430,13 @@ fn error_paths(
     );
     let frame = core_calls::frame(camera, terrain, options, rows, columns)?;
     ok &= error_line(
-        format_args!("column::render(short image)"),
+        format_args!("Frame::render(short image)"),
         core_calls::render(
             &frame,
             terrain,
             &Point,
             &mut NoCost,
+            &mut [],
             &mut image[..WIDTH * HEIGHT - 1],
         ),
     );
@@ -475,8 +465,7 @@ fn run() -> Result<bool, Error> {
     let Some(Buffers {
         pyramid_heights,
         pyramid_colors,
-        rows,
-        columns,
+        frame: frame_buffers,
         image,
     }) = Buffers::take()
     else {
@@ -495,7 +484,7 @@ fn run() -> Result<bool, Error> {
         hprintln!("FAIL: the display's buffer was taken twice");
         return Ok(false);
     };
-    let Some(mut fan_buffers) = FanBuffers::take() else {
+    let Some(fan_buffers) = take_fan_buffers() else {
         hprintln!("FAIL: the fan's buffers were taken twice");
         return Ok(false);
     };
@@ -520,15 +509,9 @@ fn run() -> Result<bool, Error> {
     );
     let camera = Camera::new(PARAMS)?;
     let (tables, frame) = instructions(|| {
-        core_calls::frame(
-            &camera,
-            &terrain,
-            Options::default(),
-            &mut rows[..],
-            &mut columns[..],
-        )
+        core_calls::frame_in(&mut *frame_buffers, &camera, &terrain, Options::default())
     });
-    let frame = frame?;
+    let (frame, _) = frame?;
     hprintln!(
         "# icount frame tables (Frame::new, soft-double trigonometry): {} instructions",
         tables
@@ -561,10 +544,11 @@ fn run() -> Result<bool, Error> {
         }
         _ => ok = false,
     }
-    run_fan(&terrain, &mut fan_buffers, image, ROLL_DEG, ROLLED_NAME)?;
-    run_fan(&terrain, &mut fan_buffers, image, 0.0, LEVEL_NAME)?;
+    run_fan(&terrain, fan_buffers, image, ROLL_DEG, ROLLED_NAME)?;
+    run_fan(&terrain, fan_buffers, image, 0.0, LEVEL_NAME)?;
     run_plate(plate_buffers)?;
-    ok &= error_paths(&terrain, &camera, rows, columns, image)?;
+    let FrameBuffers { edges, columns, .. } = frame_buffers;
+    ok &= error_paths(&terrain, &camera, edges, columns, image)?;
     Ok(ok)
 }
 

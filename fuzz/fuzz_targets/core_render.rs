@@ -9,8 +9,8 @@ use footprint_core::lit::{Materials, Specular, Sun, SunShader};
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
-use footprint_core::terrain::classic;
-use footprint_core::terrain::column::render;
+use footprint_core::Mode;
+
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
@@ -109,38 +109,38 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     let mut counts = Counts::new(&mut tallies);
     let mut image = vec![Rgb::default(); cw * ch];
     let done = match input.mode % 8 {
-        0 => render(&frame, &terrain, &Point, &mut counts, &mut image),
-        1 => render(&frame, &terrain, &Linear, &mut counts, &mut image),
-        2 => render(
-            &frame,
+        0 => frame.render(&terrain, &Point, &mut counts, &mut [], &mut image),
+        1 => frame.render(&terrain, &Linear, &mut counts, &mut [], &mut image),
+        2 => frame.render(
             &terrain,
             &Super::<2>::new(),
             &mut counts,
+            &mut [],
             &mut image,
         ),
-        3 => render(
-            &frame,
+        3 => frame.render(
             &terrain,
             &Super::<16>::new(),
             &mut counts,
+            &mut [],
             &mut image,
         ),
-        4 => render(
-            &frame,
+        4 => frame.render(
             &terrain,
             &Super::<256>::new(),
             &mut counts,
+            &mut [],
             &mut image,
         ),
-        5 => render(&frame, &terrain, &Area::new(), &mut counts, &mut image),
-        6 => render(
-            &frame,
+        5 => frame.render(&terrain, &Area::new(), &mut counts, &mut [], &mut image),
+        6 => frame.render(
             &terrain,
             &ParallelArea::new(),
             &mut counts,
+            &mut [],
             &mut image,
         ),
-        _ => classic::render(&frame, &terrain, &mut counts, &mut image),
+        _ => frame.render(&terrain, &Mode::Classic, &mut counts, &mut [], &mut image),
     };
     assert!(done.is_ok(), "buffers were sized from the camera");
     // The sequence the rendered mode walked (classic walks level 0).
@@ -191,9 +191,9 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             return;
         };
         let done = if input.mode % 2 == 0 {
-            render(&frame, &terrain, &Area::new(), &mut shader, &mut image)
+            frame.render(&terrain, &Area::new(), &mut shader, &mut [], &mut image)
         } else {
-            render(&frame, &terrain, &Point, &mut shader, &mut image)
+            frame.render(&terrain, &Point, &mut shader, &mut [], &mut image)
         };
         assert!(done.is_ok(), "buffers were sized from the camera");
     }

@@ -1,5 +1,7 @@
 //! One frame of the built-in terrain to a PNG, from a host program: the map and its pyramid
-//! from `footprint-scenes`, the paper's view at pitch 20°, the paper's area sampling.
+//! from `footprint-scenes`, the paper's view at pitch 20° in the exact projection (the CLI's
+//! default), the paper's area sampling, rendered through the core's one door straight into the
+//! PNG's bytes.
 //! `cargo run -p footprint-host --example png -- frame.png`
 use footprint_core::prelude::*;
 use footprint_scenes::procedural::procedural;
@@ -11,14 +13,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .nth(1)
         .unwrap_or_else(|| "frame.png".to_owned());
     let pyramid = Pyramid::build(procedural(1, 256), HeightFilter::Silhouette)?;
-    let camera = paper_camera(&pyramid, 20.0, 320, 240, Options::default())?;
+    let options = Options {
+        projection: Projection::Exact,
+        ..Options::default()
+    };
+    let camera = paper_camera(&pyramid, 20.0, 320, 240, options)?;
     let terrain = pyramid.terrain(true)?;
     let mut tables = Tables::new(&camera);
-    let frame = tables.frame(&camera, &terrain, Options::default())?;
-    let mut image = vec![Rgb::BLACK; 320 * 240];
-    Mode::As.render(&frame, &terrain, &mut NoCost, &mut image)?;
-    let bytes: Vec<u8> = image.iter().flat_map(|c| [c.r, c.g, c.b]).collect();
-    image::save_buffer(&out, &bytes, 320, 240, image::ExtendedColorType::Rgb8)?;
+    let frame = tables.frame(&camera, &terrain, options)?;
+    let mut scratch = vec![Rgb::BLACK; frame.scratch_len()];
+    let mut image = vec![[0u8; 3]; 320 * 240];
+    frame.render(&terrain, &Mode::As, &mut NoCost, &mut scratch, &mut image)?;
+    let bytes = image.as_flattened();
+    image::save_buffer(&out, bytes, 320, 240, image::ExtendedColorType::Rgb8)?;
     println!("wrote {out}: 320x240, as");
     Ok(())
 }

@@ -7,11 +7,13 @@ use std::time::Instant;
 use anyhow::Result;
 use footprint_core::terrain::cost::NoCost;
 use footprint_core::terrain::frame::Frame;
+use footprint_core::terrain::image::Sampling;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 
 pub use footprint_scenes::render::{
-    count_column, render_with, walk_mode, ColumnCount, Measured, Mode, Rate, Rendered, SS_RATES,
+    count_column, image_from_grid, render_with, ColumnCount, Measured, Mode, Rate, Rendered,
+    SS_RATES,
 };
 pub use footprint_scenes::view::{first_hit_distance, Tables};
 
@@ -30,39 +32,31 @@ fn walked() {
     WALKS.fetch_add(1, Ordering::Relaxed);
 }
 
-/// Renders without counting, one column per task on every core (rayon), or on one thread
-/// straight into the image with [`render_with`] when the pool has one; the same pixels either
-/// way.
+/// Renders without counting, the frame's columns split over every core (rayon, one column
+/// per task) with [`Frame::render_columns`] and the image made once from the whole grid
+/// ([`Frame::resample`]); on one thread straight through the core's one door
+/// ([`Frame::render`], [`render_with`]). The same pixels either way.
 pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<Rendered> {
     use rayon::prelude::*;
     walked();
     if rayon::current_num_threads() == 1 {
-        // One thread (`--threads 1`): the frame straight into its image, no column buffers.
         return Ok(render_with(frame, terrain, mode, &mut NoCost)?);
     }
-    let (w, h) = (frame.width(), frame.height());
-    let columns: Vec<Vec<Rgb>> = (0..w)
-        .into_par_iter()
-        .map(|x| {
-            let mut out = vec![Rgb::default(); h];
-            walk_mode(frame, terrain, mode, x, &mut NoCost, &mut out);
-            out
-        })
-        .collect();
-    let mut grid = vec![Rgb::default(); w * h];
-    for (x, col) in columns.iter().enumerate() {
-        for (i, px) in col.iter().enumerate() {
-            grid[(h - 1 - i) * w + x] = *px;
-        }
-    }
-    Ok(footprint_scenes::render::finish(frame, grid, mode)?)
+    let rows = frame.height();
+    let mut grid = vec![Rgb::default(); frame.width() * rows];
+    grid.par_chunks_mut(rows)
+        .enumerate()
+        .try_for_each(|(x, column)| {
+            frame.render_columns(terrain, &mode, &mut NoCost, x..x + 1, column)
+        })?;
+    Ok(image_from_grid(frame, &grid, mode)?)
 }
 
-/// Renders one column (rows from the bottom) without counting.
+/// Walks one column of the grid (rows from the bottom) without counting: column `x` of
+/// [`Frame::render_columns`]' layout.
 pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> Vec<Rgb> {
-    let h = frame.height();
-    let mut out = vec![Rgb::default(); h];
-    walk_mode(frame, terrain, mode, x, &mut NoCost, &mut out);
+    let mut out = vec![Rgb::default(); frame.height()];
+    mode.walk_column(frame, terrain, x, &mut NoCost, &mut out);
     out
 }
 

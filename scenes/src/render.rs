@@ -1,7 +1,7 @@
-//! One frame in one sampling mode, on one thread: the mode by its CLI name ([`Mode`]), the
-//! render, and the counted render with the exact visibility pass (`V`, hidden and missed
-//! voxels). The host spreads [`count_column`] over its cores; the browser page and the tests
-//! call it column by column.
+//! One frame in one sampling mode, on one thread, through the core's one door
+//! ([`Frame::render`]): the mode by its CLI name ([`Mode`]), the render, and the counted render
+//! with the exact visibility pass (`V`, hidden and missed voxels). The host spreads
+//! [`count_column`] over its cores; the browser page and the tests call it column by column.
 
 use std::fmt;
 
@@ -11,6 +11,7 @@ use footprint_core::num::Weight;
 use footprint_core::terrain::camera::Camera;
 use footprint_core::terrain::cost::{Cost, Counts, Tally};
 use footprint_core::terrain::frame::Frame;
+use footprint_core::terrain::image::Sampling;
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::visibility::visit_visible;
 use footprint_core::terrain::Terrain;
@@ -35,9 +36,9 @@ impl fmt::Debug for Rendered {
     }
 }
 
-/// Renders one frame lit by `sun`: the walk's samples shaded by a [`SunShader`] into
-/// their own grid (sky where no terrain was sampled), resampled like the colour image. The
-/// eye and the pixel's angle come from `camera`.
+/// Renders one frame lit by `sun`: the walk's samples shaded by a [`SunShader`] into their
+/// own grid (sky where no terrain was sampled), made into the image as the colour image is
+/// ([`Frame::resample`]). The eye and the pixel's angle come from `camera`.
 pub fn render_lit<C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
@@ -59,54 +60,37 @@ pub fn render_lit<C: Cost>(
         &mut lit,
         cost,
     )?;
-    mode.render(frame, terrain, &mut shader, &mut grid)?;
-    finish(frame, lit, mode)
+    frame.render_columns(terrain, &mode, &mut shader, 0..w, &mut grid)?;
+    image_from_grid(frame, &lit, mode)
 }
 
-/// Renders one frame with cost `cost` into a new image: the walk's grid, resampled when the
-/// projection is exact ([`finish`]).
+/// Renders one frame with cost `cost` into a new image ([`Frame::render`]).
 pub fn render_with<C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     mode: Mode,
     cost: &mut C,
 ) -> Result<Rendered, Error> {
-    let (w, h) = (frame.width(), frame.height());
-    let mut grid = vec![Rgb::default(); w * h];
-    mode.render(frame, terrain, cost, &mut grid)?;
-    finish(frame, grid, mode)
-}
-
-/// The image from the walked grid (row-major from the top): the grid itself with the paper's
-/// projection, the fan resampled with the exact one ([`Frame::resample`], with `mode`'s
-/// [`Mode::filter`]).
-pub fn finish(frame: &Frame<'_>, grid: Vec<Rgb>, mode: Mode) -> Result<Rendered, Error> {
-    let image = if frame.fan().is_some() {
-        let (w, h) = frame.image_size();
-        let mut image = vec![Rgb::default(); w * h];
-        frame.resample(&grid, mode.filter(), &mut image)?;
-        image
-    } else {
-        grid
-    };
     let (w, h) = frame.image_size();
+    let mut scratch = vec![Rgb::default(); frame.scratch_len()];
+    let mut image = vec![Rgb::default(); w * h];
+    frame.render(terrain, &mode, cost, &mut scratch, &mut image)?;
     Ok(Rendered {
         image,
         size: (w as u32, h as u32),
     })
 }
 
-/// Walks column `x` of `frame` in `mode` (a fresh sampler, or the classic walk), counting with
-/// `cost`, into `out` (rows bottom to top).
-pub fn walk_mode<C: Cost>(
-    frame: &Frame<'_>,
-    terrain: &Terrain<'_>,
-    mode: Mode,
-    x: usize,
-    cost: &mut C,
-    out: &mut [Rgb],
-) {
-    mode.walk_column(frame, terrain, x, cost, out);
+/// The image from a whole walked grid in [`Frame::render_columns`]' layout (column by column,
+/// each from the bottom row up): [`Frame::resample`] with `mode`'s [`Mode::filter`].
+pub fn image_from_grid(frame: &Frame<'_>, grid: &[Rgb], mode: Mode) -> Result<Rendered, Error> {
+    let (w, h) = frame.image_size();
+    let mut image = vec![Rgb::default(); w * h];
+    frame.resample(grid, mode.filter(), &mut image)?;
+    Ok(Rendered {
+        image,
+        size: (w as u32, h as u32),
+    })
 }
 
 /// The counts of one frame: totals with `V` filled by the exact visibility pass, one tally per
@@ -148,7 +132,7 @@ pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usi
         counts: Counts::new(&mut []),
         sampled: Vec::new(),
     };
-    walk_mode(frame, terrain, mode, x, &mut counts, &mut pixels);
+    mode.walk_column(frame, terrain, x, &mut counts, &mut pixels);
     let mut visible = Vec::new();
     visit_visible(frame, terrain, x, mode.switch(), |march| {
         visible.push(march.step_index());
@@ -165,28 +149,27 @@ pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usi
 }
 
 /// The frame from its counted columns, in order (`columns[x]` is column `x`): the image (the
-/// grid [`finish`]ed), the totals, the per-column tallies, and the hidden and missed voxels
-/// summed. The same for any order the columns were counted in.
+/// columns' pixels are the walked grid, [`image_from_grid`]), the totals, the per-column
+/// tallies, and the hidden and missed voxels summed. The same for any order the columns were
+/// counted in.
 pub fn assemble(
     frame: &Frame<'_>,
     mode: Mode,
     columns: Vec<ColumnCount>,
 ) -> Result<(Rendered, Measured), Error> {
     let (w, h) = (frame.width(), frame.height());
-    let mut image = vec![Rgb::default(); w * h];
+    let mut grid = Vec::with_capacity(w * h);
     let mut total = Tally::default();
     let mut tallies = Vec::with_capacity(w);
     let (mut hidden, mut missed) = (0, 0);
-    for (x, column) in columns.into_iter().enumerate().take(w) {
-        for (i, px) in column.pixels.iter().enumerate().take(h) {
-            image[(h - 1 - i) * w + x] = *px;
-        }
+    for column in columns.into_iter().take(w) {
+        grid.extend_from_slice(&column.pixels);
         total.add(&column.tally);
         tallies.push(column.tally);
         (hidden, missed) = (hidden + column.hidden, missed + column.missed);
     }
     Ok((
-        finish(frame, image, mode)?,
+        image_from_grid(frame, &grid, mode)?,
         Measured {
             total,
             columns: tallies,

@@ -1379,7 +1379,7 @@ fn constructor_errors() {
     let mut cols = vec![Column::default(); 4];
     let fr = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut cols).unwrap();
     expect(
-        column::render(&fr, &terrain, &Point, &mut NoCost, &mut [c; 15]),
+        fr.render(&terrain, &Point, &mut NoCost, &mut [], &mut [c; 15]),
         Error::SliceLength {
             what: "image",
             expected: 16,
@@ -1387,7 +1387,7 @@ fn constructor_errors() {
         },
     );
     assert_eq!(
-        column::render(&fr, &terrain, &Point, &mut NoCost, &mut [c; 16]),
+        fr.render(&terrain, &Point, &mut NoCost, &mut [], &mut [c; 16]),
         Ok(())
     );
 
@@ -1468,17 +1468,24 @@ fn extreme_valid_inputs_do_not_panic() {
         let mut image = vec![Rgb::default(); w * h];
         let mut tallies = vec![Tally::default(); w];
         let mut counts = Counts::new(&mut tallies);
-        column::render(frame, terrain, &Point, &mut counts, &mut image).unwrap();
-        column::render(frame, terrain, &Linear, &mut counts, &mut image).unwrap();
-        column::render(
-            frame,
-            terrain,
-            &Super::<256>::new(),
-            &mut counts,
-            &mut image,
-        )
-        .unwrap();
-        column::render(frame, terrain, &Area::new(), &mut counts, &mut image).unwrap();
+        frame
+            .render(terrain, &Point, &mut counts, &mut [], &mut image)
+            .unwrap();
+        frame
+            .render(terrain, &Linear, &mut counts, &mut [], &mut image)
+            .unwrap();
+        frame
+            .render(
+                terrain,
+                &Super::<256>::new(),
+                &mut counts,
+                &mut [],
+                &mut image,
+            )
+            .unwrap();
+        frame
+            .render(terrain, &Area::new(), &mut counts, &mut [], &mut image)
+            .unwrap();
         for switch in Switch::ALL {
             visibility::count_visible(frame, terrain, switch, &mut counts);
         }

@@ -18,6 +18,7 @@ use footprint_core::terrain::camera::Camera;
 use footprint_core::terrain::classic;
 use footprint_core::terrain::cost::{Counts, Tally};
 use footprint_core::terrain::Terrain;
+use footprint_core::Mode;
 use footprint_core::Rgb;
 
 /// A smooth analytic terrain: two crossing sine ridges, hash-coloured voxels.
@@ -143,7 +144,9 @@ fn classic_counters_are_consistent() {
         let mut counts = Counts::new(&mut columns);
         let (w, h) = (frame.width(), frame.height());
         let mut image = vec![Rgb::default(); w * h];
-        classic::render(frame, &terrain, &mut counts, &mut image).unwrap();
+        frame
+            .render(&terrain, &Mode::Classic, &mut counts, &mut [], &mut image)
+            .unwrap();
         let t = counts.total;
         let terrain_px = image.iter().filter(|&&p| p != SKY).count() as u64;
         assert!(

@@ -14,8 +14,9 @@ use footprint_core::lit::{Materials, Specular, Sun, SunShader};
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Phong, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
-use footprint_core::terrain::column::render;
+
 use footprint_core::terrain::cost::Counts;
+use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::sampler::Area;
 use footprint_core::terrain::Terrain;
@@ -104,9 +105,14 @@ fn image(
         &mut counts,
     )
     .expect("a shader");
-    render(&frame, terrain, &Area::new(), &mut shader, &mut grid).expect("sized");
+    frame
+        .render(terrain, &Area::new(), &mut shader, &mut [], &mut grid)
+        .expect("sized");
+    // The shader's grid (the walk's layout) as the image.
+    let mut lit = vec![SKY; w * h];
+    frame.resample(&out, Filter::Box, &mut lit).expect("sized");
     // Average `columns` columns per pixel, as the colour ground truth is.
-    box_columns(&out, cam.width(), h, columns as usize)
+    box_columns(&lit, cam.width(), h, columns as usize)
 }
 
 /// The glint's energy (luminance above the plain water, summed over the image), its peak, and

@@ -5,7 +5,7 @@
 
 use footprint_core::num::Coord;
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
-use footprint_core::terrain::column::render;
+
 use footprint_core::terrain::cost::{Counts, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::sampler::{Area, Linear, Point, Sampler, Super};
@@ -27,7 +27,9 @@ fn draw<S: Sampler + Clone>(terrain: &Terrain<'_>, camera: &Camera, s: &S) -> (V
     let mut tallies = vec![Tally::default(); w];
     let mut counts = Counts::new(&mut tallies);
     let mut image = vec![Rgb::default(); w * h];
-    render(&frame, terrain, s, &mut counts, &mut image).expect("sized");
+    frame
+        .render(terrain, s, &mut counts, &mut [], &mut image)
+        .expect("sized");
     count_visible(&frame, terrain, S::SWITCH, &mut counts);
     (image, counts.total)
 }

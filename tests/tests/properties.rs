@@ -21,7 +21,6 @@ use footprint_core::color::Color16;
 use footprint_core::num::Height;
 use footprint_core::num::{Coord, Weight};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
-use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::Voxel;
@@ -404,11 +403,12 @@ impl Cost for Spans {
     }
 }
 
-/// The whole image, row-major from the top, through `column::render` with `NoCost`.
+/// The whole image, row-major from the top, through `Frame::render` with `NoCost`.
 fn image<S: Sampler + Clone>(frame: &Frame<'_>, terrain: &Terrain<'_>, sampler: &S) -> Vec<u8> {
     let (w, h) = (frame.width(), frame.height());
     let mut image = vec![Rgb::default(); w * h];
-    column::render(frame, terrain, sampler, &mut NoCost, &mut image)
+    frame
+        .render(terrain, sampler, &mut NoCost, &mut [], &mut image)
         .expect("buffers of the right size");
     image.iter().flat_map(|p| [p.r, p.g, p.b]).collect()
 }

@@ -353,8 +353,8 @@ fn terrain_clamp(phong: &Phong, f: u16, policy: Clamp) -> Phong {
     )
 }
 
-/// Shades the samples of a walk into its own image (row-major from the top, `W × H` of the
-/// frame's grid), forwarding every event to the inner cost `C`.
+/// Shades the samples of a walk into its own grid (the walk's layout, `W × H` of the frame's
+/// grid, column by column from the bottom up), forwarding every event to the inner cost `C`.
 ///
 /// Pixels the walk never begins, or that saw only sky, are left as the caller filled them
 /// (the sky colour).
@@ -379,8 +379,12 @@ pub struct SunShader<'s, 'o, C: Cost> {
 }
 
 impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
-    /// A shader for a frame `width × height` whose eye is at `eye_m` (east, south, up, in
-    /// metres) and whose pixels are `pixel_angle` radians tall, writing into `out`.
+    /// A shader for a frame whose walked grid is `width × height` ([`crate::terrain::frame::Frame::width`]
+    /// and [`crate::terrain::frame::Frame::height`]), whose eye is at `eye_m` (east, south, up,
+    /// in metres) and whose pixels are `pixel_angle` radians tall, writing the lit grid into
+    /// `out` in the walk's own layout ([`crate::terrain::frame::Frame::render_columns`]: column
+    /// by column, each from the bottom row up), which [`crate::terrain::frame::Frame::resample`]
+    /// turns into the image.
     ///
     /// Errors: [`Error::SliceLength`] when `out` does not hold `width × height` pixels;
     /// [`Error::OutOfRange`] for a non-finite eye or pixel angle.
@@ -528,8 +532,9 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
         };
         let ([c0, c1, c2], [s0, s1, s2]) = (acc.color, acc.sky);
         let [r, g, b] = [(c0, s0), (c1, s1), (c2, s2)].map(ch);
-        let y = self.height - 1 - row;
-        if let Some(p) = self.out.get_mut(y * self.width + self.column) {
+        // The grid's layout (`Frame::render_columns`): column by column, from the bottom up.
+        let at = self.column.saturating_mul(self.height).saturating_add(row);
+        if let Some(p) = self.out.get_mut(at) {
             *p = Rgb::new(r, g, b);
         }
     }

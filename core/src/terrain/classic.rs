@@ -111,9 +111,9 @@ pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
     cost.end_column();
 }
 
-/// Renders the whole frame into `image`, row-major from the top: the classic counterpart of
-/// [`crate::terrain::column::render`], in any pixel format ([`PixelSink`]).
-pub fn render<C: Cost, P: PixelSink>(
+/// Renders the whole frame of the paper's projection into `image`, row-major from the top: the
+/// classic counterpart of `column::render`, in any pixel format ([`PixelSink`]).
+pub(crate) fn render<C: Cost, P: PixelSink>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     cost: &mut C,

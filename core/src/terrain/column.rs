@@ -375,10 +375,11 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     cost.end_column();
 }
 
-/// Renders the whole frame with a fresh copy of `sampler` per column into `image`, row-major
-/// from the top (`image[y·W + x]`), in any pixel format ([`PixelSink`]: the 3-byte [`Rgb`],
-/// or a display's own colour).
-pub fn render<S: Sampler + Clone, C: Cost, P: PixelSink>(
+/// Renders the whole frame of the paper's projection with a fresh copy of `sampler` per
+/// column into `image`, row-major from the top (`image[y·W + x]`), in any pixel format
+/// ([`PixelSink`]: the 3-byte [`Rgb`], or a display's own colour): [`Frame::render`]'s path
+/// when the walk's columns are the image's.
+pub(crate) fn render<S: Sampler + Clone, C: Cost, P: PixelSink>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampler: &S,

@@ -10,7 +10,7 @@ use crate::num::{
     MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE_BITS, MUL_32_LIMIT,
 };
 use crate::terrain::camera::{floor_i64, Camera, Column, Options, Projection, Switch};
-use crate::terrain::fan::{Fan, Filter};
+use crate::terrain::fan::Fan;
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
 
@@ -236,26 +236,6 @@ impl<'t> Frame<'t> {
     pub fn image_size(&self) -> (usize, usize) {
         self.fan
             .map_or((self.width(), self.height()), |f| f.output_size())
-    }
-
-    /// The image from the walked grid `grid` (row-major from the top, [`Frame::width`] ×
-    /// [`Frame::height`]): the fan resampled with `filter` ([`Fan::resample`]) or, with the
-    /// paper's projection, the grid copied.
-    ///
-    /// Errors: slices of the wrong length.
-    pub fn resample(&self, grid: &[Rgb], filter: Filter, image: &mut [Rgb]) -> Result<(), Error> {
-        match &self.fan {
-            Some(fan) => fan.resample(self.rows, self.columns, grid, self.sky, filter, image),
-            None if grid.len() == image.len() => {
-                image.copy_from_slice(grid);
-                Ok(())
-            }
-            None => Err(Error::SliceLength {
-                what: "image",
-                expected: grid.len(),
-                actual: image.len(),
-            }),
-        }
     }
 
     /// The frame's row slopes (`rows + 1` entries, Eq. 2 at each row's lower edge).

@@ -9,12 +9,14 @@
 //! baseline the paper's walk is measured against. The sun on the terrain, which joins both
 //! papers, is a room above this one ([`crate::lit`]).
 
+pub mod buffers;
 pub mod camera;
 pub mod classic;
 pub mod column;
 pub mod cost;
 pub mod fan;
 pub mod frame;
+pub mod image;
 pub mod map;
 // The voxel sequence under a column: the walk's internals. Public for the tests and the
 // project's own crates, hidden from the documentation; a `Cost` or `Sampler` sees only

@@ -15,6 +15,7 @@ use crate::color::{to_color16, to_rgb, Color16};
 use crate::num::{Eye, Height, Line, Weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
+use crate::terrain::fan::Filter;
 use crate::terrain::march::Voxel;
 
 pub use crate::terrain::ray::Ray;
@@ -61,6 +62,11 @@ pub trait Sampler {
     /// then keeps the step to the next pixel inline with the hit, its main work; for the modes
     /// that hit several voxels per pixel it takes it out of line. A matter of speed only.
     const ONE_HIT_PER_PIXEL: bool = false;
+    /// How the exact projection's fan is resampled into the image for this mode: the pixel's
+    /// box for the modes whose samples are averages over their footprints (the default), the
+    /// cell under the pixel's centre for point samples ([`Point`], [`Linear`]), so that a
+    /// point sample stays one point sample.
+    const FILTER: Filter = Filter::Box;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
@@ -96,6 +102,8 @@ impl Sampler for Point {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
     const ONE_HIT_PER_PIXEL: bool = true;
+    /// A point sample stays one point sample.
+    const FILTER: Filter = Filter::Nearest;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
@@ -120,6 +128,8 @@ impl Sampler for Linear {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
     const ONE_HIT_PER_PIXEL: bool = true;
+    /// A point sample stays one point sample.
+    const FILTER: Filter = Filter::Nearest;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]

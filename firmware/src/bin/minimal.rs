@@ -41,8 +41,7 @@ fn run() -> Result<(u64, u64), &'static str> {
     let Buffers {
         pyramid_heights: heights,
         pyramid_colors: colors,
-        rows,
-        columns,
+        frame,
         image,
     } = Buffers::take().ok_or("the buffers were taken twice")?;
     // From here on the stack holds only what rendering needs.
@@ -52,11 +51,12 @@ fn run() -> Result<(u64, u64), &'static str> {
     let terrain =
         core_calls::build_terrain(level0, scale, heights, colors).map_err(|_| "the pyramid")?;
     let camera = Camera::new(PARAMS).map_err(|_| "Camera::new")?;
-    let frame = core_calls::frame(&camera, &terrain, Options::default(), rows, columns)
+    let (frame, scratch) = core_calls::frame_in(frame, &camera, &terrain, Options::default())
         .map_err(|_| "Frame::new")?;
-    let (render, result) =
-        instructions(|| core_calls::render(&frame, &terrain, &Area::new(), &mut NoCost, image));
-    result.map_err(|_| "column::render")?;
+    let (render, result) = instructions(|| {
+        core_calls::render(&frame, &terrain, &Area::new(), &mut NoCost, scratch, image)
+    });
+    result.map_err(|_| "Frame::render")?;
     Ok((image_hash(image), render))
 }
 

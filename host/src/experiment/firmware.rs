@@ -42,7 +42,6 @@ use anyhow::{bail, Result};
 use footprint_core::lit::{Materials, Sun};
 use footprint_core::num::Coord;
 use footprint_core::terrain::camera::{Camera, CameraParams, Column};
-use footprint_core::terrain::column;
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::HeightFilter;
@@ -165,8 +164,8 @@ pub fn error_lines(scene: &Scene) -> Result<Vec<String>> {
     )?);
     let frame = Frame::new(&camera, &full, scene.options, &mut rows, &mut cols)?;
     lines.push(error_line(
-        "column::render(short image)",
-        column::render(&frame, &full, &Point, &mut NoCost, &mut image[..w * h - 1]),
+        "Frame::render(short image)",
+        frame.render(&full, &Point, &mut NoCost, &mut [], &mut image[..w * h - 1]),
     )?);
     Ok(lines)
 }

@@ -539,7 +539,7 @@ mod tests {
                 for c in 0..40 {
                     let mut acc = [0u32; 4];
                     fan.taps(&s, c, t, |tap| {
-                        let cell = grid[(fan.rows() - 1 - tap.row) * fan.lines() + tap.line];
+                        let cell = grid[tap.line * fan.rows() + tap.row];
                         accumulate(&mut acc, tap.weight, cell);
                     });
                     let want = average(&acc).unwrap_or(sky);

@@ -5,6 +5,7 @@
 use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::Coord;
+use crate::sink::PixelSink;
 
 use super::{box_scale, lerp, share8, weight8, Fan, FRAC, ONE, TILE, TILE_ROWS};
 use crate::terrain::camera::Column;
@@ -22,20 +23,22 @@ pub enum Filter {
 }
 
 impl Fan {
-    /// Resamples the walked grid `grid` (`lines × rows`, row-major from the top) into `image`
-    /// (`W × H`, row-major from the top): with [`Filter::Box`] each pixel the overlap-weighted
-    /// average of its taps (see the module docs), rounded; with [`Filter::Nearest`] the cell
-    /// under its centre; `sky` where a pixel meets no walked cell.
+    /// Resamples the walked grid `grid` (`lines × rows`, column-major: line `j`'s cells from
+    /// the bottom row up at `j·rows ..`, as [`crate::terrain::frame::Frame::render_columns`]
+    /// writes them) into `image` (`W × H`, row-major from the top, any pixel format): with
+    /// [`Filter::Box`] each pixel the overlap-weighted average of its taps (see the module
+    /// docs), rounded; with [`Filter::Nearest`] the cell under its centre; `sky` where a pixel
+    /// meets no walked cell.
     ///
     /// Errors: slices of the wrong length.
-    pub fn resample(
+    pub fn resample<P: PixelSink>(
         &self,
         slopes: &[Coord],
         columns: &[Column],
         grid: &[Rgb],
         sky: Rgb,
         filter: Filter,
-        image: &mut [Rgb],
+        image: &mut [P],
     ) -> Result<(), Error> {
         let (lines, rows) = (self.lines(), self.rows());
         let (w, h) = self.output_size();
@@ -64,7 +67,7 @@ impl Fan {
                 slopes,
                 image,
                 #[inline(always)]
-                |x, u, row| row.cell(grid, lines, self.across(x, row.width(u)).0, sky),
+                |x, u, row| row.cell(grid, rows, lines, self.across(x, row.width(u)).0, sky),
             ),
         }
         Ok(())
@@ -84,10 +87,10 @@ impl Fan {
     /// factors are at most one), so a tile spans at most `2·TILE = TILE_ROWS` fan rows and a
     /// pixel's row is the table's entry `(e − e_min) mod TILE_ROWS`, with no bounds to check.
     #[inline(always)]
-    fn each_pixel(
+    fn each_pixel<P: PixelSink>(
         &self,
         slopes: &[Coord],
-        image: &mut [Rgb],
+        image: &mut [P],
         mut pixel: impl FnMut(i64, i64, &TileRow) -> Rgb,
     ) {
         let (w, h) = self.output_size();
@@ -99,7 +102,7 @@ impl Fan {
                 let u = y - self.y_lo;
                 let row = row_at(u >> FRAC);
                 for px in out {
-                    *px = pixel(x, u, &row);
+                    *px = P::from_rgb(pixel(x, u, &row));
                     x += self.cr;
                 }
             }
@@ -143,7 +146,7 @@ impl Fan {
                         let i = ((u >> FRAC) - e_min) as usize & (TILE_ROWS - 1);
                         #[allow(clippy::indexing_slicing, reason = "i < TILE_ROWS, masked")]
                         let row = &table[i];
-                        *px = pixel(x, u, row);
+                        *px = P::from_rgb(pixel(x, u, row));
                         x += self.cr;
                         u -= self.sr;
                     }
@@ -153,19 +156,19 @@ impl Fan {
     }
 
     /// Fan row `e` (counted from the bottom) for [`Fan::each_pixel`], with its edges' widths
-    /// `lo` and `hi`; a row outside the grid starts at the grid's end, so that any cell looked
+    /// `lo` and `hi`; a row outside the grid is put at the grid's end, so that any cell looked
     /// up in it is past the grid (sky).
     #[inline(always)]
     fn tile_row(&self, e: i64, lo: i64, hi: i64) -> TileRow {
         let (lines, rows) = (self.lines(), self.rows());
-        let start = usize::try_from(e)
+        let row = usize::try_from(e)
             .ok()
             .filter(|&r| r < rows)
-            .map_or(rows * lines, |r| (rows - 1 - r) * lines);
+            .unwrap_or(rows * lines);
         TileRow {
             lo,
             rise: hi - lo,
-            start,
+            row,
         }
     }
 
@@ -213,19 +216,23 @@ impl Fan {
         if top >= rows || last >= lines {
             return self.clipped_average(grid, x, u, g);
         }
-        // Row r (from the bottom) is the grid's row rows − 1 − r (from the top); the box's
-        // first cell in its lower row, and in its upper row one grid row before.
-        let at = (rows - 1 - r0) * lines + first;
+        // Cell (line j, row r) is the grid's `j·rows + r`: the box's first cell in its lower
+        // row, its row's next cells `rows` apart, and each cell's upper neighbour just after.
+        let at = first * rows + r0;
         let shares = Shares::new(s_lo, s_hi, first_j, last_j);
-        let lower_row = grid.get(at..)?.get(..=last.saturating_sub(first))?;
+        let cells = last - first + 1;
+        let lower_row = grid.get(at..)?;
         if upper == 0 {
             // On a fan row (always without roll): one row of cells.
-            return Some(on_row(shares.sum(lower_row)));
+            return Some(on_row(
+                shares.sum(lower_row.iter().step_by(rows).take(cells)),
+            ));
         }
-        let upper_row = grid
-            .get(at.checked_sub(lines)?..)?
-            .get(..=last.saturating_sub(first))?;
-        let [low, high] = shares.sum2(lower_row, upper_row);
+        let pairs = lower_row
+            .chunks(rows)
+            .take(cells)
+            .map(|c| c.first_chunk::<2>().copied().unwrap_or_default());
+        let [low, high] = shares.sum2(pairs);
         Some(between_rows(low, high, upper))
     }
 
@@ -260,9 +267,9 @@ impl Fan {
         if first + 1 >= lines || r0 + usize::from(upper > 0) >= rows {
             return None;
         }
-        // Row r (from the bottom) is the grid's row rows − 1 − r (from the top): the box's
-        // first cell in its lower row, and in its upper row one grid row before.
-        let at = (rows - 1 - r0) * lines + first;
+        // Cell (line j, row r) is the grid's `j·rows + r`: the box's first cell in its lower
+        // row; its second line's is `rows` on, and each one's upper neighbour just after.
+        let at = first * rows + r0;
         // The first line's overlap, 2^16 − start, is below the width (the box reaches the
         // second line), so times ⌊2^24/width⌋ it stays below 2^24.
         let scale = (1u32 << 24) / width;
@@ -270,13 +277,13 @@ impl Fan {
         let l = 256 - f;
         let across = |a: u8, b: u8| f * u32::from(a) + l * u32::from(b);
         if upper == 0 {
-            let [a, b] = *grid.get(at..)?.first_chunk::<2>()?;
+            let (a, b) = (*grid.get(at)?, *grid.get(at + rows)?);
             let ch = |a: u8, b: u8| round16(across(a, b) << 8);
             return Some(Rgb::new(ch(a.r, b.r), ch(a.g, b.g), ch(a.b, b.b)));
         }
-        // The upper row's two cells, then (one grid row on) the lower row's.
-        let cells = grid.get(at.checked_sub(lines)?..=at + 1)?;
-        let ([c, d], [a, b]) = (*cells.first_chunk::<2>()?, *cells.last_chunk::<2>()?);
+        // The first line's lower and upper cells, then (one line on) the second's.
+        let cells = grid.get(at..=at + rows + 1)?;
+        let ([a, c], [b, d]) = (*cells.first_chunk::<2>()?, *cells.last_chunk::<2>()?);
         let lower = 256 - upper;
         let ch = |a: u8, b: u8, c: u8, d: u8| round16(lower * across(a, b) + upper * across(c, d));
         Some(Rgb::new(
@@ -289,10 +296,10 @@ impl Fan {
     /// The box average of a pixel whose box reaches past the grid's border: the taps inside
     /// the grid, weighted by their overlaps and divided by their total weight; `None` if none.
     fn clipped_average(&self, grid: &[Rgb], x: i64, u: i64, g: i64) -> Option<Rgb> {
-        let (lines, rows) = (self.lines(), self.rows());
+        let rows = self.rows();
         let mut acc = [0u32; 4];
         self.taps_with(x, u, g, |line, row, weight| {
-            if let Some(cell) = grid.get((rows - 1 - row) * lines + line) {
+            if let Some(cell) = grid.get(line * rows + row) {
                 accumulate(&mut acc, weight, *cell);
             }
         });
@@ -301,12 +308,13 @@ impl Fan {
 }
 
 /// One fan row of a tile ([`Fan::each_pixel`]): the width at its lower edge, the rise to
-/// its upper edge's, and where it starts in the grid (the grid's end for a row outside it).
+/// its upper edge's, and the row itself (counted from the bottom; the grid's length for a row
+/// outside it).
 #[derive(Clone, Copy, Debug)]
 struct TileRow {
     lo: i64,
     rise: i64,
-    start: usize,
+    row: usize,
 }
 
 impl TileRow {
@@ -315,7 +323,7 @@ impl TileRow {
     const UNSET: TileRow = TileRow {
         lo: 0,
         rise: 0,
-        start: 0,
+        row: 0,
     };
 
     /// The pixel's width in fan lines at `u`, linear between the edges' ([`lerp`]).
@@ -324,14 +332,14 @@ impl TileRow {
         lerp(self.lo, self.rise, u)
     }
 
-    /// The cell at `s` lines (fixed point) across this row of `grid` (`lines` wide): the cell
-    /// containing the pixel's centre, which is the cell its box overlaps most (the box is
-    /// centred there), so always a walked cell; `sky` off the grid. `start + j` stays below
-    /// `(rows + 1)·lines`, so it cannot overflow.
+    /// The cell at `s` lines (fixed point) across this row of `grid` (`lines × rows`,
+    /// column-major): the cell containing the pixel's centre, which is the cell its box
+    /// overlaps most (the box is centred there), so always a walked cell; `sky` off the grid.
+    /// `j·rows + row` stays below `2·lines·rows`, so it cannot overflow.
     #[inline(always)]
-    fn cell(&self, grid: &[Rgb], lines: usize, s: i64, sky: Rgb) -> Rgb {
+    fn cell(&self, grid: &[Rgb], rows: usize, lines: usize, s: i64, sky: Rgb) -> Rgb {
         match usize::try_from(s >> FRAC) {
-            Ok(j) if j < lines => grid.get(self.start + j).copied().unwrap_or(sky),
+            Ok(j) if j < lines => grid.get(j * rows + self.row).copied().unwrap_or(sky),
             _ => sky,
         }
     }
@@ -376,52 +384,59 @@ impl Shares {
     /// line to last: the whole lines' cells are summed first and weighted once. Each sum is
     /// at most 255·256.
     #[inline(always)]
-    fn sum(&self, cells: &[Rgb]) -> [u32; 3] {
+    fn sum<'g>(&self, mut cells: impl Iterator<Item = &'g Rgb>) -> [u32; 3] {
         let mut sum = [0u32; 3];
-        let Some((first, rest)) = cells.split_first() else {
+        let Some(&first) = cells.next() else {
             return sum;
         };
-        add(&mut sum, self.first, *first);
-        let Some((last, between)) = rest.split_last() else {
-            return sum;
-        };
+        add(&mut sum, self.first, first);
+        // The whole lines' cells, then the last line's with its own share.
         let mut whole = [0u32; 3];
-        for cell in between {
-            add(&mut whole, 1, *cell);
+        let mut last = None;
+        for &cell in cells {
+            if let Some(before) = last.replace(cell) {
+                add(&mut whole, 1, before);
+            }
         }
+        let Some(last) = last else {
+            return sum;
+        };
         for (s, w) in sum.iter_mut().zip(whole) {
             *s += self.whole * w;
         }
-        add(&mut sum, self.last, *last);
+        add(&mut sum, self.last, last);
         sum
     }
 
-    /// [`Shares::sum`] of two rows of cells at once (`lower` and `upper`, the same lines).
+    /// [`Shares::sum`] of two rows at once: `pairs` holds each line's lower and upper cell,
+    /// first line to last.
     #[inline(always)]
-    fn sum2(&self, lower: &[Rgb], upper: &[Rgb]) -> [[u32; 3]; 2] {
+    fn sum2(&self, mut pairs: impl Iterator<Item = [Rgb; 2]>) -> [[u32; 3]; 2] {
         let mut sum = [[0u32; 3]; 2];
-        let (Some((l0, lower)), Some((h0, upper))) = (lower.split_first(), upper.split_first())
-        else {
+        let Some([l0, h0]) = pairs.next() else {
             return sum;
         };
-        add(&mut sum[0], self.first, *l0);
-        add(&mut sum[1], self.first, *h0);
-        let (Some((l1, lower)), Some((h1, upper))) = (lower.split_last(), upper.split_last())
-        else {
-            return sum;
-        };
+        add(&mut sum[0], self.first, l0);
+        add(&mut sum[1], self.first, h0);
+        // The whole lines' cells, then the last line's with its own share.
         let mut whole = [[0u32; 3]; 2];
-        for (lo, hi) in lower.iter().zip(upper) {
-            add(&mut whole[0], 1, *lo);
-            add(&mut whole[1], 1, *hi);
+        let mut last = None;
+        for pair in pairs {
+            if let Some([lo, hi]) = last.replace(pair) {
+                add(&mut whole[0], 1, lo);
+                add(&mut whole[1], 1, hi);
+            }
         }
+        let Some([l1, h1]) = last else {
+            return sum;
+        };
         for (sum, whole) in sum.iter_mut().zip(whole) {
             for (s, w) in sum.iter_mut().zip(whole) {
                 *s += self.whole * w;
             }
         }
-        add(&mut sum[0], self.last, *l1);
-        add(&mut sum[1], self.last, *h1);
+        add(&mut sum[0], self.last, l1);
+        add(&mut sum[1], self.last, h1);
         sum
     }
 }
