@@ -1,0 +1,139 @@
+//! The core's one door, `Frame::render`, in both projections:
+//!
+//! - a frame split into column ranges (`Frame::render_columns`, any split, any order) and made
+//!   into the image once (`Frame::resample`) equals the whole frame rendered through the door,
+//!   bit for bit, in every mode;
+//! - the same image in the other pixel formats (`[u8; 3]`, a PNG's bytes; `[u8; 4]`, a canvas's
+//!   RGBA) is the `Rgb` image converted;
+//! - ranges beyond the frame, grids of the wrong length and a short scratch are refused.
+
+use footprint_core::prelude::*;
+use footprint_host::experiment::paper::paper_camera;
+use footprint_host::map::procedural;
+use footprint_host::pyramid::Pyramid;
+use footprint_host::render::{Tables, SS_RATES};
+use footprint_host::view::Size;
+
+fn modes() -> Vec<Mode> {
+    let mut modes = vec![Mode::Ps, Mode::Li, Mode::As, Mode::AsExact, Mode::Classic];
+    modes.extend([SS_RATES[0], SS_RATES[3]].map(Mode::Ss));
+    modes
+}
+
+/// Cut points of `0..n` from a small xorshift: ranges of 0 to 9 columns.
+fn split(n: usize, seed: u64) -> Vec<std::ops::Range<usize>> {
+    let mut rng = seed | 1;
+    let (mut at, mut ranges) = (0, Vec::new());
+    while at < n {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        let end = (at + (rng % 10) as usize).min(n);
+        ranges.push(at..end);
+        at = end;
+    }
+    ranges
+}
+
+#[test]
+fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
+    let map = procedural(4, 256);
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+    let terrain = pyramid.terrain(true).unwrap();
+    let size = Size {
+        width: 40,
+        height: 30,
+    };
+    for (pitch, roll, projection) in [
+        (20.0, 0.0, Projection::Paper),
+        (40.0, 0.0, Projection::Exact),
+        (40.0, 25.0, Projection::Exact),
+    ] {
+        let mut camera = paper_camera(&map, &pyramid, pitch, size, true).unwrap();
+        camera = Camera::new(CameraParams {
+            roll_deg: roll,
+            ..*camera.params()
+        })
+        .unwrap();
+        let options = Options {
+            projection,
+            ..Options::default()
+        };
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options).unwrap();
+        let (w, h) = frame.image_size();
+        let (columns, rows) = (frame.width(), frame.height());
+        for (k, mode) in modes().into_iter().enumerate() {
+            let mut scratch = vec![Rgb::BLACK; frame.scratch_len()];
+            let mut whole = vec![Rgb::BLACK; w * h];
+            frame
+                .render(&terrain, &mode, &mut NoCost, &mut scratch, &mut whole)
+                .unwrap();
+            // The ranges walked in reverse order, each into its own stretch of one grid.
+            let mut grid = vec![Rgb::new(1, 2, 3); columns * rows];
+            let ranges = split(columns, 0x9e37_79b9 + k as u64);
+            assert!(ranges.len() > 4, "{mode}: a real split");
+            let mut stretches = Vec::new();
+            let mut rest = grid.as_mut_slice();
+            for r in &ranges {
+                let (stretch, tail) = rest.split_at_mut(r.len() * rows);
+                stretches.push((r.clone(), stretch));
+                rest = tail;
+            }
+            for (r, stretch) in stretches.into_iter().rev() {
+                frame
+                    .render_columns(&terrain, &mode, &mut NoCost, r, stretch)
+                    .unwrap();
+            }
+            let mut split_image = vec![Rgb::BLACK; w * h];
+            frame
+                .resample(&grid, mode.filter(), &mut split_image)
+                .unwrap();
+            assert!(
+                split_image == whole,
+                "{mode} {projection:?} roll {roll}: the split frame differs"
+            );
+            // The same door into a PNG's bytes and a canvas's RGBA.
+            let mut png = vec![[0u8; 3]; w * h];
+            let mut rgba = vec![[0u8; 4]; w * h];
+            frame
+                .render(&terrain, &mode, &mut NoCost, &mut scratch, &mut png)
+                .unwrap();
+            frame
+                .render(&terrain, &mode, &mut NoCost, &mut scratch, &mut rgba)
+                .unwrap();
+            for ((c, p), q) in whole.iter().zip(&png).zip(&rgba) {
+                assert_eq!(*p, [c.r, c.g, c.b]);
+                assert_eq!(*q, [c.r, c.g, c.b, 255]);
+            }
+        }
+        // What the door refuses.
+        let mut grid = vec![Rgb::BLACK; (columns + 1) * rows];
+        for (range, len) in [
+            (0..columns + 1, (columns + 1) * rows),
+            (0..columns, columns * rows - 1),
+        ] {
+            let refused =
+                frame.render_columns(&terrain, &Mode::Ps, &mut NoCost, range, &mut grid[..len]);
+            assert!(
+                matches!(refused, Err(Error::SliceLength { .. })),
+                "{refused:?}"
+            );
+        }
+        if projection == Projection::Exact {
+            let mut short = vec![Rgb::BLACK; frame.scratch_len() - 1];
+            let mut image = vec![Rgb::BLACK; w * h];
+            let refused = frame.render(&terrain, &Mode::As, &mut NoCost, &mut short, &mut image);
+            assert!(
+                matches!(
+                    refused,
+                    Err(Error::SliceLength {
+                        what: "scratch",
+                        ..
+                    })
+                ),
+                "{refused:?}"
+            );
+        }
+    }
+}
