@@ -50,6 +50,7 @@ use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::wedge::Wedge;
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{frame_buffers, terrain::buffers::FrameBuffers};
 use footprint_core::{Error, Rgb};
@@ -102,9 +103,9 @@ fn run_mode<S: Sampler + Clone>(
     let counted_hash = image_hash(image);
     let t: Tally = counts.total;
     hprintln!(
-        "frame {} {}x{} fnv1a={:016x} L={} P={} M={} V={} hits={} a={} b={} c={} d={} d'={} top_div={} shifts={} div={}",
+        "frame {} {}x{} fnv1a={:016x} L={} P={} M={} V={} hits={} a={} b={} c={} d={} d'={} top_div={} shifts={} div={} e={}",
         name, WIDTH, HEIGHT, hash, t.l, t.p, t.m, t.v, t.hits, t.a, t.b, t.c, t.d, t.d_prime,
-        t.top_divisions, t.shifts, t.divisions
+        t.top_divisions, t.shifts, t.divisions, t.e
     );
     let pixels = (WIDTH * HEIGHT) as u64;
     hprintln!(
@@ -522,8 +523,10 @@ fn run() -> Result<bool, Error> {
     let area = run_mode("as-exact", &Area::new(), &frame, &terrain, tables, image)?;
     let paper = run_mode("as", &ParallelArea::new(), &frame, &terrain, tables, image)?;
     ok &= run_display(&frame, &terrain, image, display.pixels)?;
-    match (ps, ss8, area, paper) {
-        (Some(ps), Some(_), Some(area), Some(paper)) => {
+    // After the display, which compares against the `as` image.
+    let wedge = run_mode("as2", &Wedge::new(), &frame, &terrain, tables, image)?;
+    match (ps, ss8, area, paper, wedge) {
+        (Some(ps), Some(_), Some(area), Some(paper), Some(wedge)) => {
             hprintln!(
                 "# icount as-exact/ps: {} (render instructions)",
                 Ratio {
@@ -537,6 +540,14 @@ fn run() -> Result<bool, Error> {
                 Ratio {
                     num: paper,
                     den: ps,
+                    places: 2
+                }
+            );
+            hprintln!(
+                "# icount as2/as: {} (render instructions)",
+                Ratio {
+                    num: wedge,
+                    den: paper,
                     places: 2
                 }
             );

@@ -32,8 +32,8 @@ pub trait DefaultModes: Clone + Send + Sync + 'static {
 /// `--modes`: the sampling modes to compare, comma-separated, with the command's default `D`.
 #[derive(Args, Clone, Debug)]
 pub struct ModesArg<D: DefaultModes> {
-    /// Modes (comma-separated): classic, ps, li, ss2 … ss256, as, as-exact (and, for `fly`,
-    /// reference: the ground truth's own flight).
+    /// Modes (comma-separated): classic, ps, li, ss2 … ss256, as, as-exact, as2 (and, for
+    /// `fly`, reference: the ground truth's own flight).
     #[arg(long = "modes", value_delimiter = ',', default_value = D::MODES)]
     pub list: Vec<D::Item>,
     #[arg(skip)]
@@ -77,7 +77,7 @@ pub struct OutputFormat {
 pub struct TableModes;
 impl DefaultModes for TableModes {
     type Item = Mode;
-    const MODES: &'static str = "as,as-exact,ps,ss2,ss4,ss8,ss16,ss32";
+    const MODES: &'static str = "as,as-exact,as2,ps,ss2,ss4,ss8,ss16,ss32";
 }
 
 /// The modes of `footprint fly` (Table 6's; `reference` may be listed too).
@@ -85,7 +85,7 @@ impl DefaultModes for TableModes {
 pub struct FlyModes;
 impl DefaultModes for FlyModes {
     type Item = FlyMode;
-    const MODES: &'static str = "as,as-exact,ps,ss8,ss16";
+    const MODES: &'static str = "as,as-exact,as2,ps,ss8,ss16";
 }
 
 /// The modes of `footprint bench` (the classic baseline first).
@@ -93,7 +93,7 @@ impl DefaultModes for FlyModes {
 pub struct BenchModes;
 impl DefaultModes for BenchModes {
     type Item = Mode;
-    const MODES: &'static str = "classic,ps,li,ss8,ss16,as,as-exact";
+    const MODES: &'static str = "classic,ps,li,ss8,ss16,as,as-exact,as2";
 }
 
 #[cfg(test)]
@@ -114,7 +114,7 @@ mod tests {
     #[test]
     fn defaults_repeats_and_an_empty_list() {
         let cli = Cli::try_parse_from(["x"]).unwrap();
-        assert_eq!(cli.modes.modes().unwrap().len(), 5);
+        assert_eq!(cli.modes.modes().unwrap().len(), 6);
         assert_eq!(
             cli.size.size,
             Size {

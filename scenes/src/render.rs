@@ -238,6 +238,9 @@ impl Cost for Recorded<'_> {
     fn top_division(&mut self) {
         self.counts.top_division();
     }
+    fn wedge(&mut self, cells: u32) {
+        self.counts.wedge(cells);
+    }
     fn shifts(&mut self, count: u32) {
         self.counts.shifts(count);
     }

@@ -229,8 +229,8 @@ fn the_reference_is_consistent() {
             .unwrap()
     };
     let frames: Vec<&String> = lines.iter().filter(|l| l.starts_with("frame ")).collect();
-    assert_eq!(frames.len(), 8, "{lines:#?}");
-    let (ps, ss8, area, paper) = (frames[0], frames[1], frames[2], frames[3]);
+    assert_eq!(frames.len(), 9, "{lines:#?}");
+    let (ps, ss8, area, paper, wedge) = (frames[0], frames[1], frames[2], frames[3], frames[4]);
     assert!(paper.starts_with("frame as 160x120 "), "{paper}");
     assert_eq!(
         field(paper, "top_div"),
@@ -253,10 +253,16 @@ fn the_reference_is_consistent() {
     let hash = |l: &str| l.split_whitespace().nth(3).unwrap().to_owned();
     assert_ne!(hash(ps), hash(area));
     assert_ne!(hash(ss8), hash(area));
+    // as2: the wedge's cells read across (term e), at least one per hit, and an image of its
+    // own.
+    assert!(wedge.starts_with("frame as2 160x120 "), "{wedge}");
+    assert!(field(wedge, "e") >= field(wedge, "hits"), "{wedge}");
+    assert_eq!(field(paper, "e"), 0, "{paper}");
+    assert_ne!(hash(wedge), hash(area));
     // The glint frame: the paper's AS walk again (the same hits), every sample lit, a
     // highlight evaluation per lobe of a terrain pixel (water and rock), two where the clamp
     // blends, and an image unlike the unlit AS frame's.
-    let glint = frames[4];
+    let glint = frames[5];
     assert!(
         glint.starts_with(&format!("frame {GLINT_NAME} 160x120 ")),
         "{glint}"
@@ -276,7 +282,7 @@ fn the_reference_is_consistent() {
     // (clamping), the cylinders alias at 64×64, and every flagged pixel was drawn.
     // The rolled frame: the exact projection's fan is wider than the image (the banked image
     // spans more azimuth) and taller (more elevation), and the banked image is not the level one.
-    let rolled = frames[5];
+    let rolled = frames[6];
     assert!(rolled.starts_with("frame as-roll30 160x120 "), "{rolled}");
     assert!(
         field(rolled, "lines") > 160 && field(rolled, "rows") > 120,
@@ -285,14 +291,14 @@ fn the_reference_is_consistent() {
     assert_ne!(hash(rolled), hash(paper));
     // The level frame: the same view in the exact projection without roll, a fan about as
     // wide as the image and an image close to, but not, the paper projection's.
-    let level = frames[6];
+    let level = frames[7];
     assert!(level.starts_with("frame as-roll0 160x120 "), "{level}");
     assert!(
         field(level, "lines") >= 160 && field(level, "lines") < field(rolled, "lines"),
         "{level} / {rolled}"
     );
     assert_ne!(hash(level), hash(rolled));
-    let specular = frames[7];
+    let specular = frames[8];
     assert!(
         specular.starts_with(&format!(
             "frame {} {PLATE_SIZE}x{PLATE_SIZE} ",
@@ -308,5 +314,5 @@ fn the_reference_is_consistent() {
     assert!(baked.triangles.len() > 1000 && baked.vertices.len() < baked.triangles.len() * 3);
     let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
     assert_eq!(errors, 10, "{lines:#?}");
-    assert_eq!(lines.len(), 18);
+    assert_eq!(lines.len(), 19);
 }

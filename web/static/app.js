@@ -8,7 +8,7 @@
 // counted and benched what it was asked, <body data-ready="1"> carries data-hash0/1 (the
 // frames' FNV-1a-64, as `footprint render` would hash them) and data-ms0/1.
 
-const MODES = ['classic', 'ps', 'li', 'ss2', 'ss4', 'ss8', 'ss16', 'ss32', 'as', 'as-exact'];
+const MODES = ['classic', 'ps', 'li', 'ss2', 'ss4', 'ss8', 'ss16', 'ss32', 'as', 'as-exact', 'as2'];
 const FLIGHT_STEP_M = 0.5; // Sect. 5: 0.5 m forward per frame
 const FLIGHT_FRAMES = 240;
 const MOVE_M = 30; // W/S per frame, metres

@@ -757,6 +757,9 @@ impl<C: Cost> Cost for SunShader<'_, '_, C> {
     fn top_division(&mut self) {
         self.inner.top_division();
     }
+    fn wedge(&mut self, cells: u32) {
+        self.inner.wedge(cells);
+    }
     fn shifts(&mut self, count: u32) {
         self.inner.shifts(count);
     }

@@ -267,6 +267,10 @@ pub struct Column {
     pub(crate) v_base: Coord,
     /// Minor voxels per half-voxel along the ray, `|dv| ≤ ½`.
     pub(crate) dv: Coord,
+    /// Half the width across of the column's wedge (the angle between its two planes, Sect. 8's
+    /// horizontal footprint), minor voxels per half-voxel along the ray: at `n` the wedge's
+    /// cross-section with the row of voxels is `v(n) ± |n − n_eye|·wedge` (`as2`).
+    pub(crate) wedge: Coord,
     /// The first voxel centre at least one half-voxel ahead of the eye.
     pub(crate) n_start: i64,
     /// The last `n` within the far distance.
@@ -293,6 +297,7 @@ impl Column {
         n_eye: Height::ZERO,
         v_base: Coord::ZERO,
         dv: Coord::ZERO,
+        wedge: Coord::ZERO,
         n_start: 0,
         n_far: 0,
         lod_base: [0; 2],

@@ -152,6 +152,7 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
             upper: self.upper,
             eye: self.eye,
             start: (n, ray.h),
+            wedge: self.column.wedge,
         };
         self.sampler.begin_pixel(&pixel, self.cost);
         ray
@@ -182,6 +183,8 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
 }
 
 impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O> {
+    const WIDE: bool = S::WIDE;
+
     /// The hits on one voxel: each sampler call may raise the ray or begin the next pixel,
     /// and the same voxel is tested again until the ray passes above it; then the ride steps
     /// on.
@@ -315,7 +318,7 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
                 break;
             } else if !skips {
                 u32::MAX
-            } else if march.skip(&mut ray.h, rise) > 0 {
+            } else if march.skip(&mut ray.h, rise, S::WIDE) > 0 {
                 px.cost.step(false);
                 if ray.slope >= 0 && ray.h > max_h {
                     break;
@@ -325,9 +328,9 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
                 1
             };
             let steps = if ray.slope >= 0 {
-                march.ride::<true>(&mut ray, max_h, limit, &mut px)
+                march.ride::<true, _>(&mut ray, max_h, limit, &mut px)
             } else {
-                march.ride::<false>(&mut ray, max_h, limit, &mut px)
+                march.ride::<false, _>(&mut ray, max_h, limit, &mut px)
             };
             px.cost.steps(steps, px.in_footprint);
             if px.finished {

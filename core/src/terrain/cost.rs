@@ -58,6 +58,10 @@ pub trait Cost {
     /// Area sampling's division for the slope of the ray through a voxel's top (part of `d′`).
     #[inline(always)]
     fn top_division(&mut self) {}
+    /// Term `e` (not the paper's; `as2`): `cells` cells of the wedge's cross-section read at
+    /// one step, to test it against the ray and, on a hit, to average it.
+    #[inline(always)]
+    fn wedge(&mut self, _cells: u32) {}
     /// Shifts spent finishing a pixel (supersampling's `Σ >> log2 N`, one per channel).
     #[inline(always)]
     fn shifts(&mut self, _count: u32) {}
@@ -128,6 +132,10 @@ impl<C: Cost + ?Sized> Cost for &mut C {
         (**self).top_division();
     }
     #[inline(always)]
+    fn wedge(&mut self, cells: u32) {
+        (**self).wedge(cells);
+    }
+    #[inline(always)]
     fn shifts(&mut self, count: u32) {
         (**self).shifts(count);
     }
@@ -180,6 +188,9 @@ pub struct Tally {
     pub d_prime: u64,
     /// Area sampling's per-hit divisions for the new top ray (inside `d′`).
     pub top_divisions: u64,
+    /// Term `e` (`as2`, not the paper's): cells of the wedge's cross-sections read, to test
+    /// steps against the ray and average the hits.
+    pub e: u64,
     /// Shifts finishing pixels.
     pub shifts: u64,
     /// Divisions finishing pixels.
@@ -205,6 +216,7 @@ impl Tally {
         f(&mut self.d, o.d);
         f(&mut self.d_prime, o.d_prime);
         f(&mut self.top_divisions, o.top_divisions);
+        f(&mut self.e, o.e);
         f(&mut self.shifts, o.shifts);
         f(&mut self.divisions, o.divisions);
         f(&mut self.normals, o.normals);
@@ -306,6 +318,9 @@ impl Cost for Counts<'_> {
     }
     fn top_division(&mut self) {
         self.current.top_divisions += 1;
+    }
+    fn wedge(&mut self, cells: u32) {
+        self.current.e += u64::from(cells);
     }
     fn shifts(&mut self, count: u32) {
         self.current.shifts += u64::from(count);

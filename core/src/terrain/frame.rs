@@ -157,6 +157,18 @@ impl<'t> Frame<'t> {
             let sign: i8 = if major < 0.0 { -1 } else { 1 };
             let ratio = minor / major.abs();
             let sec = sqrt(1.0 + ratio * ratio);
+            // The wedge between the column's two planes, `xc ± line_pix·spacing/2`: its
+            // width across per voxel along the major axis is the change of `ratio` between
+            // them; per half-voxel and halved, its half-width per half-voxel.
+            let ratio_at = |xc: f64| {
+                let (dx, dy) = (fx + xc * rx, fy + xc * ry);
+                match axis {
+                    Axis::X => dy / dx.abs().max(f64::MIN_POSITIVE),
+                    Axis::Y => dx / dy.abs().max(f64::MIN_POSITIVE),
+                }
+            };
+            let half = line_pix * spacing / 2.0;
+            let wedge = ((ratio_at(xc + half) - ratio_at(xc - half)).abs() / 4.0).min(4.0);
             let run = sec / 2.0;
             let n_eye: Height = fixed_from_f64(f64::from(sign) * 2.0 * u_eye);
             let dv: Coord = fixed_from_f64(ratio / 2.0);
@@ -183,6 +195,7 @@ impl<'t> Frame<'t> {
                 n_eye,
                 v_base,
                 dv,
+                wedge: fixed_from_f64(wedge),
                 n_start,
                 n_far,
                 lod_base,

@@ -65,6 +65,9 @@ pub struct March<'a, 't> {
     /// The step at this level, `2^(l+1)` half-voxels.
     dn: i64,
     n_eye: i64,
+    /// The column's wedge half-width across per half-voxel (level-0 cells, raw I32F32), for
+    /// a wide sampler's skip ([`March::skip`]).
+    wedge: i64,
     /// The footprint reaches `switch.voxels()·2^l` voxels at `n_eye + lod_base·2^l`.
     lod_base: i64,
     /// The walk may climb a level at the first odd cell at or after this `n` (`i64::MAX` when
@@ -139,6 +142,7 @@ impl<'a, 't> March<'a, 't> {
             n: column.n_start,
             dn: 2,
             n_eye: column.n_eye.to_num::<i64>(),
+            wedge: column.wedge.to_bits().max(0),
             lod_base: column.lod_base(switch),
             climb_at: i64::MAX,
             v: column
@@ -351,12 +355,12 @@ impl<'a, 't> March<'a, 't> {
     /// The current voxel is tested first. Returns the steps taken since the last report to
     /// `on_hit`.
     #[inline(always)]
-    pub fn ride<const ASCENDING: bool>(
+    pub fn ride<const ASCENDING: bool, H: Hits>(
         &mut self,
         ray: &mut Ray,
         ceiling: Height,
         limit: u32,
-        on_hit: &mut impl Hits,
+        on_hit: &mut H,
     ) -> u32 {
         let ceiling = ceiling.to_bits();
         let heights = self.heights;
@@ -367,7 +371,7 @@ impl<'a, 't> March<'a, 't> {
         // of 32 bits. Moving the other way, the fraction is kept complemented (`!frac` grows by
         // what `frac` loses, and carries when `frac` would borrow). One 32-bit add and its
         // carry per step, instead of a 64-bit add, shift and compare.
-        let flip = self.flip;
+        let (flip, last_v) = (self.flip, self.last_v);
         #[allow(
             clippy::cast_possible_truncation,
             reason = "|dv_step| ≤ 2^(31+l) (|dv| ≤ ½ in `Frame::new`), so |dv_step >> l| ≤ 2^31"
@@ -390,7 +394,23 @@ impl<'a, 't> March<'a, 't> {
             // The tight loop: one voxel per iteration, until a hit that returns, the run's
             // end, or a mirror edge across the ray.
             let found = loop {
-                let top = i64::from(heights.get(idx).copied().unwrap_or(0)) << 24;
+                let at = |i: usize| heights.get(i).copied().unwrap_or(0);
+                let top = if H::WIDE {
+                    // The two cells to either side across that lie within the mirrored
+                    // stretch (beyond its edge the mirror repeats cells of this side, which
+                    // are among them): a superset of the cells the wedge reaches.
+                    let near = |n: u32, d: isize| match n {
+                        0 => (idx, idx),
+                        1 => (idx.wrapping_add_signed(d), idx.wrapping_add_signed(d)),
+                        _ => (idx.wrapping_add_signed(d), idx.wrapping_add_signed(2 * d)),
+                    };
+                    let (a1, a2) = near(cross_left, dcross);
+                    let (b1, b2) = near(last_v.saturating_sub(cross_left), -dcross);
+                    at(idx).max(at(a1)).max(at(a2)).max(at(b1)).max(at(b2))
+                } else {
+                    at(idx)
+                };
+                let top = i64::from(top) << 24;
                 if top > h {
                     let voxel = self.voxel_at(idx, frac, cross_left, start - left);
                     ray.h = Height::from_bits(h);
@@ -464,7 +484,14 @@ impl<'a, 't> March<'a, 't> {
     /// below the ray (at `ray` here, rising by `rise` per step, raw) over every voxel of the run
     /// that lies in it, the number of those voxels; `None` if it reaches the ray, or if level
     /// `k` has no maximum grid. `(fu, fv)` is the current voxel's folded cell at this level.
-    fn clear_block(&self, k: u32, (fu, fv): (u32, u32), ray: i64, rise: i64) -> Option<u32> {
+    fn clear_block(
+        &self,
+        k: u32,
+        (fu, fv): (u32, u32),
+        ray: i64,
+        rise: i64,
+        margin: u32,
+    ) -> Option<u32> {
         let level = self.terrain.levels().get(k as usize)?;
         let max = level.max_heights()?;
         let d = k - self.l;
@@ -478,15 +505,21 @@ impl<'a, 't> March<'a, 't> {
         // Voxels from here to the block's edge along the ray, within the run.
         let along = if self.du > 0 { hi_u - fu } else { fu - lo_u };
         let mut s = (along + 1).min(self.run);
+        // The block's cells across ahead of the voxel (in the direction the ray moves across)
+        // and behind it; a wide sampler's wedge reaches `margin` cells to either side, which
+        // must lie in the block too.
+        let (ahead, behind) = if self.dcross > 0 {
+            (hi_v - fv, fv - lo_v)
+        } else {
+            (fv - lo_v, hi_v - fv)
+        };
+        if behind < margin || ahead < margin {
+            return None;
+        }
         if self.dv_step != 0 {
             // Crossings into the next cell across that stay in the block: with at most one
             // per step, the first `allow + 1` voxels are inside; beyond, count them.
-            let allow = if self.dcross > 0 {
-                hi_v - fv
-            } else {
-                fv - lo_v
-            }
-            .min(self.cross_left);
+            let allow = (ahead - margin).min(self.cross_left);
             if allow.saturating_add(1) < s {
                 let (a, shift) = (i64::from(allow), 32 + self.l);
                 // Whether the ray is still inside the block across at the s-th voxel, by one
@@ -536,10 +569,30 @@ impl<'a, 't> March<'a, 't> {
     /// rises by `rise` per step. Returns the number of voxels stepped over, 0 if the next
     /// coarser block already reaches the ray. The voxels passed over are exactly those the
     /// walk would have tested and found below the ray, so no sampler sees a different voxel.
-    pub fn skip(&mut self, h: &mut Height, rise: Height) -> u32 {
+    ///
+    /// For a wide sampler (`wide`, [`crate::terrain::sampler::Sampler::WIDE`]) a block must
+    /// also hold the cells its wedge reaches across over the whole run (its half-width at the
+    /// run's far end, rounded up, and one cell more), so that the voxels passed over are
+    /// those its wedge would have found below the ray.
+    pub fn skip(&mut self, h: &mut Height, rise: Height, wide: bool) -> u32 {
         if self.run == 0 {
             return 0;
         }
+        let margin = if wide {
+            let far = self.n + i64::from(self.run) * self.dn;
+            let d = far.saturating_sub(self.n_eye).unsigned_abs().min(1 << 23);
+            #[allow(
+                clippy::cast_possible_wrap,
+                reason = "d ≤ 2^23 (clamped above): it fits in an i64"
+            )]
+            let half = (d as i64 * self.wedge) >> self.l;
+            match u32::try_from((half >> 32) + 2) {
+                Ok(m) if m <= 64 => m,
+                _ => return 0,
+            }
+        } else {
+            0
+        };
         let (ray, rise_bits) = (h.to_bits(), rise.to_bits());
         let shift = 32 + self.l;
         // Start at the level that last succeeded: climb while the blocks stay clear, or
@@ -552,12 +605,12 @@ impl<'a, 't> March<'a, 't> {
         let first = self.skip_level.clamp(self.l + 1, top);
         let here = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
         let mut best = 0;
-        if let Some(s) = self.clear_block(first, here, ray, rise_bits) {
+        if let Some(s) = self.clear_block(first, here, ray, rise_bits, margin) {
             best = s;
             self.skip_level = first;
             let mut k = first + 1;
             while best < self.run && k <= top {
-                match self.clear_block(k, here, ray, rise_bits) {
+                match self.clear_block(k, here, ray, rise_bits, margin) {
                     Some(s) => (best, self.skip_level) = (s, k),
                     None => break,
                 }
@@ -567,7 +620,7 @@ impl<'a, 't> March<'a, 't> {
             let mut k = first;
             while k > self.l + 1 {
                 k -= 1;
-                if let Some(s) = self.clear_block(k, here, ray, rise_bits) {
+                if let Some(s) = self.clear_block(k, here, ray, rise_bits, margin) {
                     best = s;
                     break;
                 }
@@ -770,6 +823,11 @@ impl<'a, 't> March<'a, 't> {
 
 /// What a ride does with the hits it finds ([`March::ride`]): the column walk's per-hit part.
 pub trait Hits {
+    /// Whether a step's top is the highest of the voxel and the two cells to either side of it
+    /// across, not the voxel's alone: for a sampler that sees the wedge between the column's
+    /// planes ([`crate::terrain::sampler::Sampler::WIDE`]), which reaches at most two cells to
+    /// either side, and decides the hit itself.
+    const WIDE: bool = false;
     /// The ray `ray` passes below the top `top` of `voxel`, `steps` steps after the last
     /// report. May raise the ray or replace it with the next pixel's.
     fn hit(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, steps: u32) -> Flow;
@@ -854,6 +912,53 @@ impl Voxel<'_> {
     #[inline(always)]
     pub fn color(&self) -> Rgb {
         self.march.colors.get(self.idx).copied().unwrap_or_default()
+    }
+
+    /// The fraction of the ray's cross coordinate in the voxel's cell, 32 bits, measured in
+    /// the direction the ray moves across (0 at the cell's edge behind, `2^32` at the edge
+    /// ahead).
+    #[inline(always)]
+    pub fn fraction_ahead(&self) -> u32 {
+        self.toward
+    }
+
+    /// The array index of the cell `k` cells across from this voxel's (in the direction the ray
+    /// moves across; negative: behind), mirrored at the map's edges as the walk mirrors (the
+    /// edge cell repeats). On a level too narrow for the reflection the index stays within the
+    /// level's cells.
+    #[inline(always)]
+    pub fn across(&self, k: i32) -> usize {
+        let m = self.march;
+        let ahead = i64::from(self.cross_left.min(m.last_v));
+        let behind = i64::from(m.last_v) - ahead;
+        let k = i64::from(k);
+        let steps = if k > ahead {
+            2 * ahead + 1 - k
+        } else if -k > behind {
+            -(2 * behind + 1 + k)
+        } else {
+            k
+        };
+        let steps = steps.clamp(-behind, ahead);
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "|steps| < len_v ≤ 2^16 cells: within isize on any target"
+        )]
+        let steps = steps as isize;
+        self.idx.wrapping_add_signed(steps.wrapping_mul(m.dcross))
+    }
+
+    /// The height (map units) at array index `idx` of the voxel's level, as rays along the
+    /// column's axis see it; 0 outside the level.
+    #[inline(always)]
+    pub fn height_at(&self, idx: usize) -> u16 {
+        self.march.heights.get(idx).copied().unwrap_or(0)
+    }
+
+    /// The colour at array index `idx` of the voxel's level; black outside the level.
+    #[inline(always)]
+    pub fn color_at(&self, idx: usize) -> Rgb {
+        self.march.colors.get(idx).copied().unwrap_or_default()
     }
 
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose

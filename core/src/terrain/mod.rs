@@ -27,6 +27,7 @@ pub mod pyramid;
 pub mod ray;
 pub mod sampler;
 pub mod visibility;
+pub mod wedge;
 
 pub use map::{mirror, next_size, Axis, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
 pub use march::Voxel;

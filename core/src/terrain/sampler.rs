@@ -12,7 +12,7 @@
 
 use crate::color::Rgb;
 use crate::color::{to_color16, to_rgb, Color16};
-use crate::num::{Eye, Height, Line, Weight};
+use crate::num::{Coord, Eye, Height, Line, Weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
@@ -32,6 +32,9 @@ pub struct Pixel {
     /// Where the walk resumes for the pixel: the centre of the current voxel (half-voxels)
     /// and `R_i`'s height there (Fig. 3).
     pub start: (i64, Height),
+    /// The half-width across of the column's wedge per half-voxel along the ray, minor
+    /// voxels: at `n` the pixel's footprint across is `v(n) ± |n − n_eye|·wedge` (`as2`).
+    pub wedge: Coord,
 }
 
 /// What a sampler did with a hit.
@@ -67,6 +70,12 @@ pub trait Sampler {
     /// cell under the pixel's centre for point samples ([`Point`], [`Linear`]), so that a
     /// point sample stays one point sample.
     const FILTER: Filter = Filter::Box;
+    /// Whether the sampler sees the wedge between the column's two planes, up to two cells to
+    /// either side of the voxel under the column's centre line (`as2`): then the walk hands it
+    /// the steps where the highest of those five cells is above the ray (that height as the
+    /// `top`), the sampler decides whether the step is a hit ([`Hit::Rejected`] when it is
+    /// not), and the walk skips empty air only by blocks that hold the neighbours too.
+    const WIDE: bool = false;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
@@ -379,6 +388,34 @@ impl Sampler for Area {
 
     #[inline(always)]
     fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+        self.sample_at(voxel, top, |v| v.sample_linear(), ray, cost)
+    }
+
+    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+        if !self.seen {
+            return None;
+        }
+        let sky16 = to_color16(sky);
+        let w = self.upper.slope.saturating_sub(ray.slope);
+        cost.sky_sample(sky16, w);
+        self.accumulate(w, sky16, cost);
+        Some(self.finish(sky16, cost))
+    }
+}
+
+impl Area {
+    /// The hit on `voxel` of height `top` above the ray (Fig. 12, perspective-exact), coloured
+    /// by `color` (Eq. 4's, or what a wider sampler integrates): the exact re-check of a hit the
+    /// rounded ray let through, the weight in visible angle, and the ray through the top.
+    #[inline(always)]
+    pub(crate) fn sample_at<C: Cost>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        color: impl FnOnce(&Voxel<'_>) -> Color16,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         let n = voxel.n();
         if let Some((n_top, h_top)) = self.top {
             // The rounded-down ray lies at most (n − n_top) units in the last place below the
@@ -388,7 +425,7 @@ impl Sampler for Area {
                 return Hit::Rejected;
             }
         }
-        let color = voxel.sample_linear();
+        let color = color(voxel);
         self.seen = true;
         if top >= self.upper.at(n) {
             // The voxel reaches R_{i+1}: the pixel is done (H' = H(R_{i+1})).
@@ -406,17 +443,6 @@ impl Sampler for Area {
         ray.slope = through_top.max(ray.slope);
         self.top = Some((n, top));
         Hit::Next
-    }
-
-    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
-        if !self.seen {
-            return None;
-        }
-        let sky16 = to_color16(sky);
-        let w = self.upper.slope.saturating_sub(ray.slope);
-        cost.sky_sample(sky16, w);
-        self.accumulate(w, sky16, cost);
-        Some(self.finish(sky16, cost))
     }
 }
 

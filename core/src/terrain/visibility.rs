@@ -150,7 +150,7 @@ fn pass(
             if let Some((h, slope)) = below_horizon(horizon, eye, n) {
                 let mut h = Height::from_bits(h);
                 let rise = Height::from_bits(slope.wrapping_mul(march.step()));
-                if march.skip(&mut h, rise) > 0 {
+                if march.skip(&mut h, rise, false) > 0 {
                     continue;
                 }
             }

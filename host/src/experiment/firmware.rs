@@ -73,14 +73,20 @@ pub const SIZE: Size = Size {
 };
 
 /// The modes the firmware renders, in the order it prints them.
-pub const MODES: [Mode; 4] = [Mode::Ps, Mode::Ss(Rate::N8), Mode::AsExact, Mode::As];
+pub const MODES: [Mode; 5] = [
+    Mode::Ps,
+    Mode::Ss(Rate::N8),
+    Mode::AsExact,
+    Mode::As,
+    Mode::As2,
+];
 
 /// One `frame` line.
 pub fn frame_line(mode: Mode, size: Size, hash: u64, t: &Tally) -> String {
     format!(
-        "frame {mode} {}x{} fnv1a={hash:016x} L={} P={} M={} V={} hits={} a={} b={} c={} d={} d'={} top_div={} shifts={} div={}",
+        "frame {mode} {}x{} fnv1a={hash:016x} L={} P={} M={} V={} hits={} a={} b={} c={} d={} d'={} top_div={} shifts={} div={} e={}",
         size.width, size.height, t.l, t.p, t.m, t.v, t.hits, t.a, t.b, t.c, t.d, t.d_prime,
-        t.top_divisions, t.shifts, t.divisions
+        t.top_divisions, t.shifts, t.divisions, t.e
     )
 }
 

@@ -48,7 +48,7 @@ pub struct ParseFlyModeError;
 
 impl fmt::Display for ParseFlyModeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("expected ps, li, as, as-exact, classic, ss2, ss4, …, ss256, or reference")
+        f.write_str("expected ps, li, as, as-exact, as2, classic, ss2, ss4, …, ss256, or reference")
     }
 }
 

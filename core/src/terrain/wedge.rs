@@ -1,0 +1,237 @@
+//! `as2`: area sampling exact across the column as well as along it ([`Wedge`]).
+//!
+//! The paper's AS (Fig. 12) weighs every visible voxel by its visible height, but only along
+//! the column's centre line: across, "the sampling is naive" (Sect. 8), one line per column.
+//! A pixel's footprint is bounded by its two row rays *and* its two column planes: between the
+//! planes lies a wedge from the eye, whose cross-section with the row of voxels at `n` is the
+//! interval `v(n) ± |n − n_eye|·wedge` across (the column's [`Pixel::wedge`]).
+//!
+//! At every step where the highest of the voxel under the centre line and the two cells to
+//! either side of it across is above the ray, the sampler reads the cells of the current level that interval
+//! touches (at most four: the walk climbs levels at 2.4 footprints, [`Switch::Late`], so the
+//! interval is at most 2.4 cells wide):
+//!
+//! - **the height** of the step is the exact mean of the cells' heights over the interval,
+//!   each weighted by the length it covers (the heights are constant per cell);
+//! - **the colour** is the exact integral over the interval of Eq. 4's colour (linear between
+//!   the cells' centres), divided by its length;
+//! - **the hit** is the mean above the ray; a step whose highest cell is at or below the ray is
+//!   no hit, without computing the mean.
+//!
+//! Along the column the hit is weighed as `as-exact` weighs it ([`Area`]: the visible angle
+//! from the eye, the next ray through the mean top). Where the interval lies inside one cell
+//! (near the eye) the step is exactly `as-exact`'s.
+//!
+//! **What is exact and what is not.** Exact: the integrals across the wedge (height and
+//! colour) and the weights along it. Approximated: what is visible inside the wedge is decided
+//! on the cross-section's mean height, not plane by plane, so a voxel that rises above the
+//! ray on one side of the wedge only is seen at its mean over the wedge.
+//!
+//! **Cost.** The walk's step reads the four cells across as well as the voxel
+//! ([`Sampler::WIDE`]); a candidate hit reads the interval's cells (term `e`,
+//! [`Cost::wedge`]) and costs a division for the mean, and a hit one more for the colour.
+
+use crate::color::{Color16, Rgb};
+use crate::num::Height;
+use crate::terrain::camera::Switch;
+use crate::terrain::cost::Cost;
+use crate::terrain::march::Voxel;
+use crate::terrain::ray::Ray;
+use crate::terrain::sampler::{Area, Hit, Pixel, Sampler};
+
+/// The largest half-width across a step reads, in cells of its level (32 fractional bits):
+/// 1.5 cells, so that the wedge reaches at most two cells to either side of the voxel under
+/// the centre line (the walk tests those five, [`Sampler::WIDE`]). The walk's level switch
+/// ([`Switch::Late`]: a voxel is at least 0.42 footprints wide) keeps it below 1.2; only the
+/// coarsest level, or a walk without levels (`--lod off`), reaches past it, and there the
+/// mean is over the three or four cells nearest the centre line.
+const MAX_HALF: i64 = 3 << 31;
+
+/// One in the cross section's fixed point (cells, 32 fractional bits).
+const ONE: i64 = 1 << 32;
+
+/// `as2`: [`Area`] over the wedge between the column's two planes (see the module docs).
+#[derive(Clone, Copy, Debug)]
+pub struct Wedge {
+    area: Area,
+    /// The column's half-width across per half-voxel along the ray (level-0 cells, raw
+    /// I32F32).
+    wedge: i64,
+    /// The eye's `n`, whole half-voxels.
+    n_eye: i64,
+}
+
+impl Default for Wedge {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Wedge {
+    /// A fresh sampler.
+    pub const fn new() -> Self {
+        Self {
+            area: Area::new(),
+            wedge: 0,
+            n_eye: 0,
+        }
+    }
+
+    /// The wedge's cross-section at `voxel`, in cells of its level measured from its cell's
+    /// edge behind (in the direction the ray moves across): `[lo, hi)`, 32 fractional bits.
+    #[inline(always)]
+    fn section(&self, voxel: &Voxel<'_>) -> (i64, i64) {
+        // |n − n_eye| ≤ 2^23 half-voxels and wedge ≤ 4·2^32 (Frame::new clamps it): the
+        // product is below 2^58.
+        let d = voxel
+            .n()
+            .saturating_sub(self.n_eye)
+            .unsigned_abs()
+            .min(1 << 23);
+        #[allow(
+            clippy::cast_possible_wrap,
+            reason = "d ≤ 2^23 (clamped above): it fits in an i64"
+        )]
+        let d = d as i64;
+        let half = ((d * self.wedge) >> voxel.level()).min(MAX_HALF);
+        let t = i64::from(voxel.fraction_ahead());
+        (t - half, t + half)
+    }
+}
+
+/// The integral from −∞ to `x` of the hat function of a cell's colour in Eq. 4 (1 at the
+/// cell's centre, 0 one cell away), less ½: `x` and the result in cells, 16 fractional bits.
+#[inline(always)]
+fn hat_integral(x: i64) -> i64 {
+    const H: i64 = 1 << 16;
+    if x <= -H {
+        -(H / 2)
+    } else if x >= H {
+        H / 2
+    } else if x <= 0 {
+        (((x + H) * (x + H)) >> 17) - H / 2
+    } else {
+        H / 2 - (((H - x) * (H - x)) >> 17)
+    }
+}
+
+/// The mean over `[lo, hi)` (cells from the current cell's edge behind, 32 fractional bits,
+/// within `[−1.5, 2.5)`) of Eq. 4's colour across the row of cells around `voxel`: each cell's
+/// colour weighted by the integral of its hat over the interval (at most seven cells). In 8.8.
+fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
+    let half = ONE / 2;
+    // The cells whose hats reach into the interval: centres within one cell of it.
+    let first = (lo - half) >> 32;
+    let last = ((hi - half - 1) >> 32) + 1;
+    let (mut sum, mut total) = ([0u64; 3], 0u64);
+    for k in first.max(-3)..=last.min(3) {
+        let centre = (k << 32) + half;
+        let w = hat_integral((hi - centre) >> 16) - hat_integral((lo - centre) >> 16);
+        let Ok(w) = u64::try_from(w) else {
+            continue;
+        };
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "-3 ≤ k ≤ 3 (clamped above)"
+        )]
+        let c: Rgb = voxel.color_at(voxel.across(k as i32));
+        for (s, c) in sum.iter_mut().zip([c.r, c.g, c.b]) {
+            *s += w * u64::from(c);
+        }
+        total += w;
+    }
+    // The weights sum to the interval's length, at least one cell (2^16) here: one division
+    // for its reciprocal (2^40 / total ≤ 2^24), then per channel a product below 2^60.
+    if total < 1 << 15 {
+        return voxel.sample_linear();
+    }
+    let reciprocal = (1u64 << 40) / total;
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "a weighted mean of 8-bit values times 256, clamped: within 0..=65280"
+    )]
+    let ch = |s: u64| ((s * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16;
+    [ch(sum[0]), ch(sum[1]), ch(sum[2])]
+}
+
+impl Sampler for Wedge {
+    const SWITCH: Switch = Switch::Late;
+    const WIDE: bool = true;
+
+    #[inline(always)]
+    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+        self.area.begin_pixel(pixel, cost);
+        self.wedge = pixel.wedge.to_bits().max(0);
+        self.n_eye = pixel.eye.n.to_bits() >> 24;
+    }
+
+    /// A step where the highest of the five cells around the centre line, `top`, is above the
+    /// ray.
+    #[inline(always)]
+    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+        let (lo, hi) = self.section(voxel);
+        let (first, last) = (lo >> 32, (hi - 1) >> 32);
+        if first >= last {
+            // The wedge lies inside the voxel's cell: `as-exact`'s hit on it.
+            cost.wedge(1);
+            let own = Height::from_bits(i64::from(voxel.height_at(voxel.across(0))) << 24);
+            if own <= ray.h {
+                return Hit::Rejected;
+            }
+            return self
+                .area
+                .sample_at(voxel, own, |v| v.sample_linear(), ray, cost);
+        }
+        // The mean over the interval: each cell (at most five, -2..=2) by the length it
+        // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
+        let (mut sum, mut total, mut cells) = (0i64, 0i64, 0u32);
+        let mut highest = 0u16;
+        for k in first.max(-2)..=last.min(2) {
+            let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "-2 ≤ k ≤ 2 (clamped above)"
+            )]
+            let h = voxel.height_at(voxel.across(k as i32));
+            highest = highest.max(h);
+            sum += i64::from(h) * cover;
+            total += cover;
+            cells += 1;
+        }
+        cost.wedge(cells);
+        let _ = top;
+        if i64::from(highest) << 24 <= ray.h.to_bits() || total <= 0 {
+            return Hit::Rejected;
+        }
+        let mean = Height::from_bits((sum << 24) / total);
+        if mean <= ray.h {
+            return Hit::Rejected;
+        }
+        self.area
+            .sample_at(voxel, mean, |v| integrated_color(v, lo, hi), ray, cost)
+    }
+
+    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+        self.area.sky(ray, sky, cost)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The hat's integral is 0 at the centre and ±½ a cell away, continuous, and odd.
+    #[test]
+    fn the_hat_integrates_to_one_cell() {
+        const H: i64 = 1 << 16;
+        assert_eq!(hat_integral(0), 0);
+        assert_eq!(hat_integral(H), H / 2);
+        assert_eq!(hat_integral(-H), -H / 2);
+        assert_eq!(hat_integral(3 * H), H / 2);
+        for x in (-H..=H).step_by(977) {
+            assert_eq!(hat_integral(x), -hat_integral(-x), "odd at {x}");
+        }
+        // Half a cell from the centre the hat has covered ⅜ of a cell on that side.
+        assert_eq!(hat_integral(H / 2), 3 * H / 8);
+    }
+}
