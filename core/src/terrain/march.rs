@@ -505,21 +505,21 @@ impl<'a, 't> March<'a, 't> {
         // Voxels from here to the block's edge along the ray, within the run.
         let along = if self.du > 0 { hi_u - fu } else { fu - lo_u };
         let mut s = (along + 1).min(self.run);
-        // The block's cells across ahead of the voxel (in the direction the ray moves across)
-        // and behind it; a wide sampler's wedge reaches `margin` cells to either side, which
-        // must lie in the block too.
-        let (ahead, behind) = if self.dcross > 0 {
-            (hi_v - fv, fv - lo_v)
-        } else {
-            (fv - lo_v, hi_v - fv)
-        };
-        if behind < margin || ahead < margin {
+        // A wide sampler's wedge reaches `margin` cells to either side of the voxels under the
+        // centre line: they lie in this block or in its neighbours across, whose maxima count
+        // too, if the blocks are at least that wide.
+        if margin > 0 && u64::from(margin) > 1u64 << d {
             return None;
         }
         if self.dv_step != 0 {
             // Crossings into the next cell across that stay in the block: with at most one
             // per step, the first `allow + 1` voxels are inside; beyond, count them.
-            let allow = (ahead - margin).min(self.cross_left);
+            let allow = if self.dcross > 0 {
+                hi_v - fv
+            } else {
+                fv - lo_v
+            }
+            .min(self.cross_left);
             if allow.saturating_add(1) < s {
                 let (a, shift) = (i64::from(allow), 32 + self.l);
                 // Whether the ray is still inside the block across at the s-th voxel, by one
@@ -555,10 +555,27 @@ impl<'a, 't> March<'a, 't> {
             Axis::X => (bu, bv),
             Axis::Y => (bv, bu),
         };
-        let top = max
-            .get(y as usize * level.width() as usize + x as usize)
-            .copied()
-            .unwrap_or(u16::MAX);
+        let block = |x: u32, y: u32| {
+            max.get(y as usize * level.width() as usize + x as usize)
+                .copied()
+                .unwrap_or(u16::MAX)
+        };
+        let mut top = block(x, y);
+        if margin > 0 {
+            // The neighbours across (beyond the map's edge the mirror repeats this side's
+            // cells, which this block and its inner neighbour hold).
+            let last = match self.axis {
+                Axis::X => level.height(),
+                Axis::Y => level.width(),
+            }
+            .saturating_sub(1);
+            for b in [bv.saturating_sub(1), (bv + 1).min(last)] {
+                top = top.max(match self.axis {
+                    Axis::X => block(x, b),
+                    Axis::Y => block(b, y),
+                });
+            }
+        }
         (i64::from(top) << 24 <= low).then_some(s)
     }
 
@@ -946,6 +963,17 @@ impl Voxel<'_> {
         )]
         let steps = steps as isize;
         self.idx.wrapping_add_signed(steps.wrapping_mul(m.dcross))
+    }
+
+    /// The voxel's index and the index step to the next cell across (in the direction the
+    /// ray moves across), when at least `reach` cells lie on either side of it before a mirror
+    /// edge: then cell `k` across, `|k| ≤ reach`, is at `idx + k·step` ([`Voxel::across`]
+    /// without its folds). `None` near an edge.
+    #[inline(always)]
+    pub fn row_around(&self, reach: u32) -> Option<(usize, isize)> {
+        let m = self.march;
+        let ahead = self.cross_left.min(m.last_v);
+        (ahead >= reach && m.last_v - ahead >= reach).then_some((self.idx, m.dcross))
     }
 
     /// The height (map units) at array index `idx` of the voxel's level, as rays along the

@@ -123,34 +123,43 @@ fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
     // The cells whose hats reach into the interval: centres within one cell of it.
     let first = (lo - half) >> 32;
     let last = ((hi - half - 1) >> 32) + 1;
-    let (mut sum, mut total) = ([0u64; 3], 0u64);
+    // Each hat's share is at most one cell (2^16), a colour 255: 32-bit sums (at most seven
+    // cells) for a 32-bit core.
+    let (mut sum, mut total) = ([0u32; 3], 0u32);
+    // Away from the map's mirror edges (nearly always) the cells across are a stride apart.
+    let row = voxel.row_around(3);
     for k in first.max(-3)..=last.min(3) {
         let centre = (k << 32) + half;
         let w = hat_integral((hi - centre) >> 16) - hat_integral((lo - centre) >> 16);
-        let Ok(w) = u64::try_from(w) else {
+        let Ok(w) = u32::try_from(w) else {
             continue;
         };
         #[allow(
             clippy::cast_possible_truncation,
             reason = "-3 ≤ k ≤ 3 (clamped above)"
         )]
-        let c: Rgb = voxel.color_at(voxel.across(k as i32));
+        let k = k as isize;
+        let at = match row {
+            Some((idx, step)) => idx.wrapping_add_signed(k * step),
+            None => voxel.across(k as i32),
+        };
+        let c: Rgb = voxel.color_at(at);
         for (s, c) in sum.iter_mut().zip([c.r, c.g, c.b]) {
-            *s += w * u64::from(c);
+            *s += w * u32::from(c);
         }
         total += w;
     }
     // The weights sum to the interval's length, at least one cell (2^16) here: one division
-    // for its reciprocal (2^40 / total ≤ 2^24), then per channel a product below 2^60.
+    // for its reciprocal (2^40 / total ≤ 2^25), then per channel a product below 2^60.
     if total < 1 << 15 {
         return voxel.sample_linear();
     }
-    let reciprocal = (1u64 << 40) / total;
+    let reciprocal = (1u64 << 40) / u64::from(total);
     #[allow(
         clippy::cast_possible_truncation,
         reason = "a weighted mean of 8-bit values times 256, clamped: within 0..=65280"
     )]
-    let ch = |s: u64| ((s * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16;
+    let ch = |s: u32| ((u64::from(s) * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16;
     [ch(sum[0]), ch(sum[1]), ch(sum[2])]
 }
 
@@ -186,13 +195,19 @@ impl Sampler for Wedge {
         // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
         let (mut sum, mut total, mut cells) = (0i64, 0i64, 0u32);
         let mut highest = 0u16;
+        let row = voxel.row_around(2);
         for k in first.max(-2)..=last.min(2) {
             let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
             #[allow(
                 clippy::cast_possible_truncation,
                 reason = "-2 ≤ k ≤ 2 (clamped above)"
             )]
-            let h = voxel.height_at(voxel.across(k as i32));
+            let k = k as isize;
+            let at = match row {
+                Some((idx, step)) => idx.wrapping_add_signed(k * step),
+                None => voxel.across(k as i32),
+            };
+            let h = voxel.height_at(at);
             highest = highest.max(h);
             sum += i64::from(h) * cover;
             total += cover;
