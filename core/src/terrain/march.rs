@@ -944,11 +944,12 @@ impl Voxel<'_> {
     /// edge cell repeats). On a level too narrow for the reflection the index stays within the
     /// level's cells.
     #[inline(always)]
-    pub fn across(&self, k: i32) -> usize {
+    pub fn across(&self, k: isize) -> usize {
         let m = self.march;
         let ahead = i64::from(self.cross_left.min(m.last_v));
         let behind = i64::from(m.last_v) - ahead;
-        let k = i64::from(k);
+        // |k| is a few cells: it fits in an i64 on any target.
+        let k = k as i64;
         let steps = if k > ahead {
             2 * ahead + 1 - k
         } else if -k > behind {

@@ -141,7 +141,7 @@ fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
         let k = k as isize;
         let at = match row {
             Some((idx, step)) => idx.wrapping_add_signed(k * step),
-            None => voxel.across(k as i32),
+            None => voxel.across(k),
         };
         let c: Rgb = voxel.color_at(at);
         for (s, c) in sum.iter_mut().zip([c.r, c.g, c.b]) {
@@ -205,7 +205,7 @@ impl Sampler for Wedge {
             let k = k as isize;
             let at = match row {
                 Some((idx, step)) => idx.wrapping_add_signed(k * step),
-                None => voxel.across(k as i32),
+                None => voxel.across(k),
             };
             let h = voxel.height_at(at);
             highest = highest.max(h);
