@@ -149,9 +149,10 @@ fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
         }
         total += w;
     }
-    // The weights sum to the interval's length, at least one cell (2^16) here: one division
-    // for its reciprocal (2^40 / total ≤ 2^25), then per channel a product below 2^60.
-    if total < 1 << 15 {
+    // The weights sum to the interval's length (16 fractional bits), at least 1/256 of a cell
+    // here: one division for its reciprocal, then per channel a product at most
+    // 255·256·2^40 = 2^56 (each sum is at most 255 times the total).
+    if total < 1 << 7 {
         return voxel.sample_linear();
     }
     let reciprocal = (1u64 << 40) / u64::from(total);
@@ -181,15 +182,22 @@ impl Sampler for Wedge {
         let (lo, hi) = self.section(voxel);
         let (first, last) = (lo >> 32, (hi - 1) >> 32);
         if first >= last {
-            // The wedge lies inside the voxel's cell: `as-exact`'s hit on it.
+            // The wedge lies inside the voxel's cell: its height, and Eq. 4's colour integrated
+            // over the interval (which may straddle the cell's centre, where Eq. 4 bends); at
+            // the eye, where the interval is a point, `as-exact`'s hit.
             cost.wedge(1);
             let own = Height::from_bits(i64::from(voxel.height_at(voxel.across(0))) << 24);
             if own <= ray.h {
                 return Hit::Rejected;
             }
-            return self
-                .area
-                .sample_at(voxel, own, |v| v.sample_linear(), ray, cost);
+            let color = |v: &Voxel<'_>| {
+                if hi - lo >= ONE >> 8 {
+                    integrated_color(v, lo, hi)
+                } else {
+                    v.sample_linear()
+                }
+            };
+            return self.area.sample_at(voxel, own, color, ray, cost);
         }
         // The mean over the interval: each cell (at most five, -2..=2) by the length it
         // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
