@@ -16,9 +16,10 @@ use crate::view::Size;
 /// The paper's three pitches (Table 1).
 pub const PAPER_PITCHES: [f64; 3] = [40.0, 20.0, 5.0];
 
-/// The modes of Tables 2–4 (AS both as the paper costs it and perspective-exact), plus LI.
+/// The modes of Tables 2–4 (AS both as the paper costs it and perspective-exact), plus LI and
+/// `as2` (exact in both axes).
 pub fn paper_modes() -> Vec<Mode> {
-    let mut m = vec![Mode::As, Mode::AsExact, Mode::Ps, Mode::Li];
+    let mut m = vec![Mode::As, Mode::AsExact, Mode::As2, Mode::Ps, Mode::Li];
     m.extend([Rate::N2, Rate::N4, Rate::N8, Rate::N16, Rate::N32].map(Mode::Ss));
     m
 }

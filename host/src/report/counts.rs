@@ -55,6 +55,8 @@ pub struct CountsJson {
     top_divisions: u64,
     shifts: u64,
     divisions: u64,
+    /// Term e (`as2`): cells of the wedge's cross-sections read.
+    e: u64,
 }
 
 impl From<&Tally> for CountsJson {
@@ -73,6 +75,7 @@ impl From<&Tally> for CountsJson {
             top_divisions: t.top_divisions,
             shifts: t.shifts,
             divisions: t.divisions,
+            e: t.e,
         }
     }
 }
@@ -207,8 +210,8 @@ pub fn text(s: &RenderSummary<'_>) -> String {
     );
     let _ = writeln!(
         out,
-        "frame: a {}  b {}  c {}  d {}  d' {}  top divisions {}  shifts {}  divisions {}",
-        t.a, t.b, t.c, t.d, t.d_prime, t.top_divisions, t.shifts, t.divisions
+        "frame: a {}  b {}  c {}  d {}  d' {}  top divisions {}  shifts {}  divisions {}  e {}",
+        t.a, t.b, t.c, t.d, t.d_prime, t.top_divisions, t.shifts, t.divisions, t.e
     );
     let _ = writeln!(
         out,

@@ -85,6 +85,7 @@ impl FlySpec {
             modes: [
                 Mode::As,
                 Mode::AsExact,
+                Mode::As2,
                 Mode::Ps,
                 Mode::Ss(Rate::N8),
                 Mode::Ss(Rate::N16),
