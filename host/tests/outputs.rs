@@ -80,7 +80,7 @@ fn a_symlink_output_writes_its_target() {
 }
 
 /// Before: SIGINT during `fly --animation` left its 7–14 MB temporary file. The flight's
-/// files are made in a temporary folder beside `--out` (here in `dir`).
+/// files are staged as hidden temporary files in `--out` itself.
 #[test]
 fn sigint_removes_the_temporary_files() {
     let dir = tempfile::tempdir().unwrap();
@@ -108,7 +108,7 @@ fn sigint_removes_the_temporary_files() {
     let started = Instant::now();
     let mut seen = false;
     while started.elapsed() < Duration::from_secs(60) {
-        if std::fs::read_dir(dir.path()).unwrap().count() > 1 {
+        if std::fs::read_dir(&out_dir).unwrap().count() > 0 {
             seen = true;
             break;
         }
