@@ -100,8 +100,9 @@ pub struct Folder {
 
 impl Folder {
     /// Starts the folder `out`: an existing folder (or a link to one), or a new one, made now,
-    /// whose parent must exist. Errors name `option`. Leftovers of killed runs in it, and the
-    /// stage folders earlier versions made beside it, are removed ([`stale`]).
+    /// whose parent must exist. Errors name `option`. The stage folders earlier versions left
+    /// beside it are removed now, the leftovers of killed runs in it as the first file is
+    /// staged there ([`stale`]).
     pub fn create(option: &str, out: &Path) -> Result<Self> {
         let refuse = |what: &str| anyhow!("{option} {:?}: {what}", shown(out));
         if matches!(target(out), Ok(Target::Descriptor(_) | Target::Special(_))) {
