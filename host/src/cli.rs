@@ -56,6 +56,49 @@ pub enum Command {
     Serve(commands::ServeArgs),
 }
 
+impl Command {
+    /// The command's single-file outputs, each with the option that names it: `render --out`,
+    /// `inspect --out`, `specular --out` and `--rate-out`, `map convert`'s OUT.
+    pub fn file_outputs(&self) -> Vec<(&'static str, &std::path::Path)> {
+        let mut v = Vec::new();
+        match self {
+            Command::Render(a) => v.extend(a.out.as_deref().map(|p| ("--out", p))),
+            Command::Inspect(a) => v.push(("--out", a.out.as_path())),
+            Command::Specular(a) => {
+                v.extend(a.out.as_deref().map(|p| ("--out", p)));
+                v.extend(a.rate_out.as_deref().map(|p| ("--rate-out", p)));
+            }
+            Command::Map(m) => {
+                if let commands::map::MapAction::Convert(c) = &m.action {
+                    v.push(("OUT", c.output.as_path()));
+                }
+            }
+            _ => {}
+        }
+        v
+    }
+}
+
+/// Before a command runs: if one of its outputs is standard output, everything it prints goes
+/// to standard error ([`crate::console::stdout_is_output`]); two outputs cannot both be it.
+fn claim_stdout(command: &Command) -> anyhow::Result<()> {
+    let mut taken: Option<&str> = None;
+    for (option, path) in command.file_outputs() {
+        if !crate::output::is_stdout(path) {
+            continue;
+        }
+        if let Some(first) = taken {
+            anyhow::bail!(
+                "{option} {}: standard output already takes {first}",
+                crate::output::shown(path)
+            );
+        }
+        taken = Some(option);
+        crate::console::stdout_is_output();
+    }
+    Ok(())
+}
+
 /// A closed stdout (`footprint … | head`) ends the run quietly with the status a shell gives a
 /// process killed by SIGPIPE (128 + 13), as `head` expects.
 const SIGPIPE_STATUS: u8 = 141;
@@ -137,6 +180,7 @@ where
 /// The whole program: parses the process's arguments, runs the command, and prints any error
 /// as one line (exit code 2).
 pub fn main() -> ExitCode {
+    crate::output::stale::mark_start();
     quiet_on_closed_stdout();
     let cli = match parse(std::env::args_os()) {
         Ok(cli) => cli,
@@ -162,6 +206,10 @@ pub fn main() -> ExitCode {
         }
     }
     if let Err(e) = crate::output::remove_temporaries_on_signal() {
+        crate::note!("error: {e:#}");
+        return ExitCode::from(2);
+    }
+    if let Err(e) = claim_stdout(&cli.command) {
         crate::note!("error: {e:#}");
         return ExitCode::from(2);
     }

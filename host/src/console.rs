@@ -6,9 +6,30 @@
 //!
 //! Write with [`outln!`](crate::outln) and [`out!`](crate::out) (standard output, `?` after
 //! them) and [`note!`](crate::note) (a line on standard error, its control characters escaped).
+//!
+//! When an output file is standard output itself (`--out -`, `--out /dev/stdout`), standard
+//! output carries that file and nothing else: [`stdout_is_output`] sends what `out!` and
+//! `outln!` print (summaries, tables, JSON, CSV) to standard error instead.
 
 use std::fmt;
 use std::io::{self, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// True once standard output carries an output file.
+static STDOUT_IS_OUTPUT: AtomicBool = AtomicBool::new(false);
+
+/// Sends everything printed from now on to standard error: standard output carries an output
+/// file (what was printed before is flushed first).
+pub fn stdout_is_output() {
+    if !STDOUT_IS_OUTPUT.swap(true, Ordering::SeqCst) {
+        let _ = io::stdout().lock().flush();
+    }
+}
+
+/// True if standard output carries an output file ([`stdout_is_output`]).
+pub fn stdout_taken() -> bool {
+    STDOUT_IS_OUTPUT.load(Ordering::SeqCst)
+}
 
 /// A failed write to standard output.
 #[derive(Debug)]
@@ -22,13 +43,23 @@ impl fmt::Display for StdoutError {
 
 impl std::error::Error for StdoutError {}
 
-/// Writes to standard output.
+/// Writes to standard output (to standard error, failures ignored, if standard output carries
+/// an output file).
 pub fn out(args: fmt::Arguments<'_>) -> Result<(), StdoutError> {
+    if stdout_taken() {
+        let _ = io::stderr().lock().write_fmt(args);
+        return Ok(());
+    }
     io::stdout().lock().write_fmt(args).map_err(StdoutError)
 }
 
-/// Writes bytes to standard output.
+/// Writes bytes to standard output (to standard error if standard output carries an output
+/// file).
 pub fn out_bytes(bytes: &[u8]) -> Result<(), StdoutError> {
+    if stdout_taken() {
+        let _ = io::stderr().lock().write_all(bytes);
+        return Ok(());
+    }
     io::stdout().lock().write_all(bytes).map_err(StdoutError)
 }
 

@@ -2,27 +2,42 @@
 //! [`target`] decides, for any path, which of these it is:
 //!
 //! * A **regular file or a missing path** is written through a temporary file in the same
-//!   folder, then renamed over it: an interrupted or failed run never leaves a half-written
-//!   output, and never an old one half-overwritten. A replaced file keeps its mode (and its
-//!   owner and group, where the user may set them); a new file gets 0666 less the umask, as
-//!   `File::create` gives.
+//!   folder (so on the same file system, whatever is mounted where), then renamed over it: an
+//!   interrupted or failed run never leaves a half-written output, and never an old one
+//!   half-overwritten. A replaced file keeps its mode (and its owner and group, where the user
+//!   may set them); a new file gets 0666 less the umask, as `File::create` gives. A file that
+//!   cannot be renamed over ([`replace::obstacle`]) is refused before anything is written if it
+//!   is immutable or append-only; if it is a mount point (a bind-mounted file), its new content
+//!   is staged in full, then copied into it.
 //! * A **symbolic link** is followed (to any depth) and its target is written as above; the
 //!   link itself stays.
-//! * One of this process's **descriptors**, named `/dev/stdout`, `/dev/stderr`, `/dev/fd/N` or
-//!   `/proc/self/fd/N`, is written through the descriptor, at its offset and with its flags
-//!   (`>> log` appends): never renamed over the file it points to, whatever that is (a file, a
-//!   pipe, a terminal, a socket).
+//! * One of this process's **descriptors**, named `-` (standard output), `/dev/stdout`,
+//!   `/dev/stderr`, `/dev/fd/N` or `/proc/self/fd/N`, is written through the descriptor, at its
+//!   offset and with its flags (`>> log` appends): never renamed over the file it points to,
+//!   whatever that is (a file, a pipe, a terminal, a socket). When it is standard output, every
+//!   message goes to standard error ([`crate::console::stdout_is_output`]).
 //! * A **special file** (a character or block device such as `/dev/null`, a FIFO, a socket, or
 //!   a file reached through another process's `/proc/PID/fd`) is written through, in place: it
 //!   is opened for writing without blocking, never created, truncated, renamed over or
 //!   removed. A FIFO that no one reads is refused after [`FIFO_GRACE`], not waited on.
 //! * A **folder** is refused.
 //!
-//! Temporary files and folders are registered while they live, so that SIGINT or SIGTERM
-//! ([`remove_temporaries_on_signal`]) removes them before the process exits with status 130.
+//! A set of files written together into a folder (`fly`, `glint`, `report --out DIR`) is a
+//! [`Folder`]: all of them, or none.
+//!
+//! Temporary files are named `.footprint-XXXXXX`, and registered while they live, so that SIGINT
+//! or SIGTERM ([`remove_temporaries_on_signal`]) removes them before the process exits with
+//! status 130; those a killed run left are removed by the next run that writes into the same
+//! folder ([`stale`]).
+
+mod folder;
+pub mod replace;
+pub mod stale;
+
+pub use folder::Folder;
 
 use std::fs::{File, Metadata, OpenOptions};
-use std::io::Write;
+use std::io::{self, Write};
 use std::os::fd::AsFd;
 use std::os::unix::fs::{FileTypeExt, MetadataExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
@@ -53,18 +68,20 @@ pub fn unregister(path: &Path) {
 }
 
 /// Installs a SIGINT/SIGTERM handler that removes every registered temporary file and folder
-/// and exits with status 130 (the shell's code for an interrupted command).
+/// (newest first: a folder once it is empty, never what another program put in it) and exits
+/// with status 130 (the shell's code for an interrupted command).
 pub fn remove_temporaries_on_signal() -> Result<()> {
     ctrlc::set_handler(|| {
-        for p in live().drain(..) {
+        let paths: Vec<PathBuf> = live().drain(..).rev().collect();
+        for p in paths {
             if p.is_dir() {
-                let _ = std::fs::remove_dir_all(&p);
+                let _ = std::fs::remove_dir(&p);
             } else {
                 let _ = std::fs::remove_file(&p);
             }
         }
         let _ = writeln!(
-            std::io::stderr(),
+            io::stderr(),
             "interrupted: temporary files removed, nothing written"
         );
         std::process::exit(130);
@@ -97,18 +114,63 @@ fn proc_fd(path: &Path) -> Option<(u32, bool)> {
     Some((n, pid == std::process::id()))
 }
 
-/// What the output `path` is (see [`Target`]): its symbolic links followed (at most 40, as
-/// the kernel allows) until it is a descriptor's entry or not a link. A folder is refused.
+/// The name of standard output as an output path.
+pub const STDOUT: &str = "-";
+
+/// What the output `path` is (see [`Target`]): `-` is standard output; otherwise its symbolic
+/// links are followed (at most 40, as the kernel allows) until it is a descriptor's entry or
+/// not a link. A folder is refused.
 pub fn target(path: &Path) -> Result<Target> {
+    if path == Path::new(STDOUT) {
+        return Ok(Target::Descriptor(1));
+    }
+    let p = match follow(path)? {
+        Followed::Descriptor { n, own: true, .. } => return Ok(Target::Descriptor(n)),
+        Followed::Descriptor { at, .. } => return Ok(Target::Special(at)),
+        Followed::Path(p) => p,
+    };
+    match std::fs::metadata(&p) {
+        Ok(m) if m.is_dir() => bail!("output {:?} is a directory", shown(path)),
+        Ok(m) if !m.is_file() => Ok(Target::Special(p)),
+        _ => Ok(Target::Replace(p)),
+    }
+}
+
+/// True if the output `path` is this process's standard output (`-`, `/dev/stdout`,
+/// `/dev/fd/1`, a link to one of them).
+pub fn is_stdout(path: &Path) -> bool {
+    matches!(target(path), Ok(Target::Descriptor(1)))
+}
+
+/// Where following a path's symbolic links ends.
+enum Followed {
+    /// A `/proc/PID/fd/N` entry, `at`: N, and whether PID is this process.
+    Descriptor {
+        /// The descriptor's number.
+        n: u32,
+        /// Whether it is this process's.
+        own: bool,
+        /// The entry reached.
+        at: PathBuf,
+    },
+    /// A path that is not a symbolic link.
+    Path(PathBuf),
+}
+
+/// `path` with its symbolic links followed (a descriptor's entry: the entry reached).
+pub fn links_followed(path: &Path) -> Result<PathBuf> {
+    Ok(match follow(path)? {
+        Followed::Path(p) | Followed::Descriptor { at: p, .. } => p,
+    })
+}
+
+/// Follows the symbolic links of `path`, at most 40 of them, stopping at a descriptor's entry.
+fn follow(path: &Path) -> Result<Followed> {
     let mut p = path.to_path_buf();
     let mut hops = 0;
     loop {
         if let Some((n, own)) = proc_fd(&p) {
-            return Ok(if own {
-                Target::Descriptor(n)
-            } else {
-                Target::Special(p)
-            });
+            return Ok(Followed::Descriptor { n, own, at: p });
         }
         match std::fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
@@ -126,27 +188,13 @@ pub fn target(path: &Path) -> Result<Target> {
                     _ => link,
                 };
             }
-            _ => break,
+            _ => return Ok(Followed::Path(p)),
         }
     }
-    match std::fs::metadata(&p) {
-        Ok(m) if m.is_dir() => bail!("output {:?} is a directory", shown(path)),
-        Ok(m) if !m.is_file() => Ok(Target::Special(p)),
-        _ => Ok(Target::Replace(p)),
-    }
-}
-
-/// `path` with its symbolic links followed, as [`target`] follows them (a descriptor's entry
-/// or a special file gives the path reached).
-pub fn resolve(path: &Path) -> Result<PathBuf> {
-    Ok(match target(path)? {
-        Target::Replace(p) | Target::Special(p) => p,
-        Target::Descriptor(_) => path.to_path_buf(),
-    })
 }
 
 /// The folder that holds `path` (`.` for a bare file name).
-fn folder_of(path: &Path) -> &Path {
+pub fn folder_of(path: &Path) -> &Path {
     match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -157,6 +205,15 @@ fn folder_of(path: &Path) -> &Path {
 /// hostile file name) are shown escaped, never sent to the terminal.
 pub fn shown(path: &Path) -> String {
     escape_controls(&path.display().to_string())
+}
+
+/// An I/O error as a message: its text without the ` (os error N)` that follows it.
+pub fn io_message(error: &io::Error) -> String {
+    let text = error.to_string();
+    match text.rfind(" (os error ") {
+        Some(i) if error.raw_os_error().is_some() => text[..i].to_owned(),
+        _ => text,
+    }
 }
 
 /// `text` with its control characters escaped (`\u{1b}`), so that it prints as it is.
@@ -228,10 +285,10 @@ fn descriptor(path: &Path, n: u32) -> Result<File> {
         0 => bail!("output {:?}: standard input is not an output", shown(path)),
         1 => {
             // What was printed before goes first.
-            std::io::stdout().flush().ok();
-            std::io::stdout().as_fd().try_clone_to_owned()
+            io::stdout().flush().ok();
+            io::stdout().as_fd().try_clone_to_owned()
         }
-        2 => std::io::stderr().as_fd().try_clone_to_owned(),
+        2 => io::stderr().as_fd().try_clone_to_owned(),
         _ => return open_in_place(path, &PathBuf::from(format!("/proc/self/fd/{n}"))),
     };
     dup.map(File::from)
@@ -240,7 +297,7 @@ fn descriptor(path: &Path, n: u32) -> Result<File> {
 
 /// Gives a new file the owner, group and mode of the file `old` it replaces (the owner only
 /// where the user may set it).
-fn keep_mode(file: &File, old: &Metadata) -> std::io::Result<()> {
+fn keep_mode(file: &File, old: &Metadata) -> io::Result<()> {
     let mine = file.metadata()?;
     if (mine.uid(), mine.gid()) != (old.uid(), old.gid()) {
         // Only root may give a file away; anyone may fail to, and keep it.
@@ -252,9 +309,9 @@ fn keep_mode(file: &File, old: &Metadata) -> std::io::Result<()> {
 
 /// A temporary file in `dir` that will replace `dest`: created 0666 less the umask, or with
 /// the mode of the regular file `dest` if there is one.
-fn temporary_for(dir: &Path, dest: &Path) -> std::io::Result<NamedTempFile> {
+fn temporary_for(dir: &Path, dest: &Path) -> io::Result<NamedTempFile> {
     let tmp = tempfile::Builder::new()
-        .prefix(".footprint-")
+        .prefix(stale::PREFIX)
         .permissions(std::fs::Permissions::from_mode(0o666))
         .tempfile_in(dir)?;
     if let Some(old) = std::fs::metadata(dest).ok().filter(Metadata::is_file) {
@@ -266,12 +323,15 @@ fn temporary_for(dir: &Path, dest: &Path) -> std::io::Result<NamedTempFile> {
 /// An output being written (see the module documentation).
 #[derive(Debug)]
 pub enum Sink {
-    /// A temporary file, renamed over `path` by [`Sink::finish`].
+    /// A temporary file, renamed over `path` by [`Sink::finish`] (or, if `path` is a mount
+    /// point, copied into it).
     Atomic {
         /// The temporary file (deleted if dropped unfinished).
         tmp: Temporary,
         /// The final path, symbolic links resolved.
         path: PathBuf,
+        /// Copy into `path` rather than rename over it: it is a mount point.
+        in_place: bool,
     },
     /// A special file or a descriptor, written in place.
     Through {
@@ -284,14 +344,17 @@ pub enum Sink {
 
 impl Sink {
     /// Opens the output `path`. Errors name the path: a folder, a missing or unwritable
-    /// folder, an unopenable special file, a FIFO no one reads.
+    /// folder, an immutable file, an unopenable special file, a FIFO no one reads.
     pub fn create(path: &Path) -> Result<Self> {
         let target = match target(path)? {
             Target::Descriptor(n) => {
+                if n == 1 {
+                    crate::console::stdout_is_output();
+                }
                 return Ok(Sink::Through {
                     file: descriptor(path, n)?,
                     path: path.to_path_buf(),
-                })
+                });
             }
             Target::Special(at) => {
                 return Ok(Sink::Through {
@@ -309,12 +372,25 @@ impl Sink {
                 shown(dir)
             );
         }
-        let tmp = temporary_for(dir, &target)
-            .with_context(|| format!("output {:?}: cannot create a file there", shown(path)))?;
+        let in_place = match replace::obstacle(&target) {
+            None => false,
+            Some(replace::Obstacle::MountPoint) => true,
+            Some(o) => bail!("output {:?} {o}: it cannot be replaced", shown(path)),
+        };
+        stale::enter(dir);
+        let tmp = temporary_for(dir, &target).map_err(|e| {
+            anyhow::anyhow!(
+                "output {:?}: cannot create a file in {:?}: {}",
+                shown(path),
+                shown(dir),
+                io_message(&e)
+            )
+        })?;
         register(tmp.path());
         Ok(Sink::Atomic {
             tmp: Temporary(Some(tmp)),
             path: target,
+            in_place,
         })
     }
 
@@ -334,19 +410,39 @@ impl Sink {
         }
     }
 
-    /// Flushes, and renames the complete temporary file over the output.
+    /// Flushes, and renames the complete temporary file over the output (copies it into a
+    /// mount point).
     pub fn finish(mut self) -> Result<()> {
-        self.file().flush()?;
+        let path = match &self {
+            Sink::Atomic { path, .. } | Sink::Through { path, .. } => path.clone(),
+        };
+        let cannot = |e: &io::Error| {
+            anyhow::anyhow!("output {:?}: cannot write: {}", shown(&path), io_message(e))
+        };
+        self.file().flush().map_err(|e| cannot(&e))?;
         match self {
             Sink::Through { .. } => Ok(()),
-            Sink::Atomic { mut tmp, path } => {
+            Sink::Atomic {
+                mut tmp, in_place, ..
+            } => {
                 let Some(tmp) = tmp.0.take() else {
                     bail!("output {:?}: already written", shown(&path));
                 };
                 unregister(tmp.path());
-                tmp.persist(&path)
-                    .map(|_| ())
-                    .with_context(|| format!("output {:?}: cannot write", shown(&path)))
+                if in_place {
+                    // A mount point cannot be renamed over: the complete file is copied into
+                    // it (the temporary file is removed when `tmp` is dropped).
+                    let mut from = tmp.reopen().map_err(|e| cannot(&e))?;
+                    let mut to = OpenOptions::new()
+                        .write(true)
+                        .truncate(true)
+                        .open(&path)
+                        .map_err(|e| cannot(&e))?;
+                    io::copy(&mut from, &mut to).map_err(|e| cannot(&e))?;
+                    return Ok(());
+                }
+                // A failed rename gives the temporary file back, removed when dropped here.
+                tmp.persist(&path).map(drop).map_err(|e| cannot(&e.error))
             }
         }
     }
@@ -382,128 +478,50 @@ impl Drop for Temporary {
     }
 }
 
-/// An output folder built in a temporary folder next to it and moved into place at the end
-/// ([`Folder::finish`]), so an interrupted or failed run leaves no partial folder. Into an
-/// existing folder, every file is checked before any is moved: all of them land, or none.
-#[derive(Debug)]
-pub struct Folder {
-    tmp: Option<tempfile::TempDir>,
-    out: PathBuf,
-    option: String,
+/// A writer that remembers why its last write failed.
+struct Recording<'a> {
+    inner: &'a mut File,
+    failed: Option<String>,
 }
 
-impl Folder {
-    /// Starts the folder `out` (which may exist; its parent must). Errors name `option`.
-    pub fn create(option: &str, out: &Path) -> Result<Self> {
-        let parent = folder_of(out);
-        if !parent.is_dir() {
-            bail!(
-                "{option} {:?}: the folder above it does not exist",
-                shown(out)
-            );
-        }
-        if out.exists() && !out.is_dir() {
-            bail!("{option} {:?}: exists and is not a folder", shown(out));
-        }
-        // 0777 less the umask, as `mkdir` gives: the folder may be renamed into place whole.
-        let tmp = tempfile::Builder::new()
-            .prefix(".footprint-")
-            .permissions(std::fs::Permissions::from_mode(0o777))
-            .tempdir_in(parent)
-            .with_context(|| format!("{option} {:?}: cannot create a folder there", shown(out)))?;
-        register(tmp.path());
-        Ok(Self {
-            tmp: Some(tmp),
-            out: out.to_path_buf(),
-            option: option.to_owned(),
-        })
+impl Write for Recording<'_> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.inner.write(buf).inspect_err(|e| self.note(e))
     }
 
-    /// A file of the folder, in its temporary place.
-    pub fn file(&self, name: &str) -> PathBuf {
-        match &self.tmp {
-            Some(t) => t.path().join(name),
-            None => self.out.join(name),
-        }
-    }
-
-    /// Where the file `name` will go in the existing folder: its path with links followed,
-    /// if it is a regular file or missing; an error naming the option and the file if it is
-    /// anything else (a folder, a FIFO, a device), which is never replaced.
-    fn place(&self, name: &std::ffi::OsStr) -> Result<PathBuf> {
-        let dest = self.out.join(name);
-        let refuse = |what: &str| {
-            anyhow::anyhow!(
-                "{} {:?}: {:?} {what}; nothing written",
-                self.option,
-                shown(&self.out),
-                shown(Path::new(name))
-            )
-        };
-        match target(&dest) {
-            Ok(Target::Replace(p)) => Ok(p),
-            Ok(_) => Err(refuse("is a special file, not replaced")),
-            Err(_) if dest.is_dir() => Err(refuse("is a folder")),
-            Err(e) => Err(refuse(&format!("cannot be written ({e:#})"))),
-        }
-    }
-
-    /// Checks, before anything is written, that the files `names` can go into the folder (if
-    /// it exists): none of them is a folder or a special file.
-    pub fn check(&self, names: &[String]) -> Result<()> {
-        if self.out.is_dir() {
-            for name in names {
-                self.place(name.as_ref())?;
-            }
-        }
-        Ok(())
-    }
-
-    /// Moves the folder into place: renamed to `out` if it does not exist, otherwise each file
-    /// renamed into it (replacing files of the same name, whose modes are kept), once every
-    /// file's place has been checked.
-    pub fn finish(mut self) -> Result<()> {
-        let Some(tmp) = self.tmp.take() else {
-            return Ok(());
-        };
-        let err = |what: &str| format!("{} {:?}: {what}", self.option, shown(&self.out));
-        if !self.out.exists() {
-            let from = tmp.keep();
-            unregister(&from);
-            return std::fs::rename(&from, &self.out)
-                .with_context(|| err("cannot move it into place"));
-        }
-        let mut moves = Vec::new();
-        for entry in std::fs::read_dir(tmp.path()).with_context(|| err("unreadable"))? {
-            let entry = entry?;
-            let dest = self.place(&entry.file_name())?;
-            if let Some(old) = std::fs::metadata(&dest).ok().filter(Metadata::is_file) {
-                let file = File::open(entry.path())?;
-                keep_mode(&file, &old)?;
-            }
-            moves.push((entry.path(), dest));
-        }
-        for (from, to) in moves {
-            std::fs::rename(&from, &to)
-                .with_context(|| err(&format!("cannot write {:?}", shown(&to))))?;
-        }
-        unregister(tmp.path());
-        Ok(())
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush().inspect_err(|e| self.note(e))
     }
 }
 
-impl Drop for Folder {
-    fn drop(&mut self) {
-        if let Some(t) = &self.tmp {
-            unregister(t.path());
+impl Recording<'_> {
+    fn note(&mut self, e: &io::Error) {
+        if e.kind() != io::ErrorKind::Interrupted {
+            self.failed = Some(io_message(e));
         }
     }
 }
 
-/// Writes an output in one go through a [`Sink`].
+/// Writes an output in one go through a [`Sink`]. A failed write is one message,
+/// `output "PATH": cannot write: WHY` (a full disk, a closed pipe), whatever the writer made of
+/// it; any other error of the writer gets the prefix `output "PATH": ` unless it starts with it.
 pub fn write_with(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
     let mut sink = Sink::create(path)?;
-    write(sink.file()).with_context(|| format!("output {:?}", shown(path)))?;
+    let mut w = Recording {
+        inner: sink.file(),
+        failed: None,
+    };
+    let written = write(&mut w);
+    if let Some(why) = w.failed {
+        bail!("output {:?}: cannot write: {why}", shown(path));
+    }
+    if let Err(e) = written {
+        let prefix = format!("output {:?}", shown(path));
+        if format!("{e:#}").starts_with(&prefix) {
+            return Err(e);
+        }
+        return Err(e.context(prefix));
+    }
     sink.finish()
 }
 
@@ -539,6 +557,7 @@ mod tests {
     #[test]
     fn descriptors_special_files_and_files_are_told_apart() {
         for (path, fd) in [
+            ("-", 1),
             ("/dev/stdout", 1),
             ("/dev/stderr", 2),
             ("/proc/self/fd/1", 1),
@@ -599,43 +618,5 @@ mod tests {
         assert!(r.is_err());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
         assert!(!live().iter().any(|p| p.starts_with(dir.path())));
-    }
-
-    #[test]
-    fn a_folder_appears_only_when_finished() {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("report");
-        let folder = Folder::create("--out", &out).unwrap();
-        write_with(&folder.file("a.txt"), |w| Ok(w.write_all(b"a")?)).unwrap();
-        assert!(!out.exists());
-        drop(folder);
-        assert_eq!(
-            std::fs::read_dir(dir.path()).unwrap().count(),
-            0,
-            "nothing left"
-        );
-        let folder = Folder::create("--out", &out).unwrap();
-        write_with(&folder.file("a.txt"), |w| Ok(w.write_all(b"a")?)).unwrap();
-        folder.finish().unwrap();
-        assert_eq!(std::fs::read(out.join("a.txt")).unwrap(), b"a");
-        // The folder and its file have the modes `mkdir` and `File::create` give (0777 and
-        // 0666 less the umask), not a temporary folder's 0700 or file's 0600.
-        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
-        let plain_dir = dir.path().join("plain");
-        std::fs::create_dir(&plain_dir).unwrap();
-        let plain_file = dir.path().join("plain.txt");
-        File::create(&plain_file).unwrap();
-        assert_eq!(mode(&out), mode(&plain_dir));
-        assert_eq!(mode(&out.join("a.txt")), mode(&plain_file));
-        std::fs::remove_dir(&plain_dir).unwrap();
-        std::fs::remove_file(&plain_file).unwrap();
-        // Into an existing folder: files are replaced, others kept.
-        std::fs::write(out.join("keep.txt"), b"k").unwrap();
-        let folder = Folder::create("--out", &out).unwrap();
-        write_with(&folder.file("a.txt"), |w| Ok(w.write_all(b"b")?)).unwrap();
-        folder.finish().unwrap();
-        assert_eq!(std::fs::read(out.join("a.txt")).unwrap(), b"b");
-        assert_eq!(std::fs::read(out.join("keep.txt")).unwrap(), b"k");
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 }

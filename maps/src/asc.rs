@@ -479,7 +479,7 @@ fn decimals(step: f64) -> usize {
 /// heights `base_m + u · height_scale_m` with as many decimals as the height scale needs.
 /// `what` names the output in errors.
 pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError> {
-    let io_err = |error: io::Error| MapError::Io {
+    let io_err = |error: io::Error| MapError::Write {
         what: what.to_owned(),
         error,
     };

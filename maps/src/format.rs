@@ -311,7 +311,7 @@ pub fn write(map: &Map, format: Format, out: &mut dyn Write, what: &str) -> Resu
                     what: what.to_owned(),
                     detail: format!("cannot encode the PNG: {e}"),
                 })?;
-            out.write_all(&buf).map_err(|error| MapError::Io {
+            out.write_all(&buf).map_err(|error| MapError::Write {
                 what: what.to_owned(),
                 error,
             })

@@ -149,7 +149,7 @@ pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>
             let m = metres(map, u).round() as i16;
             bytes.extend_from_slice(&m.to_be_bytes());
         }
-        out.write_all(&bytes).map_err(|error| MapError::Io {
+        out.write_all(&bytes).map_err(|error| MapError::Write {
             what: what.to_owned(),
             error,
         })?;

@@ -96,6 +96,13 @@ pub enum MapError {
         /// The underlying I/O error.
         error: io::Error,
     },
+    /// The output could not be written (a full disk, a closed pipe).
+    Write {
+        /// The output, e.g. `output "dem.asc"`.
+        what: String,
+        /// The underlying I/O error.
+        error: io::Error,
+    },
     /// A directory was given where a file was expected.
     IsDirectory {
         /// The map, e.g. `height map "dem.png"`.
@@ -222,6 +229,9 @@ impl fmt::Display for MapError {
         match self {
             MapError::Io { what, error } => {
                 write!(f, "{what}: cannot read: {}", io_message(error))
+            }
+            MapError::Write { what, error } => {
+                write!(f, "{what}: cannot write: {}", io_message(error))
             }
             MapError::IsDirectory { what } => write!(f, "{what} is a directory"),
             MapError::NotPng { what, detail } => {
@@ -356,5 +366,38 @@ mod tests {
         assert!(e
             .to_string()
             .starts_with("height map \"h.png\": cannot read: "));
+    }
+
+    /// A failed write says "cannot write", once, naming the output (issue 37: a closed pipe
+    /// said `cannot read: Broken pipe`).
+    #[test]
+    fn a_failed_write_says_cannot_write() {
+        struct Closed;
+        impl io::Write for Closed {
+            fn write(&mut self, _: &[u8]) -> io::Result<usize> {
+                Err(io::Error::from(io::ErrorKind::BrokenPipe))
+            }
+            fn flush(&mut self) -> io::Result<()> {
+                Ok(())
+            }
+        }
+        let map = Map {
+            width: 2,
+            height: 1,
+            heights: vec![1, 2],
+            colors: vec![footprint_core::Rgb::default(); 2],
+            spacing_m: 30.0,
+            height_scale_m: 0.1,
+            base_m: 0.0,
+            source: String::new(),
+        };
+        for format in [Format::Asc, Format::Png, Format::Tiff] {
+            let e = format::write(&map, format, &mut Closed, "output \"-\"").unwrap_err();
+            assert_eq!(
+                e.to_string(),
+                "output \"-\": cannot write: broken pipe",
+                "{format}"
+            );
+        }
     }
 }

@@ -397,10 +397,11 @@ pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>
             .map_err(fail)?;
         image.write_data(&values).map_err(fail)?;
     }
-    out.write_all(buf.get_ref()).map_err(|error| MapError::Io {
-        what: what.to_owned(),
-        error,
-    })
+    out.write_all(buf.get_ref())
+        .map_err(|error| MapError::Write {
+            what: what.to_owned(),
+            error,
+        })
 }
 
 #[cfg(test)]

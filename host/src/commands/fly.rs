@@ -161,9 +161,10 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     };
     spec.check()?;
     spec.check_memory(if args.animation { PANELS.len() } else { 0 })?;
-    // Every file goes into a temporary folder first, and into --out only when all are
-    // written: a failure leaves none of them. A file of the same name that is a folder or a
-    // special file (a FIFO) is refused now, before the flight.
+    // Every file is staged beside its place first, and moved in only when all are written: a
+    // failure leaves none of them. A file of the same name that is a folder, a special file (a
+    // FIFO) or a file that cannot be replaced (bind-mounted, immutable) is refused now, before
+    // the flight.
     let folder = args
         .out
         .as_deref()
@@ -189,7 +190,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         );
         let width = PANELS.len() * w + (PANELS.len() - 1) * GAP;
         let mut animation = Animation::create(
-            &folder.file(ANIMATION),
+            &folder.file(ANIMATION)?,
             width as u32,
             h as u32,
             args.frames as u32,
@@ -224,7 +225,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         .print();
     if let Some(folder) = folder {
         for m in &result.modes {
-            let path = folder.file(&cut_name(m.mode));
+            let path = folder.file(&cut_name(m.mode))?;
             write_png(&path, result.frames as u32, args.size.size.height, &m.cut)?;
         }
         folder.finish()?;

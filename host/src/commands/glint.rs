@@ -149,8 +149,8 @@ pub fn glint(args: &GlintArgs) -> Result<()> {
         crate::outln!("{ABOUT}")?;
         return Ok(());
     }
-    // The images go into a temporary folder, and into --out only when all are written (and
-    // none of their names there is a folder or a special file): all of them, or none.
+    // The images are staged beside their places, and moved in only when all are written (and
+    // every place can take its file): all of them, or none.
     let folder = args
         .out
         .as_deref()
@@ -164,9 +164,14 @@ pub fn glint(args: &GlintArgs) -> Result<()> {
     if let Some(folder) = folder {
         let (w, h) = (result.width, result.height);
         for r in result.runs.iter().chain(std::iter::once(&result.reference)) {
-            write_png(&folder.file(&writer::frame_file(&result, r)), w, h, &r.last)?;
             write_png(
-                &folder.file(&writer::cut_file(&result, r)),
+                &folder.file(&writer::frame_file(&result, r))?,
+                w,
+                h,
+                &r.last,
+            )?;
+            write_png(
+                &folder.file(&writer::cut_file(&result, r))?,
                 result.frames as u32,
                 h,
                 &r.cut,

@@ -7,6 +7,7 @@ use clap::Args;
 
 use crate::args::OutputFormat;
 use crate::experiment::inspect;
+use crate::output::Target;
 use crate::render::Mode;
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, View};
@@ -57,7 +58,8 @@ pub struct InspectArgs {
     /// Fig. 9: the ground under the frame — sampled blue, visible unsampled red, hidden green.
     #[arg(long)]
     pub footprint: bool,
-    /// Output PNG (with several pictures, `-zoom`, `-pixel`, `-footprint` are added to its stem).
+    /// Output PNG (with several pictures, `-zoom`, `-pixel`, `-footprint` are added to its
+    /// stem); `-` is standard output (one picture).
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
     #[command(flatten)]
@@ -71,6 +73,13 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
     let n = wanted.iter().filter(|&&w| w).count();
     if n == 0 {
         bail!("inspect: give --zoom, --pixel ROW,COL or --footprint");
+    }
+    if n > 1 && !matches!(crate::output::target(&args.out), Ok(Target::Replace(_))) {
+        bail!(
+            "--out {}: several pictures go to files named after it (-zoom, -pixel, -footprint \
+             added to its stem); give a file name, or one of --zoom, --pixel, --footprint",
+            crate::output::shown(&args.out)
+        );
     }
     let path_for = |suffix: &str| -> PathBuf {
         if n == 1 {

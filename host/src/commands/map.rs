@@ -3,14 +3,12 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::output::Target;
-
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{Args, Subcommand};
 use serde::Serialize;
 
 use crate::args::OutputFormat;
-use crate::map::{self, describe, Format, LoadOptions, Loaded};
+use crate::map::{self, Format, LoadOptions, Loaded};
 use crate::report::write_atomic;
 
 /// `footprint map`.
@@ -82,7 +80,8 @@ pub struct ConvertArgs {
     /// The input height map; `-` reads standard input.
     #[arg(value_name = "IN")]
     pub input: PathBuf,
-    /// The output file; its format comes from its extension (see --to).
+    /// The output file; its format comes from its extension (see --to). `-` is standard
+    /// output (give --to).
     #[arg(value_name = "OUT")]
     pub output: PathBuf,
     /// How to read the input.
@@ -194,17 +193,27 @@ fn info(args: &InfoArgs) -> Result<()> {
 }
 
 fn convert(args: &ConvertArgs) -> Result<()> {
-    let out_what = describe("output", &args.output);
+    // As `write_atomic` names the output, so that its errors carry the name once.
+    let out_what = format!("output {:?}", crate::output::shown(&args.output));
     // The output format first: a wrong name fails before the input is read.
-    let to = Format::from_name(args.to, &args.output, &out_what)?;
+    let Some(to) = args.to.or_else(|| Format::from_path(&args.output)) else {
+        let ext = args.output.extension().map_or_else(
+            || "no extension".to_owned(),
+            |e| format!("extension .{}", e.to_string_lossy()),
+        );
+        anyhow::bail!(
+            "{out_what}: unknown map format ({}): name it .png, .hgt, .asc, .tif or .tiff, or \
+             give --to png|hgt|asc|tiff",
+            crate::output::escape_controls(&ext)
+        );
+    };
     let loaded = args.read.load(&args.input)?;
     let m = &loaded.map;
     map::format::check_writable(m, to, &out_what)?;
     write_atomic(&args.output, |w| {
         map::format::write(m, to, w, &out_what)?;
         Ok(())
-    })
-    .with_context(|| format!("converting {}", describe("height map", &args.input)))?;
+    })?;
     let mut summary = format!(
         "wrote {}: {to}, {}×{}, heights {:.2} to {:.2} m, spacing {:.3} m, {} voids filled",
         crate::output::shown(&args.output),
@@ -227,15 +236,9 @@ fn convert(args: &ConvertArgs) -> Result<()> {
         )),
         Format::Asc | Format::Tiff => {}
     }
-    // Written to standard output, the map is followed by nothing: the summary goes to stderr.
-    if matches!(
-        crate::output::target(&args.output),
-        Ok(Target::Descriptor(1))
-    ) {
-        crate::note!("{summary}");
-    } else {
-        crate::outln!("{summary}")?;
-    }
+    // Written to standard output, the map is followed by nothing: the summary goes to stderr
+    // (`crate::console::stdout_is_output`).
+    crate::outln!("{summary}")?;
     Ok(())
 }
 

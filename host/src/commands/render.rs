@@ -34,7 +34,8 @@ pub struct RenderArgs {
     /// truth as as-exact and is about a quarter faster (docs/cli.md, "The modes").
     #[arg(long, default_value = "as")]
     pub mode: Mode,
-    /// Output PNG.
+    /// Output PNG; `-` is standard output (everything else printed then goes to standard
+    /// error).
     #[arg(long, value_name = "FILE.png")]
     pub out: Option<PathBuf>,
     /// Print the cost counters of Sect. 6 (a second, counting render); with --json, as one

@@ -123,8 +123,8 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     if args.frames < 2 {
         bail!("--frames {}: at least 2 frames are needed", args.frames);
     }
-    // Built in a temporary folder next to --out and moved into place at the end: a failed or
-    // interrupted run leaves nothing behind.
+    // Every file is staged beside its place in --out and moved in at the end: a failed or
+    // interrupted run leaves nothing behind (and no folder it made).
     let folder = Folder::create("--out", &args.out)?;
     let lod = args.lod == Switch::On;
     let fly_spec = FlySpec {
@@ -147,7 +147,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     glint_spec.check_memory()?;
     let steps = table::steps(3, modes.len()) + args.frames as u64 + glint_spec.frames as u64 + 14;
     let bar = super::progress(steps, "steps", false);
-    let file = |name: &str| -> PathBuf { folder.file(name) };
+    let file = |name: &str| -> Result<PathBuf> { folder.file(name) };
 
     // Tables 1–5.
     let tables = table::run(map, &pyramid, &PAPER_PITCHES, &modes, size, lod, |msg| {
@@ -164,7 +164,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         .iter()
         .map(|c| (format!("pitch {}°", c.pitch), c.coverage_by_rate.clone()))
         .collect();
-    plot::coverage_vs_rate(&file("coverage.png"), &series)?;
+    plot::coverage_vs_rate(&file("coverage.png")?, &series)?;
 
     // The three views.
     let terrain = pyramid.terrain(lod)?;
@@ -177,7 +177,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
             bar.set_message(format!("view {pitch}° {mode}"));
             let img = render_parallel(&frame, &terrain, mode)?;
             let name = format!("view{pitch}_{mode}.png");
-            write_png(&file(&name), img.size.0, img.size.1, &img.image)?;
+            write_png(&file(&name)?, img.size.0, img.size.1, &img.image)?;
             bar.inc(1);
         }
         views += &format!(
@@ -191,7 +191,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let mut cuts = String::new();
     for m in &flight.modes {
         let name = format!("cut_{}.png", m.mode);
-        write_png(&file(&name), flight.frames as u32, size.height, &m.cut)?;
+        write_png(&file(&name)?, flight.frames as u32, size.height, &m.cut)?;
         cuts += &format!(
             "![{} over time](cut_{}.png) ",
             m.mode.to_string().to_uppercase(),
@@ -204,7 +204,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         .map(|m| (m.mode.to_string().to_uppercase(), m.histogram.0.to_vec()))
         .collect();
     plot::grouped_bars_log(
-        &file("table6.png"),
+        &file("table6.png")?,
         &format!(
             "Table 6: changes of column {}'s pixels over {} frames",
             flight.column, flight.frames
@@ -219,7 +219,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let (glint, glint_note) = glint_section(args, &pyramid, &glint_spec, || bar.inc(1))?;
     for r in glint.runs.iter().chain(std::iter::once(&glint.reference)) {
         write_png(
-            &file(&crate::report::glint::cut_file(&glint, r)),
+            &file(&crate::report::glint::cut_file(&glint, r))?,
             glint.frames as u32,
             glint.height,
             &r.cut,
@@ -231,7 +231,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let camera5 = paper_camera(map, &pyramid, 5.0, size, lod)?;
     let five = *camera5.params();
     let zoom = inspect::zoom(&five, &pyramid, options, Mode::Li, 16.0, 48, 6)?;
-    write_png(&file("zoom.png"), zoom.width, zoom.height, &zoom.pixels)?;
+    write_png(&file("zoom.png")?, zoom.width, zoom.height, &zoom.pixels)?;
     // Fig. 13's pixel: where SS4 and AS differ most at pitch 5°.
     let choice =
         inspect::most_different_pixel(&camera5, &pyramid, options, Mode::Ss(Rate::N4), Mode::As)?;
@@ -248,7 +248,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
             (64, 256),
         )?;
         write_png(
-            &file(&format!("pixel_{mode}.png")),
+            &file(&format!("pixel_{mode}.png"))?,
             pic.width,
             pic.height,
             &pic.pixels,
@@ -266,7 +266,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
         let (counts, pic) = inspect::footprint(&small, &pyramid, options, mode, 600)?;
         write_png(
-            &file(&format!("footprint_{mode}.png")),
+            &file(&format!("footprint_{mode}.png"))?,
             pic.width,
             pic.height,
             &pic.pixels,
@@ -293,8 +293,8 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         glint: &glint,
         glint_note: &glint_note,
     });
-    write_text(&file("REPORT.md"), &md)?;
-    write_text(&file("index.html"), &html::page("footprint report", &md))?;
+    write_text(&file("REPORT.md")?, &md)?;
+    write_text(&file("index.html")?, &html::page("footprint report", &md))?;
     let claims: Vec<_> = crate::experiment::claims::claims(&tables, &flight)
         .into_iter()
         .map(|(claim, holds, evidence)| json!({"claim": claim, "holds": holds, "evidence": evidence}))
@@ -303,7 +303,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         "lod": value_name(&args.lod), "tables": tables, "fly": flight, "claims": claims,
         "fig13_pixel": choice, "pixel": pixel_json, "footprint": fp_json,
         "pyramid_heights_pitch5": study, "differences": diffs, "glint": glint});
-    write_text(&file("report.json"), &serde_json::to_string_pretty(&data)?)?;
+    write_text(&file("report.json")?, &serde_json::to_string_pretty(&data)?)?;
     folder.finish()?;
     bar.finish_and_clear();
     crate::outln!(

@@ -36,10 +36,11 @@ pub struct SpecularArgs {
     /// With --scene: write the grid side each pixel's highlight was sampled on as a grey PNG
     /// (black: background; grey level 255·s/64 for an s × s grid: 1 for one evaluation, crow's
     /// detected rate up to --crow-max, the reference's 32 everywhere). --json prints the same
-    /// per pixel.
+    /// per pixel. `-` is standard output.
     #[arg(long, value_name = "FILE.png", conflicts_with_all = ["measure", "figure"])]
     pub rate_out: Option<PathBuf>,
-    /// Output PNG (a plate or a figure).
+    /// Output PNG (a plate or a figure); `-` is standard output (everything else printed then
+    /// goes to standard error).
     #[arg(long, value_name = "FILE.png", conflicts_with = "measure")]
     pub out: Option<PathBuf>,
     /// Image side in pixels (plates and --measure) [default: 256].
