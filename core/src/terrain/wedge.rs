@@ -99,69 +99,96 @@ impl Wedge {
     }
 }
 
-/// The integral from −∞ to `x` of the hat function of a cell's colour in Eq. 4 (1 at the
-/// cell's centre, 0 one cell away), less ½: `x` and the result in cells, 16 fractional bits.
+/// Across a segment of Eq. 4 (between the centres of cells `j` and `j + 1`), the integral from
+/// the segment's start to `d` (16 fractional bits, `0..=1`) of the first cell's weight
+/// `1 − d′` and of the second's `d′`: `(d − d²/2, d²/2)`, 16 fractional bits.
 #[inline(always)]
-fn hat_integral(x: i64) -> i64 {
-    const H: i64 = 1 << 16;
-    if x <= -H {
-        -(H / 2)
-    } else if x >= H {
-        H / 2
-    } else if x <= 0 {
-        (((x + H) * (x + H)) >> 17) - H / 2
-    } else {
-        H / 2 - (((H - x) * (H - x)) >> 17)
-    }
+fn segment(d: i64) -> (i64, i64) {
+    let half_square = (d * d) >> 17;
+    (d - half_square, half_square)
 }
 
 /// The mean over `[lo, hi)` (cells from the current cell's edge behind, 32 fractional bits,
 /// within `[−1.5, 2.5)`) of Eq. 4's colour across the row of cells around `voxel`: each cell's
 /// colour weighted by the integral of its hat over the interval (at most seven cells). In 8.8.
 fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
-    let half = ONE / 2;
-    // The cells whose hats reach into the interval: centres within one cell of it.
-    let first = (lo - half) >> 32;
-    let last = ((hi - half - 1) >> 32) + 1;
-    // Each hat's share is at most one cell (2^16), a colour 255: 32-bit sums (at most seven
-    // cells) for a 32-bit core.
-    let (mut sum, mut total) = ([0u32; 3], 0u32);
+    const D: i64 = 1 << 16;
+    // Positions from the centre of the voxel's cell, 16 fractional bits: Eq. 4's segment `j`
+    // runs from cell `j`'s centre to cell `j + 1`'s.
+    let (u_lo, u_hi) = ((lo - ONE / 2) >> 16, (hi - ONE / 2) >> 16);
+    let (j_lo, j_hi) = ((u_lo >> 16).max(-3), (u_hi >> 16).min(2));
+    let (d_lo, d_hi) = (
+        (u_lo - (j_lo << 16)).clamp(0, D),
+        (u_hi - (j_hi << 16)).clamp(0, D),
+    );
+    // Each cell's weight, the integral of its share of Eq. 4 over the interval: the partial
+    // segments at the ends, and half a cell from every whole segment to either end of it.
+    let mut weights = [0i64; 7];
+    let mut add = |k: i64, w: i64| {
+        if let Some(slot) = usize::try_from(k + 3).ok().and_then(|i| weights.get_mut(i)) {
+            *slot += w;
+        }
+    };
+    let ((a_lo, b_lo), (a_hi, b_hi)) = (segment(d_lo), segment(d_hi));
+    if j_lo >= j_hi {
+        add(j_lo, a_hi - a_lo);
+        add(j_lo + 1, b_hi - b_lo);
+    } else {
+        let (a_one, b_one) = segment(D);
+        add(j_lo, a_one - a_lo);
+        add(j_lo + 1, b_one - b_lo);
+        for j in j_lo + 1..j_hi {
+            add(j, D / 2);
+            add(j + 1, D / 2);
+        }
+        add(j_hi, a_hi);
+        add(j_hi + 1, b_hi);
+    }
+    // Each weight to 9 bits (at most one cell, 512), a colour 255: a cell adds at most 2^17
+    // to a channel, seven at most 2^20, so the three channels add in 21-bit lanes of one word
+    // (one multiply per cell, as `Voxel::sample_linear` packs its two).
+    let (mut sum, mut total) = (0u64, 0u64);
     // Away from the map's mirror edges (nearly always) the cells across are a stride apart.
     let row = voxel.row_around(3);
-    for k in first.max(-3)..=last.min(3) {
-        let centre = (k << 32) + half;
-        let w = hat_integral((hi - centre) >> 16) - hat_integral((lo - centre) >> 16);
-        let Ok(w) = u32::try_from(w) else {
+    // Only the cells the interval's segments reach: `j_lo ..= j_hi + 1`.
+    let reach = usize::try_from(j_lo + 3).unwrap_or(0)..usize::try_from(j_hi + 5).unwrap_or(0);
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_possible_wrap,
+        reason = "-3 ≤ j_lo (clamped above): the first cell's offset is within -3..=3"
+    )]
+    let first = j_lo.max(-3) as isize;
+    for (k, &w) in (first..).zip(weights.get(reach).unwrap_or_default()) {
+        let Ok(w) = u64::try_from((w + (1 << 6)) >> 7) else {
             continue;
         };
-        #[allow(
-            clippy::cast_possible_truncation,
-            reason = "-3 ≤ k ≤ 3 (clamped above)"
-        )]
-        let k = k as isize;
+        if w == 0 {
+            continue;
+        }
         let at = match row {
             Some((idx, step)) => idx.wrapping_add_signed(k * step),
             None => voxel.across(k),
         };
         let c: Rgb = voxel.color_at(at);
-        for (s, c) in sum.iter_mut().zip([c.r, c.g, c.b]) {
-            *s += w * u32::from(c);
-        }
+        sum += w * (u64::from(c.r) | u64::from(c.g) << 21 | u64::from(c.b) << 42);
         total += w;
     }
-    // The weights sum to the interval's length (16 fractional bits), at least 1/256 of a cell
-    // here: one division for its reciprocal, then per channel a product at most
-    // 255·256·2^40 = 2^56 (each sum is at most 255 times the total).
-    if total < 1 << 7 {
+    // The weights sum to the interval's length (9 fractional bits); an interval too short to
+    // weigh takes Eq. 4 at its centre line. One division for the reciprocal, then per channel
+    // a product at most 255·256·2^40 = 2^56 (each lane is at most 255 times the total).
+    if total == 0 {
         return voxel.sample_linear();
     }
-    let reciprocal = (1u64 << 40) / u64::from(total);
+    let reciprocal = (1u64 << 40) / total;
     #[allow(
         clippy::cast_possible_truncation,
         reason = "a weighted mean of 8-bit values times 256, clamped: within 0..=65280"
     )]
-    let ch = |s: u32| ((u64::from(s) * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16;
-    [ch(sum[0]), ch(sum[1]), ch(sum[2])]
+    let ch = |lane: u32| {
+        let s = (sum >> lane) & ((1 << 21) - 1);
+        ((s * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16
+    };
+    [ch(0), ch(21), ch(42)]
 }
 
 impl Sampler for Wedge {
@@ -243,18 +270,17 @@ impl Sampler for Wedge {
 mod tests {
     use super::*;
 
-    /// The hat's integral is 0 at the centre and ±½ a cell away, continuous, and odd.
+    /// A segment's two weights sum to the length covered, and over a whole segment each cell
+    /// gets half a cell.
     #[test]
-    fn the_hat_integrates_to_one_cell() {
-        const H: i64 = 1 << 16;
-        assert_eq!(hat_integral(0), 0);
-        assert_eq!(hat_integral(H), H / 2);
-        assert_eq!(hat_integral(-H), -H / 2);
-        assert_eq!(hat_integral(3 * H), H / 2);
-        for x in (-H..=H).step_by(977) {
-            assert_eq!(hat_integral(x), -hat_integral(-x), "odd at {x}");
+    fn a_segment_splits_its_length_between_its_two_cells() {
+        const D: i64 = 1 << 16;
+        assert_eq!(segment(0), (0, 0));
+        assert_eq!(segment(D), (D / 2, D / 2));
+        for d in (0..=D).step_by(977) {
+            let (a, b) = segment(d);
+            assert!((a + b - d).abs() <= 1, "{d}: {a} + {b}");
+            assert!(a >= b, "the near cell weighs more: {d}");
         }
-        // Half a cell from the centre the hat has covered ⅜ of a cell on that side.
-        assert_eq!(hat_integral(H / 2), 3 * H / 8);
     }
 }
