@@ -153,6 +153,7 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
             eye: self.eye,
             start: (n, ray.h),
             wedge: self.column.wedge,
+            climb: self.column.lod_base(S::SWITCH),
         };
         self.sampler.begin_pixel(&pixel, self.cost);
         ray

@@ -41,7 +41,7 @@ use crate::num::{height, Height};
 use crate::terrain::camera::{Column, Switch};
 use crate::terrain::frame::Frame;
 use crate::terrain::map::Axis;
-use crate::terrain::map::{fold, period, Level, Terrain};
+use crate::terrain::map::{fold, mirror, period, Level, Terrain};
 use crate::terrain::ray::Ray;
 
 /// A cursor on the voxel sequence of one column.
@@ -977,6 +977,31 @@ impl Voxel<'_> {
         (ahead >= reach && m.last_v - ahead >= reach).then_some((self.idx, m.dcross))
     }
 
+    /// The next finer level's rows across under this voxel's cell (its two children along
+    /// the column), for a blend between levels; `None` at level 0.
+    #[inline(always)]
+    pub fn finer(&self) -> Option<Finer<'_>> {
+        let m = self.march;
+        if m.l == 0 {
+            return None;
+        }
+        let level = m.terrain.levels().get(m.l as usize - 1)?;
+        let (x, y) = self.cell_unmirrored();
+        let (u, v) = match m.axis {
+            Axis::X => (x, y),
+            Axis::Y => (y, x),
+        };
+        let ahead = m.flip == 0;
+        Some(Finer {
+            level,
+            axis: m.axis,
+            u: 2 * u,
+            // The first child in the direction the ray moves across.
+            v: if ahead { 2 * v } else { 2 * v + 1 },
+            ahead,
+        })
+    }
+
     /// The height (map units) at array index `idx` of the voxel's level, as rays along the
     /// column's axis see it; 0 outside the level.
     #[inline(always)]
@@ -1035,6 +1060,40 @@ impl Voxel<'_> {
             (mixed >> 16) as u16,
         ];
         mix
+    }
+}
+
+/// The next finer level's cells under a voxel's cell ([`Voxel::finer`]): its two children
+/// along the column and their rows across, found through the mirror one by one (a blend reads
+/// a few of them, on a hit only).
+#[derive(Clone, Copy, Debug)]
+pub struct Finer<'v> {
+    level: &'v Level<'v>,
+    axis: Axis,
+    /// The first child along the column (the other is `u + 1`) and the first across (in the
+    /// direction the ray moves across), in the infinite grid.
+    u: i64,
+    v: i64,
+    ahead: bool,
+}
+
+impl Finer<'_> {
+    /// The height (as rays along the column's axis see it) and colour of the cell `k` cells
+    /// across from the first child (in the direction the ray moves across) in child row
+    /// `along` (0 or 1), mirrored as the walk mirrors.
+    pub fn cell(&self, along: i64, k: i64) -> (u16, Rgb) {
+        let v = if self.ahead { self.v + k } else { self.v - k };
+        let u = self.u + along;
+        let (x, y) = match self.axis {
+            Axis::X => (u, v),
+            Axis::Y => (v, u),
+        };
+        let (w, h) = (self.level.width(), self.level.height());
+        let at = mirror(y, h) as usize * w as usize + mirror(x, w) as usize;
+        (
+            self.level.heights(self.axis).get(at).copied().unwrap_or(0),
+            self.level.colors().get(at).copied().unwrap_or_default(),
+        )
     }
 }
 

@@ -19,8 +19,16 @@
 //!   no hit, without computing the mean.
 //!
 //! Along the column the hit is weighed as `as-exact` weighs it ([`Area`]: the visible angle
-//! from the eye, the next ray through the mean top). Where the interval lies inside one cell
-//! (near the eye) the step is exactly `as-exact`'s.
+//! from the eye, the next ray through the mean top). Where the interval is a point (at the eye)
+//! the step is exactly `as-exact`'s.
+//!
+//! **Levels blend.** Over the first third of each pyramid level's range (footprints from 1.2
+//! to 1.6 of its voxels) the step's height and colour are blended, linearly in the distance,
+//! from the same wedge over the finer level's cells ([`Voxel::finer`]: the two child rows
+//! along, the larger of their mean heights and the mean of their colours, as the pyramid
+//! makes a voxel) to the level's own, as trilinear mip-mapping blends two levels: at the
+//! walk's climb the step is the finer level's, as the step before it was, so no pixel pops
+//! there. The walk's test before the sampler reads the current level's cells only.
 //!
 //! **What is exact and what is not.** Exact: the integrals across the wedge (height and
 //! colour) and the weights along it. Approximated: what is visible inside the wedge is decided
@@ -59,6 +67,8 @@ pub struct Wedge {
     wedge: i64,
     /// The eye's `n`, whole half-voxels.
     n_eye: i64,
+    /// Where the walk climbs from level 0 to 1, half-voxels ahead of the eye ([`Pixel::climb`]).
+    climb: i64,
 }
 
 impl Default for Wedge {
@@ -74,15 +84,13 @@ impl Wedge {
             area: Area::new(),
             wedge: 0,
             n_eye: 0,
+            climb: 0,
         }
     }
 
-    /// The wedge's cross-section at `voxel`, in cells of its level measured from its cell's
-    /// edge behind (in the direction the ray moves across): `[lo, hi)`, 32 fractional bits.
+    /// `|n − n_eye|` of `voxel`, half-voxels, at most 2^23.
     #[inline(always)]
-    fn section(&self, voxel: &Voxel<'_>) -> (i64, i64) {
-        // |n − n_eye| ≤ 2^23 half-voxels and wedge ≤ 4·2^32 (Frame::new clamps it): the
-        // product is below 2^58.
+    fn d(&self, voxel: &Voxel<'_>) -> i64 {
         let d = voxel
             .n()
             .saturating_sub(self.n_eye)
@@ -93,6 +101,16 @@ impl Wedge {
             reason = "d ≤ 2^23 (clamped above): it fits in an i64"
         )]
         let d = d as i64;
+        d
+    }
+
+    /// The wedge's cross-section at `voxel`, in cells of its level measured from its cell's
+    /// edge behind (in the direction the ray moves across): `[lo, hi)`, 32 fractional bits.
+    #[inline(always)]
+    fn section(&self, voxel: &Voxel<'_>) -> (i64, i64) {
+        // |n − n_eye| ≤ 2^23 half-voxels and wedge ≤ 4·2^32 (Frame::new clamps it): the
+        // product is below 2^58.
+        let d = self.d(voxel);
         let half = ((d * self.wedge) >> voxel.level()).min(MAX_HALF);
         let t = i64::from(voxel.fraction_ahead());
         (t - half, t + half)
@@ -109,23 +127,25 @@ fn segment(d: i64) -> (i64, i64) {
 }
 
 /// The mean over `[lo, hi)` (cells from the current cell's edge behind, 32 fractional bits,
-/// within `[−1.5, 2.5)`) of Eq. 4's colour across the row of cells around `voxel`: each cell's
-/// colour weighted by the integral of its hat over the interval (at most seven cells). In 8.8.
-fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
+/// within `[−3.5, 4.5)`) of Eq. 4's colour across a row of cells (`color(k)`, `k` cells
+/// across from the current one): each cell's colour weighted by the integral of its share of
+/// Eq. 4 over the interval (at most nine cells). In 8.8; `None` for an interval too short to
+/// weigh.
+fn integrated_color(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> Option<Color16> {
     const D: i64 = 1 << 16;
     // Positions from the centre of the voxel's cell, 16 fractional bits: Eq. 4's segment `j`
     // runs from cell `j`'s centre to cell `j + 1`'s.
     let (u_lo, u_hi) = ((lo - ONE / 2) >> 16, (hi - ONE / 2) >> 16);
-    let (j_lo, j_hi) = ((u_lo >> 16).max(-3), (u_hi >> 16).min(2));
+    let (j_lo, j_hi) = ((u_lo >> 16).max(-4), (u_hi >> 16).min(3));
     let (d_lo, d_hi) = (
         (u_lo - (j_lo << 16)).clamp(0, D),
         (u_hi - (j_hi << 16)).clamp(0, D),
     );
     // Each cell's weight, the integral of its share of Eq. 4 over the interval: the partial
     // segments at the ends, and half a cell from every whole segment to either end of it.
-    let mut weights = [0i64; 7];
+    let mut weights = [0i64; 9];
     let mut add = |k: i64, w: i64| {
-        if let Some(slot) = usize::try_from(k + 3).ok().and_then(|i| weights.get_mut(i)) {
+        if let Some(slot) = usize::try_from(k + 4).ok().and_then(|i| weights.get_mut(i)) {
             *slot += w;
         }
     };
@@ -145,19 +165,17 @@ fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
         add(j_hi + 1, b_hi);
     }
     // Each weight to 9 bits (at most one cell, 512), a colour 255: a cell adds at most 2^17
-    // to a channel, seven at most 2^20, so the three channels add in 21-bit lanes of one word
+    // to a channel, nine at most 2^20.2, so the three channels add in 21-bit lanes of one word
     // (one multiply per cell, as `Voxel::sample_linear` packs its two).
     let (mut sum, mut total) = (0u64, 0u64);
-    // Away from the map's mirror edges (nearly always) the cells across are a stride apart.
-    let row = voxel.row_around(3);
     // Only the cells the interval's segments reach: `j_lo ..= j_hi + 1`.
-    let reach = usize::try_from(j_lo + 3).unwrap_or(0)..usize::try_from(j_hi + 5).unwrap_or(0);
+    let reach = usize::try_from(j_lo + 4).unwrap_or(0)..usize::try_from(j_hi + 6).unwrap_or(0);
     #[allow(
         clippy::cast_possible_truncation,
         clippy::cast_possible_wrap,
-        reason = "-3 ≤ j_lo (clamped above): the first cell's offset is within -3..=3"
+        reason = "-4 ≤ j_lo (clamped above): the first cell's offset is within -4..=4"
     )]
-    let first = j_lo.max(-3) as isize;
+    let first = j_lo.max(-4) as isize;
     for (k, &w) in (first..).zip(weights.get(reach).unwrap_or_default()) {
         let Ok(w) = u64::try_from((w + (1 << 6)) >> 7) else {
             continue;
@@ -165,11 +183,7 @@ fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
         if w == 0 {
             continue;
         }
-        let at = match row {
-            Some((idx, step)) => idx.wrapping_add_signed(k * step),
-            None => voxel.across(k),
-        };
-        let c: Rgb = voxel.color_at(at);
+        let c = color(k);
         sum += w * (u64::from(c.r) | u64::from(c.g) << 21 | u64::from(c.b) << 42);
         total += w;
     }
@@ -177,7 +191,7 @@ fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
     // weigh takes Eq. 4 at its centre line. One division for the reciprocal, then per channel
     // a product at most 255·256·2^40 = 2^56 (each lane is at most 255 times the total).
     if total == 0 {
-        return voxel.sample_linear();
+        return None;
     }
     let reciprocal = (1u64 << 40) / total;
     #[allow(
@@ -188,7 +202,41 @@ fn integrated_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
         let s = (sum >> lane) & ((1 << 21) - 1);
         ((s * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16
     };
-    [ch(0), ch(21), ch(42)]
+    Some([ch(0), ch(21), ch(42)])
+}
+
+/// The colour of cell `k` across from `voxel`'s (in the direction the ray moves across): a
+/// stride apart away from the map's mirror edges (`row`, [`Voxel::row_around`]), else through
+/// the mirror ([`Voxel::across`]).
+#[inline(always)]
+fn cell_color(voxel: &Voxel<'_>, row: Option<(usize, isize)>, k: isize) -> Rgb {
+    let at = match row {
+        Some((idx, step)) => idx.wrapping_add_signed(k * step),
+        None => voxel.across(k),
+    };
+    voxel.color_at(at)
+}
+
+/// [`integrated_color`] of the row around `voxel`, or Eq. 4 at its centre line for an interval
+/// too short to weigh.
+#[inline(always)]
+fn row_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
+    let row = voxel.row_around(4);
+    integrated_color(lo, hi, |k| cell_color(voxel, row, k)).unwrap_or_else(|| voxel.sample_linear())
+}
+
+/// How much of the finer level a step at `d` half-voxels from the eye, on `level`, blends in,
+/// 16 fractional bits: all of it at the walk's climb into the level (`climb·2^(L−1)`
+/// half-voxels), none from a third of the way through the level (footprints of 1.6 of its
+/// voxels) on, linearly between. Level 0 has no finer level.
+#[inline(always)]
+fn blend(d: i64, climb: i64, level: u32) -> i64 {
+    let start = (climb << level) >> 1;
+    if level == 0 || start <= 0 || d >= start + start / 3 {
+        return 0;
+    }
+    // d ≤ 2^23 and start ≥ 1: the quotient is below 2^42.
+    (((start + start / 3 - d.max(start)) << 16) / (start / 3).max(1)).clamp(0, 1 << 16)
 }
 
 impl Sampler for Wedge {
@@ -200,6 +248,7 @@ impl Sampler for Wedge {
         self.area.begin_pixel(pixel, cost);
         self.wedge = pixel.wedge.to_bits().max(0);
         self.n_eye = pixel.eye.n.to_bits() >> 24;
+        self.climb = pixel.climb;
     }
 
     /// A step where the highest of the five cells around the centre line, `top`, is above the
@@ -219,7 +268,7 @@ impl Sampler for Wedge {
             }
             let color = |v: &Voxel<'_>| {
                 if hi - lo >= ONE >> 8 {
-                    integrated_color(v, lo, hi)
+                    row_color(v, lo, hi)
                 } else {
                     v.sample_linear()
                 }
@@ -253,12 +302,55 @@ impl Sampler for Wedge {
         if i64::from(highest) << 24 <= ray.h.to_bits() || total <= 0 {
             return Hit::Rejected;
         }
-        let mean = Height::from_bits((sum << 24) / total);
+        let mut mean = (sum << 24) / total;
+        let mut color = row_color(voxel, lo, hi);
+        // Just past the walk's climb into this level, the same wedge over the finer level's
+        // cells (the two child rows along, the silhouette's maximum of their means, as the
+        // pyramid makes a height), blended out as the step moves into the level: at the climb
+        // the step is the finer level's, as the step before it was, so no pixel pops there.
+        let f = blend(self.d(voxel), self.climb, voxel.level());
+        if let Some(finer) = voxel.finer().filter(|_| f > 0) {
+            // The interval in the children's cells, from the first child's edge behind.
+            let (lo2, hi2) = (lo << 1, hi << 1);
+            let mut mean2 = i64::MIN;
+            for along in 0..2 {
+                let (mut sum2, mut total2) = (0i64, 0i64);
+                for k in (lo2 >> 32).max(-4)..=((hi2 - 1) >> 32).min(5) {
+                    let cover = (hi2.min((k + 1) << 32) - lo2.max(k << 32)) >> 16;
+                    sum2 += i64::from(finer.cell(along, k).0) * cover;
+                    total2 += cover;
+                }
+                if total2 > 0 {
+                    mean2 = mean2.max((sum2 << 24) / total2);
+                }
+            }
+            cost.wedge(4);
+            if mean2 > i64::MIN {
+                mean += ((mean2 - mean) * f) >> 16;
+                // The colour: the children's rows averaged (the pyramid's box along).
+                let color2 = |row: i64| {
+                    #[allow(
+                        clippy::cast_possible_truncation,
+                        reason = "-4 ≤ k ≤ 4 (integrated_color's cells)"
+                    )]
+                    let c =
+                        integrated_color(lo2 - ONE, hi2 - ONE, |k| finer.cell(row, k as i64 + 1).1);
+                    c
+                };
+                if let (Some(a2), Some(b2)) = (color2(0), color2(1)) {
+                    for ((c, a2), b2) in color.iter_mut().zip(a2).zip(b2) {
+                        let (a, b) = (i64::from(*c), (i64::from(a2) + i64::from(b2)) / 2);
+                        // A blend of two 8.8 colours: within 0..=65280.
+                        *c = u16::try_from(a + (((b - a) * f) >> 16)).unwrap_or(*c);
+                    }
+                }
+            }
+        }
+        let mean = Height::from_bits(mean);
         if mean <= ray.h {
             return Hit::Rejected;
         }
-        self.area
-            .sample_at(voxel, mean, |v| integrated_color(v, lo, hi), ray, cost)
+        self.area.sample_at(voxel, mean, |_| color, ray, cost)
     }
 
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
