@@ -1078,18 +1078,28 @@ pub struct Finer<'v> {
 }
 
 impl Finer<'_> {
-    /// The height (as rays along the column's axis see it) and colour of the cell `k` cells
-    /// across from the first child (in the direction the ray moves across) in child row
-    /// `along` (0 or 1), mirrored as the walk mirrors.
-    pub fn cell(&self, along: i64, k: i64) -> (u16, Rgb) {
-        let v = if self.ahead { self.v + k } else { self.v - k };
+    /// Where child row `along` (0 or 1) starts in the level's arrays, mirrored as the walk
+    /// mirrors: add [`Finer::across`] for a cell.
+    pub fn along(&self, along: i64) -> usize {
         let u = self.u + along;
-        let (x, y) = match self.axis {
-            Axis::X => (u, v),
-            Axis::Y => (v, u),
-        };
-        let (w, h) = (self.level.width(), self.level.height());
-        let at = mirror(y, h) as usize * w as usize + mirror(x, w) as usize;
+        match self.axis {
+            Axis::X => mirror(u, self.level.width()) as usize,
+            Axis::Y => mirror(u, self.level.height()) as usize * self.level.width() as usize,
+        }
+    }
+
+    /// The offset in the level's arrays of the cell `k` cells across from the first child (in
+    /// the direction the ray moves across), mirrored: added to a row's [`Finer::along`].
+    pub fn across(&self, k: i64) -> usize {
+        let v = if self.ahead { self.v + k } else { self.v - k };
+        match self.axis {
+            Axis::X => mirror(v, self.level.height()) as usize * self.level.width() as usize,
+            Axis::Y => mirror(v, self.level.width()) as usize,
+        }
+    }
+
+    /// The height (as rays along the column's axis see it) and colour at array index `at`.
+    pub fn cell(&self, at: usize) -> (u16, Rgb) {
         (
             self.level.heights(self.axis).get(at).copied().unwrap_or(0),
             self.level.colors().get(at).copied().unwrap_or_default(),

@@ -310,39 +310,52 @@ impl Sampler for Wedge {
         // the step is the finer level's, as the step before it was, so no pixel pops there.
         let f = blend(self.d(voxel), self.climb, voxel.level());
         if let Some(finer) = voxel.finer().filter(|_| f > 0) {
-            // The interval in the children's cells, from the first child's edge behind.
+            // The interval in the children's cells, from the first child's edge behind, and
+            // the cells it reaches across (their offsets, shared by both rows).
             let (lo2, hi2) = (lo << 1, hi << 1);
+            let (k_lo, k_hi) = ((lo2 >> 32).max(-4), ((hi2 - 1) >> 32).min(5));
+            let mut offsets = [0usize; 10];
+            for (k, slot) in (k_lo..=k_hi).zip(offsets.iter_mut()) {
+                *slot = finer.across(k);
+            }
             let mut mean2 = i64::MIN;
-            for along in 0..2 {
+            let mut colors = [[0u16; 3]; 2];
+            for (along, row_color) in (0..2).zip(colors.iter_mut()) {
+                let row = finer.along(along);
                 let (mut sum2, mut total2) = (0i64, 0i64);
-                for k in (lo2 >> 32).max(-4)..=((hi2 - 1) >> 32).min(5) {
+                for (k, &offset) in (k_lo..=k_hi).zip(offsets.iter()) {
                     let cover = (hi2.min((k + 1) << 32) - lo2.max(k << 32)) >> 16;
-                    sum2 += i64::from(finer.cell(along, k).0) * cover;
+                    sum2 += i64::from(finer.cell(row + offset).0) * cover;
                     total2 += cover;
                 }
                 if total2 > 0 {
                     mean2 = mean2.max((sum2 << 24) / total2);
                 }
+                // Eq. 4 across the row, over the same interval (shifted by a cell so that its
+                // cells lie in `integrated_color`'s reach).
+                #[allow(
+                    clippy::cast_possible_truncation,
+                    reason = "-4 ≤ k ≤ 4 (integrated_color's cells)"
+                )]
+                let c = integrated_color(lo2 - ONE, hi2 - ONE, |k| {
+                    let k = k as i64 + 1;
+                    let offset = usize::try_from(k - k_lo)
+                        .ok()
+                        .and_then(|i| offsets.get(i))
+                        .copied()
+                        .unwrap_or_else(|| finer.across(k));
+                    finer.cell(row + offset).1
+                });
+                *row_color = c.unwrap_or(color);
             }
             cost.wedge(4);
             if mean2 > i64::MIN {
                 mean += ((mean2 - mean) * f) >> 16;
-                // The colour: the children's rows averaged (the pyramid's box along).
-                let color2 = |row: i64| {
-                    #[allow(
-                        clippy::cast_possible_truncation,
-                        reason = "-4 ≤ k ≤ 4 (integrated_color's cells)"
-                    )]
-                    let c =
-                        integrated_color(lo2 - ONE, hi2 - ONE, |k| finer.cell(row, k as i64 + 1).1);
-                    c
-                };
-                if let (Some(a2), Some(b2)) = (color2(0), color2(1)) {
-                    for ((c, a2), b2) in color.iter_mut().zip(a2).zip(b2) {
-                        let (a, b) = (i64::from(*c), (i64::from(a2) + i64::from(b2)) / 2);
-                        // A blend of two 8.8 colours: within 0..=65280.
-                        *c = u16::try_from(a + (((b - a) * f) >> 16)).unwrap_or(*c);
-                    }
+                let [a2, b2] = colors;
+                for ((c, a2), b2) in color.iter_mut().zip(a2).zip(b2) {
+                    let (a, b) = (i64::from(*c), (i64::from(a2) + i64::from(b2)) / 2);
+                    // A blend of two 8.8 colours: within 0..=65280.
+                    *c = u16::try_from(a + (((b - a) * f) >> 16)).unwrap_or(*c);
                 }
             }
         }
