@@ -175,8 +175,8 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
 
     /// [`Pixels::next_pixel`] out of the ride's loop, for the modes that hit several voxels
     /// per pixel: inlined, the next pixel's rays (Eqs. 2–3) take registers from their
-    /// per-hit work (M4 `as` 770.4 → 729.0 instructions per pixel; PS, whose every hit finishes
-    /// a pixel, keeps it inline).
+    /// per-hit work (PS, whose every hit finishes a pixel, keeps it inline; the measurements
+    /// are in docs/measurements.md, "Where the walk's calls are inlined").
     #[inline(never)]
     fn next_pixel_out_of_line(&mut self, color: Rgb, voxel: &Voxel<'_>, ray: &mut Ray) -> bool {
         self.next_pixel(color, voxel, ray)
@@ -240,8 +240,8 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O
 /// Whether `ray`, at `n` now, stays at or above `max_h` up to `n_far`: then it can hit nothing.
 /// The slope and the distance are within the walk's proved ranges (|slope| ≤ 2^39 raw, distances
 /// below 2^22 half-voxels), so the product needs no saturation. Not inlined: it runs only
-/// before a column's first hit, and inlined it cost the hot loop registers (PS 263 → 291
-/// instructions per pixel, callgrind; 273 as a call).
+/// before a column's first hit, and inlined it costs the hot loop registers (docs/
+/// measurements.md, "Where the walk's calls are inlined").
 #[inline(never)]
 fn out_of_reach(ray: &Ray, max_h: Height, n: i64, n_far: i64) -> bool {
     let slope = ray.slope.to_bits();
@@ -258,9 +258,8 @@ fn out_of_reach(ray: &Ray, max_h: Height, n: i64, n_far: i64) -> bool {
 /// [`walk`] into any [`ColumnOut`] (pixel `i` to `out.set(i − rows.start, …)`).
 ///
 /// Not inlined: a column is one call, and as a function of its own the walk's registers are
-/// allocated for the walk alone. Inlined into the frame loop (which the pixel-format generic
-/// of [`render`] reshaped), its step loop gained ten register moves a step (x86 PS at the
-/// paper's pitch 20° 188.4 → 235.5 instructions per pixel; 189.4 as it is).
+/// allocated for the walk alone; inlined into the frame loop, its step loop gains register
+/// moves (docs/measurements.md, "Where the walk's calls are inlined").
 #[inline(never)]
 pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,

@@ -7,9 +7,9 @@
 //! interval `v(n) ± |n − n_eye|·wedge` across (the column's [`Pixel::wedge`]).
 //!
 //! At every step where the highest of the voxel under the centre line and the two cells to
-//! either side of it across is above the ray, the sampler reads the cells of the current level that interval
-//! touches (at most four: the walk climbs levels at 2.4 footprints, [`Switch::Late`], so the
-//! interval is at most 2.4 cells wide):
+//! either side of it across is above the ray, the sampler reads the cells of the current
+//! level that the interval touches (at most four: the walk climbs levels at 2.4 footprints,
+//! [`Switch::Late`], so the interval is at most 2.4 cells wide):
 //!
 //! - **the height** of the step is the exact mean of the cells' heights over the interval,
 //!   each weighted by the length it covers (the heights are constant per cell);

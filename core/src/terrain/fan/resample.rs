@@ -81,8 +81,8 @@ impl Fan {
     /// With roll the image is walked in tiles of `TILE × TILE` pixels: a tile's centres span a
     /// few fan rows (their `u` is affine in the pixel, so its extremes are at the tile's
     /// corners), which are looked up once per tile into a table on the stack. Without the table
-    /// a rolled image crossed a row edge every `1/sin ρ` pixels and paid `width_at` and the
-    /// row's bounds there (at 45°, 75 instructions 0.71 times per pixel). Across a tile `u`
+    /// a rolled image crosses a row edge every `1/sin ρ` pixels and pays `width_at` and the
+    /// row's bounds there. Across a tile `u`
     /// changes by at most `(TILE − 1)·(|cos ρ| + |sin ρ|) < 2·TILE − 1` rows (both fixed-point
     /// factors are at most one), so a tile spans at most `2·TILE = TILE_ROWS` fan rows and a
     /// pixel's row is the table's entry `(e − e_min) mod TILE_ROWS`, with no bounds to check.
