@@ -41,7 +41,7 @@ impl std::str::FromStr for Size {
 
 /// `on` or `off`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Switch {
+pub enum OnOff {
     /// Enabled.
     On,
     /// Disabled.
@@ -245,8 +245,8 @@ pub struct CameraArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub far: Option<f64>,
     /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
-    #[arg(long, value_enum, default_value_t = Switch::On)]
-    pub lod: Switch,
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
 }
 
 /// The pitch of the paper's middle view, the default of `--pitch`, degrees.
@@ -336,7 +336,7 @@ impl CameraArgs {
     /// The frame options these arguments give.
     fn options(&self) -> Options {
         Options {
-            lod: self.lod == Switch::On,
+            lod: self.lod == OnOff::On,
             projection: self.projection.into(),
             ..Options::default()
         }

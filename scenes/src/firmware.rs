@@ -17,7 +17,7 @@ use footprint_core::terrain::camera::{CameraParams, Options, Projection};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::{Error, Rgb};
 
-use crate::plates::{self, Mode, SceneName};
+use crate::plates::{self, SceneName, Shading};
 use crate::view::{self, FitError};
 use crate::{procedural, Map, Pyramid};
 
@@ -156,7 +156,7 @@ pub const PLATE: SceneName = SceneName::Plate2;
 pub const PLATE_SIZE: u32 = 64;
 
 /// The plate's mode: conservative clamping (`MinDot[n]`, the paper's Plate 3 on this scene).
-pub const PLATE_MODE: Mode = Mode::Clamp;
+pub const PLATE_MODE: Shading = Shading::Clamp;
 
 /// One vertex as the firmware bakes it: position and depth in the fixed-point form the core's
 /// [`Vertex`] holds (Q8 pixels, 1/65,535 of the depth range), and the normal as the

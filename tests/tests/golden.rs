@@ -87,7 +87,7 @@ fn specular_plates_match_the_golden_images() {
     let mut failures = Vec::new();
     for name in SceneName::DISTINCT {
         let scene = Scene::new(name);
-        for mode in scene::Mode::ALL {
+        for mode in scene::Shading::ALL {
             let frame = scene::render(&scene, 64, 0.0, mode, 8).unwrap();
             let file = format!("{}_{}", name.as_str(), mode.as_str());
             failures.extend(check("specular", &file, 64, 64, &frame.image));

@@ -489,17 +489,17 @@ fn clamping_beats_none_on_the_plates_at_one_shade_per_pixel() {
         );
     }
     for scene in SceneName::DISTINCT {
-        let get = |mode: scene::Mode| {
+        let get = |mode: scene::Shading| {
             records
                 .iter()
                 .find(|r| r.scene == scene && r.mode == mode)
                 .unwrap()
         };
         let (none, clamp, crow, reference) = (
-            get(scene::Mode::None),
-            get(scene::Mode::Clamp),
-            get(scene::Mode::Crow),
-            get(scene::Mode::Reference),
+            get(scene::Shading::None),
+            get(scene::Shading::Clamp),
+            get(scene::Shading::Crow),
+            get(scene::Shading::Reference),
         );
         assert_eq!(reference.rmse, 0.0);
         assert_eq!(reference.excess_flicker, 0.0);
@@ -516,7 +516,7 @@ fn clamping_beats_none_on_the_plates_at_one_shade_per_pixel() {
             clamp.excess_flicker,
             none.excess_flicker
         );
-        let clamp99 = get(scene::Mode::Clamp99);
+        let clamp99 = get(scene::Shading::Clamp99);
         assert!(
             clamp99.rmse < none.rmse,
             "{scene}: rmse clamp99 {}",
@@ -548,8 +548,8 @@ fn crow_samples_at_the_detected_rate_and_differs_from_the_reference() {
         let s = scene::Scene::new(name);
         let grids = scene::Grids::default();
         assert_eq!((grids.crow_max, grids.reference), (64, 32));
-        let crow = scene::render_with(&s, 256, 0.0, scene::Mode::Crow, grids).unwrap();
-        let reference = scene::render_with(&s, 256, 0.0, scene::Mode::Reference, grids).unwrap();
+        let crow = scene::render_with(&s, 256, 0.0, scene::Shading::Crow, grids).unwrap();
+        let reference = scene::render_with(&s, 256, 0.0, scene::Shading::Reference, grids).unwrap();
         let covered: Vec<usize> = (0..crow.grid.len()).filter(|&i| crow.covered[i]).collect();
         let mut below_cap = 0;
         let mut differ = 0;
@@ -594,7 +594,7 @@ fn crow_samples_at_the_detected_rate_and_differs_from_the_reference() {
             &s,
             256,
             0.0,
-            scene::Mode::Crow,
+            scene::Shading::Crow,
             scene::Grids {
                 crow_max: 8,
                 ..grids

@@ -9,7 +9,7 @@ use clap::Args;
 use crate::args::{BenchModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::bench;
 use crate::render::Mode;
-use crate::view::{MapArgs, Switch};
+use crate::view::{MapArgs, OnOff};
 
 /// `footprint bench`.
 #[derive(Args, Debug)]
@@ -28,8 +28,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
     pub repeats: u64,
     /// Multiresolution traversal.
-    #[arg(long, value_enum, default_value_t = Switch::On)]
-    pub lod: Switch,
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
     /// Also time each paper case in the exact projection at these rolls (degrees, comma
     /// separated, e.g. 0,15,45), each against the case in the paper's projection at roll 0
     /// (×unrolled) and, when the list has 0, against the exact projection at roll 0 (×level:
@@ -69,7 +69,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         &pyramid,
         &modes,
         args.size.size,
-        args.lod == Switch::On,
+        args.lod == OnOff::On,
         &args.roll,
         args.repeats as usize,
         || bar.inc(1),
@@ -77,7 +77,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     bar.finish_and_clear();
     // The paper's views the bench timed: say where they are placed and what they show.
     for pitch in crate::experiment::paper::PAPER_PITCHES {
-        let lod = args.lod == Switch::On;
+        let lod = args.lod == OnOff::On;
         crate::experiment::paper::paper_view(map, &pyramid, pitch, args.size.size, lod)?
             .placement
             .print();

@@ -12,7 +12,7 @@ use crate::lighting::MaterialArg;
 use crate::render::Mode;
 use crate::report::glint as writer;
 use crate::report::png::write_png;
-use crate::view::{MapArgs, Size, Switch};
+use crate::view::{MapArgs, OnOff, Size};
 
 /// What `footprint glint` does without `--measure`.
 const ABOUT: &str = "footprint glint: the flight of Sect. 5 with a low sun straight ahead over \
@@ -61,8 +61,8 @@ pub struct GlintArgs {
     pub sun_elevation: f64,
     /// Walk the pyramid (on) or level 0 (off) with the measured methods; the reference always
     /// walks level 0.
-    #[arg(long, value_enum, default_value_t = Switch::On)]
-    pub lod: Switch,
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
     /// Columns walked per pixel in the reference, box-filtered to the image's width (1–64).
     #[arg(
         long,
@@ -133,7 +133,7 @@ impl GlintArgs {
             modes,
             methods: METHODS.to_vec(),
             sun_elevation_deg: el,
-            lod: self.lod == Switch::On,
+            lod: self.lod == OnOff::On,
             reference_columns: self.reference_columns,
             material: self.material.clone(),
         };

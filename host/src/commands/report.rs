@@ -20,7 +20,7 @@ use crate::lighting::MaterialArg;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{MapArgs, Size, Switch, TerrainArg};
+use crate::view::{MapArgs, OnOff, Size, TerrainArg};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -37,8 +37,8 @@ pub struct ReportArgs {
     /// Walk the pyramid (on), or level 0 voxel by voxel (off), in the tables, the views, the
     /// flight and the diagnostic pictures: the RMSE with and without it is the pyramid's share
     /// of the error.
-    #[arg(long, value_enum, default_value_t = Switch::On)]
-    pub lod: Switch,
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
 }
 
 /// The name a `clap` value is given by on the command line.
@@ -126,7 +126,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     // Every file is staged beside its place in --out and moved in at the end: a failed or
     // interrupted run leaves nothing behind (and no folder it made).
     let folder = Folder::create("--out", &args.out)?;
-    let lod = args.lod == Switch::On;
+    let lod = args.lod == OnOff::On;
     let fly_spec = FlySpec {
         lod,
         ..FlySpec::paper(args.frames)

@@ -10,7 +10,7 @@ use crate::args::OutputFormat;
 use crate::experiment::specular::{self as exp, MeasureConfig, PlateRecord};
 use crate::report::png::write_png;
 use crate::report::specular_figures::{plot_figure2, plot_figure3};
-use crate::scene::{self, Grids, Mode, Scene, SceneName};
+use crate::scene::{self, Grids, Scene, SceneName, Shading};
 use footprint_core::Rgb;
 
 /// `footprint specular`.
@@ -27,7 +27,7 @@ pub struct SpecularArgs {
     /// conservative table (`MinDot[n]`, `n′ = ⌊π/Δα_N⌋`, Plate 3), `clamp99` and `clamp99.9` its
     /// aggressive ones (`MinDot[K_p(n)]`, `n′ = MaxnAllowed_p`; Plate 4 is clamp99.9).
     #[arg(long, value_enum, requires = "scene")]
-    pub mode: Option<Mode>,
+    pub mode: Option<Shading>,
     /// Crow's cap on the supersampling grid per pixel side, 2–64: a detected pixel is sampled
     /// on an s × s grid, s = ⌈Δα_ΔN/Δα_n⌉ (the detected rate) up to N (--mode crow and
     /// --measure) [default: 64].
@@ -109,7 +109,7 @@ pub fn specular(args: &SpecularArgs) -> Result<()> {
                  Plate 4: clamp99.9)"
             );
         };
-        if args.crow_max.is_some() && mode != Mode::Crow {
+        if args.crow_max.is_some() && mode != Shading::Crow {
             bail!("--crow-max: only --mode crow uses it (this is --mode {mode})");
         }
         return plate(args, name, mode);
@@ -120,7 +120,7 @@ pub fn specular(args: &SpecularArgs) -> Result<()> {
     measure(args)
 }
 
-fn plate(args: &SpecularArgs, name: SceneName, mode: Mode) -> Result<()> {
+fn plate(args: &SpecularArgs, name: SceneName, mode: Shading) -> Result<()> {
     let scene = Scene::new(name);
     let grids = args.grids();
     let side = u64::from(args.side());
@@ -160,7 +160,7 @@ fn plate(args: &SpecularArgs, name: SceneName, mode: Mode) -> Result<()> {
         (Some(lo), Some(hi)) => format!("  grid {lo}..{hi} per side"),
         _ => String::new(),
     };
-    let cap = if mode == Mode::Crow {
+    let cap = if mode == Shading::Crow {
         format!(" (cap {})", grids.crow_max)
     } else {
         String::new()

@@ -7,7 +7,7 @@ use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes};
 use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table;
 use crate::report::tables;
-use crate::view::{MapArgs, Switch};
+use crate::view::{MapArgs, OnOff};
 
 /// Which case(s) of Table 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -51,8 +51,8 @@ pub struct TableArgs {
     pub csv: bool,
     /// Walk the pyramid (on), or level 0 voxel by voxel (off): the RMSE with and without it is
     /// the pyramid's share of the error.
-    #[arg(long, value_enum, default_value_t = Switch::On)]
-    pub lod: Switch,
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
 }
 
 impl CaseArg {
@@ -78,7 +78,7 @@ pub fn table(args: &TableArgs) -> Result<()> {
         "steps",
         args.format.json,
     );
-    let lod = args.lod == Switch::On;
+    let lod = args.lod == OnOff::On;
     let result = table::run(
         map,
         &pyramid,

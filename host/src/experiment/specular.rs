@@ -9,7 +9,7 @@ use anyhow::Result;
 use footprint_core::specular::{cutoff, Power};
 use serde::Serialize;
 
-use crate::scene::{self, Mode, Scene, SceneName};
+use crate::scene::{self, Scene, SceneName, Shading};
 
 /// One row of Figure 2: the cutoff frequencies holding 90 %, 99 % and 99.9 % of the power of
 /// cos^n.
@@ -110,7 +110,7 @@ pub struct PlateRecord {
     /// The scene.
     pub scene: SceneName,
     /// The mode.
-    pub mode: Mode,
+    pub mode: Shading,
     /// Image side, pixels.
     pub size: u32,
     /// Crow's cap on the grid side (only `crow` uses it).
@@ -133,7 +133,12 @@ pub struct PlateRecord {
 
 impl PlateRecord {
     /// The record of `frame`, rendered from `scene` in `mode` with `grids`.
-    pub fn new(scene: SceneName, mode: Mode, grids: scene::Grids, frame: &scene::Frame) -> Self {
+    pub fn new(
+        scene: SceneName,
+        mode: Shading,
+        grids: scene::Grids,
+        frame: &scene::PlateImage,
+    ) -> Self {
         let mut counts = std::collections::BTreeMap::<u8, u64>::new();
         for (&g, &c) in frame.grid.iter().zip(&frame.covered) {
             if c {
@@ -180,7 +185,7 @@ impl MeasureConfig {
     /// per-pixel flags.
     pub fn bytes(&self, threads: u64) -> Option<u64> {
         let px = u64::from(self.size).checked_mul(u64::from(self.size))?;
-        let modes = Mode::ALL.len() as u64;
+        let modes = Shading::ALL.len() as u64;
         let kept = px
             .checked_mul(3)?
             .checked_mul(modes)?
@@ -211,7 +216,7 @@ pub struct Record {
     /// The scene.
     pub scene: SceneName,
     /// The mode.
-    pub mode: Mode,
+    pub mode: Shading,
     /// RMS error against the reference over every frame, pixel and channel, in units of full
     /// scale (255).
     pub rmse: f64,
@@ -252,7 +257,7 @@ struct FrameResult {
 
 fn measure_frame(scene: &Scene, cfg: &MeasureConfig, t: u32) -> Result<FrameResult> {
     let angle = f64::from(t) * cfg.step_deg;
-    let frames: Vec<scene::Frame> = Mode::ALL
+    let frames: Vec<scene::PlateImage> = Shading::ALL
         .iter()
         .map(|&m| {
             let grids = scene::Grids {
@@ -262,7 +267,7 @@ fn measure_frame(scene: &Scene, cfg: &MeasureConfig, t: u32) -> Result<FrameResu
             scene::render_with(scene, cfg.size, angle, m, grids)
         })
         .collect::<Result<_, _>>()?;
-    let reference = &frames[Mode::ALL.len() - 1];
+    let reference = &frames[Shading::ALL.len() - 1];
     let none = &frames[0];
     // Where the unantialiased image is visibly wrong: some channel off by more than 2/255.
     let differs: Vec<bool> = (0..reference.image.len())
@@ -312,7 +317,7 @@ fn measure_frame(scene: &Scene, cfg: &MeasureConfig, t: u32) -> Result<FrameResu
 
 /// Runs every mode on `scenes` over `cfg.frames` frames, on all cores; `progress` is called
 /// once per frame of each scene. One [`Record`] per scene and mode, in the order of
-/// `scenes` × [`Mode::ALL`].
+/// `scenes` × [`Shading::ALL`].
 pub fn measure(
     scenes: &[SceneName],
     cfg: &MeasureConfig,
@@ -372,10 +377,10 @@ pub fn measure(
             }
             sum as f64 / 255.0 / (px * f64::from(frames - 1))
         };
-        let reference_flicker = flicker(Mode::ALL.len() - 1);
+        let reference_flicker = flicker(Shading::ALL.len() - 1);
         let differs: u64 = results.iter().map(|r| r.differs).sum();
         let agrees: u64 = results.iter().map(|r| r.agrees).sum();
-        for (k, &mode) in Mode::ALL.iter().enumerate() {
+        for (k, &mode) in Shading::ALL.iter().enumerate() {
             let total = results.iter().fold(Sums::default(), |mut a, r| {
                 let s = &r.sums[k];
                 a.sq_err += s.sq_err;
@@ -385,7 +390,7 @@ pub fn measure(
                 a.flagged_agrees += s.flagged_agrees;
                 a
             });
-            let detects = !matches!(mode, Mode::None | Mode::Reference);
+            let detects = !matches!(mode, Shading::None | Shading::Reference);
             let frac = |a: u64, b: u64| if b == 0 { 0.0 } else { a as f64 / b as f64 };
             let f = flicker(k);
             records.push(Record {

@@ -66,11 +66,11 @@ impl SceneName {
 
     /// The mode that makes this scene the paper's plate when no mode is given: Plate 4 is
     /// Plate 2's scene with the aggressive 99.9 % clamp ("Plate 4 shows the same scene rendered
-    /// with more aggressive clamping (99.9 percent power)"), so `plate4` has [`Mode::Clamp999`];
+    /// with more aggressive clamping (99.9 percent power)"), so `plate4` has [`Shading::Clamp999`];
     /// the other scenes' plates need a mode to be named.
-    pub fn default_mode(self) -> Option<Mode> {
+    pub fn default_mode(self) -> Option<Shading> {
         match self {
-            SceneName::Plate4 => Some(Mode::Clamp999),
+            SceneName::Plate4 => Some(Shading::Clamp999),
             SceneName::Plate1 | SceneName::Plate2 | SceneName::Plate5 => None,
         }
     }
@@ -82,7 +82,7 @@ impl SceneName {
 /// A shading mode of `footprint specular`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-pub enum Mode {
+pub enum Shading {
     /// One highlight evaluation at the pixel's centre, no antialiasing (Plate 2).
     None,
     /// The conservative table: detection by `MinDot[n]`, `n′ = ⌊π/Δα_N⌋` (Plate 3).
@@ -101,26 +101,26 @@ pub enum Mode {
     Reference,
 }
 
-impl Mode {
+impl Shading {
     /// Every mode, in the order of the reports.
-    pub const ALL: [Mode; 6] = [
-        Mode::None,
-        Mode::Clamp,
-        Mode::Clamp99,
-        Mode::Clamp999,
-        Mode::Crow,
-        Mode::Reference,
+    pub const ALL: [Shading; 6] = [
+        Shading::None,
+        Shading::Clamp,
+        Shading::Clamp99,
+        Shading::Clamp999,
+        Shading::Crow,
+        Shading::Reference,
     ];
 
     /// The name as the CLI spells it.
     pub fn as_str(self) -> &'static str {
         match self {
-            Mode::None => "none",
-            Mode::Clamp => "clamp",
-            Mode::Clamp99 => "clamp99",
-            Mode::Clamp999 => "clamp99.9",
-            Mode::Crow => "crow",
-            Mode::Reference => "reference",
+            Shading::None => "none",
+            Shading::Clamp => "clamp",
+            Shading::Clamp99 => "clamp99",
+            Shading::Clamp999 => "clamp99.9",
+            Shading::Crow => "crow",
+            Shading::Reference => "reference",
         }
     }
 
@@ -130,10 +130,10 @@ impl Mode {
     /// (Crow's detection is the conservative one).
     pub fn table(self) -> &'static str {
         match self {
-            Mode::Clamp => "conservative",
-            Mode::Clamp99 => "aggressive 99%",
-            Mode::Clamp999 => "aggressive 99.9%",
-            Mode::None | Mode::Crow | Mode::Reference => "—",
+            Shading::Clamp => "conservative",
+            Shading::Clamp99 => "aggressive 99%",
+            Shading::Clamp999 => "aggressive 99.9%",
+            Shading::None | Shading::Crow | Shading::Reference => "—",
         }
     }
 
@@ -150,12 +150,12 @@ impl Mode {
     pub fn method_with(self, grids: Grids) -> Method {
         use footprint_core::specular::{Clamp, Power};
         match self {
-            Mode::None => Method::Point,
-            Mode::Clamp => Method::Clamp(Clamp::Conservative),
-            Mode::Clamp99 => Method::Clamp(Clamp::Aggressive(Power::P99)),
-            Mode::Clamp999 => Method::Clamp(Clamp::Aggressive(Power::P999)),
-            Mode::Crow => Method::Crow(grids.crow_max),
-            Mode::Reference => Method::Supersample(grids.reference),
+            Shading::None => Method::Point,
+            Shading::Clamp => Method::Clamp(Clamp::Conservative),
+            Shading::Clamp99 => Method::Clamp(Clamp::Aggressive(Power::P99)),
+            Shading::Clamp999 => Method::Clamp(Clamp::Aggressive(Power::P999)),
+            Shading::Crow => Method::Crow(grids.crow_max),
+            Shading::Reference => Method::Supersample(grids.reference),
         }
     }
 }
@@ -186,7 +186,7 @@ impl Default for Grids {
     }
 }
 
-impl std::fmt::Display for Mode {
+impl std::fmt::Display for Shading {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.pad(self.as_str())
     }
@@ -194,7 +194,7 @@ impl std::fmt::Display for Mode {
 
 /// A mode serializes as the CLI spells it (`"clamp99.9"`).
 #[cfg(feature = "cli")]
-impl serde::Serialize for Mode {
+impl serde::Serialize for Shading {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.serialize_str(self.as_str())
     }
@@ -311,7 +311,7 @@ impl Scene {
 
 /// What one rendered frame holds.
 #[derive(Clone, Debug)]
-pub struct Frame {
+pub struct PlateImage {
     /// Side of the square image, pixels.
     pub size: u32,
     /// The image, row-major from the top.
@@ -344,9 +344,9 @@ pub fn render(
     scene: &Scene,
     size: u32,
     angle_deg: f64,
-    mode: Mode,
+    mode: Shading,
     reference_grid: u8,
-) -> Result<Frame, Error> {
+) -> Result<PlateImage, Error> {
     let grids = Grids {
         reference: reference_grid,
         crow_max: CROW_MAX,
@@ -359,9 +359,9 @@ pub fn render_with(
     scene: &Scene,
     size: u32,
     angle_deg: f64,
-    mode: Mode,
+    mode: Shading,
     grids: Grids,
-) -> Result<Frame, Error> {
+) -> Result<PlateImage, Error> {
     let n_px = (size * size) as usize;
     let mut color = vec![BACKGROUND; n_px];
     let mut depth = vec![u16::MAX; n_px];
@@ -414,7 +414,7 @@ pub fn render_with(
             fragments += u64::from(raster::draw(&mut target, &tri, &mut shader));
         }
     }
-    Ok(Frame {
+    Ok(PlateImage {
         size,
         image: color,
         flagged,
