@@ -4,8 +4,10 @@
 //! the camera and its per-frame tables ([`Camera`], [`CameraParams`], [`Frame`], [`Options`],
 //! [`Projection`], [`Column`], [`Coord`]) and the buffers they borrow ([`FrameBuffers`],
 //! [`frame_buffers!`]), the modes ([`Mode`], [`Rate`], any [`Sampling`], the fan's
-//! [`Filter`]), the counters
-//! ([`NoCost`], [`Counts`]), the pixel formats ([`Rgb`], [`PixelSink`]) and [`Error`]. The
+//! [`Filter`]; the samplers, each of which links one mode alone, are in
+//! [`crate::terrain::sampler`] and [`crate::terrain::wedge`], so that their names (`Point`)
+//! do not meet an embedded-graphics prelude's), the counters ([`Cost`], [`NoCost`],
+//! [`Counts`], [`Tally`]), the pixel formats ([`Rgb`], [`PixelSink`]) and [`Error`]. The
 //! walk's internals are not here; the modules under [`crate::terrain`] have the rest.
 
 pub use crate::color::Rgb;
@@ -16,10 +18,11 @@ pub use crate::num::Coord;
 pub use crate::sink::PixelSink;
 pub use crate::terrain::buffers::FrameBuffers;
 pub use crate::terrain::camera::{Camera, CameraParams, Column, Options, Projection};
-pub use crate::terrain::cost::{Counts, NoCost};
+pub use crate::terrain::cost::{Cost, Counts, NoCost, Tally};
 pub use crate::terrain::fan::Filter;
 pub use crate::terrain::frame::Frame;
 pub use crate::terrain::image::Sampling;
+pub use crate::terrain::sampler::Sampler;
 pub use crate::terrain::pyramid::{self, HeightFilter};
 pub use crate::terrain::{Level, Scale, Terrain};
 

@@ -5,13 +5,10 @@
 //! `footprint_firmware::core_calls::…`, which `sizes.sh` counts as the core's.
 
 use footprint_core::lit::{Sun, SunShader};
-use footprint_core::num::Coord;
 use footprint_core::prelude::*;
 use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
 use footprint_core::terrain::camera::Switch;
-use footprint_core::terrain::cost::Cost;
-use footprint_core::terrain::sampler::Sampler;
 use footprint_core::terrain::visibility;
 
 use crate::PlateVertex;

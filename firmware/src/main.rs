@@ -42,18 +42,11 @@ use panic_semihosting as _;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use footprint_core::embedded::{self, RenderError};
 use footprint_core::lit::{Materials, Sun, AMBIENT_DIFFUSE};
-use footprint_core::num::Coord;
+use footprint_core::prelude::*;
 use footprint_core::specular::raster::Target;
 use footprint_core::specular::{Light, Material, Normal, Phong};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Projection};
-use footprint_core::terrain::cost::{Counts, NoCost, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Super};
 use footprint_core::terrain::wedge::Wedge;
-use footprint_core::terrain::{Level, Scale, Terrain};
-use footprint_core::{frame_buffers, terrain::buffers::FrameBuffers};
-use footprint_core::{Error, Rgb};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
     COLORS, FAN_LINES, FAN_ROWS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS,

@@ -11,10 +11,8 @@ use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 
-use footprint_core::terrain::camera::{Camera, Options};
-use footprint_core::terrain::cost::NoCost;
+use footprint_core::prelude::*;
 use footprint_core::terrain::sampler::Area;
-use footprint_core::terrain::{Level, Scale};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
     COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, SPACING_M, WIDTH,
