@@ -22,8 +22,8 @@ pub use crate::terrain::cost::{Cost, Counts, NoCost, Tally};
 pub use crate::terrain::fan::Filter;
 pub use crate::terrain::frame::Frame;
 pub use crate::terrain::image::Sampling;
-pub use crate::terrain::sampler::Sampler;
 pub use crate::terrain::pyramid::{self, HeightFilter};
+pub use crate::terrain::sampler::Sampler;
 pub use crate::terrain::{Level, Scale, Terrain};
 
 #[cfg(test)]
