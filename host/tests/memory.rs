@@ -187,3 +187,38 @@ fn the_frames_bomb_without_out_is_refused_under_the_budget() {
         );
     }
 }
+
+/// Under an address-space limit (`ulimit -v`, what a CI job or a container often sets), the
+/// default budget follows the limit: a map that would not fit is refused with one line and
+/// exit 2 before any allocation, where before the allocation failed and the process aborted
+/// (exit 134, `memory allocation of … failed`). Skipped with a reason where `sh` cannot set the
+/// limit.
+#[test]
+fn the_budget_follows_the_address_space_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let args = [
+        "render",
+        "--terrain-size",
+        "4096",
+        "--size",
+        "64x64",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let o = std::process::Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 600000 || exit 77; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_footprint"))
+        .args(args)
+        .output()
+        .unwrap();
+    if o.status.code() == Some(77) {
+        println!("skipped: this shell cannot set ulimit -v");
+        return;
+    }
+    assert_one_line_error(&o, &args, "--terrain-size 4096");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("memory budget"), "{stderr}");
+    assert!(!out.exists(), "an output was left behind");
+}

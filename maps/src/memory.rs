@@ -1,7 +1,8 @@
 //! The memory budget: before a command allocates its large buffers (the map and its pyramid,
 //! the images, a flight's cut-in-time images) it estimates their bytes and refuses, with one
 //! line naming the option, a run that would not fit (`--max-memory`, by default the memory the
-//! machine has available, less an eighth, read once).
+//! process may really use, less an eighth, read once: the machine's available memory, its
+//! control group's limit and its `ulimit -v`, whichever is least).
 
 use std::sync::OnceLock;
 
@@ -18,8 +19,10 @@ pub fn set_budget(bytes: u64) {
     let _ = BUDGET.set(bytes);
 }
 
-/// The budget in bytes: `--max-memory`, or the machine's available memory less an eighth
-/// (`MemAvailable` of `/proc/meminfo`; 8 GiB where it cannot be read).
+/// The budget in bytes: `--max-memory`, or what the process may really use less an eighth:
+/// the least of the machine's available memory (`MemAvailable` of `/proc/meminfo`; 8 GiB where
+/// it cannot be read), what its control group has left ([`cgroup_room`]) and what its address
+/// space and data limits leave ([`rlimit_room`]).
 pub fn budget() -> u64 {
     *BUDGET.get_or_init(|| {
         let available = std::fs::read_to_string("/proc/meminfo")
@@ -30,8 +33,72 @@ pub fn budget() -> u64 {
                     .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
             })
             .map_or(8 << 30, |kb| kb.saturating_mul(1024));
-        available - available / 8
+        let room = [Some(available), cgroup_room(), rlimit_room()]
+            .into_iter()
+            .flatten()
+            .min()
+            .unwrap_or(available);
+        room - room / 8
     })
+}
+
+/// What the process's control group lets it allocate still: its limit less its usage, for
+/// cgroup v2 (`memory.max` and `memory.current` of the group `/proc/self/cgroup` names) or v1
+/// (`memory.limit_in_bytes` and `memory.usage_in_bytes`); `None` without a limit.
+pub fn cgroup_room() -> Option<u64> {
+    let read = |path: String| std::fs::read_to_string(path).ok();
+    let number = |s: Option<String>| s.and_then(|s| s.trim().parse::<u64>().ok());
+    let groups = read("/proc/self/cgroup".into())?;
+    // v2: one line `0::/path`.
+    if let Some(path) = groups.lines().find_map(|l| l.strip_prefix("0::")) {
+        let dir = format!("/sys/fs/cgroup{}", path.trim());
+        if let Some(limit) = number(read(format!("{dir}/memory.max"))) {
+            let used = number(read(format!("{dir}/memory.current"))).unwrap_or(0);
+            return Some(limit.saturating_sub(used));
+        }
+    }
+    // v1: the memory controller's line `N:memory:/path`.
+    let path = groups
+        .lines()
+        .find_map(|l| l.split_once(":memory:").map(|(_, p)| p.trim().to_owned()))?;
+    let dir = format!("/sys/fs/cgroup/memory{path}");
+    let limit = number(read(format!("{dir}/memory.limit_in_bytes")))
+        .or_else(|| number(read("/sys/fs/cgroup/memory/memory.limit_in_bytes".into())))?;
+    // v1 says "no limit" with a number near 2^63.
+    if limit >= 1 << 60 {
+        return None;
+    }
+    let used = number(read(format!("{dir}/memory.usage_in_bytes"))).unwrap_or(0);
+    Some(limit.saturating_sub(used))
+}
+
+/// What the address-space and data-segment limits (`RLIMIT_AS`, `RLIMIT_DATA`, as `ulimit -v`
+/// sets them) leave the process: the smaller limit less the virtual memory it already maps
+/// (`VmSize` of `/proc/self/status`); `None` without a limit (or off Unix).
+#[cfg(not(unix))]
+pub fn rlimit_room() -> Option<u64> {
+    None
+}
+
+/// What the address-space and data-segment limits (`RLIMIT_AS`, `RLIMIT_DATA`, as `ulimit -v`
+/// sets them) leave the process: the smaller limit less the virtual memory it already maps
+/// (`VmSize` of `/proc/self/status`); `None` without a limit.
+#[cfg(unix)]
+pub fn rlimit_room() -> Option<u64> {
+    use rustix::process::{getrlimit, Resource};
+    let limit = [Resource::As, Resource::Data]
+        .into_iter()
+        .filter_map(|r| getrlimit(r).current)
+        .min()?;
+    let mapped = std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find_map(|l| l.strip_prefix("VmSize:"))
+                .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+        })
+        .map_or(0, |kb| kb.saturating_mul(1024));
+    Some(limit.saturating_sub(mapped))
 }
 
 /// Bytes in a readable unit ("1.5 GB").
