@@ -166,6 +166,16 @@ macro_rules! with_sampler {
 }
 
 impl Mode {
+    /// Every mode but the supersampling rates ([`SS_RATES`] gives those).
+    pub const NAMED: [Mode; 6] = [
+        Mode::Ps,
+        Mode::Li,
+        Mode::As,
+        Mode::AsExact,
+        Mode::As2,
+        Mode::Classic,
+    ];
+
     /// The mode's name, as the CLI takes it: `ps`, `li`, `ss2` … `ss256`, `as`, `as-exact`,
     /// `as2`, `classic`.
     pub const fn name(self) -> &'static str {
@@ -264,15 +274,8 @@ impl FromStr for Mode {
 
     /// A mode by its name ([`Mode::name`]), in any case.
     fn from_str(s: &str) -> Result<Self, ParseModeError> {
-        let all = [
-            Mode::Ps,
-            Mode::Li,
-            Mode::As,
-            Mode::AsExact,
-            Mode::As2,
-            Mode::Classic,
-        ];
-        all.into_iter()
+        Mode::NAMED
+            .into_iter()
             .chain(SS_RATES.into_iter().map(Mode::Ss))
             .find(|m| m.name().eq_ignore_ascii_case(s))
             .ok_or(ParseModeError)
@@ -294,17 +297,7 @@ mod tests {
     /// Every mode's name parses back to it, in any case; other names do not parse.
     #[test]
     fn names_round_trip() {
-        for m in [
-            Mode::Ps,
-            Mode::Li,
-            Mode::As,
-            Mode::AsExact,
-            Mode::As2,
-            Mode::Classic,
-        ]
-        .into_iter()
-        .chain(SS_RATES.map(Mode::Ss))
-        {
+        for m in Mode::NAMED.into_iter().chain(SS_RATES.map(Mode::Ss)) {
             assert_eq!(m.name().parse::<Mode>(), Ok(m));
             assert_eq!(m.name().to_ascii_uppercase().parse::<Mode>(), Ok(m));
         }

@@ -303,7 +303,7 @@ fn table_6_is_claimed_for_the_column_and_for_the_frame() {
             .unwrap_or_else(|| panic!("no claim starts with {start:?}: {claims:?}"))
     };
     let column = find("In Table 6 (one column)");
-    let frame = find("Over the whole frame");
+    let frame = find("Over the whole frame, AS");
     let fly = &r.json["fly"];
     let mode = |name: &str| {
         fly["modes"]
@@ -324,6 +324,20 @@ fn table_6_is_claimed_for_the_column_and_for_the_frame() {
     );
     let holds = excess(&as_) < excess(&mode("ss16")) && excess(&as_).max(0) * 10 <= excess(&ps);
     assert_eq!(frame["holds"], holds);
+    // as2's claim over the frame: its numbers are the flight's, and it holds exactly when
+    // as2's excess is at most a tenth of PS's and below AS's and SS16's.
+    let both = find("Over the whole frame, as2");
+    let as2 = mode("as2");
+    let both_evidence = both["evidence"].as_str().unwrap();
+    assert!(
+        both_evidence.contains(&format!("as2 {}", excess(&as2)))
+            && both_evidence.contains(&format!("PS {}", excess(&ps))),
+        "{both_evidence}"
+    );
+    let as2_holds = excess(&as2).max(0) * 10 <= excess(&ps)
+        && excess(&as2) < excess(&as_)
+        && excess(&as2) < excess(&mode("ss16"));
+    assert_eq!(both["holds"], as2_holds);
     let column_evidence = column["evidence"].as_str().unwrap();
     assert!(
         column_evidence.contains(&format!("AS {}", as_["histogram"]["6-60"])),

@@ -130,13 +130,14 @@ fn render<S: Sampling>(terrain: &Terrain<'_>, camera: &Camera, sampling: &S) -> 
     image
 }
 
-/// RMS difference over the pixels the integral covers, and how many it covers.
-fn rmse(map: &Map, camera: &Camera, image: &[Rgb]) -> (f64, usize) {
+/// RMS difference of `image` from `truth(c, i)` (pixel `c`, row `i` from the bottom) over the
+/// pixels it covers, and how many it covers.
+fn rms_from(image: &[Rgb], truth: impl Fn(usize, usize) -> Option<[f64; 3]>) -> (f64, usize) {
     let (w, h) = (SIZE as usize, SIZE as usize);
     let (mut sq, mut n) = (0.0, 0);
     for i in 0..h {
         for c in 0..w {
-            let Some(want) = integral(map, camera, c, i) else {
+            let Some(want) = truth(c, i) else {
                 continue;
             };
             let got = image[(h - 1 - i) * w + c];
@@ -147,6 +148,11 @@ fn rmse(map: &Map, camera: &Camera, image: &[Rgb]) -> (f64, usize) {
         }
     }
     ((sq / (3 * n) as f64).sqrt(), n)
+}
+
+/// [`rms_from`] the plane's footprint integrals.
+fn rmse(map: &Map, camera: &Camera, image: &[Rgb]) -> (f64, usize) {
+    rms_from(image, |c, i| integral(map, camera, c, i))
 }
 
 #[test]
@@ -396,23 +402,7 @@ fn as2_sees_a_ridge_across_the_column_planes() {
         ..params(200.25)
     })
     .unwrap();
-    let (w, h) = (SIZE as usize, SIZE as usize);
-    let rmse_of = |image: &[Rgb]| {
-        let (mut sq, mut n) = (0.0, 0);
-        for i in 0..h {
-            for c in 0..w {
-                let Some(want) = traced(&map, &camera, c, i) else {
-                    continue;
-                };
-                let got = image[(h - 1 - i) * w + c];
-                for (g, w) in [got.r, got.g, got.b].into_iter().zip(want) {
-                    sq += (f64::from(g) - w).powi(2);
-                }
-                n += 1;
-            }
-        }
-        ((sq / (3 * n) as f64).sqrt(), n)
-    };
+    let rmse_of = |image: &[Rgb]| rms_from(image, |c, i| traced(&map, &camera, c, i));
     let (wide, n) = rmse_of(&render(&terrain, &camera, &Wedge::new()));
     let (line, _) = rmse_of(&render(&terrain, &camera, &Area::new()));
     println!(

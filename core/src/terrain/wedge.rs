@@ -251,10 +251,16 @@ impl Sampler for Wedge {
         self.climb = pixel.climb;
     }
 
-    /// A step where the highest of the five cells around the centre line, `top`, is above the
-    /// ray.
+    /// A step where the highest of the five cells around the centre line (the walk's `top`,
+    /// which the sampler does not need: it reads the cells it weighs) is above the ray.
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        _top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         let (lo, hi) = self.section(voxel);
         let (first, last) = (lo >> 32, (hi - 1) >> 32);
         if first >= last {
@@ -298,7 +304,6 @@ impl Sampler for Wedge {
             cells += 1;
         }
         cost.wedge(cells);
-        let _ = top;
         if i64::from(highest) << 24 <= ray.h.to_bits() || total <= 0 {
             return Hit::Rejected;
         }
