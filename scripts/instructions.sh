@@ -17,8 +17,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v valgrind >/dev/null || { echo "instructions.sh: valgrind not found (apt-get install -y valgrind)" >&2; exit 2; }
-cargo build --release --quiet
-bin=target/release/footprint
+[ -n "${FOOTPRINT_BIN:-}" ] || cargo build --release --quiet
+bin=${FOOTPRINT_BIN:-target/release/footprint}
 modes=("$@")
 [ ${#modes[@]} -gt 0 ] || modes=(classic ps li ss8 ss16 as as-exact)
 args=(${FOOTPRINT_ARGS:-})

@@ -15,6 +15,7 @@ use core::str::FromStr;
 
 use crate::error::Error;
 use crate::sink::PixelSink;
+use crate::terrain::blend::Blend;
 use crate::terrain::camera::Switch;
 use crate::terrain::classic;
 use crate::terrain::cost::Cost;
@@ -220,7 +221,8 @@ impl Mode {
     }
 }
 
-/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]); `classic`
+/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), `as` and
+/// `as-exact` wrapped in [`Blend`] when the frame blends levels ([`Frame::blend`]); `classic`
 /// walks [`classic`]'s own walk.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
@@ -235,8 +237,16 @@ impl Sampling for Mode {
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
-            classic => classic::walk(frame, terrain, x, cost, out));
+        match (self, frame.blend()) {
+            (Mode::As, true) => {
+                Blend::new(ParallelArea::new()).walk_column(frame, terrain, x, cost, out)
+            }
+            (Mode::AsExact, true) => {
+                Blend::new(Area::new()).walk_column(frame, terrain, x, cost, out)
+            }
+            _ => with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
+                classic => classic::walk(frame, terrain, x, cost, out)),
+        }
     }
 
     fn walk_image<C: Cost, P: PixelSink>(
@@ -246,8 +256,16 @@ impl Sampling for Mode {
         cost: &mut C,
         image: &mut [P],
     ) -> Result<(), Error> {
-        with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
-            classic => classic::render(frame, terrain, cost, image))
+        match (self, frame.blend()) {
+            (Mode::As, true) => {
+                Blend::new(ParallelArea::new()).walk_image(frame, terrain, cost, image)
+            }
+            (Mode::AsExact, true) => {
+                Blend::new(Area::new()).walk_image(frame, terrain, cost, image)
+            }
+            _ => with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
+                classic => classic::render(frame, terrain, cost, image)),
+        }
     }
 }
 

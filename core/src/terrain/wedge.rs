@@ -41,6 +41,7 @@
 
 use crate::color::{Color16, Rgb};
 use crate::num::Height;
+use crate::terrain::blend::{distance, mix, weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::march::Voxel;
@@ -88,29 +89,13 @@ impl Wedge {
         }
     }
 
-    /// `|n − n_eye|` of `voxel`, half-voxels, at most 2^23.
-    #[inline(always)]
-    fn d(&self, voxel: &Voxel<'_>) -> i64 {
-        let d = voxel
-            .n()
-            .saturating_sub(self.n_eye)
-            .unsigned_abs()
-            .min(1 << 23);
-        #[allow(
-            clippy::cast_possible_wrap,
-            reason = "d ≤ 2^23 (clamped above): it fits in an i64"
-        )]
-        let d = d as i64;
-        d
-    }
-
     /// The wedge's cross-section at `voxel`, in cells of its level measured from its cell's
     /// edge behind (in the direction the ray moves across): `[lo, hi)`, 32 fractional bits.
     #[inline(always)]
     fn section(&self, voxel: &Voxel<'_>) -> (i64, i64) {
         // |n − n_eye| ≤ 2^23 half-voxels and wedge ≤ 4·2^32 (Frame::new clamps it): the
         // product is below 2^58.
-        let d = self.d(voxel);
+        let d = distance(voxel, self.n_eye);
         let half = ((d * self.wedge) >> voxel.level()).min(MAX_HALF);
         let t = i64::from(voxel.fraction_ahead());
         (t - half, t + half)
@@ -225,20 +210,6 @@ fn row_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
     integrated_color(lo, hi, |k| cell_color(voxel, row, k)).unwrap_or_else(|| voxel.sample_linear())
 }
 
-/// How much of the finer level a step at `d` half-voxels from the eye, on `level`, blends in,
-/// 16 fractional bits: all of it at the walk's climb into the level (`climb·2^(L−1)`
-/// half-voxels), none from a third of the way through the level (footprints of 1.6 of its
-/// voxels) on, linearly between. Level 0 has no finer level.
-#[inline(always)]
-fn blend(d: i64, climb: i64, level: u32) -> i64 {
-    let start = (climb << level) >> 1;
-    if level == 0 || start <= 0 || d >= start + start / 3 {
-        return 0;
-    }
-    // d ≤ 2^23 and start ≥ 1: the quotient is below 2^42.
-    (((start + start / 3 - d.max(start)) << 16) / (start / 3).max(1)).clamp(0, 1 << 16)
-}
-
 impl Sampler for Wedge {
     const SWITCH: Switch = Switch::Late;
     const WIDE: bool = true;
@@ -313,7 +284,7 @@ impl Sampler for Wedge {
         // cells (the two child rows along, the silhouette's maximum of their means, as the
         // pyramid makes a height), blended out as the step moves into the level: at the climb
         // the step is the finer level's, as the step before it was, so no pixel pops there.
-        let f = blend(self.d(voxel), self.climb, voxel.level());
+        let f = weight(distance(voxel, self.n_eye), self.climb, voxel.level());
         if let Some(finer) = voxel.finer().filter(|_| f > 0) {
             // The interval in the children's cells, from the first child's edge behind, and
             // the cells it reaches across (their offsets, shared by both rows).
@@ -357,11 +328,12 @@ impl Sampler for Wedge {
             if mean2 > i64::MIN {
                 mean += ((mean2 - mean) * f) >> 16;
                 let [a2, b2] = colors;
-                for ((c, a2), b2) in color.iter_mut().zip(a2).zip(b2) {
-                    let (a, b) = (i64::from(*c), (i64::from(a2) + i64::from(b2)) / 2);
-                    // A blend of two 8.8 colours: within 0..=65280.
-                    *c = u16::try_from(a + (((b - a) * f) >> 16)).unwrap_or(*c);
+                let mut finer = [0u16; 3];
+                for ((c, a2), b2) in finer.iter_mut().zip(a2).zip(b2) {
+                    // The mean of two 8.8 colours: within 0..=65280.
+                    *c = u16::try_from((u32::from(a2) + u32::from(b2)) / 2).unwrap_or(*c);
                 }
+                color = mix(color, finer, f);
             }
         }
         let mean = Height::from_bits(mean);

@@ -30,6 +30,7 @@ pub fn reference(
         Options {
             sky,
             lod: false,
+            blend: false,
             columns_per_pixel: REFERENCE_COLUMNS,
             projection,
         },
