@@ -15,7 +15,6 @@ use core::str::FromStr;
 
 use crate::error::Error;
 use crate::sink::PixelSink;
-use crate::terrain::blend::Blend;
 use crate::terrain::camera::Switch;
 use crate::terrain::classic;
 use crate::terrain::cost::Cost;
@@ -221,8 +220,7 @@ impl Mode {
     }
 }
 
-/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), `as` and
-/// `as-exact` wrapped in [`Blend`] when the frame blends levels ([`Frame::blend`]); `classic`
+/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]); `classic`
 /// walks [`classic`]'s own walk.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
@@ -237,16 +235,8 @@ impl Sampling for Mode {
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        match (self, frame.blend()) {
-            (Mode::As, true) => {
-                Blend::new(ParallelArea::new()).walk_column(frame, terrain, x, cost, out)
-            }
-            (Mode::AsExact, true) => {
-                Blend::new(Area::new()).walk_column(frame, terrain, x, cost, out)
-            }
-            _ => with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
-                classic => classic::walk(frame, terrain, x, cost, out)),
-        }
+        with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
+            classic => classic::walk(frame, terrain, x, cost, out));
     }
 
     fn walk_image<C: Cost, P: PixelSink>(
@@ -256,16 +246,8 @@ impl Sampling for Mode {
         cost: &mut C,
         image: &mut [P],
     ) -> Result<(), Error> {
-        match (self, frame.blend()) {
-            (Mode::As, true) => {
-                Blend::new(ParallelArea::new()).walk_image(frame, terrain, cost, image)
-            }
-            (Mode::AsExact, true) => {
-                Blend::new(Area::new()).walk_image(frame, terrain, cost, image)
-            }
-            _ => with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
-                classic => classic::render(frame, terrain, cost, image)),
-        }
+        with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
+            classic => classic::render(frame, terrain, cost, image))
     }
 }
 

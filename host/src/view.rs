@@ -48,31 +48,6 @@ pub enum OnOff {
     Off,
 }
 
-/// `--lod`: how the walk uses the multiresolution pyramid (Sect. 3).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Lod {
-    /// The pyramid: the walk climbs a level where the footprint reaches each mode's switch.
-    On,
-    /// Level 0 alone, voxel by voxel.
-    Off,
-    /// The pyramid, and `as` and `as-exact` blend each hit from the finer level to the
-    /// level's own past every climb, so that no pixel pops there
-    /// (`footprint_core::terrain::blend`; `as2` always blends, the other modes never do).
-    Blend,
-}
-
-impl Lod {
-    /// Whether the walk climbs the pyramid (`on` or `blend`).
-    pub fn walks_pyramid(self) -> bool {
-        self != Lod::Off
-    }
-
-    /// Whether `as` and `as-exact` blend levels (`blend`).
-    pub fn blends(self) -> bool {
-        self == Lod::Blend
-    }
-}
-
 /// How the pyramid's coarse heights are made (`footprint_core::terrain::pyramid::HeightFilter`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum HeightFilterArg {
@@ -269,10 +244,9 @@ pub struct CameraArgs {
     /// the footprint is one voxel wide].
     #[arg(long, allow_hyphen_values = true)]
     pub far: Option<f64>,
-    /// Multiresolution traversal (on), level 0 voxel by voxel (off), or the pyramid with
-    /// `as` and `as-exact` blending levels so that no pixel pops at a level switch (blend).
-    #[arg(long, value_enum, default_value_t = Lod::On)]
-    pub lod: Lod,
+    /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
 }
 
 /// The pitch of the paper's middle view, the default of `--pitch`, degrees.
@@ -362,8 +336,7 @@ impl CameraArgs {
     /// The frame options these arguments give.
     fn options(&self) -> Options {
         Options {
-            lod: self.lod.walks_pyramid(),
-            blend: self.lod.blends(),
+            lod: self.lod == OnOff::On,
             projection: self.projection.into(),
             ..Options::default()
         }

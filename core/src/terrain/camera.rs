@@ -232,11 +232,6 @@ pub struct Options {
     pub sky: Rgb,
     /// Multiresolution traversal (Sect. 3); `false` walks level 0 voxel by voxel.
     pub lod: bool,
-    /// Levels that blend (`--lod blend`, [`crate::terrain::blend`]): `as` and `as-exact`
-    /// blend each hit past a climb from the finer level's height and colour to the level's
-    /// own, so that no pixel pops where the walk climbs. `as2` always blends; the other
-    /// modes never do. Nothing changes without `lod`.
-    pub blend: bool,
     /// Columns walked per image pixel, 1..=64: with `k > 1` the frame has `W·k` columns, each
     /// `1/k` of a pixel wide, for a horizontally supersampled reference image.
     pub columns_per_pixel: u32,
@@ -249,7 +244,6 @@ impl Default for Options {
         Self {
             sky: Rgb::new(150, 190, 235),
             lod: true,
-            blend: false,
             columns_per_pixel: 1,
             projection: Projection::Paper,
         }

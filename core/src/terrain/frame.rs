@@ -22,7 +22,6 @@ pub struct Frame<'t> {
     eye: Height,
     sky: Rgb,
     lod: bool,
-    blend: bool,
     fan: Option<Fan>,
     /// Every row slope times every column's `kc` is within [`mul_floor_32`]'s 64-bit bound and
     /// needs no clamp to [`crate::num::MAX_SLOPE`] (proved once, in [`Frame::new`]): [`Frame::ray`] then
@@ -219,7 +218,6 @@ impl<'t> Frame<'t> {
             eye: fixed_from_f64(eye),
             sky: options.sky,
             lod: options.lod,
-            blend: options.blend,
             fan,
             rays_in_range,
         })
@@ -291,11 +289,6 @@ impl<'t> Frame<'t> {
     /// Whether the walk is multiresolution.
     pub fn lod(&self) -> bool {
         self.lod
-    }
-
-    /// Whether `as` and `as-exact` blend levels ([`Options::blend`]).
-    pub fn blend(&self) -> bool {
-        self.blend
     }
 
     /// Ray `R_i` of `column` (the lower edge of row `i`, `0..=H`): Eqs. 2 and 3 as a

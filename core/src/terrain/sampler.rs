@@ -573,7 +573,7 @@ impl ParallelArea {
     /// `voxel`, whose Eq. 4 colour is `color`, is visible from the ray at `ray` up to its top
     /// `top` (Fig. 12).
     #[inline(always)]
-    pub(crate) fn sample<C: Cost>(
+    fn sample<C: Cost>(
         &mut self,
         voxel: &Voxel<'_>,
         color: Color16,

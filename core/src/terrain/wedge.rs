@@ -22,13 +22,16 @@
 //! from the eye, the next ray through the mean top). Where the interval is a point (at the eye)
 //! the step is exactly `as-exact`'s.
 //!
-//! **Levels blend.** Over the first third of each pyramid level's range (footprints from 1.2
-//! to 1.6 of its voxels) the step's height and colour are blended, linearly in the distance,
-//! from the same wedge over the finer level's cells ([`Voxel::finer`]: the two child rows
-//! along, the larger of their mean heights and the mean of their colours, as the pyramid
-//! makes a voxel) to the level's own, as trilinear mip-mapping blends two levels: at the
-//! walk's climb the step is the finer level's, as the step before it was, so no pixel pops
-//! there. The walk's test before the sampler reads the current level's cells only.
+//! **Levels blend** ([`crate::terrain::blend`]). Over the first third of each pyramid level's
+//! range (footprints from 1.2 to 1.6 of its voxels) the step's height and colour are blended,
+//! linearly in the distance, from the same wedge over the finer level's cells
+//! ([`Voxel::finer`]: the two child rows along, the larger of their mean heights and the mean
+//! of their colours, as the pyramid makes a voxel) to the level's own, as trilinear mip-mapping
+//! blends two levels: at the walk's climb the step's values are the finer level's. The blend
+//! is of values, not of steps: along the column the walk takes one step per parent voxel from
+//! the climb on, so a pixel whose edge falls inside a parent still changes there (measured in
+//! the blend's docs: a small gain in RMSE, none in flicker). The walk's test before the sampler
+//! reads the current level's cells only.
 //!
 //! **What is exact and what is not.** Exact: the integrals across the wedge (height and
 //! colour) and the weights along it. Approximated: what is visible inside the wedge is decided

@@ -9,7 +9,7 @@ use clap::Args;
 use crate::args::{BenchModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::bench;
 use crate::render::Mode;
-use crate::view::{Lod, MapArgs};
+use crate::view::{MapArgs, OnOff};
 
 /// `footprint bench`.
 #[derive(Args, Debug)]
@@ -27,10 +27,9 @@ pub struct BenchArgs {
     /// and the median frame are reported.
     #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
     pub repeats: u64,
-    /// Multiresolution traversal (on), level 0 alone (off), or the pyramid with `as` and
-    /// `as-exact` blending levels (blend).
-    #[arg(long, value_enum, default_value_t = Lod::On)]
-    pub lod: Lod,
+    /// Multiresolution traversal.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
     /// Also time each paper case in the exact projection at these rolls (degrees, comma
     /// separated, e.g. 0,15,45), each against the case in the paper's projection at roll 0
     /// (×unrolled) and, when the list has 0, against the exact projection at roll 0 (×level:
@@ -70,7 +69,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         &pyramid,
         &modes,
         args.size.size,
-        args.lod,
+        args.lod == OnOff::On,
         &args.roll,
         args.repeats as usize,
         || bar.inc(1),
@@ -78,7 +77,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     bar.finish_and_clear();
     // The paper's views the bench timed: say where they are placed and what they show.
     for pitch in crate::experiment::paper::PAPER_PITCHES {
-        let lod = args.lod.walks_pyramid();
+        let lod = args.lod == OnOff::On;
         crate::experiment::paper::paper_view(map, &pyramid, pitch, args.size.size, lod)?
             .placement
             .print();

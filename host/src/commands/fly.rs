@@ -15,7 +15,7 @@ use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
-use crate::view::{Lod, MapArgs, ProjectionArg};
+use crate::view::{MapArgs, OnOff, ProjectionArg};
 
 /// The modes of `--animation`, left to right.
 const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
@@ -68,10 +68,9 @@ pub struct FlyArgs {
     #[arg(long)]
     pub column_only: bool,
     /// Walk the pyramid (on), or level 0 voxel by voxel (off): the modes' frames and the
-    /// start's fitted eye (the reference walks level 0 either way); blend: the pyramid, with
-    /// `as` and `as-exact` blending levels so that no pixel pops at a level switch.
-    #[arg(long, value_enum, default_value_t = Lod::On)]
-    pub lod: Lod,
+    /// start's fitted eye (the reference walks level 0 either way).
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub lod: OnOff,
     /// Columns the modes walk per pixel, box-filtered to one (1–64; the paper's is 1): with
     /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
     #[arg(long, default_value_t = 1, value_name = "K")]
@@ -154,8 +153,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         size: args.size.size,
         all_columns: !args.column_only,
         keep_cut: args.out.is_some(),
-        lod: args.lod.walks_pyramid(),
-        blend: args.lod.blends(),
+        lod: args.lod == OnOff::On,
         columns_per_pixel: args.columns_per_pixel,
         reference: !args.no_reference,
         causes: args.causes,

@@ -15,7 +15,7 @@ use super::paper::{paper_camera, PAPER_PITCHES};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{count, render_parallel, render_with, Mode, Tables};
-use crate::view::{Lod, Size};
+use crate::view::Size;
 
 /// One mode's timing in one view.
 #[derive(Clone, Debug, Serialize)]
@@ -97,17 +97,15 @@ pub fn run(
     pyramid: &Pyramid,
     modes: &[Mode],
     size: Size,
-    lod: Lod,
+    lod: bool,
     rolls: &[f64],
     repeats: usize,
     mut progress: impl FnMut(),
 ) -> Result<Vec<CaseTime>> {
     let paper = Options {
-        lod: lod.walks_pyramid(),
-        blend: lod.blends(),
+        lod,
         ..Options::default()
     };
-    let lod = lod.walks_pyramid();
     let exact = Options {
         projection: Projection::Exact,
         ..paper

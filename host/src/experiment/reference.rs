@@ -30,7 +30,6 @@ pub fn reference(
         Options {
             sky,
             lod: false,
-            blend: false,
             columns_per_pixel: REFERENCE_COLUMNS,
             projection,
         },

@@ -77,15 +77,11 @@ pub fn markdown(f: &fly::Fly) -> String {
         ),
         None => "straight ahead at pitch 5°".to_owned(),
     };
-    let walk = match (f.lod, f.blend, f.columns_per_pixel) {
-        (true, false, 1) => String::new(),
-        (lod, blend, k) => format!(
+    let walk = match (f.lod, f.columns_per_pixel) {
+        (true, 1) => String::new(),
+        (lod, k) => format!(
             ", the modes walking {}{}",
-            match (lod, blend) {
-                (true, true) => "the pyramid, `as` and `as-exact` blending levels",
-                (true, false) => "the pyramid",
-                (false, _) => "level 0",
-            },
+            if lod { "the pyramid" } else { "level 0" },
             if k > 1 {
                 format!(" with {k} columns per pixel")
             } else {

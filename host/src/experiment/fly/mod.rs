@@ -57,8 +57,6 @@ pub struct FlySpec {
     /// Walk the multiresolution pyramid (`true`), or level 0 voxel by voxel (`false`): the
     /// start's fitted eye height and every frame of the modes (the reference walks level 0).
     pub lod: bool,
-    /// With `lod`, `as` and `as-exact` blend levels (`--lod blend`; the reference never does).
-    pub blend: bool,
     /// Columns the modes walk per pixel (1, the paper's, to 64), box-filtered to one: with
     /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
     pub columns_per_pixel: u32,
@@ -103,7 +101,6 @@ impl FlySpec {
             projection: Projection::Paper,
             keep_cut: true,
             lod: true,
-            blend: false,
             columns_per_pixel: 1,
             reference: true,
             reference_columns: REFERENCE_COLUMNS,
@@ -149,13 +146,11 @@ impl FlySpec {
             FlyMode::Mode(mode) => Setting {
                 mode,
                 lod: self.lod,
-                blend: self.blend,
                 columns: self.columns_per_pixel,
             },
             FlyMode::Reference => Setting {
                 mode: Mode::AsExact,
                 lod: false,
-                blend: false,
                 columns: self.reference_columns,
             },
         }
@@ -212,8 +207,6 @@ struct Setting {
     mode: Mode,
     /// The pyramid (`true`) or level 0.
     lod: bool,
-    /// Levels blend for `as` and `as-exact`.
-    blend: bool,
     /// Columns walked per pixel, box-filtered to one.
     columns: u32,
 }
@@ -238,7 +231,6 @@ fn shoot(
 ) -> Result<Shot> {
     let options = Options {
         lod: setting.lod,
-        blend: setting.blend,
         columns_per_pixel: setting.columns,
         projection,
         ..Options::default()
@@ -343,8 +335,6 @@ pub struct Fly {
     pub projection: &'static str,
     /// Whether the modes walked the pyramid (`--lod on`) or level 0 alone.
     pub lod: bool,
-    /// Whether `as` and `as-exact` blended levels (`--lod blend`).
-    pub blend: bool,
     /// Columns the modes walked per pixel.
     pub columns_per_pixel: u32,
     /// Columns per pixel of the reference flight, if it was flown.
@@ -611,7 +601,6 @@ pub fn run_with_frames(
             Projection::Paper => "paper",
         },
         lod: spec.lod,
-        blend: spec.blend,
         columns_per_pixel: spec.columns_per_pixel,
         reference_columns: reference.then_some(spec.reference_columns),
         path: spec.path.clone(),
