@@ -58,8 +58,15 @@ pub struct InspectArgs {
     /// Fig. 9: the ground under the frame — sampled blue, visible unsampled red, hidden green.
     #[arg(long)]
     pub footprint: bool,
-    /// Output PNG (with several pictures, `-zoom`, `-pixel`, `-footprint` are added to its
-    /// stem); `-` is standard output (one picture).
+    /// One pixel's footprint in both axes, seen from above (north up): the column's two
+    /// vertical planes (red) bound it across, where its two row rays meet the ground (black)
+    /// bound it along; the cells `as2` weighs across that wedge are filled orange, and the
+    /// voxels --mode samples on the column's centre line (blue dashes) are framed in blue
+    /// (`as-exact`'s when --mode is `as2`).
+    #[arg(long, value_name = "ROW,COL")]
+    pub wedge: Option<PixelArg>,
+    /// Output PNG (with several pictures, `-zoom`, `-pixel`, `-footprint`, `-wedge` are added
+    /// to its stem); `-` is standard output (one picture).
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
     #[command(flatten)]
@@ -69,15 +76,21 @@ pub struct InspectArgs {
 
 /// Runs `footprint inspect`.
 pub fn inspect(args: &InspectArgs) -> Result<()> {
-    let wanted = [args.zoom, args.pixel.is_some(), args.footprint];
+    let wanted = [
+        args.zoom,
+        args.pixel.is_some(),
+        args.footprint,
+        args.wedge.is_some(),
+    ];
     let n = wanted.iter().filter(|&&w| w).count();
     if n == 0 {
-        bail!("inspect: give --zoom, --pixel ROW,COL or --footprint");
+        bail!("inspect: give --zoom, --pixel ROW,COL, --footprint or --wedge ROW,COL");
     }
     if n > 1 && !matches!(crate::output::target(&args.out), Ok(Target::Replace(_))) {
         bail!(
-            "--out {}: several pictures go to files named after it (-zoom, -pixel, -footprint \
-             added to its stem); give a file name, or one of --zoom, --pixel, --footprint",
+            "--out {}: several pictures go to files named after it (-zoom, -pixel, -footprint, \
+             -wedge added to its stem); give a file name, or one of --zoom, --pixel, \
+             --footprint, --wedge",
             crate::output::shown(&args.out)
         );
     }
@@ -92,10 +105,10 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         args.out.with_file_name(format!("{stem}-{suffix}.png"))
     };
     let view = View::new(&args.map, &args.camera)?;
-    if let Some(p) = args.pixel {
-        let (w, h) = (view.camera.width(), view.camera.height());
-        if p.row >= h || p.col >= w {
-            bail!("--pixel {},{}: outside the {w}x{h} image", p.row, p.col);
+    let (w, h) = (view.camera.width(), view.camera.height());
+    for (flag, p) in [("--pixel", args.pixel), ("--wedge", args.wedge)] {
+        if let Some(p) = p.filter(|p| p.row >= h || p.col >= w) {
+            bail!("{flag} {},{}: outside the {w}x{h} image", p.row, p.col);
         }
     }
     // The paper's pictures walk the pyramid, in the view's projection.
@@ -162,6 +175,47 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
                 counts.hidden
             )?;
         }
+    }
+    if let Some(p) = args.wedge {
+        let (summary, pic) = inspect::wedge(
+            &view.camera,
+            &view.pyramid,
+            pictures,
+            args.mode,
+            p.row,
+            p.col,
+            720,
+        )?;
+        write_png(&path_for("wedge"), pic.width, pic.height, &pic.pixels)?;
+        if !args.format.json {
+            let ground = |m: Option<f64>| {
+                m.map_or("nowhere within the far distance".into(), |m| {
+                    format!("{m:.0} m")
+                })
+            };
+            crate::outln!(
+                "wedge {},{}: as2 weighs {} cells across at {} hits (level {}..={}), {} samples \
+                 {} on the centre line; the wedge is {:.2} voxels wide at the first hit, {:.2} at \
+                 the last; the row rays meet the ground at {} and {}; {}x{} picture, {} pixels \
+                 per voxel",
+                p.row,
+                p.col,
+                summary.as2_cells,
+                summary.as2_hits,
+                summary.levels.0,
+                summary.levels.1,
+                summary.line_mode,
+                summary.line_cells,
+                summary.across_near,
+                summary.across_far,
+                ground(summary.near_m),
+                ground(summary.far_m),
+                summary.width,
+                summary.height,
+                (summary.pixels_per_voxel * 100.0).round() / 100.0
+            )?;
+        }
+        json.insert("wedge".into(), serde_json::to_value(summary)?);
     }
     if args.format.json {
         crate::outln!("{}", serde_json::Value::Object(json))?;

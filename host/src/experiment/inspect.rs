@@ -9,6 +9,7 @@ use footprint_core::color::{to_rgb, Color16};
 use footprint_core::num::Weight;
 use footprint_core::terrain::camera::{Camera, CameraParams, Options};
 use footprint_core::terrain::cost::Cost;
+use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::visibility::visit;
 use footprint_core::Rgb;
@@ -111,6 +112,8 @@ struct Trace {
     target: (usize, usize),
     at: (usize, usize),
     samples: Vec<Sample>,
+    /// The target's sampled voxels, `(level, x, y)` unmirrored, in the order taken.
+    cells: Vec<(u32, i64, i64)>,
     sampled: HashSet<(u32, i64, i64)>,
 }
 
@@ -125,6 +128,7 @@ impl Cost for Trace {
         let (x, y) = voxel.cell_unmirrored();
         self.sampled.insert((voxel.level(), x, y));
         if self.at == self.target {
+            self.cells.push((voxel.level(), x, y));
             self.samples.push(Sample {
                 color: to_rgb(color),
                 weight: weight.to_num::<f64>(),
@@ -139,6 +143,25 @@ impl Cost for Trace {
                 weight: weight.to_num::<f64>(),
                 sky: true,
             });
+        }
+    }
+}
+
+/// The walk's cell (grid column, row from the bottom) that stands for image pixel `(row` from
+/// the top, `col)`: the pixel itself with the paper's projection, the fan cell that weighs
+/// most in it with the exact one (`footprint_core::terrain::fan`).
+fn walked_cell(frame: &Frame<'_>, row: usize, col: usize) -> (usize, usize) {
+    let h = frame.image_size().1;
+    match frame.fan() {
+        None => (col, h - 1 - row),
+        Some(fan) => {
+            let mut best = (0, (col, h - 1 - row));
+            fan.taps(frame.row_slopes(), col, row, |tap| {
+                if tap.weight > best.0 {
+                    best = (tap.weight, (tap.line, tap.row));
+                }
+            });
+            best.1
         }
     }
 }
@@ -163,18 +186,7 @@ pub fn pixel(
     let terrain = pyramid.terrain(options.lod)?;
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
-    let target = match frame.fan() {
-        None => (col, h - 1 - row),
-        Some(fan) => {
-            let mut best = (0, (col, h - 1 - row));
-            fan.taps(frame.row_slopes(), col, row, |tap| {
-                if tap.weight > best.0 {
-                    best = (tap.weight, (tap.line, tap.row));
-                }
-            });
-            best.1
-        }
-    };
+    let target = walked_cell(&frame, row, col);
     let mut trace = Trace {
         target,
         ..Trace::default()
@@ -400,6 +412,382 @@ pub fn footprint(
             width: (w * grow) as u32,
             height: (h * grow) as u32,
             pixels: magnify(w, h, &pixels, grow),
+        },
+    ))
+}
+
+/// What [`wedge`] drew: one pixel's footprint in both axes and the cells two modes weigh in it.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct WedgeSummary {
+    /// The pixel's row, from the top.
+    pub row: usize,
+    /// The pixel's column.
+    pub col: usize,
+    /// The centre-line mode whose samples are framed in blue (`--mode`, or `as-exact` when
+    /// that is `as2`).
+    pub line_mode: Mode,
+    /// Distinct voxels it sampled in the pixel.
+    pub line_cells: usize,
+    /// `as2`'s hits in the pixel (steps whose mean height over the wedge was above the ray).
+    pub as2_hits: usize,
+    /// Distinct cells across the wedge that `as2` weighed at those hits (orange).
+    pub as2_cells: usize,
+    /// The wedge's width across, level-0 voxels, at `as2`'s first hit (the nearest).
+    pub across_near: f64,
+    /// The wedge's width across, level-0 voxels, at `as2`'s last hit (the farthest).
+    pub across_far: f64,
+    /// The pyramid levels of `as2`'s hits, lowest and highest.
+    pub levels: (u32, u32),
+    /// Where the pixel's lower ray `R_i` meets the ground on the column's centre line,
+    /// horizontal metres from the eye (`None`: it does not within the far distance).
+    pub near_m: Option<f64>,
+    /// Where its upper ray `R_{i+1}` meets it (`None`: it does not: the pixel sees sky).
+    pub far_m: Option<f64>,
+    /// Picture pixels per level-0 voxel (a whole number unless the footprint is longer than
+    /// the picture's largest side in voxels).
+    pub pixels_per_voxel: f64,
+    /// The picture's width, pixels.
+    pub width: u32,
+    /// The picture's height, pixels.
+    pub height: u32,
+}
+
+/// The colours of the wedge picture ([`wedge`]), for its legend and its tests.
+pub mod wedge_colors {
+    use footprint_core::Rgb;
+    /// The column's two vertical planes, which bound the footprint across.
+    pub const PLANE: Rgb = Rgb::new(220, 30, 30);
+    /// The column's centre line, dashed: the one line `as` and `as-exact` sample.
+    pub const CENTRE: Rgb = Rgb::new(20, 40, 170);
+    /// Where the pixel's two row rays meet the ground: the footprint's ends along.
+    pub const ROW_RAY: Rgb = Rgb::new(0, 0, 0);
+    /// Filled over a cell that `as2` weighed across the wedge (blended with the map below).
+    pub const AS2: Rgb = Rgb::new(255, 140, 0);
+    /// The edge of a cell that `as2` weighed.
+    pub const AS2_EDGE: Rgb = Rgb::new(180, 98, 0);
+    /// The frame of a voxel that the centre-line mode sampled.
+    pub const LINE: Rgb = Rgb::new(30, 90, 255);
+}
+
+/// Folds `i` into `0..n` as the walk mirrors the map beyond its edges (the edge cell repeats).
+fn fold(i: i64, n: i64) -> usize {
+    let m = i.rem_euclid(2 * n);
+    (if m < n { m } else { 2 * n - 1 - m }) as usize
+}
+
+/// The distance from `p` to the segment `a`–`b`, and how far along it `p` projects (both in
+/// the units of the points).
+fn to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (qx, qy) = (a.0 + t * dx, a.1 + t * dy);
+    (
+        ((p.0 - qx).powi(2) + (p.1 - qy).powi(2)).sqrt(),
+        t * len2.sqrt(),
+    )
+}
+
+/// One pixel's footprint in both axes, from above (north up, a plan of the map around it, at
+/// most `max_side` pixels on a side): the column's two vertical planes (red) bound it across,
+/// the ground hits of its two row rays `R_i` and `R_{i+1}` (black, traced in `f64` over the
+/// level-0 heights) bound it along; the column's centre line (blue dashes) is the one line
+/// `as` and `as-exact` sample. The cells `as2` weighed across the wedge at each of its hits
+/// in the pixel are filled orange (each the cells of its pyramid level that the wedge's
+/// cross-section at the hit's row reaches, found in `f64` from the planes, at most 1.5 cells
+/// to either side of the centre line as `as2` reads them; the finer level's cells that its
+/// blend reads are not drawn); the voxels `line_mode` sampled are framed in blue. With the
+/// exact projection the column is the fan line that weighs most in the pixel.
+pub fn wedge(
+    camera: &Camera,
+    pyramid: &Pyramid,
+    options: Options,
+    line_mode: Mode,
+    row: usize,
+    col: usize,
+    max_side: u32,
+) -> Result<(WedgeSummary, Picture)> {
+    let (w, h) = (camera.width(), camera.height());
+    if row >= h || col >= w {
+        bail!("--wedge {row},{col}: outside the {w}x{h} image");
+    }
+    let line_mode = if line_mode == Mode::As2 {
+        Mode::AsExact
+    } else {
+        line_mode
+    };
+    let terrain = pyramid.terrain(options.lod)?;
+    let mut tables = Tables::new(camera);
+    let frame = tables.frame(camera, &terrain, options)?;
+    let target = walked_cell(&frame, row, col);
+    let cells_of = |mode: Mode| -> Result<Vec<(u32, i64, i64)>> {
+        let mut trace = Trace {
+            target,
+            ..Trace::default()
+        };
+        render_with(&frame, &terrain, mode, &mut trace)?;
+        Ok(trace.cells)
+    };
+    let (as2_hits, line_hits) = (cells_of(Mode::As2)?, cells_of(line_mode)?);
+    if as2_hits.is_empty() {
+        bail!("--wedge {row},{col}: the pixel sees only sky; choose one lower in the image");
+    }
+
+    // The column's planes, as `Frame::new` places them (level-0 voxels; x east, y south).
+    let p = camera.params();
+    let map = pyramid.map();
+    let spacing = map.spacing_m;
+    let pix = camera.pixel_angle();
+    let (sh, ch) = p.heading_deg.to_radians().sin_cos();
+    let (fx, fy, rx, ry) = (sh, -ch, ch, sh);
+    let (xc, half, y_lo) = match frame.fan() {
+        Some(fan) => {
+            let line_pix = pix / p.pitch_deg.to_radians().cos();
+            (
+                fan.line_a(target.0) * line_pix,
+                line_pix * fan.line_spacing() / 2.0,
+                fan.row_y(target.1),
+            )
+        }
+        None => {
+            let k = f64::from(options.columns_per_pixel.max(1));
+            (
+                ((target.0 as f64 + 0.5) / k - w as f64 / 2.0) * pix,
+                pix / k / 2.0,
+                target.1 as f64 - h as f64 / 2.0,
+            )
+        }
+    };
+    let eye = (p.x_m / spacing, p.y_m / spacing);
+    let dir = |xc: f64| {
+        let norm = (1.0 + xc * xc).sqrt();
+        ((fx + xc * rx) / norm, (fy + xc * ry) / norm)
+    };
+    let (centre, side_a, side_b) = (dir(xc), dir(xc - half), dir(xc + half));
+    let far = p.far_m / spacing;
+    // Where a ray at azimuth `xc` through row edge `y` first passes below the level-0 terrain,
+    // horizontal voxels from the eye (`None` within the far distance).
+    let (mw, mh) = (i64::from(map.width), i64::from(map.height));
+    let height_m = |x: f64, y: f64| {
+        let at = fold(y.floor() as i64, mh) * map.width as usize + fold(x.floor() as i64, mw);
+        f64::from(map.heights[at]) * map.height_scale_m
+    };
+    let ground = |xc: f64, y: f64| -> Option<f64> {
+        let s = camera.slope_at(y) / (1.0 + xc * xc).sqrt();
+        let d = dir(xc);
+        let step = 1.0 / 32.0;
+        (1..)
+            .map(|k| f64::from(k) * step)
+            .take_while(|&t| t <= far)
+            .find(|&t| height_m(eye.0 + t * d.0, eye.1 + t * d.1) > p.eye_m + t * spacing * s)
+    };
+    let (near, far_hit) = (ground(xc, y_lo), ground(xc, y_lo + 1.0));
+    let (near_m, far_m) = (near.map(|t| t * spacing), far_hit.map(|t| t * spacing));
+
+    // The cells `as2` weighed: at each hit, the cells of its level that the wedge's
+    // cross-section at the hit's row centre reaches, across the column's major axis.
+    let x_major = centre.0.abs() >= centre.1.abs();
+    let (eu, ev) = if x_major { eye } else { (eye.1, eye.0) };
+    let at_row = |d: (f64, f64), u: f64| {
+        let (du, dv) = if x_major { d } else { (d.1, d.0) };
+        ev + (u - eu) * dv / du
+    };
+    // The footprint's ends along: the wedge's cross-sections (across the major axis, as the
+    // walk measures them) where the centre line's two row rays meet the ground.
+    let plan_of = |u: f64, v: f64| if x_major { (u, v) } else { (v, u) };
+    let ends: Vec<((f64, f64), (f64, f64))> = [near, far_hit]
+        .into_iter()
+        .flatten()
+        .map(|t| {
+            let hit = (eye.0 + t * centre.0, eye.1 + t * centre.1);
+            let u = if x_major { hit.0 } else { hit.1 };
+            (plan_of(u, at_row(side_a, u)), plan_of(u, at_row(side_b, u)))
+        })
+        .collect();
+    let mut as2_cells: Vec<(u32, i64, i64)> = Vec::new();
+    let mut across = Vec::new();
+    for &(l, x, y) in &as2_hits {
+        let size = f64::from(1u32 << l);
+        let u = if x_major { x } else { y };
+        let uc = (u as f64 + 0.5) * size;
+        let (a, b, c) = (at_row(side_a, uc), at_row(side_b, uc), at_row(centre, uc));
+        across.push((a - b).abs());
+        let reach = ((a - b).abs() / 2.0).min(1.5 * size);
+        let (lo, hi) = (
+            ((c - reach) / size).floor() as i64,
+            ((c + reach) / size).ceil() as i64 - 1,
+        );
+        let own = if x_major { y } else { x };
+        for v in lo.min(own)..=hi.max(own) {
+            let cell = if x_major { (l, x, v) } else { (l, v, y) };
+            if !as2_cells.contains(&cell) {
+                as2_cells.push(cell);
+            }
+        }
+    }
+    let mut line_cells = line_hits.clone();
+    line_cells.sort_unstable();
+    line_cells.dedup();
+
+    // The plan's bounds: every cell drawn and the footprint's corners, with a margin.
+    let span = |l: u32, v: i64| ((v << l) as f64, ((v + 1) << l) as f64);
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    let mut include = |x: f64, y: f64| {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    };
+    for &(l, x, y) in as2_cells.iter().chain(&line_cells) {
+        let ((ax, bx), (ay, by)) = (span(l, x), span(l, y));
+        include(ax, ay);
+        include(bx, by);
+    }
+    for &(a, b) in &ends {
+        include(a.0, a.1);
+        include(b.0, b.1);
+    }
+    let margin = 2.0 + 0.1 * (x1 - x0).max(y1 - y0);
+    let (x0, y0, x1, y1) = (
+        (x0 - margin).floor(),
+        (y0 - margin).floor(),
+        (x1 + margin).ceil(),
+        (y1 + margin).ceil(),
+    );
+    // Whole picture pixels per voxel up to 48; a footprint longer than `max_side` voxels is
+    // shown smaller (a picture pixel then takes the voxel under its centre).
+    let fit = f64::from(max_side) / (x1 - x0).max(y1 - y0);
+    let scale = if fit >= 1.0 {
+        fit.floor().min(48.0)
+    } else {
+        fit
+    };
+    let (pw, ph) = (((x1 - x0) * scale) as usize, ((y1 - y0) * scale) as usize);
+
+    // The map, faded, with the voxels' edges where they are large enough to see.
+    let lighten = |c: Rgb, k: f64| {
+        let f = |v: u8| (f64::from(v) + (255.0 - f64::from(v)) * k).round() as u8;
+        Rgb::new(f(c.r), f(c.g), f(c.b))
+    };
+    let mix = |a: Rgb, b: Rgb, k: f64| {
+        let f = |x: u8, y: u8| (f64::from(x) * (1.0 - k) + f64::from(y) * k).round() as u8;
+        Rgb::new(f(a.r, b.r), f(a.g, b.g), f(a.b, b.b))
+    };
+    let plan = |px: usize, py: usize| {
+        (
+            x0 + (px as f64 + 0.5) / scale,
+            y0 + (py as f64 + 0.5) / scale,
+        )
+    };
+    let mut pixels = vec![Rgb::new(255, 255, 255); pw * ph];
+    for py in 0..ph {
+        for px in 0..pw {
+            let (x, y) = plan(px, py);
+            let at = fold(y.floor() as i64, mh) * map.width as usize + fold(x.floor() as i64, mw);
+            let mut c = lighten(map.colors[at], 0.6);
+            let edge = |v: f64| (v - v.round()).abs() * scale < 0.5;
+            if scale >= 6.0 && (edge(x) || edge(y)) {
+                c = mix(c, Rgb::new(0, 0, 0), 0.12);
+            }
+            pixels[py * pw + px] = c;
+        }
+    }
+    // A cell's pixels, and whether a pixel lies within `inset` pixels of the cell's border.
+    let cell_pixels = |l: u32, x: i64, y: i64| {
+        let ((ax, bx), (ay, by)) = (span(l, x), span(l, y));
+        let to_px = |v: f64, o: f64| ((v - o) * scale).round().max(0.0) as usize;
+        let (px0, px1) = (to_px(ax, x0), to_px(bx, x0).min(pw));
+        let (py0, py1) = (to_px(ay, y0), to_px(by, y0).min(ph));
+        (px0, px1, py0, py1)
+    };
+    for &(l, x, y) in &as2_cells {
+        let (px0, px1, py0, py1) = cell_pixels(l, x, y);
+        for py in py0..py1 {
+            for px in px0..px1 {
+                let border = px == px0 || py == py0 || px + 1 == px1 || py + 1 == py1;
+                let c = &mut pixels[py * pw + px];
+                *c = if border {
+                    wedge_colors::AS2_EDGE
+                } else {
+                    mix(*c, wedge_colors::AS2, 0.55)
+                };
+            }
+        }
+    }
+    for &(l, x, y) in &line_cells {
+        let (px0, px1, py0, py1) = cell_pixels(l, x, y);
+        let inset = ((px1 - px0) / 8).clamp(1, 4);
+        for py in py0..py1 {
+            for px in px0..px1 {
+                let near =
+                    px < px0 + inset || py < py0 + inset || px + inset >= px1 || py + inset >= py1;
+                if near {
+                    pixels[py * pw + px] = wedge_colors::LINE;
+                }
+            }
+        }
+    }
+    // The lines, in picture pixels: the footprint's ends, the centre line, the planes on top.
+    let to_pic = |(x, y): (f64, f64)| ((x - x0) * scale, (y - y0) * scale);
+    let reach = 2.0 * ((x1 - x0).powi(2) + (y1 - y0).powi(2)).sqrt()
+        + ((eye.0 - x0).powi(2) + (eye.1 - y0).powi(2)).sqrt();
+    let ray = |d: (f64, f64)| {
+        (
+            to_pic(eye),
+            to_pic((eye.0 + reach * d.0, eye.1 + reach * d.1)),
+        )
+    };
+    // (from, to, colour, dashed), in picture pixels.
+    type Segment = ((f64, f64), (f64, f64), Rgb, bool);
+    let mut lines: Vec<Segment> = Vec::new();
+    for (a, b) in ends {
+        lines.push((to_pic(a), to_pic(b), wedge_colors::ROW_RAY, false));
+    }
+    let (a, b) = ray(centre);
+    lines.push((a, b, wedge_colors::CENTRE, true));
+    for d in [side_a, side_b] {
+        let (a, b) = ray(d);
+        lines.push((a, b, wedge_colors::PLANE, false));
+    }
+    let width = (scale / 12.0).clamp(1.0, 2.0);
+    for (a, b, color, dashed) in lines {
+        for py in 0..ph {
+            for px in 0..pw {
+                let (dist, along) = to_segment((px as f64 + 0.5, py as f64 + 0.5), a, b);
+                if dist <= width && !(dashed && along % 14.0 >= 9.0) {
+                    pixels[py * pw + px] = color;
+                }
+            }
+        }
+    }
+    let levels = as2_hits
+        .iter()
+        .fold((u32::MAX, 0), |(lo, hi), &(l, _, _)| (lo.min(l), hi.max(l)));
+    Ok((
+        WedgeSummary {
+            row,
+            col,
+            line_mode,
+            line_cells: line_cells.len(),
+            as2_hits: as2_hits.len(),
+            as2_cells: as2_cells.len(),
+            across_near: across.first().copied().unwrap_or(0.0),
+            across_far: across.last().copied().unwrap_or(0.0),
+            levels,
+            near_m,
+            far_m,
+            pixels_per_voxel: scale,
+            width: pw as u32,
+            height: ph as u32,
+        },
+        Picture {
+            width: pw as u32,
+            height: ph as u32,
+            pixels,
         },
     ))
 }
