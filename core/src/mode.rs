@@ -15,13 +15,14 @@ use core::str::FromStr;
 
 use crate::error::Error;
 use crate::sink::PixelSink;
-use crate::terrain::camera::Switch;
+use crate::terrain::camera::{Surface, Switch};
 use crate::terrain::classic;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
 use crate::terrain::image::Sampling;
 use crate::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use crate::terrain::surface::Smooth;
 use crate::terrain::wedge::Wedge;
 use crate::terrain::Terrain;
 use crate::Rgb;
@@ -220,8 +221,9 @@ impl Mode {
     }
 }
 
-/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]); `classic`
-/// walks [`classic`]'s own walk.
+/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), wrapped in
+/// [`Smooth`] when the frame's surface is continuous ([`Frame::surface`]; `as2` reads the
+/// surface itself); `classic` walks [`classic`]'s own walk, on flat tops.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
         Mode::filter(*self)
@@ -235,8 +237,13 @@ impl Sampling for Mode {
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
-            classic => classic::walk(frame, terrain, x, cost, out));
+        if frame.surface() == Surface::Bilinear && *self != Mode::As2 {
+            with_sampler!(*self, s => Smooth::new(s).walk_column(frame, terrain, x, cost, out),
+                classic => classic::walk(frame, terrain, x, cost, out));
+        } else {
+            with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
+                classic => classic::walk(frame, terrain, x, cost, out));
+        }
     }
 
     fn walk_image<C: Cost, P: PixelSink>(
@@ -246,8 +253,13 @@ impl Sampling for Mode {
         cost: &mut C,
         image: &mut [P],
     ) -> Result<(), Error> {
-        with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
-            classic => classic::render(frame, terrain, cost, image))
+        if frame.surface() == Surface::Bilinear && *self != Mode::As2 {
+            with_sampler!(*self, s => Smooth::new(s).walk_image(frame, terrain, cost, image),
+                classic => classic::render(frame, terrain, cost, image))
+        } else {
+            with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
+                classic => classic::render(frame, terrain, cost, image))
+        }
     }
 }
 

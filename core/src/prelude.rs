@@ -17,7 +17,7 @@ pub use crate::mode::{Mode, Rate};
 pub use crate::num::Coord;
 pub use crate::sink::PixelSink;
 pub use crate::terrain::buffers::FrameBuffers;
-pub use crate::terrain::camera::{Camera, CameraParams, Column, Options, Projection};
+pub use crate::terrain::camera::{Camera, CameraParams, Column, Options, Projection, Surface};
 pub use crate::terrain::cost::{Cost, Counts, NoCost, Tally};
 pub use crate::terrain::fan::Filter;
 pub use crate::terrain::frame::Frame;

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
+use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection, Surface};
 use footprint_core::terrain::pyramid::HeightFilter;
 
 use crate::camera::{place, Eye};
@@ -85,6 +85,37 @@ impl From<ProjectionArg> for Projection {
         match a {
             ProjectionArg::Exact => Projection::Exact,
             ProjectionArg::Paper => Projection::Paper,
+        }
+    }
+}
+
+/// The surface the walk meets (`footprint_core::terrain::camera::Surface`, `--surface`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum SurfaceArg {
+    /// Flat-topped voxels, the paper's model.
+    #[default]
+    Flat,
+    /// Where a pixel is narrower than a voxel, heights interpolated between the cells'
+    /// centres (bilinear) and met exactly by the ray; flat tops where a pixel spans a voxel or
+    /// more, blended between half a voxel and one.
+    Bilinear,
+}
+
+impl From<SurfaceArg> for Surface {
+    fn from(a: SurfaceArg) -> Self {
+        match a {
+            SurfaceArg::Flat => Surface::Flat,
+            SurfaceArg::Bilinear => Surface::Bilinear,
+        }
+    }
+}
+
+impl SurfaceArg {
+    /// The name, as `--surface` takes it and the JSON says it.
+    pub fn name(self) -> &'static str {
+        match self {
+            SurfaceArg::Flat => "flat",
+            SurfaceArg::Bilinear => "bilinear",
         }
     }
 }
@@ -247,6 +278,10 @@ pub struct CameraArgs {
     /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
+    /// The surface: flat-topped voxels (flat, the paper's), or continuous where a pixel is
+    /// narrower than a voxel (bilinear).
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
+    pub surface: SurfaceArg,
 }
 
 /// The pitch of the paper's middle view, the default of `--pitch`, degrees.
@@ -338,6 +373,7 @@ impl CameraArgs {
         Options {
             lod: self.lod == OnOff::On,
             projection: self.projection.into(),
+            surface: self.surface.into(),
             ..Options::default()
         }
     }

@@ -13,7 +13,7 @@ use footprint_host::experiment::table::{self, Tables15};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::Mode;
-use footprint_host::view::Size;
+use footprint_host::view::{Size, SurfaceArg};
 
 const SIZE: Size = Size {
     width: 400,
@@ -27,8 +27,17 @@ fn results() -> &'static (Tables15, Fly) {
         let map = procedural(1, DEFAULT_SIZE);
         let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
         let modes = footprint_host::experiment::paper::paper_modes();
-        let tables =
-            table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, true, |_| {}).unwrap();
+        let tables = table::run(
+            &map,
+            &pyramid,
+            &PAPER_PITCHES,
+            &modes,
+            SIZE,
+            true,
+            SurfaceArg::Flat,
+            |_| {},
+        )
+        .unwrap();
         let spec = FlySpec {
             size: SIZE,
             all_columns: false,

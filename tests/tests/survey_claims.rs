@@ -13,7 +13,7 @@ use footprint_host::experiment::paper::PAPER_PITCHES;
 use footprint_host::experiment::table;
 use footprint_host::pyramid::Pyramid;
 use footprint_host::survey::{survey, Kind};
-use footprint_host::view::Size;
+use footprint_host::view::{Size, SurfaceArg};
 
 const SIZE: Size = Size {
     width: 400,
@@ -25,7 +25,17 @@ fn claims_on(kind: Kind) -> Vec<(String, bool, String)> {
     let map = survey(kind, 1, 384);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let modes = footprint_host::experiment::paper::paper_modes();
-    let tables = table::run(&map, &pyramid, &PAPER_PITCHES, &modes, SIZE, true, |_| {}).unwrap();
+    let tables = table::run(
+        &map,
+        &pyramid,
+        &PAPER_PITCHES,
+        &modes,
+        SIZE,
+        true,
+        SurfaceArg::Flat,
+        |_| {},
+    )
+    .unwrap();
     let spec = FlySpec {
         size: SIZE,
         all_columns: false,

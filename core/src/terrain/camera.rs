@@ -225,6 +225,19 @@ pub enum Projection {
     Exact,
 }
 
+/// The surface the walk meets: the paper's flat-topped voxels, or a continuous surface where a
+/// pixel is narrower than a voxel ([`crate::terrain::surface`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Surface {
+    /// Each voxel a flat-topped column, its height at its centre (the paper's model, Sect. 2).
+    #[default]
+    Flat,
+    /// Where the pixel's footprint across is below one voxel, the heights interpolated between
+    /// the cells' centres (bilinear, as a magnified texture is filtered), blended into the flat
+    /// tops as the footprint grows from half a voxel to one.
+    Bilinear,
+}
+
 /// Frame options that are not part of the camera.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Options {
@@ -237,6 +250,8 @@ pub struct Options {
     pub columns_per_pixel: u32,
     /// The projection: the paper's image columns, or the exact fan.
     pub projection: Projection,
+    /// The surface: flat-topped voxels, or continuous where voxels are magnified.
+    pub surface: Surface,
 }
 
 impl Default for Options {
@@ -246,6 +261,7 @@ impl Default for Options {
             lod: true,
             columns_per_pixel: 1,
             projection: Projection::Paper,
+            surface: Surface::Flat,
         }
     }
 }
@@ -279,6 +295,9 @@ pub struct Column {
     /// footprint is `switch.voxels()` voxels wide: level L+1 begins `lod_base·2^L` ahead of
     /// the eye.
     pub(crate) lod_base: [i64; 2],
+    /// With [`Surface::Bilinear`], the distance in half-voxels where the *pixel's* footprint
+    /// across (all its columns together) is one voxel wide; 0 with [`Surface::Flat`].
+    pub(crate) surface_end: i64,
     /// Voxels of horizontal distance per half-voxel step, `sec(φ)/2`, for reports.
     pub(crate) run: f64,
     /// The rows walked, `first_row..end_row` from the bottom ([`Column::rows`]).
@@ -301,6 +320,7 @@ impl Column {
         n_start: 0,
         n_far: 0,
         lod_base: [0; 2],
+        surface_end: 0,
         run: 0.0,
         first_row: 0,
         end_row: 0,

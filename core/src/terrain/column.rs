@@ -154,6 +154,7 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
             start: (n, ray.h),
             wedge: self.column.wedge,
             climb: self.column.lod_base(S::SWITCH),
+            surface: self.column.surface_end,
         };
         self.sampler.begin_pixel(&pixel, self.cost);
         ray

@@ -9,7 +9,7 @@ use crate::num::{
     fixed_from_f64, mul_floor_24, mul_floor_32, mul_floor_32_in_range, Coord, Height, Line, Slope,
     MAX_COORD, MAX_EYE_HEIGHT, MAX_FAR, MAX_SLOPE_BITS, MUL_32_LIMIT,
 };
-use crate::terrain::camera::{floor_i64, Camera, Column, Options, Projection, Switch};
+use crate::terrain::camera::{floor_i64, Camera, Column, Options, Projection, Surface, Switch};
 use crate::terrain::fan::Fan;
 use crate::terrain::map::{Axis, Terrain};
 use crate::trig::{sin_cos_deg, sqrt};
@@ -22,6 +22,7 @@ pub struct Frame<'t> {
     eye: Height,
     sky: Rgb,
     lod: bool,
+    surface: Surface,
     fan: Option<Fan>,
     /// Every row slope times every column's `kc` is within [`mul_floor_32`]'s 64-bit bound and
     /// needs no clamp to [`crate::num::MAX_SLOPE`] (proved once, in [`Frame::new`]): [`Frame::ray`] then
@@ -187,6 +188,16 @@ impl<'t> Frame<'t> {
             )]
             let lod_base =
                 Switch::ALL.map(|s| (2.0 * s.voxels() / (delta * sec)).clamp(2.0, 1e12) as i64);
+            // The pixel's angular width is its columns' together, `delta / spacing`: its
+            // footprint is one voxel at `2 / (pixel·sec)` half-voxels.
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "clamped to [0, 1e12] here, so `as` drops only the fraction"
+            )]
+            let surface_end = match options.surface {
+                Surface::Flat => 0,
+                Surface::Bilinear => (2.0 * spacing / (delta * sec)).clamp(0.0, 1e12) as i64,
+            };
             *col = Column {
                 axis,
                 sign,
@@ -199,6 +210,7 @@ impl<'t> Frame<'t> {
                 n_start,
                 n_far,
                 lod_base,
+                surface_end,
                 run,
                 first_row: 0,
                 #[allow(
@@ -218,6 +230,7 @@ impl<'t> Frame<'t> {
             eye: fixed_from_f64(eye),
             sky: options.sky,
             lod: options.lod,
+            surface: options.surface,
             fan,
             rays_in_range,
         })
@@ -289,6 +302,11 @@ impl<'t> Frame<'t> {
     /// Whether the walk is multiresolution.
     pub fn lod(&self) -> bool {
         self.lod
+    }
+
+    /// The surface the walk meets ([`Options::surface`]).
+    pub fn surface(&self) -> Surface {
+        self.surface
     }
 
     /// Ray `R_i` of `column` (the lower edge of row `i`, `0..=H`): Eqs. 2 and 3 as a

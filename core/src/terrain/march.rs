@@ -1015,6 +1015,44 @@ impl Voxel<'_> {
         self.march.colors.get(idx).copied().unwrap_or_default()
     }
 
+    /// The height under the column's centre line at the voxel's centre on the continuous
+    /// surface ([`crate::terrain::camera::Surface::Bilinear`]): Eq. 4 on the heights, the two
+    /// cells whose centres straddle the line weighted by distance (16-bit weights), exactly the
+    /// bilinear interpolation of the heights at that point. Mirror edges repeat the edge cell.
+    #[inline(always)]
+    pub fn height_linear(&self) -> Height {
+        let m = self.march;
+        // As `sample_linear`, with the fraction's top 16 bits (centre at 2^15).
+        let b = (self.toward ^ m.flip) >> 16;
+        let w_there = b.abs_diff(1 << 15);
+        let ahead = self.toward >= 1 << 31;
+        let near = if ahead {
+            if self.cross_left > 0 {
+                m.dcross
+            } else {
+                0
+            }
+        } else if self.cross_left < m.last_v {
+            -m.dcross
+        } else {
+            0
+        };
+        let (here, there) = (
+            self.height_at(self.idx),
+            self.height_at(self.idx.wrapping_add_signed(near)),
+        );
+        // Two heights below 2^16 times weights summing to 2^16: below 2^32; then 24 − 16
+        // fractional bits more.
+        let mix = u64::from(here) * u64::from((1 << 16) - w_there)
+            + u64::from(there) * u64::from(w_there);
+        #[allow(
+            clippy::cast_possible_wrap,
+            reason = "mix < 2^32, shifted left by 8: below 2^40"
+        )]
+        let bits = (mix << 8) as i64;
+        Height::from_bits(bits)
+    }
+
     /// Linear interpolation across the axis orthogonal to the ray (Eq. 4): the two voxels whose
     /// centres straddle the ray's cross-axis position, weighted by distance (8-bit weights).
     #[inline(always)]
@@ -1251,6 +1289,42 @@ mod tests {
                     crossed > 50,
                     "the walk moves across the map: {crossed} crossings"
                 );
+            },
+        );
+    }
+
+    /// On a plane, the continuous surface under the line (Eq. 4 on the heights at each centre)
+    /// is the plane itself, at the line's exact position across: the bilinear interpolation of
+    /// a linear function is that function. Checked at every step of a slanted walk whose
+    /// interpolation stays inside the map (the mirror edges repeat their cells).
+    #[test]
+    fn the_continuous_surface_of_a_plane_is_the_plane() {
+        let heights: Vec<u16> = (0..MAP * MAP)
+            .map(|i| (7 * (i % MAP) + 13 * (i / MAP) + 100) as u16)
+            .collect();
+        with_column(
+            &heights,
+            (5.25, 40.7),
+            63.0,
+            1e5,
+            false,
+            |frame, terrain, column| {
+                let mut march = March::new(frame, terrain, column, Switch::Nearest);
+                let mut checked = 0;
+                for k in 0..200 {
+                    let (x, y) = march.cell_unmirrored();
+                    let cross = march.cross();
+                    if (1..MAP as i64 - 1).contains(&x) && (1..MAP as i64 - 1).contains(&y) {
+                        // Centre values 7x + 13y + 100 at (x + ½, y + ½): the plane at the
+                        // centre along x and the line's position across.
+                        let want = 7.0 * x as f64 + 13.0 * (cross - 0.5) + 100.0;
+                        let got = march.voxel().height_linear().to_num::<f64>();
+                        assert!((got - want).abs() < 0.01, "step {k}: {got} against {want}");
+                        checked += 1;
+                    }
+                    march.advance();
+                }
+                assert!(checked > 50, "only {checked} steps inside the map");
             },
         );
     }

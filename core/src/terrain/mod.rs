@@ -27,6 +27,7 @@ pub mod march;
 pub mod pyramid;
 pub mod ray;
 pub mod sampler;
+pub mod surface;
 pub mod visibility;
 pub mod wedge;
 

@@ -39,6 +39,10 @@ pub struct Pixel {
     /// `L + 1` at `climb·2^L` half-voxels ahead of the eye (`as2` blends the two levels
     /// between them).
     pub climb: i64,
+    /// With the continuous surface ([`crate::terrain::camera::Surface::Bilinear`]), the
+    /// distance in half-voxels ahead of the eye where the pixel's footprint across reaches one
+    /// voxel; 0 with flat-topped voxels.
+    pub surface: i64,
 }
 
 /// What a sampler did with a hit.

@@ -33,6 +33,10 @@
 //! the blend's docs: a small gain in RMSE, none in flicker). The walk's test before the sampler
 //! reads the current level's cells only.
 //!
+//! **On the continuous surface** (`--surface bilinear`, [`crate::terrain::surface`]), where the
+//! wedge is narrower than a voxel, the step's height is the surface's at the wedge's centre
+//! line, blended into the cells' mean as the surface blends into the flat tops.
+//!
 //! **What is exact and what is not.** Exact: the integrals across the wedge (height and
 //! colour) and the weights along it. Approximated: what is visible inside the wedge is decided
 //! on the cross-section's mean height, not plane by plane, so a voxel that rises above the
@@ -50,6 +54,7 @@ use crate::terrain::cost::Cost;
 use crate::terrain::march::Voxel;
 use crate::terrain::ray::Ray;
 use crate::terrain::sampler::{Area, Hit, Pixel, Sampler};
+use crate::terrain::surface;
 
 /// The largest half-width across a step reads, in cells of its level (32 fractional bits):
 /// 1.5 cells, so that the wedge reaches at most two cells to either side of the voxel under
@@ -73,6 +78,9 @@ pub struct Wedge {
     n_eye: i64,
     /// Where the walk climbs from level 0 to 1, half-voxels ahead of the eye ([`Pixel::climb`]).
     climb: i64,
+    /// Where the pixel's footprint reaches one voxel on the continuous surface, 0 on flat
+    /// tops ([`Pixel::surface`]).
+    surface: i64,
 }
 
 impl Default for Wedge {
@@ -89,6 +97,7 @@ impl Wedge {
             wedge: 0,
             n_eye: 0,
             climb: 0,
+            surface: 0,
         }
     }
 
@@ -223,6 +232,7 @@ impl Sampler for Wedge {
         self.wedge = pixel.wedge.to_bits().max(0);
         self.n_eye = pixel.eye.n.to_bits() >> 24;
         self.climb = pixel.climb;
+        self.surface = pixel.surface;
     }
 
     /// A step where the highest of the five cells around the centre line (the walk's `top`,
@@ -242,7 +252,9 @@ impl Sampler for Wedge {
             // over the interval (which may straddle the cell's centre, where Eq. 4 bends); at
             // the eye, where the interval is a point, `as-exact`'s hit.
             cost.wedge(1);
-            let own = Height::from_bits(i64::from(voxel.height_at(voxel.across(0))) << 24);
+            // On the continuous surface where voxels are magnified, its height at the centre.
+            let f = surface::weight(distance(voxel, self.n_eye), self.surface);
+            let own = surface::height(voxel, f);
             if own <= ray.h {
                 return Hit::Rejected;
             }
@@ -278,10 +290,18 @@ impl Sampler for Wedge {
             cells += 1;
         }
         cost.wedge(cells);
-        if i64::from(highest) << 24 <= ray.h.to_bits() || total <= 0 {
+        // On the continuous surface (a wedge narrower than a voxel, level 0), the mean across
+        // is the surface's height at the wedge's centre line (exact for the surface between
+        // two centres, where it is linear across), blended into the flat cells' mean.
+        let smooth = surface::weight(distance(voxel, self.n_eye), self.surface);
+        if total <= 0 || (smooth == 0 && i64::from(highest) << 24 <= ray.h.to_bits()) {
             return Hit::Rejected;
         }
         let mut mean = (sum << 24) / total;
+        if smooth > 0 && voxel.level() == 0 {
+            let line = voxel.height_linear().to_bits();
+            mean += ((line - mean) * smooth) >> 16;
+        }
         let mut color = row_color(voxel, lo, hi);
         // Just past the walk's climb into this level, the same wedge over the finer level's
         // cells (the two child rows along, the silhouette's maximum of their means, as the

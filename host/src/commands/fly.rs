@@ -15,7 +15,7 @@ use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
-use crate::view::{MapArgs, OnOff, ProjectionArg};
+use crate::view::{MapArgs, OnOff, ProjectionArg, SurfaceArg};
 
 /// The modes of `--animation`, left to right.
 const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
@@ -71,6 +71,10 @@ pub struct FlyArgs {
     /// start's fitted eye (the reference walks level 0 either way).
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
+    /// The surface every frame meets, the reference's too: flat-topped voxels (flat, the
+    /// paper's), or continuous where a pixel is narrower than a voxel (bilinear).
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
+    pub surface: SurfaceArg,
     /// Columns the modes walk per pixel, box-filtered to one (1–64; the paper's is 1): with
     /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
     #[arg(long, default_value_t = 1, value_name = "K")]
@@ -154,6 +158,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         all_columns: !args.column_only,
         keep_cut: args.out.is_some(),
         lod: args.lod == OnOff::On,
+        surface: args.surface,
         columns_per_pixel: args.columns_per_pixel,
         reference: !args.no_reference,
         causes: args.causes,

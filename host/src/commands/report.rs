@@ -20,7 +20,7 @@ use crate::lighting::MaterialArg;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{MapArgs, OnOff, Size, TerrainArg};
+use crate::view::{MapArgs, OnOff, Size, SurfaceArg, TerrainArg};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -150,10 +150,19 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let file = |name: &str| -> Result<PathBuf> { folder.file(name) };
 
     // Tables 1–5.
-    let tables = table::run(map, &pyramid, &PAPER_PITCHES, &modes, size, lod, |msg| {
-        bar.set_message(msg.to_string());
-        bar.inc(1);
-    })?;
+    let tables = table::run(
+        map,
+        &pyramid,
+        &PAPER_PITCHES,
+        &modes,
+        size,
+        lod,
+        SurfaceArg::Flat,
+        |msg| {
+            bar.set_message(msg.to_string());
+            bar.inc(1);
+        },
+    )?;
     bar.suspend(|| {
         for case in &tables.cases {
             case.view.print();

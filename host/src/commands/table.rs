@@ -7,7 +7,7 @@ use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes};
 use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table;
 use crate::report::tables;
-use crate::view::{MapArgs, OnOff};
+use crate::view::{MapArgs, OnOff, SurfaceArg};
 
 /// Which case(s) of Table 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -53,6 +53,10 @@ pub struct TableArgs {
     /// the pyramid's share of the error.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
+    /// The surface the modes and the ground truth meet: flat-topped voxels (flat, the
+    /// paper's), or continuous where a pixel is narrower than a voxel (bilinear).
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
+    pub surface: SurfaceArg,
 }
 
 impl CaseArg {
@@ -86,6 +90,7 @@ pub fn table(args: &TableArgs) -> Result<()> {
         &modes,
         args.size.size,
         lod,
+        args.surface,
         |msg| {
             bar.set_message(msg.to_string());
             bar.inc(1);

@@ -10,7 +10,7 @@
 //! further down to match).
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options, Projection};
+use footprint_core::terrain::camera::{Camera, Options, Projection, Surface};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::Rgb;
 use serde::Serialize;
@@ -52,7 +52,13 @@ pub fn compare(
 ) -> Result<Vec<Variant>> {
     let main = Pyramid::build(map.clone(), filter)?;
     let camera = paper_camera(map, &main, pitch, size, true)?;
-    let truth = reference(&camera, &main, Options::default().sky, Projection::Paper)?;
+    let truth = reference(
+        &camera,
+        &main,
+        Options::default().sky,
+        Projection::Paper,
+        Surface::Flat,
+    )?;
     let other = match filter {
         HeightFilter::Silhouette => HeightFilter::Mean,
         HeightFilter::Mean => HeightFilter::Silhouette,

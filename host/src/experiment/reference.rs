@@ -4,10 +4,12 @@
 //! pixel, box-filtered horizontally: area sampling is exact along each column, and 16
 //! columns per pixel make the naive horizontal sampling the paper leaves (Sect. 8) negligible.
 //! With the exact projection the 16 columns per pixel are fan lines, and the fan's own
-//! resampling is the box filter.
+//! resampling is the box filter. On the continuous surface (`--surface bilinear`) the reference
+//! meets the same surface as the modes: the surface's extent is measured per pixel, all its
+//! columns together.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options, Projection};
+use footprint_core::terrain::camera::{Camera, Options, Projection, Surface};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;
@@ -16,12 +18,14 @@ use crate::render::{render_parallel, Mode, Tables};
 /// Columns walked per pixel in the reference.
 pub const REFERENCE_COLUMNS: u32 = 16;
 
-/// Renders the reference image of `camera`'s view in `projection` (row-major from the top).
+/// Renders the reference image of `camera`'s view in `projection` on `surface` (row-major from
+/// the top).
 pub fn reference(
     camera: &Camera,
     pyramid: &Pyramid,
     sky: Rgb,
     projection: Projection,
+    surface: Surface,
 ) -> Result<Vec<Rgb>> {
     supersampled(
         camera,
@@ -32,6 +36,7 @@ pub fn reference(
             lod: false,
             columns_per_pixel: REFERENCE_COLUMNS,
             projection,
+            surface,
         },
     )
 }

@@ -13,7 +13,7 @@ use super::reference::{psnr, reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{count, render_timed, Mode, Tables, SS_RATES};
-use crate::view::Size;
+use crate::view::{Size, SurfaceArg};
 
 /// The coverage ratios of Table 5.
 pub const TABLE5_COVERAGE: [f64; 4] = [0.3, 0.5, 0.7, 0.9];
@@ -104,6 +104,8 @@ impl std::fmt::Display for Rate {
 pub struct Tables15 {
     /// Whether the walk used the pyramid (`--lod on`) or level 0 alone.
     pub lod: bool,
+    /// The surface the modes and the ground truth met: `flat` or `bilinear` (`--surface`).
+    pub surface: &'static str,
     /// One entry per case.
     pub cases: Vec<Case>,
     /// Table 5.
@@ -118,6 +120,10 @@ pub fn steps(pitches: usize, modes: usize) -> u64 {
 /// Runs the cases at `pitches` with `modes` at `size` (the paper's is 400×400), walking the
 /// pyramid (`lod`) or level 0 alone; the ground truth is the same either way, so the RMSE with
 /// and without `lod` shows the pyramid's share of the error.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the tables' inputs, each one option of `footprint table`"
+)]
 pub fn run(
     map: &Map,
     pyramid: &Pyramid,
@@ -125,11 +131,13 @@ pub fn run(
     modes: &[Mode],
     size: Size,
     lod: bool,
+    surface: SurfaceArg,
     mut progress: impl FnMut(&str),
 ) -> Result<Tables15> {
     let terrain = pyramid.terrain(lod)?;
     let options = Options {
         lod,
+        surface: surface.into(),
         ..Options::default()
     };
     let mut cases = Vec::new();
@@ -137,7 +145,13 @@ pub fn run(
         let view = paper_view(map, pyramid, pitch, size, lod)?;
         let camera = view.camera;
         progress(&format!("pitch {pitch}°: ground truth"));
-        let truth = reference(&camera, pyramid, options.sky, options.projection)?;
+        let truth = reference(
+            &camera,
+            pyramid,
+            options.sky,
+            options.projection,
+            options.surface,
+        )?;
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;
         let cols = camera.width() as f64;
@@ -205,5 +219,10 @@ pub fn run(
             })
         })
         .collect();
-    Ok(Tables15 { lod, cases, table5 })
+    Ok(Tables15 {
+        lod,
+        surface: surface.name(),
+        cases,
+        table5,
+    })
 }

@@ -29,7 +29,7 @@ use crate::experiment::reference::{box_columns, rmse, supersampled, REFERENCE_CO
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column, Mode, Rate, Tables};
-use crate::view::Size;
+use crate::view::{Size, SurfaceArg};
 
 /// What to fly.
 #[derive(Clone, Debug)]
@@ -57,6 +57,8 @@ pub struct FlySpec {
     /// Walk the multiresolution pyramid (`true`), or level 0 voxel by voxel (`false`): the
     /// start's fitted eye height and every frame of the modes (the reference walks level 0).
     pub lod: bool,
+    /// The surface every frame meets, the reference's too (`--surface`).
+    pub surface: SurfaceArg,
     /// Columns the modes walk per pixel (1, the paper's, to 64), box-filtered to one: with
     /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
     pub columns_per_pixel: u32,
@@ -101,6 +103,7 @@ impl FlySpec {
             projection: Projection::Paper,
             keep_cut: true,
             lod: true,
+            surface: SurfaceArg::Flat,
             columns_per_pixel: 1,
             reference: true,
             reference_columns: REFERENCE_COLUMNS,
@@ -146,11 +149,13 @@ impl FlySpec {
             FlyMode::Mode(mode) => Setting {
                 mode,
                 lod: self.lod,
+                surface: self.surface,
                 columns: self.columns_per_pixel,
             },
             FlyMode::Reference => Setting {
                 mode: Mode::AsExact,
                 lod: false,
+                surface: self.surface,
                 columns: self.reference_columns,
             },
         }
@@ -207,6 +212,8 @@ struct Setting {
     mode: Mode,
     /// The pyramid (`true`) or level 0.
     lod: bool,
+    /// The surface.
+    surface: SurfaceArg,
     /// Columns walked per pixel, box-filtered to one.
     columns: u32,
 }
@@ -231,6 +238,7 @@ fn shoot(
 ) -> Result<Shot> {
     let options = Options {
         lod: setting.lod,
+        surface: setting.surface.into(),
         columns_per_pixel: setting.columns,
         projection,
         ..Options::default()
@@ -335,6 +343,8 @@ pub struct Fly {
     pub projection: &'static str,
     /// Whether the modes walked the pyramid (`--lod on`) or level 0 alone.
     pub lod: bool,
+    /// The surface the modes and the reference met: `flat` or `bilinear` (`--surface`).
+    pub surface: &'static str,
     /// Columns the modes walked per pixel.
     pub columns_per_pixel: u32,
     /// Columns per pixel of the reference flight, if it was flown.
@@ -601,6 +611,7 @@ pub fn run_with_frames(
             Projection::Paper => "paper",
         },
         lod: spec.lod,
+        surface: spec.surface.name(),
         columns_per_pixel: spec.columns_per_pixel,
         reference_columns: reference.then_some(spec.reference_columns),
         path: spec.path.clone(),
