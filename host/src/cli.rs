@@ -43,7 +43,8 @@ pub enum Command {
     /// Sun glint on water in the flight: each specular antialiasing method against
     /// the supersampled reference: RMSE, flicker (Table 6's bins) and shading work.
     Glint(Box<commands::GlintArgs>),
-    /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9).
+    /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9),
+    /// and --wedge (one pixel's footprint in both axes, from above).
     Inspect(Box<InspectArgs>),
     /// Every terrain experiment, written as REPORT.md, index.html, images and plots.
     Report(Box<ReportArgs>),

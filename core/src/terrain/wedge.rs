@@ -253,7 +253,11 @@ impl Sampler for Wedge {
             // the eye, where the interval is a point, `as-exact`'s hit.
             cost.wedge(1);
             // On the continuous surface where voxels are magnified, its height at the centre.
-            let f = surface::weight(distance(voxel, self.n_eye), self.surface);
+            let f = if self.surface > 0 {
+                surface::weight(distance(voxel, self.n_eye), self.surface)
+            } else {
+                0
+            };
             let own = surface::height(voxel, f);
             if own <= ray.h {
                 return Hit::Rejected;
@@ -293,7 +297,11 @@ impl Sampler for Wedge {
         // On the continuous surface (a wedge narrower than a voxel, level 0), the mean across
         // is the surface's height at the wedge's centre line (exact for the surface between
         // two centres, where it is linear across), blended into the flat cells' mean.
-        let smooth = surface::weight(distance(voxel, self.n_eye), self.surface);
+        let smooth = if self.surface > 0 {
+            surface::weight(distance(voxel, self.n_eye), self.surface)
+        } else {
+            0
+        };
         if total <= 0 || (smooth == 0 && i64::from(highest) << 24 <= ray.h.to_bits()) {
             return Hit::Rejected;
         }
