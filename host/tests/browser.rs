@@ -293,3 +293,82 @@ fn serve_refuses_a_built_in_terrain_of_a_bad_size() {
         "--terrain-size 8: must be 16..=65536",
     );
 }
+
+/// The texts of the page's table of numbers, row by row: the label, then each cell.
+fn stats_rows(browser: &mut Browser) -> Vec<Vec<String>> {
+    let rows = browser.eval(
+        "[...document.querySelectorAll('#stats tr')].map((r) => [...r.children].map((c) => c.textContent))",
+    );
+    serde_json::from_value(rows).unwrap()
+}
+
+/// The row whose label contains `label`: its cells' texts.
+fn row<'a>(rows: &'a [Vec<String>], label: &str) -> &'a [String] {
+    let r = rows
+        .iter()
+        .find(|r| r[0].contains(label))
+        .unwrap_or_else(|| panic!("no row labelled {label:?} in {rows:?}"));
+    &r[1..]
+}
+
+/// The page's rates (issue 38, item 6): the frames it delivered in the last second (both
+/// halves drawn), and each half's render time, each labelled as such, and never `Infinity` or
+/// `NaN`, also when the clock stands still (headless Chromium's virtual time advances only while
+/// the page is idle: every render then takes 0 ms, and the page used to print 1000 / 0 =
+/// `Infinity` frames per second).
+#[test]
+fn the_page_shows_the_frames_it_delivers_and_each_halfs_render_time() {
+    let Some(exe) = browser_or_warn() else { return };
+    let served = Served::start(&[]);
+    let url = format!("http://127.0.0.1:{}/?size=120x90", served.port);
+    let mut browser = Browser::open(&exe, &url);
+    browser.wait_for("document.body.dataset.ready === '1'", 120);
+    let number = |s: &str| -> f64 {
+        assert!(
+            !s.contains("Infinity") && !s.contains("NaN"),
+            "a rate reads {s:?}"
+        );
+        s.replace(',', "")
+            .parse()
+            .unwrap_or_else(|_| panic!("not a number: {s:?}"))
+    };
+
+    // Flying the paper's path, the page delivers frames: some in the last second, each half
+    // taking a positive time.
+    browser.eval("document.getElementById('fly').click(); true");
+    browser.wait_for("Number(document.body.dataset.frames) > 20", 120);
+    let rows = stats_rows(&mut browser);
+    let delivered = row(&rows, "frames delivered in the last second");
+    assert_eq!(delivered.len(), 1, "one rate for the page: {delivered:?}");
+    let fps = number(&delivered[0]);
+    assert!(fps >= 1.0 && fps.fract() == 0.0, "delivered {fps}");
+    let times = row(&rows, "render time of this half");
+    assert_eq!(times.len(), 2, "a time per half: {times:?}");
+    for t in times {
+        assert!(number(t) > 0.0, "render time {t:?}");
+    }
+    assert!(
+        !rows.iter().any(|r| r[0].contains("frames per second")),
+        "no rate derived from one half's time: {rows:?}"
+    );
+
+    // Virtual time: it stands still while the page runs, so renders take 0 ms; nothing is
+    // divided by them.
+    browser.call(
+        "Emulation.setVirtualTimePolicy",
+        serde_json::json!({ "policy": "advance" }),
+    );
+    browser.call("Page.reload", serde_json::json!({}));
+    browser.wait_for("document.body.dataset.ready === '1'", 120);
+    let rows = stats_rows(&mut browser);
+    for t in row(&rows, "render time of this half") {
+        assert_eq!(number(t), 0.0, "the clock stands still, yet {t:?}");
+    }
+    number(&row(&rows, "frames delivered in the last second")[0]);
+    let all = browser.eval("document.getElementById('stats').textContent");
+    let all = all.as_str().unwrap();
+    assert!(
+        !all.contains("Infinity") && !all.contains("NaN"),
+        "the page's numbers: {all}"
+    );
+}
