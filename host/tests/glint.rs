@@ -1,5 +1,6 @@
-//! `footprint glint --measure`: the low-sun flight over the plains' water, each specular method
-//! against the supersampled reference (issue 16).
+//! `footprint glint --measure`: the low-sun flight, each specular method against the
+//! supersampled reference (issue 16): over the plains' water and wet rock, and over the default
+//! scene, the mountains' wet rock and lakes (issue 38).
 
 mod common;
 
@@ -8,10 +9,9 @@ use std::sync::OnceLock;
 use common::{assert_one_line_error, footprint};
 use serde_json::Value;
 
-/// The low-sun flight the measuring tests share: 24 frames of 160×100 over the built-in
-/// plains, AS, the sun straight ahead at 8°, the reference with 4 columns per pixel; over the
-/// default materials (`water`: the lake glints, the rock is dull).
-const FLIGHT: &[&str] = &[
+/// The low-sun flight the measuring tests share: 24 frames of 160×100, AS, the sun straight
+/// ahead at 8°, the reference with 4 columns per pixel.
+const SMALL: &[&str] = &[
     "glint",
     "--measure",
     "--json",
@@ -23,25 +23,30 @@ const FLIGHT: &[&str] = &[
     "4",
 ];
 
-/// The glint flight over `--material` (its JSON), run once per material for every test that
-/// reads it.
+/// Runs `footprint ARGS` and parses its one JSON object.
+fn json_of(args: &[&str]) -> Value {
+    let o = footprint(args);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let text = String::from_utf8(o.stdout).expect("UTF-8");
+    assert_eq!(text.trim().lines().count(), 1, "one JSON object: {text}");
+    serde_json::from_str(&text).expect("JSON")
+}
+
+/// The glint flight over the built-in plains (the default scene until issue 38) and
+/// `--material` (its JSON), run once per material for every test that reads it.
 fn measure(material: &'static str, cell: &'static OnceLock<Value>) -> &'static Value {
     cell.get_or_init(|| {
-        let mut args = FLIGHT.to_vec();
-        args.extend(["--material", material]);
-        let o = footprint(&args);
-        assert!(
-            o.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-        let text = String::from_utf8(o.stdout).expect("UTF-8");
-        assert_eq!(text.trim().lines().count(), 1, "one JSON object: {text}");
-        serde_json::from_str(&text).expect("JSON")
+        let mut args = SMALL.to_vec();
+        args.extend(["--terrain", "plains", "--material", material]);
+        json_of(&args)
     })
 }
 
-/// The flight over the default materials: a flat lake and dull rock.
+/// The flight over `--material water`: a flat lake and dull rock.
 fn flight() -> &'static Value {
     static RUN: OnceLock<Value> = OnceLock::new();
     measure("water", &RUN)
@@ -149,6 +154,49 @@ fn clamp99_flickers_less_than_none() {
     assert!(
         clamp99 < none,
         "clamp99 {clamp99} is not below none's {none}"
+    );
+}
+
+/// Issue 38: the default scene (no `--terrain`, no `--material`) is one where the highlight
+/// aliases and the methods differ: the built-in mountains, wet rock (n 256) and lakes. Without
+/// antialiasing the flight has at least twice the reference's changes of 6+ levels, the least
+/// flickering method has less than half of `none`'s, and the lowest RMSE is below 0.8 of
+/// `none`'s. Measured on this flight (2026-11-26): changes none 146, clamp 16, clamp99 28,
+/// clamp99.9 22, toksvig 82, the reference 41; RMSE none 11.25, toksvig 6.41. The old default
+/// (flat water on the plains, `--terrain plains --material water`) fails it: every method 3
+/// changes (the reference 1), RMSE 0.898 (toksvig 1.064).
+#[test]
+fn the_default_scene_aliases_and_the_methods_differ() {
+    let g = json_of(SMALL);
+    print_table(&g);
+    assert_eq!(g["material"], "wet", "{g}");
+    let map = g["map"].as_str().expect("map");
+    assert!(
+        map.starts_with("built-in") && !map.contains("plains") && !map.contains("eroded"),
+        "the built-in mountains: {map}"
+    );
+    assert_eq!(g["sun"][1].as_f64(), Some(8.0));
+    let large = |r: &Value| r["large_changes"].as_i64().expect("large_changes");
+    let rmse = |r: &Value| r["rmse"].as_f64().expect("rmse");
+    let none = run(&g, "none");
+    let reference = large(&g["reference"]);
+    assert!(
+        large(none) >= 2 * reference.max(1),
+        "the highlight aliases: none {} against the reference's {reference}",
+        large(none)
+    );
+    let runs = g["runs"].as_array().expect("runs");
+    let least = runs.iter().map(large).min().expect("runs");
+    assert!(
+        2 * least < large(none),
+        "a method removes most of the flicker: the least {least}, none {}",
+        large(none)
+    );
+    let best = runs.iter().map(rmse).fold(f64::INFINITY, f64::min);
+    assert!(
+        best < 0.8 * rmse(none),
+        "a method is clearly nearer the reference: {best} against none's {}",
+        rmse(none)
     );
 }
 

@@ -1,5 +1,5 @@
-//! `footprint glint --measure`: the sun's glint on water in the flight of Sect. 5, each
-//! specular antialiasing method against the supersampled reference.
+//! `footprint glint --measure`: the sun's glint on wet rock and water in the flight of Sect. 5,
+//! each specular antialiasing method against the supersampled reference.
 
 use std::path::PathBuf;
 
@@ -16,17 +16,18 @@ use crate::view::{MapArgs, OnOff, Size};
 
 /// What `footprint glint` does without `--measure`.
 const ABOUT: &str = "footprint glint: the flight of Sect. 5 with a low sun straight ahead over \
-water, lit with each specular method (none, clamp, clamp99, clamp99.9, toksvig) and compared \
+the built-in mountains, wet rock and lakes by default (--terrain, --dem, --material water), lit \
+with each specular method (none, clamp, clamp99, clamp99.9, toksvig) and compared \
 with the reference (every sample shaded on its own, as-exact at level 0, several columns per \
 pixel): RMSE, Table 6's flicker bins and the excess flicker over the reference's, shading \
 evaluations per pixel. Run it with --measure (see --help).";
 
 /// `footprint glint`.
 #[derive(Args, Debug)]
-#[command(mut_arg("terrain", |a| a.default_value("plains")))]
 pub struct GlintArgs {
     #[command(flatten)]
-    /// The map (the built-in plains by default: their flat lowland is water).
+    /// The map (the built-in mountains by default: with `--material wet` their distant slopes'
+    /// highlights alias, and the methods differ; docs/glint.md).
     pub map: MapArgs,
     /// Run the measurement: render every frame with every method and the reference, and print
     /// the table (without it, say what the command does and render nothing).
@@ -71,10 +72,10 @@ pub struct GlintArgs {
         allow_hyphen_values = true
     )]
     pub reference_columns: u32,
-    /// The surfaces: `water` (water glints, rock is dull), `wet` (the same water, and wet rock
-    /// with n 256 and K_spec 0.5, whose highlight can alias on distant slopes), or a material
-    /// PNG the size of the map (see `render --help`).
-    #[arg(long, default_value = "water", value_name = "water|wet|FILE.png")]
+    /// The surfaces: `wet` (water, and wet rock with n 256 and K_spec 0.5, whose highlight
+    /// aliases on distant slopes), `water` (the same water, the rock dull), or a material PNG
+    /// the size of the map (see `render --help`).
+    #[arg(long, default_value = "wet", value_name = "wet|water|FILE.png")]
     pub material: MaterialArg,
     /// Folder (it must exist) for a PNG of the last frame per method (`glint_<method>.png`,
     /// the reference's too) and the cut-in-time images of the middle column

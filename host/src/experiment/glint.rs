@@ -1,4 +1,4 @@
-//! Sun glint in flight: the flight of Sect. 5 with a low sun straight ahead, over
+//! Sun glint in flight: the flight of Sect. 5 with a low sun straight ahead, over wet rock and
 //! water, lit with each specular antialiasing method, against the supersampled reference.
 //!
 //! Every frame is rendered once per method and sampling mode through the pyramid, and once as
@@ -62,7 +62,7 @@ pub struct GlintSpec {
     pub lod: bool,
     /// Columns walked per pixel in the reference.
     pub reference_columns: u32,
-    /// The surfaces (`water`, the default, or `wet`, or a material PNG).
+    /// The surfaces (`wet`, `footprint glint`'s default, or `water`, or a material PNG).
     pub material: MaterialArg,
 }
 
