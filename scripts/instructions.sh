@@ -34,11 +34,11 @@ for m in "${modes[@]}"; do
     # everything else (the map, the pyramid, the fit-first-hit probe, the PNG) is not collected.
     valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
       --toggle-collect='footprint_scenes::render::render_with*' \
-      "$bin" render "${args[@]}" --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
+      "$bin" render "${args[@]}" --view paper --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
       >/dev/null 2>"$tmp/cg.err"
     i=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err")
     instr=$((instr + i))
-    json=$("$bin" render "${args[@]}" --pitch "$p" --mode "$m" --counts --json --out "$tmp/x.png")
+    json=$("$bin" render "${args[@]}" --view paper --pitch "$p" --mode "$m" --counts --json --out "$tmp/x.png")
     a=$(printf '%s' "$json" | python3 -c 'import json,sys; print(json.load(sys.stdin)["counts"]["a"])')
     steps=$((steps + a))
   done

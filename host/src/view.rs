@@ -89,6 +89,17 @@ impl From<ProjectionArg> for Projection {
     }
 }
 
+/// The view the camera options adjust (`--view`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ViewArg {
+    /// The whole map from above the middle of its south edge, looking north and down
+    /// (`footprint_scenes::view::overview_params`): `render`'s default.
+    Overview,
+    /// The paper's camera (Sect. 5): over the map's centre, heading north, pitch 20°, FOV 10°,
+    /// the eye fitted so that the footprint at the first hit is one voxel: `inspect`'s default.
+    Paper,
+}
+
 /// The surface the walk meets (`footprint_core::terrain::camera::Surface`, `--surface`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum SurfaceArg {
@@ -237,23 +248,31 @@ impl MapArgs {
 /// The camera.
 #[derive(Args, Clone, Debug)]
 pub struct CameraArgs {
-    /// Eye position east, metres [default: the map's centre].
+    /// The view the other options adjust: overview (the whole map from above its south edge;
+    /// render's default) or paper (the paper's camera, eye fitted by its rule; inspect's
+    /// default). --x, --y, --height, --heading, --pitch, --roll, --fov and --far change only
+    /// what they name.
+    #[arg(long, value_enum)]
+    pub view: Option<ViewArg>,
+    /// Eye position east, metres [default: the view's].
     #[arg(long, allow_hyphen_values = true)]
     pub x: Option<f64>,
-    /// Eye position south, metres [default: the map's centre].
+    /// Eye position south, metres [default: the view's].
     #[arg(long, allow_hyphen_values = true)]
     pub y: Option<f64>,
-    /// Eye height, metres above sea level (height 0 of the map) [default: --fit-first-hit].
+    /// Eye height, metres above sea level (height 0 of the map) [default: the view's; the
+    /// paper's view fits it, --fit-first-hit].
     #[arg(long, allow_hyphen_values = true, conflicts_with = "fit_first_hit")]
     pub height: Option<f64>,
     /// Choose the eye height so that the pixel footprint at the first hit is one voxel wide
     /// (the paper's Table 1 rule); the default when --height is absent.
     #[arg(long)]
     pub fit_first_hit: bool,
-    /// Heading, degrees clockwise from north (up the map) [default: 0].
+    /// Heading, degrees clockwise from north (up the map) [default: the view's, 0].
     #[arg(long, allow_hyphen_values = true)]
     pub heading: Option<f64>,
-    /// Pitch, degrees, positive looking down; in (-90, 90) [default: 20].
+    /// Pitch, degrees, positive looking down; in (-90, 90) [default: the view's; the paper's
+    /// 20].
     #[arg(long, allow_hyphen_values = true)]
     pub pitch: Option<f64>,
     /// Roll, degrees, positive banking right (the horizon rises to the right); any finite
@@ -265,7 +284,8 @@ pub struct CameraArgs {
     /// column a vertical plane, as the paper renders: exact at pitch 0 only, no roll).
     #[arg(long, value_enum, default_value_t = ProjectionArg::Exact)]
     pub projection: ProjectionArg,
-    /// Vertical field of view, degrees; in (0, 180) [default: 10, the paper's].
+    /// Vertical field of view, degrees; in (0, 180) [default: the view's; the overview's 30,
+    /// the paper's 10].
     #[arg(long, allow_hyphen_values = true)]
     pub fov: Option<f64>,
     /// Image size WxH.
@@ -288,20 +308,18 @@ pub struct CameraArgs {
 pub const DEFAULT_PITCH_DEG: f64 = 20.0;
 
 impl CameraArgs {
-    /// True when no option places or aims the camera (`--x`, `--y`, `--height`,
-    /// `--fit-first-hit`, `--heading`, `--pitch`, `--roll`, `--fov`, `--far`): `render` then
-    /// shows the map itself ([`View::overview`]). `--size`, `--projection` and `--lod` do not
-    /// count.
-    pub fn is_unset(&self) -> bool {
-        self.x.is_none()
-            && self.y.is_none()
-            && self.height.is_none()
-            && !self.fit_first_hit
-            && self.heading.is_none()
-            && self.pitch.is_none()
-            && self.roll.is_none()
-            && self.fov.is_none()
-            && self.far.is_none()
+    /// The view these options adjust: `--view`, or `default` without it.
+    pub fn view_or(&self, default: ViewArg) -> ViewArg {
+        self.view.unwrap_or(default)
+    }
+
+    /// Loads the map and places the camera: the chosen view ([`CameraArgs::view_or`]) adjusted
+    /// by the other options.
+    pub fn load(&self, map: &MapArgs, default: ViewArg) -> Result<View> {
+        match self.view_or(default) {
+            ViewArg::Overview => View::overview(map, self),
+            ViewArg::Paper => View::new(map, self),
+        }
     }
 }
 
@@ -330,14 +348,29 @@ impl View {
     }
 
     /// Loads the map and looks at it from above its south edge
-    /// ([`footprint_scenes::view::overview_params`]): the view of `footprint render` without
-    /// view options ([`CameraArgs::is_unset`]), which shows the map itself, none of its
-    /// mirrored copies. `cam` gives the size, the projection and the LOD switch.
+    /// ([`footprint_scenes::view::overview_params`]): `--view overview`, `render`'s default,
+    /// which shows the map itself, none of its mirrored copies. The other options of `cam`
+    /// adjust it, each only what it names.
     pub fn overview(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
         let (w, h) = (cam.size.width, cam.size.height);
         Self::with_camera(map_args, cam, |pyramid, options| {
-            let params = overview_params(pyramid.map(), w, h);
-            place(pyramid, params, None, Eye::Placed(params.eye_m), options)
+            let o = overview_params(pyramid.map(), w, h);
+            // Each option changes what it names; the rest is the overview's.
+            let params = CameraParams {
+                x_m: cam.x.unwrap_or(o.x_m),
+                y_m: cam.y.unwrap_or(o.y_m),
+                heading_deg: cam.heading.unwrap_or(o.heading_deg),
+                pitch_deg: cam.pitch.unwrap_or(o.pitch_deg),
+                roll_deg: cam.roll.unwrap_or(o.roll_deg),
+                fov_deg: cam.fov.unwrap_or(o.fov_deg),
+                ..o
+            };
+            let eye = match (cam.height, cam.fit_first_hit) {
+                (Some(h), _) => Eye::Height(h),
+                (None, true) => Eye::FitFirstHit,
+                (None, false) => Eye::Placed(o.eye_m),
+            };
+            place(pyramid, params, cam.far, eye, options)
         })
     }
 

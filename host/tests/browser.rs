@@ -33,6 +33,8 @@ fn render_hash(pitch: &str, mode: &str, size: &str) -> String {
     let out = dir.path().join("frame.png");
     let o = footprint(&[
         "render",
+        "--view",
+        "paper",
         "--pitch",
         pitch,
         "--mode",

@@ -175,7 +175,16 @@ fn bad_numbers_name_their_argument() {
 #[test]
 fn messages_name_the_option_the_user_gave() {
     let short = |args: &[&str], names: &str| {
-        let mut all = vec!["--max-memory", "64G", "render", "--terrain-size", "64"];
+        // The paper's view: its fitted eye is what the first cases overflow.
+        let mut all = vec![
+            "--max-memory",
+            "64G",
+            "render",
+            "--terrain-size",
+            "64",
+            "--view",
+            "paper",
+        ];
         all.extend_from_slice(args);
         let o = footprint(&all);
         assert_one_line_error(&o, args, names);
@@ -185,7 +194,7 @@ fn messages_name_the_option_the_user_gave() {
     };
     short(&["--fov", "1e-300"], "--fov 1e-300");
     short(&["--fov", "0.0001"], "--fov 0.0001");
-    // The fitted eye (without a view option `render` shows the overview, which fits nothing).
+    // The fitted eye.
     short(&["--size", "16384x16384", "--fit-first-hit"], "--size");
     short(&["--pitch", "89.9999"], "--pitch 89.9999");
     short(&["--far", "1e-300"], "--far 1e-300 m");
@@ -535,6 +544,8 @@ fn fly_animation_starts_with_the_rendered_view() {
         let out = dir.path().join(format!("{mode}.png"));
         let mut render = vec![
             "render",
+            "--view",
+            "paper",
             "--pitch",
             "5",
             "--fit-first-hit",

@@ -38,19 +38,46 @@ fn the_main_command_prints_one_line_and_no_warning() {
     assert!(std::fs::metadata(&out).unwrap().len() > 0);
 }
 
-/// A view option brings back the paper's view, and its warning on the built-in terrain (it
-/// looks 69 km ahead, beyond the map); `--size` alone keeps the overview.
+/// View options adjust the view they are given, each only what it names: `--pitch` tilts the
+/// overview and keeps its eye, `--height` raises it and keeps its pitch, `--fov` widens it;
+/// `--view paper` chooses the paper's view by name (and its warning on the built-in terrain,
+/// which it sees 69 km ahead, beyond the map).
 #[test]
-fn a_view_option_brings_back_the_papers_view() {
+fn view_options_adjust_the_view_and_the_papers_view_is_chosen_by_name() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("v.png");
-    let o = footprint(&["render", "--pitch", "20", "--out", out.to_str().unwrap()]);
+    let camera = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec!["render", "--size", "48x40", "--counts", "--json"];
+        args.extend_from_slice(extra);
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = footprint(&args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{extra:?}: {stderr}");
+        assert!(
+            !stderr.contains("mirrored copies"),
+            "{extra:?}: the overview warns: {stderr}"
+        );
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()["camera"].clone()
+    };
+    let overview = camera(&[]);
+    let tilted = camera(&["--pitch", "60"]);
+    assert_eq!(tilted["pitch"], 60.0);
+    for key in ["x", "y", "height", "heading", "fov"] {
+        assert_eq!(tilted[key], overview[key], "--pitch changed {key}");
+    }
+    let raised = camera(&["--height", "20000"]);
+    assert_eq!(raised["height"], 20000.0);
+    for key in ["x", "y", "pitch", "heading", "fov"] {
+        assert_eq!(raised[key], overview[key], "--height changed {key}");
+    }
+    let wide = camera(&["--fov", "50"]);
+    assert_eq!(wide["fov"], 50.0);
+    assert_eq!(wide["height"], overview["height"]);
+
+    let o = footprint(&["render", "--view", "paper", "--out", out.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{stderr}");
     assert!(stderr.contains("mirrored copies of the map"), "{stderr}");
-    let o = footprint(&["render", "--size", "48x40", "--out", out.to_str().unwrap()]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success() && stderr.trim().is_empty(), "{stderr}");
 }
 
 /// The overview shows the built-in map itself: every terrain pixel's first hit lies on the

@@ -192,9 +192,9 @@ fn render_warns_only_when_the_view_is_mostly_mirrored() {
         args.extend_from_slice(extra);
         stderr_of(&args).0
     };
-    // `--pitch` makes it the paper's view (without a view option `render` shows the overview,
-    // which is on the map: tests/first_run.rs).
-    let err = render(&["--pitch", "20"]);
+    // The paper's view (`render`'s default is the overview, which is on the map:
+    // tests/first_run.rs).
+    let err = render(&["--view", "paper", "--pitch", "20"]);
     let warnings = mirror_warnings(&err);
     assert_eq!(warnings.len(), 1, "{err}");
     assert!(
@@ -202,6 +202,6 @@ fn render_warns_only_when_the_view_is_mostly_mirrored() {
         "{}",
         warnings[0]
     );
-    let err = render(&["--pitch", "50", "--fov", "40"]);
+    let err = render(&["--view", "paper", "--pitch", "50", "--fov", "40"]);
     assert!(mirror_warnings(&err).is_empty(), "{err}");
 }

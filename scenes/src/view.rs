@@ -113,6 +113,41 @@ pub const OVERVIEW_FOV_DEG: f64 = 30.0;
 /// top row's centre.
 pub const OVERVIEW_REACH: f64 = 0.9;
 
+/// The least height above the lowest ground (metres) from which an eye over the middle of the
+/// map's south edge sees the ground `reach_m` to the north (on the centre line, at its own
+/// height) over the near half of the way (within 45° of north): a point `d` metres away and
+/// `h` above the lowest, with the target `t` above it, needs `(h − t·d/D) / (1 − d/D)`. Only
+/// the near half counts: the relief further on is what the view is for. Sampled on at most
+/// 256 × 256 cells.
+fn line_of_sight(map: &Map, lowest: u16, reach_m: f64) -> f64 {
+    let (w, h) = (map.width as usize, map.height as usize);
+    let step = (w.max(h) / 256).max(1);
+    let (ex, ey) = (w as f64 * map.spacing_m / 2.0, h as f64 * map.spacing_m);
+    let rise = |x: usize, y: usize| {
+        f64::from(map.heights[y * w + x].saturating_sub(lowest)) * map.height_scale_m
+    };
+    let cell = |m: f64, n: usize| ((m / map.spacing_m) as usize).min(n.saturating_sub(1));
+    let target = rise(cell(ex, w), cell((ey - reach_m).max(0.0), h));
+    let mut need: f64 = 0.0;
+    for y in (0..h).step_by(step) {
+        for x in (0..w).step_by(step) {
+            let (px, py) = (
+                (x as f64 + 0.5) * map.spacing_m,
+                (y as f64 + 0.5) * map.spacing_m,
+            );
+            let (dx, dy) = (px - ex, ey - py);
+            if dy <= 0.0 || dx.abs() > dy {
+                continue;
+            }
+            let d = (dx * dx + dy * dy).sqrt() / reach_m;
+            if d <= 0.5 {
+                need = need.max((rise(x, y) - target * d) / (1.0 - d));
+            }
+        }
+    }
+    need
+}
+
 /// A view of the map itself, for a first look (`footprint render` without view options):
 /// the eye above the middle of the south edge, heading north, FOV [`OVERVIEW_FOV_DEG`], at
 /// least a quarter above the map's relief, and pitched so that the top row's ray meets the
@@ -129,8 +164,13 @@ pub fn overview_params(map: &Map, width: u32, height: u32) -> CameraParams {
     let highest = map.heights.iter().copied().max().unwrap_or(0);
     let relief_m = f64::from(highest - lowest) * map.height_scale_m;
     let reach_m = OVERVIEW_REACH * depth_m;
-    // The eye's height above the lowest ground, and the top row's depression.
-    let above = (reach_m * OVERVIEW_TOP_RAY_DEG.to_radians().tan()).max(1.25 * relief_m);
+    // The eye's height above the lowest ground, and the top row's depression: at least the
+    // rule's, and high enough that the top row's target (the lowest ground at `reach_m`) is
+    // seen over every point of the map in front of the eye (a near ridge hides nothing
+    // behind it that the top row aims at).
+    let above = (reach_m * OVERVIEW_TOP_RAY_DEG.to_radians().tan())
+        .max(1.25 * relief_m)
+        .max(line_of_sight(map, lowest, reach_m));
     let top_ray = (above / reach_m)
         .atan()
         .to_degrees()
@@ -734,6 +774,53 @@ mod tests {
     use super::*;
     use crate::procedural::procedural;
     use footprint_core::terrain::pyramid::HeightFilter;
+
+    /// The overview's top row aims at the ground 0.9 of the way north; a wall across the map
+    /// 0.4 of the way there, 1 km high, would hide that aim from an eye placed by the
+    /// depression and relief rules alone (1.25 × the relief): the eye clears it, and the top
+    /// row's ray passes above the wall.
+    #[test]
+    fn the_overview_sees_over_a_near_wall() {
+        let (w, h) = (256u32, 256u32);
+        let spacing_m = 10.0;
+        let reach_m = OVERVIEW_REACH * f64::from(h) * spacing_m;
+        // The wall's row, 0.4 of the reach north of the south edge (y grows southward).
+        let wall_y = h - (0.4 * reach_m / spacing_m) as u32;
+        let heights: Vec<u16> = (0..w * h)
+            .map(|i| {
+                if (i / w).abs_diff(wall_y) <= 2 {
+                    10_000
+                } else {
+                    0
+                }
+            })
+            .collect();
+        let map = Map {
+            width: w,
+            height: h,
+            colors: vec![Rgb::BLACK; heights.len()],
+            heights,
+            spacing_m,
+            height_scale_m: 0.1,
+            base_m: 0.0,
+            source: "wall".into(),
+        };
+        let p = overview_params(&map, 64, 64);
+        let wall_m = 1000.0;
+        let d = (f64::from(h - wall_y) + 2.5) * spacing_m;
+        let rules = (reach_m * OVERVIEW_TOP_RAY_DEG.to_radians().tan()).max(1.25 * wall_m);
+        assert!(
+            rules * (1.0 - d / reach_m) < wall_m,
+            "the depression and relief rules alone would not clear it"
+        );
+        let depression = (p.pitch_deg - p.fov_deg / 2.0).to_radians();
+        let ray_at_wall = p.eye_m - d * depression.tan();
+        assert!(
+            ray_at_wall > wall_m,
+            "the top row's ray meets the wall: {ray_at_wall:.0} m at the wall, {wall_m} m high (eye {:.0} m)",
+            p.eye_m
+        );
+    }
 
     #[test]
     fn the_diagonal_eye_looks_from_the_north_west_corner() {

@@ -10,7 +10,7 @@ use crate::experiment::inspect;
 use crate::output::Target;
 use crate::render::Mode;
 use crate::report::png::write_png;
-use crate::view::{CameraArgs, MapArgs, View};
+use crate::view::{CameraArgs, MapArgs, ViewArg};
 use footprint_core::terrain::camera::Options;
 
 /// A pixel `ROW,COL`, counted from the top-left.
@@ -104,7 +104,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             .map_or("inspect".into(), |s| s.to_string_lossy().into_owned());
         args.out.with_file_name(format!("{stem}-{suffix}.png"))
     };
-    let view = View::new(&args.map, &args.camera)?;
+    let view = args.camera.load(&args.map, ViewArg::Paper)?;
     let (w, h) = (view.camera.width(), view.camera.height());
     for (flag, p) in [("--pixel", args.pixel), ("--wedge", args.wedge)] {
         if let Some(p) = p.filter(|p| p.row >= h || p.col >= w) {

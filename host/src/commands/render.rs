@@ -10,7 +10,7 @@ use crate::lighting::{LightArgs, LoadedMaterials};
 use crate::render::{count, render_lit_once, render_timed_parallel, Mode, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
-use crate::view::{CameraArgs, MapArgs, View};
+use crate::view::{CameraArgs, MapArgs, ViewArg};
 use footprint_core::terrain::camera::Projection;
 use footprint_core::terrain::cost::{Counts, NoCost};
 
@@ -52,12 +52,8 @@ pub struct RenderArgs {
 
 /// Runs `footprint render`.
 pub fn render(args: &RenderArgs) -> Result<()> {
-    let overview = args.camera.is_unset();
-    let view = if overview {
-        View::overview(&args.map, &args.camera)?
-    } else {
-        View::new(&args.map, &args.camera)?
-    };
+    let overview = args.camera.view_or(ViewArg::Overview) == ViewArg::Overview;
+    let view = args.camera.load(&args.map, ViewArg::Overview)?;
     let terrain = view.pyramid.terrain(view.options.lod)?;
     let mut tables = Tables::new(&view.camera);
     let frame = tables.frame(&view.camera, &terrain, view.options)?;
@@ -137,7 +133,8 @@ pub fn render(args: &RenderArgs) -> Result<()> {
         crate::note!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");
     }
     if overview {
-        // The overview is placed over the map itself: nothing mirrored to warn about.
+        // The overview is placed over the map itself (moved by --x, --y or --heading, what it
+        // shows is what was asked for): no warning about mirrored copies.
         Ok(())
     } else {
         view.warn_mirrored(&args.camera)
