@@ -31,7 +31,18 @@ fn main() -> Result<(), Error> {
     let camera = Camera::new(VIEW)?;
     let (frame, scratch) = buffers.frame(&camera, &terrain, Options::default())?;
     frame.render(&terrain, &Mode::As, &mut NoCost, scratch, &mut image)?;
-    let green: u64 = image.iter().map(|c| u64::from(c.g)).sum();
-    println!("{W}x{H} as: mean green {}", green / u64::from(W * H));
+    // What a firmware would compare against the host's frame: a checksum of every pixel
+    // (FNV-1a), and how much of the frame is terrain rather than sky.
+    let checksum = image.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, c| {
+        [c.r, c.g, c.b]
+            .iter()
+            .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x100_0000_01b3))
+    });
+    let sky = Options::default().sky;
+    let terrain_px = image.iter().filter(|&&c| c != sky).count();
+    println!(
+        "{W}x{H} as: checksum {checksum:016x}, {}% terrain",
+        100 * terrain_px / image.len()
+    );
     Ok(())
 }

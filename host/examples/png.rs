@@ -1,12 +1,12 @@
 //! One frame of the built-in terrain to a PNG, from a host program: the map and its pyramid
-//! from `footprint-scenes`, the paper's view at pitch 20° in the exact projection (the CLI's
-//! default), the paper's area sampling, rendered through the core's one door straight into the
-//! PNG's bytes.
+//! from `footprint-scenes`, the CLI's first view (the overview: the whole map from above its
+//! south edge) in the exact projection (the CLI's default), the paper's area sampling,
+//! rendered through the core's one door straight into the PNG's bytes.
 //! `cargo run -p footprint-host --example png -- frame.png`
 use footprint_core::prelude::*;
 use footprint_scenes::procedural::procedural;
 use footprint_scenes::pyramid::Pyramid;
-use footprint_scenes::view::{paper_camera, Tables};
+use footprint_scenes::view::{default_far_voxels, overview_params, Tables};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = std::env::args()
@@ -17,7 +17,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         projection: Projection::Exact,
         ..Options::default()
     };
-    let camera = paper_camera(&pyramid, 20.0, 320, 240, options)?;
+    let map = pyramid.map();
+    let mut params = overview_params(map, 320, 240);
+    let probe = Camera::new(params)?;
+    params.far_m = default_far_voxels(map.width, map.height, probe.pixel_angle()) * map.spacing_m;
+    let camera = Camera::new(params)?;
     let terrain = pyramid.terrain(true)?;
     let mut tables = Tables::new(&camera);
     let frame = tables.frame(&camera, &terrain, options)?;

@@ -210,7 +210,7 @@ impl MapArgs {
                         loaded.voids_filled
                     );
                 }
-                if let Some(hint) = map::relief_hint(&loaded.map, loaded.range_m) {
+                if let Some(hint) = map::relief_hint(&loaded.map, loaded.format, loaded.range_m) {
                     crate::note!("hint: {}: {hint}", dem.display());
                 }
                 Ok(loaded.map)

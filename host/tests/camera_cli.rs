@@ -306,3 +306,29 @@ fn an_8_bit_height_png_is_read_in_voxel_space_units_and_flat_maps_get_a_hint() {
         "{stderr}"
     );
 }
+
+/// A metre format's flat-map hint names only what changes the relief against the extent:
+/// `--spacing`, at four digits, and not `--height-scale` (for an `.asc` in metres it is only the
+/// step the heights are rounded to).
+#[test]
+fn a_metre_maps_hint_names_only_the_spacing() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = dir.path().join("flat.asc");
+    let mut text = "ncols 64\nnrows 64\nxllcorner 0\nyllcorner 0\ncellsize 83.0903614\n".to_owned();
+    for y in 0..64 {
+        let row: Vec<String> = (0..64).map(|x| format!("{}", 100 + (x + y) % 3)).collect();
+        text += &row.join(" ");
+        text.push('\n');
+    }
+    std::fs::write(&dem, text).unwrap();
+    let o = footprint(&["map", "info", dem.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let hint = v["relief_hint"].as_str().unwrap_or_default();
+    assert!(hint.contains("under 1 %"), "{v}");
+    assert!(
+        hint.contains("--spacing (metres per voxel, now 83.09;"),
+        "{hint}"
+    );
+    assert!(!hint.contains("--height-scale"), "{hint}");
+}

@@ -354,20 +354,65 @@ fn hint(e: MapError, looks: Option<&'static str>) -> MapError {
     }
 }
 
-/// A one-line hint when `map`'s relief is under 1 % of its extent (the longer side): such a
-/// map renders flat, and the usual cause is a height scale or spacing that does not match the
-/// file (an 8-bit height map read in metres, say).
-pub fn relief_hint(map: &Map, range_m: (f64, f64)) -> Option<String> {
+/// `x` to four significant digits, trailing zeros dropped (`83.09`, `0.001`, `30`), for a
+/// hint: the exact value is in `map info`.
+fn about(x: f64) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return format!("{x}");
+    }
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "the exponent of a finite f64 is within ±400"
+    )]
+    let digits = (3 - x.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    let s = format!("{x:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
+    }
+}
+
+/// A one-line hint when `map`'s relief is under 1 % of its extent (the longer side): the usual
+/// cause is a spacing, or for a PNG a height scale, that does not match the file (an 8-bit
+/// height map read in metres, say). It names only the options that change the relief against
+/// the extent: `--spacing` always, `--height-scale` for a PNG only (the other formats hold
+/// metres, and their `--height-scale` is only the step heights are rounded to).
+pub fn relief_hint(map: &Map, format: Format, range_m: (f64, f64)) -> Option<String> {
     let extent_m = f64::from(map.width.max(map.height)) * map.spacing_m;
     let relief_m = range_m.1 - range_m.0;
     (relief_m < 0.01 * extent_m).then(|| {
+        let options = match format {
+            Format::Png => format!(
+                "--height-scale (metres per height unit, now {}) or --spacing (metres per \
+                 voxel, now {})",
+                about(map.height_scale_m),
+                about(map.spacing_m)
+            ),
+            _ => format!(
+                "--spacing (metres per voxel, now {}; the heights are metres)",
+                about(map.spacing_m)
+            ),
+        };
         format!(
-            "the relief, {relief_m:.1} m, is under 1 % of the map's extent ({:.1} km): it will \
-             look flat; if it should not, give --height-scale (metres per height unit, now {}) \
-             or --spacing (metres per voxel, now {})",
+            "the relief, {relief_m:.1} m, is under 1 % of the map's extent ({:.1} km); if it \
+             should be steeper, give {options}",
             extent_m / 1000.0,
-            map.height_scale_m,
-            map.spacing_m
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Four significant digits, no trailing zeros.
+    #[test]
+    fn hints_show_four_digits() {
+        assert_eq!(about(83.090_361_439_875_54), "83.09");
+        assert_eq!(about(0.001), "0.001");
+        assert_eq!(about(30.0), "30");
+        assert_eq!(about(0.1), "0.1");
+        assert_eq!(about(1234.5678), "1235");
+    }
 }

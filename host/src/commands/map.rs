@@ -147,7 +147,7 @@ fn info(args: &InfoArgs) -> Result<()> {
         base_m: m.base_m,
         height_scale_m: m.height_scale_m,
         height_note: loaded.height_note.clone(),
-        relief_hint: map::relief_hint(m, loaded.range_m),
+        relief_hint: map::relief_hint(m, loaded.format, loaded.range_m),
         min_unit: lo,
         max_unit: hi,
         voids_filled: loaded.voids_filled,
