@@ -11,7 +11,19 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use common::{assert_one_line_error, footprint};
+use footprint_host::experiment::claims::compare;
 use serde_json::Value;
+
+/// The verdict the claims' rule gives comparisons of counts, as report.json spells it.
+fn verdict(judged: &[Option<bool>]) -> &'static str {
+    if judged.contains(&Some(false)) {
+        "fails"
+    } else if judged.contains(&None) {
+        "too-few-events"
+    } else {
+        "holds"
+    }
+}
 
 /// The map: 48 × 40 cells of 10 m, rolling hills (up to 120 m of relief) with a flat lake
 /// in one corner; heights in metres with decimals.
@@ -322,8 +334,14 @@ fn table_6_is_claimed_for_the_column_and_for_the_frame() {
             && evidence.contains(&format!("PS {}", excess(&ps))),
         "{evidence}"
     );
-    let holds = excess(&as_) < excess(&mode("ss16")) && excess(&as_).max(0) * 10 <= excess(&ps);
-    assert_eq!(frame["holds"], holds);
+    // Judged by the claims' rule for counts of events (at least MIN_EVENTS on the low side):
+    // it holds when both comparisons are judged and hold.
+    let judged = [
+        compare(excess(&as_), excess(&mode("ss16")), 1),
+        compare(excess(&as_), excess(&ps), 10),
+    ];
+    assert_eq!(frame["holds"], judged.iter().all(|j| *j == Some(true)));
+    assert_eq!(frame["verdict"], verdict(&judged));
     // as2's claim over the frame: its numbers are the flight's, and it holds exactly when
     // as2's excess is at most a tenth of PS's and below AS's and SS16's.
     let both = find("Over the whole frame, as2");
@@ -334,10 +352,13 @@ fn table_6_is_claimed_for_the_column_and_for_the_frame() {
             && both_evidence.contains(&format!("PS {}", excess(&ps))),
         "{both_evidence}"
     );
-    let as2_holds = excess(&as2).max(0) * 10 <= excess(&ps)
-        && excess(&as2) < excess(&as_)
-        && excess(&as2) < excess(&mode("ss16"));
-    assert_eq!(both["holds"], as2_holds);
+    let as2_judged = [
+        compare(excess(&as2), excess(&ps), 10),
+        compare(excess(&as2), excess(&as_), 1),
+        compare(excess(&as2), excess(&mode("ss16")), 1),
+    ];
+    assert_eq!(both["holds"], as2_judged.iter().all(|j| *j == Some(true)));
+    assert_eq!(both["verdict"], verdict(&as2_judged));
     let column_evidence = column["evidence"].as_str().unwrap();
     assert!(
         column_evidence.contains(&format!("AS {}", as_["histogram"]["6-60"])),
@@ -345,7 +366,11 @@ fn table_6_is_claimed_for_the_column_and_for_the_frame() {
     );
     for c in [column, frame] {
         assert!(r.md.contains(c["claim"].as_str().unwrap()));
+        // Each names its scope: one column, or the whole frame.
+        assert!(r.md.contains(c["scope"].as_str().unwrap()));
     }
+    assert!(column["scope"].as_str().unwrap().starts_with("one column"));
+    assert!(frame["scope"].as_str().unwrap().starts_with("whole frame"));
 }
 
 #[test]

@@ -306,7 +306,10 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     write_text(&file("index.html")?, &html::page("footprint report", &md))?;
     let claims: Vec<_> = crate::experiment::claims::claims(&tables, &flight)
         .into_iter()
-        .map(|(claim, holds, evidence)| json!({"claim": claim, "holds": holds, "evidence": evidence}))
+        .map(|c| {
+            json!({"claim": c.claim, "holds": c.holds(), "evidence": c.evidence,
+                "scope": c.scope, "verdict": c.verdict})
+        })
         .collect();
     let data = json!({"command": command, "command_words": regenerate_words(args),
         "lod": value_name(&args.lod), "tables": tables, "fly": flight, "claims": claims,

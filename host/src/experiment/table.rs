@@ -3,9 +3,21 @@
 //!
 //! Each case is the paper's view: FOV 10°, 400×400, the eye at the fit-first-hit height, at
 //! pitch 40°, 20° or 5°. Counts are per-column averages, as in the paper.
+//!
+//! **One denominator per case.** Each mode's walk climbs the pyramid at its own switch
+//! ([`Switch::Nearest`] for PS, LI, SS2 and SS4; [`Switch::Late`] for SS8 and up and the area
+//! modes), so each walk sees its own sequence of voxels and its own visible count. The
+//! coverage `M/V` of every mode in a case divides by one `V`, the case's [`Case::V`]: the
+//! visible voxels of the sequence the area modes walk ([`Switch::Late`]), the paper's `V` (area
+//! sampling samples all of them, `M = V`); with `--lod off` every walk is level 0 and this is
+//! the ground truth's visibility at level 0. A mode's own walk's count is its
+//! [`ModeRow::V_walk`]; the case's count at level 0 is [`Case::V_level0`].
 
 use anyhow::Result;
-use footprint_core::terrain::camera::Options;
+use footprint_core::terrain::camera::{Options, Switch};
+use footprint_core::terrain::frame::Frame;
+use footprint_core::terrain::visibility::visible_voxels;
+use footprint_core::terrain::Terrain;
 use serde::Serialize;
 
 use super::paper::{paper_view, ViewPlacement};
@@ -14,6 +26,11 @@ use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{count, render_timed, Mode, Tables, SS_RATES};
 use crate::view::{Size, SurfaceArg};
+
+/// A case is magnified when the pixel's footprint at the first hit is below this many voxels
+/// across: 1 (a pixel exactly one voxel wide, the paper's rule) less 2 % for the fit of the
+/// eye, whose first hit is found to within a voxel or so of 2,290.
+pub const MAGNIFIED_BELOW: f64 = 0.98;
 
 /// The coverage ratios of Table 5.
 pub const TABLE5_COVERAGE: [f64; 4] = [0.3, 0.5, 0.7, 0.9];
@@ -28,11 +45,17 @@ pub struct ModeRow {
     pub M: f64,
     /// Ray–voxel hits per column (`NP` for SS_N, `M′ + P` for AS).
     pub hits: f64,
-    /// `M/V`.
+    /// `M/V`, `V` the case's one denominator ([`Case::V`]), the same for every mode.
     pub coverage: f64,
-    /// Sampled voxels that are hidden from the eye, per column (0 for `as-exact`).
+    /// Visible voxels per column of this mode's own walk (which climbs the pyramid at the
+    /// mode's switch): equal to [`Case::V`] for the modes that climb at [`Switch::Late`] and
+    /// with `--lod off`, else possibly different. Not the denominator of `coverage`.
+    pub V_walk: f64,
+    /// Sampled voxels that are hidden from the eye, per column (0 for `as-exact`), against the
+    /// mode's own walk.
     pub hidden: f64,
-    /// Visible voxels not sampled, per column (`V − M` when nothing hidden is sampled).
+    /// Visible voxels of the mode's own walk not sampled, per column (`V_walk − M` when
+    /// nothing hidden is sampled).
     pub missed: f64,
     /// Wall time of one frame, ms (best of 3, one thread, no counting).
     pub ms: f64,
@@ -50,12 +73,28 @@ pub struct Case {
     pub pitch: f64,
     /// Eye height, metres above sea level (fit-first-hit).
     pub height: f64,
+    /// Image columns: the per-column averages are over this many.
+    pub columns: usize,
     /// Pixels per column through which terrain is visible.
     pub P: f64,
     /// Traversal steps per column after the first hit.
     pub L: f64,
-    /// Visible voxels per column.
+    /// Visible voxels per column: the one denominator of every mode's coverage `M/V` in this
+    /// case, counted along the sequence the area modes walk ([`Switch::Late`]; level 0 with
+    /// `--lod off`).
     pub V: f64,
+    /// Visible voxels per column at pyramid level 0, the ground truth's level (its one column
+    /// per pixel, not its 16): equal to `V` with `--lod off`; with LOD, how many finer voxels
+    /// the pyramid's coarse ones stand for.
+    pub V_level0: f64,
+    /// The pixel's footprint across, in voxels, at the first hit of the middle column: the
+    /// first hit's distance times the pixel angle. The paper's rule puts the first hit where
+    /// this is 1; below 1 the view magnifies the map ([`Case::magnified`]).
+    pub pixel_voxels: f64,
+    /// Whether a pixel is narrower than a voxel at the first hit (`pixel_voxels` below
+    /// [`MAGNIFIED_BELOW`]): magnification, where the paper's minification trends (PS coverage
+    /// falling with the pitch, SS coverage below 1) are not expected to hold.
+    pub magnified: bool,
     /// Every mode asked for.
     pub modes: Vec<ModeRow>,
     /// SS coverage for N = 1 (PS), 2, 4, …, 256, for Table 5 and the coverage plot.
@@ -158,6 +197,25 @@ pub fn run(
         progress(&format!("pitch {pitch}°: table 1"));
         let (_, base) = count(&frame, &terrain, Mode::Ps)?;
         let per = |x: u64| x as f64 / cols;
+        // The one denominator: the area modes' sequence; and the same at level 0.
+        let v = visible(&frame, &terrain, Switch::Late);
+        let v_case = per(v);
+        let level0 = if lod {
+            let terrain0 = pyramid.terrain(false)?;
+            let mut tables0 = Tables::new(&camera);
+            let frame0 = tables0.frame(
+                &camera,
+                &terrain0,
+                Options {
+                    lod: false,
+                    ..options
+                },
+            )?;
+            per(visible(&frame0, &terrain0, Switch::Late))
+        } else {
+            v_case
+        };
+        let coverage = |m: u64| if v == 0 { 1.0 } else { m as f64 / v as f64 };
 
         let mut rows = Vec::new();
         for &mode in modes {
@@ -171,7 +229,8 @@ pub fn run(
                 mode,
                 M: per(t.m),
                 hits: per(t.hits),
-                coverage: t.coverage(),
+                coverage: coverage(t.m),
+                V_walk: per(t.v),
                 hidden: per(hidden),
                 missed: per(missed),
                 ms,
@@ -180,7 +239,7 @@ pub fn run(
             });
         }
 
-        let mut coverage_by_rate = vec![(1, base.total.coverage())];
+        let mut coverage_by_rate = vec![(1, coverage(base.total.m))];
         for rate in SS_RATES {
             let n = rate.n();
             progress(&format!("pitch {pitch}°: coverage of ss{n}"));
@@ -190,16 +249,21 @@ pub fn run(
                 .map(|r| r.coverage);
             let c = match known {
                 Some(c) => c,
-                None => count(&frame, &terrain, Mode::Ss(rate))?.1.total.coverage(),
+                None => coverage(count(&frame, &terrain, Mode::Ss(rate))?.1.total.m),
             };
             coverage_by_rate.push((n, c));
         }
+        let pixel_voxels = view.placement.first_hit_m / map.spacing_m * camera.pixel_angle();
         cases.push(Case {
             pitch,
             height: camera.params().eye_m + map.base_m,
             P: per(base.total.p),
             L: per(base.total.l),
-            V: per(base.total.v),
+            columns: camera.width(),
+            V: v_case,
+            V_level0: level0,
+            pixel_voxels,
+            magnified: pixel_voxels < MAGNIFIED_BELOW,
             modes: rows,
             coverage_by_rate,
             view: view.placement,
@@ -225,4 +289,14 @@ pub fn run(
         cases,
         table5,
     })
+}
+
+/// The visible voxels of every column of `frame` (its columns, or the exact projection's fan
+/// lines, as [`count`] walks them), climbing at `switch`, summed; the columns in parallel.
+fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 {
+    use rayon::prelude::*;
+    (0..frame.width())
+        .into_par_iter()
+        .map(|x| visible_voxels(frame, terrain, x, switch))
+        .sum()
 }

@@ -1,6 +1,54 @@
 //! Tables 1–5 as Markdown and CSV (`footprint table`, and the report).
 
-use crate::experiment::table::{self, Tables15};
+use crate::experiment::table::{self, Case, Tables15, MAGNIFIED_BELOW};
+
+/// A coverage `M/V` to 3 decimals, or to as many more (up to 6) as it takes not to round a
+/// value that is not 1 to `1.000` (0.99902 is `0.99902`, not `1.000`).
+pub fn coverage(c: f64) -> String {
+    for digits in 3..=6 {
+        let s = format!("{c:.digits$}");
+        if c == 1.0 || s.parse::<f64>() != Ok(1.0) {
+            return s;
+        }
+    }
+    format!("{c:.6}")
+}
+
+/// What the case's geometry is, said aloud: the pixel's footprint at the first hit in voxels,
+/// and `magnification` or `minification`.
+pub fn geometry(c: &Case) -> String {
+    format!(
+        "a pixel is {:.2} voxel wide at the first hit: {}",
+        c.pixel_voxels,
+        if c.magnified {
+            "magnification (a pixel narrower than a voxel)"
+        } else {
+            "minification, the paper's geometry"
+        }
+    )
+}
+
+/// The sentence under Table 1 for magnified cases (empty if none): which, by how much, and
+/// that the paper's minification trends are not expected to hold there.
+pub fn magnified_note(t: &Tables15) -> String {
+    let magnified: Vec<String> = t
+        .cases
+        .iter()
+        .filter(|c| c.magnified)
+        .map(|c| format!("{}° ({:.2})", c.pitch, c.pixel_voxels))
+        .collect();
+    if magnified.is_empty() {
+        return String::new();
+    }
+    format!(
+        "**Not the paper's geometry.** At {} a pixel is narrower than a voxel at the first hit \
+         (the pixel's footprint across, in voxels, in brackets; the paper's rule makes it 1, and \
+         a case counts as magnified below {MAGNIFIED_BELOW}): the view magnifies the map, where \
+         the paper's views minify it. The paper's minification trends (PS coverage falling with \
+         the pitch, SS coverage below 1) are not expected to hold in these cases.\n\n",
+        magnified.join(", ")
+    )
+}
 
 /// Tables 1–5 as Markdown.
 pub fn markdown(t: &Tables15, source: &str) -> String {
@@ -13,19 +61,41 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
         "Map: {source}. FOV 10°, fit-first-hit, per-column averages; the walk steps through \
          {walk}.\n\n"
     );
-    s += "**Table 1.** The viewing parameters and the attributes of each case.\n\n";
-    s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) |\n|---|---|---|---|---|\n";
+    s += "**Table 1.** The viewing parameters and the attributes of each case. *V* is the one \
+          denominator of every mode's coverage M/V in the case: the visible voxels of the \
+          sequence the area modes walk (the pyramid climbed at 2.4 footprints; level 0 with \
+          `--lod off`), the paper's V. *V at level 0* counts the same view's visible voxels at \
+          level 0, the ground truth's level. P and L are PS's walk's. *Pixel / voxel* is the \
+          pixel's footprint across at the first hit, in voxels (1 by the paper's rule; below \
+          1, magnification).\n\n";
+    s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) | V at level 0 | Pixel / voxel at first hit |\n|---|---|---|---|---|---|---|\n";
     for c in &t.cases {
         s += &format!(
-            "| {} | {:.0} | {:.1} | {:.1} | {:.1} |\n",
-            c.pitch, c.height, c.P, c.L, c.V
+            "| {} | {:.0} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2}{} |\n",
+            c.pitch,
+            c.height,
+            c.P,
+            c.L,
+            c.V,
+            c.V_level0,
+            c.pixel_voxels,
+            if c.magnified { " (magnified)" } else { "" }
         );
+    }
+    let note = magnified_note(t);
+    if !note.is_empty() {
+        s += "\n";
+        s += note.trim_end();
+        s += "\n";
     }
     for (k, c) in t.cases.iter().enumerate() {
         s += &format!(
-            "\n**Table {}.** Pitch {}°: voxels sampled, ray–voxel hits, coverage, time and error against the ground truth.\n\n",
+            "\n**Table {}.** Pitch {}°: voxels sampled, ray–voxel hits, coverage (every mode over \
+             the case's one V), time and error against the ground truth; {}. Hidden and missed \
+             voxels are against each mode's own walk.\n\n",
             k + 2,
-            c.pitch
+            c.pitch,
+            geometry(c)
         );
         s += "| | ";
         s += &c
@@ -45,7 +115,10 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
         };
         s += &row("M", &|m| format!("{:.1}", m.M));
         s += &row("hits (NP, M′+P)", &|m| format!("{:.1}", m.hits));
-        s += &row("M/V", &|m| format!("{:.3}", m.coverage));
+        s += &row(&format!("M/V (V = {:.1})", c.V), &|m| coverage(m.coverage));
+        if c.modes.iter().any(|m| m.V_walk != c.V) {
+            s += &row("V of the mode's own walk", &|m| format!("{:.1}", m.V_walk));
+        }
         s += &row("hidden sampled", &|m| format!("{:.2}", m.hidden));
         s += &row("visible missed", &|m| format!("{:.2}", m.missed));
         s += &row("ms / frame", &|m| format!("{:.2}", m.ms));
@@ -80,12 +153,12 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
 /// Tables 1–5 as CSV: a `table` column says which table a row belongs to.
 pub fn csv(t: &Tables15) -> String {
     let mut s = String::from(
-        "table,pitch,height,P,L,V,mode,M,hits,coverage,ms,rmse,psnr,target_coverage,rate,hidden,missed\n",
+        "table,pitch,height,P,L,V,mode,M,hits,coverage,ms,rmse,psnr,target_coverage,rate,hidden,missed,V_walk,V_level0,pixel_voxels,magnified\n",
     );
     for c in &t.cases {
         for m in &c.modes {
             s += &format!(
-                "1-4,{},{:.3},{:.3},{:.3},{:.3},{},{:.3},{:.3},{:.6},{:.4},{:.4},{},,,{:.3},{:.3}\n",
+                "1-4,{},{:.3},{:.3},{:.3},{:.3},{},{:.3},{:.3},{:.6},{:.4},{:.4},{},,,{:.3},{:.3},{:.3},{:.3},{:.4},{}\n",
                 c.pitch,
                 c.height,
                 c.P,
@@ -99,12 +172,16 @@ pub fn csv(t: &Tables15) -> String {
                 m.rmse,
                 m.psnr.map_or(String::new(), |p| format!("{p:.3}")),
                 m.hidden,
-                m.missed
+                m.missed,
+                m.V_walk,
+                c.V_level0,
+                c.pixel_voxels,
+                c.magnified
             );
         }
     }
     for e in &t.table5 {
-        s += &format!("5,{},,,,,,,,,,,,{},{},,\n", e.pitch, e.coverage, e.rate);
+        s += &format!("5,{},,,,,,,,,,,,{},{},,,,,,\n", e.pitch, e.coverage, e.rate);
     }
     s
 }
