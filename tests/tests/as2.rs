@@ -270,9 +270,11 @@ fn a_flight_over_stripes_flickers_across_columns_in_ps_as_and_as_exact_not_in_as
 /// The largest change, in 8-bit luminance, of one pixel between consecutive frames that
 /// `as2` may make in a slow zoom over the stripes (the eye raised by 15 cm a frame from 200 m
 /// at pitch 45°, so that every pixel's footprint crosses the level switch at 2.4 voxels).
-/// Measured 2026-11-26: `as2` 5, `as-exact` 6. The pops are small for every mode, because a
-/// switch moves through a pixel continuously along the column (a pixel spans several voxels
-/// there); `as2`'s blend with the finer level makes each step continuous at the switch itself.
+/// Measured 2026-11-26: `as2` 5, `as-exact` 6. Most of each step is the zoom's own motion (every
+/// footprint moves as the eye rises): in a faster zoom (0.67 m a frame) level 0 alone makes
+/// steps of 19 (`as2`) and 23 (`as-exact`), as large as with the pyramid. The bound holds with
+/// the blend; what the blend itself changes is measured in docs/measurements.md, "Blending
+/// levels" (a little RMSE, no flicker).
 const ZOOM_STEP: u32 = 5;
 
 #[test]
@@ -315,7 +317,7 @@ fn the_level_changes_continuously_in_a_slow_zoom() {
         wide <= ZOOM_STEP,
         "as2 pops by {wide} levels in a slow zoom"
     );
-    assert!(line > ZOOM_STEP, "as-exact's level switches pop: {line}");
+    assert!(line >= wide, "as-exact steps less than as2: {line} against {wide}");
 }
 
 /// [`render`] at 16 × 16.

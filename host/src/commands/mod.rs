@@ -24,6 +24,21 @@ pub use serve::{serve, ServeArgs};
 pub use specular::{specular, SpecularArgs};
 pub use table::{table, TableArgs};
 
+/// A spinner naming what a run of unknown length is doing, with the time so far: drawn on
+/// stderr every 100 ms while stderr is a terminal (indicatif hides it otherwise), hidden when
+/// `hidden` (a run that prints JSON). Finish it with `finish_and_clear`.
+pub fn phases(hidden: bool) -> indicatif::ProgressBar {
+    let style = indicatif::ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner());
+    let bar = indicatif::ProgressBar::new_spinner().with_style(style);
+    if hidden {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    } else {
+        bar.enable_steady_tick(std::time::Duration::from_millis(100));
+    }
+    bar
+}
+
 /// The one progress-bar style of every long run: a 30-cell bar, `pos/len unit`, the current
 /// message, the elapsed time and the estimate of what is left; drawn on stderr, and hidden
 /// when `hidden` (a run that prints JSON).

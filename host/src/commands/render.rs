@@ -52,8 +52,14 @@ pub struct RenderArgs {
 
 /// Runs `footprint render`.
 pub fn render(args: &RenderArgs) -> Result<()> {
+    let started = std::time::Instant::now();
+    // What the run is doing, on a terminal only (hidden with --json, and by indicatif when
+    // stderr is not a terminal); cleared when the run ends.
+    let phase = super::phases(args.format.json);
+    phase.set_message("reading the map and building its pyramid");
     let overview = args.camera.view_or(ViewArg::Overview) == ViewArg::Overview;
     let view = args.camera.load(&args.map, ViewArg::Overview)?;
+    phase.set_message("rendering");
     let terrain = view.pyramid.terrain(view.options.lod)?;
     let mut tables = Tables::new(&view.camera);
     let frame = tables.frame(&view.camera, &terrain, view.options)?;
@@ -94,17 +100,23 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     };
     if let Some(out) = &args.out {
         let (w, h) = rendered.size;
+        phase.set_message("writing the PNG");
         write_png(out, w, h, &rendered.image)?;
+        phase.finish_and_clear();
         if !args.format.json {
-            // The one line a first run prints: what was written, how big, how, how fast.
+            // The one line a first run prints: what was written, how big, how, how fast: the
+            // render's time, and the whole run's (the map, its pyramid, the PNG too).
+            let all = started.elapsed().as_secs_f64() * 1e3;
             crate::outln!(
-                "wrote {}: {w}x{h}, {}, {} ms",
+                "wrote {}: {w}x{h}, {}, {} ms render, {} ms in all",
                 crate::output::shown(out),
                 args.mode,
-                Millis(ms)
+                Millis(ms),
+                Millis(all)
             )?;
         }
     }
+    phase.finish_and_clear();
     if args.counts || args.format.json {
         // The paper's counters (Sect. 6): a counting walk of the colour render.
         let (_, measured) = count(&frame, &terrain, args.mode)?;
