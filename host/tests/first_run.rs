@@ -37,7 +37,10 @@ fn the_main_command_prints_one_line_and_no_warning() {
         .and_then(|rest| rest.split_once(" ms render, "))
         .unwrap_or_else(|| panic!("{:?} is not {prefix:?}… ms render, … ms in all", lines[0]));
     let (render, all) = (render.parse::<f64>().unwrap(), all.parse::<f64>().unwrap());
-    assert!(render > 0.0 && all >= render, "{render} ms render, {all} ms in all");
+    assert!(
+        render > 0.0 && all >= render,
+        "{render} ms render, {all} ms in all"
+    );
     assert!(std::fs::metadata(&out).unwrap().len() > 0);
 }
 
