@@ -126,8 +126,8 @@ pub fn markdown(g: &Glint) -> String {
 pub fn section(g: &Glint, note: &str) -> String {
     let mut s = String::from("## Sun glint: specular antialiasing in flight\n\n");
     s += "Amanatides' clamp, Toksvig's lobe widening and no antialiasing on the terrain's \
-          water under a low sun straight ahead, against the supersampled reference \
-          (`footprint glint --measure`). ";
+          water and rock (their materials named below) under a low sun straight ahead, \
+          against the supersampled reference (`footprint glint --measure`). ";
     s += note;
     s += "\n\n";
     s += &markdown(g);
