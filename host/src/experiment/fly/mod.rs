@@ -182,9 +182,13 @@ impl FlySpec {
         }));
         let series = n_modes + panels as u64 + u64::from(self.flies_reference());
         let streamed = w * h * 4 * (series + 3 * widest) * chunk;
-        // Every frame's camera is computed up front.
-        let cameras = (self.frames as u64)
-            .checked_mul(size_of::<footprint_core::terrain::camera::CameraParams>() as u64);
+        // A path's cameras are computed up front; the straight flight's frame by frame.
+        let cameras = if self.path.is_some() {
+            (self.frames as u64)
+                .checked_mul(size_of::<footprint_core::terrain::camera::CameraParams>() as u64)
+        } else {
+            Some(0)
+        };
         crate::memory::check(
             cuts.and_then(|c| c.checked_add(streamed))
                 .and_then(|c| c.checked_add(cameras?)),
@@ -409,12 +413,15 @@ pub fn run_with_frames(
     }
     spec.check_memory(panels.len())?;
     let chunk = 4 * rayon::current_num_threads().max(1);
-    // Every frame's camera: the paper's straight flight, or the path's.
-    let cameras = match &spec.path {
-        Some(path) => path.cameras(&start, spec.frames, spec.step_m),
-        None => (0..spec.frames)
-            .map(|t| flight::moved(&start, t, spec.step_m))
-            .collect(),
+    // Every frame's camera: the path's, computed up front (it interpolates its key frames),
+    // or the paper's straight flight, frame by frame (a long flight holds no list of them).
+    let path_cameras = spec
+        .path
+        .as_ref()
+        .map(|path| path.cameras(&start, spec.frames, spec.step_m));
+    let camera_at = |t: usize| match &path_cameras {
+        Some(cameras) => cameras[t],
+        None => flight::moved(&start, t, spec.step_m),
     };
     // The series: the reference first (when flown), then every mode that is not it.
     let reference = spec.flies_reference();
@@ -442,7 +449,7 @@ pub fn run_with_frames(
         classes: Option<Vec<u8>>,
     }
     let render_frame = |t: usize| -> Result<Rendered> {
-        let camera = Camera::new(cameras[t]).map_err(|e| anyhow::anyhow!("frame {t}: {e}"))?;
+        let camera = Camera::new(camera_at(t)).map_err(|e| anyhow::anyhow!("frame {t}: {e}"))?;
         let mut truth: Option<Vec<Rgb>> = None;
         let mut panel_images: Vec<Option<Vec<Rgb>>> = vec![None; panels.len()];
         let mut measured = Vec::with_capacity(series.len());
