@@ -314,7 +314,8 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let data = json!({"command": command, "command_words": regenerate_words(args),
         "lod": value_name(&args.lod), "tables": tables, "fly": flight, "claims": claims,
         "fig13_pixel": choice, "pixel": pixel_json, "footprint": fp_json,
-        "pyramid_heights_pitch5": study, "differences": diffs, "glint": glint});
+        "pyramid_heights_pitch5": study, "differences": diffs, "glint": glint,
+        "paper": document::paper_numbers()});
     write_text(&file("report.json")?, &serde_json::to_string_pretty(&data)?)?;
     folder.finish()?;
     bar.finish_and_clear();

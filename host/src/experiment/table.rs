@@ -145,6 +145,10 @@ pub struct Tables15 {
     pub lod: bool,
     /// The surface the modes and the ground truth met: `flat` or `bilinear` (`--surface`).
     pub surface: &'static str,
+    /// The switch of the walk whose visible voxels are each case's one denominator `V`: the
+    /// pyramid climbed past this many footprints ([`Switch::Late`]; level 0 throughout with
+    /// `--lod off`).
+    pub v_switch_footprints: f64,
     /// One entry per case.
     pub cases: Vec<Case>,
     /// Table 5.
@@ -285,6 +289,7 @@ pub fn run(
         .collect();
     Ok(Tables15 {
         lod,
+        v_switch_footprints: Switch::Late.voxels(),
         surface: surface.name(),
         cases,
         table5,

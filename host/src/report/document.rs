@@ -3,19 +3,89 @@
 //! filters and where our numbers differ from the paper's.
 
 use crate::experiment::claims::{claims, compare, MIN_EVENTS};
-use crate::experiment::differences::{Differences, PAPER_TABLE6, PAPER_V_L_5};
+use crate::experiment::differences::{Differences, PAPER_SS_COVERAGE_5, PAPER_TABLE6, PAPER_V_L_5};
 use crate::experiment::fly;
 use crate::experiment::glint::Glint;
 use crate::experiment::heights::Variant;
 use crate::experiment::inspect::PixelChoice;
 use crate::experiment::table::Tables15;
 
-/// The paper's numbers that the report compares against (Tables 1, 4 and 6).
-const PAPER_NOTES: &str = "The paper's Table 1 reads P = 400, 400, 324; L = 847, 1350, 4555; \
-V = 847, 1347, 4217 at pitch 40°, 20°, 5°. Its Table 4 (pitch 5°) reads coverage 0.07 (PS), \
-0.49 (SS8), 0.61 (SS16), 0.67 (SS32) and M′ = 4271 for AS; its Table 6 counts 52 (AS), \
-5,432 (PS), 953 (SS8) and 203 (SS16) changes of 6–60. The paper gives neither its terrain's \
-spacing nor its units.";
+/// The paper's Table 1: pitch, `P`, `L` and `V` per column.
+pub const PAPER_TABLE1: [(f64, f64, f64, f64); 3] = [
+    (40.0, 400.0, 847.0, 847.0),
+    (20.0, 400.0, 1350.0, 1347.0),
+    (5.0, 324.0, 4555.0, 4217.0),
+];
+
+/// The paper's Table 4 (pitch 5°): PS's coverage and AS's `M′` per column.
+pub const PAPER_TABLE4_PS_AS: (f64, f64) = (0.07, 4271.0);
+
+/// The paper's numbers that the report compares against (Tables 1, 4 and 6), as a sentence.
+fn paper_notes() -> String {
+    let col = |f: fn(&(f64, f64, f64, f64)) -> f64| {
+        PAPER_TABLE1
+            .iter()
+            .map(|r| f(r).to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let ss = PAPER_SS_COVERAGE_5
+        .iter()
+        .map(|(r, c)| format!("{c:.2} (SS{})", r.n()))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let t6 = PAPER_TABLE6
+        .iter()
+        .map(|(m, n)| format!("{} ({})", thousands(*n), m.to_string().to_uppercase()))
+        .collect::<Vec<_>>();
+    format!(
+        "The paper's Table 1 reads P = {}; L = {}; V = {} at pitch {}. Its Table 4 (pitch 5°) \
+         reads coverage {:.2} (PS), {ss} and M′ = {} for AS; its Table 6 counts {} changes of \
+         6–60. The paper gives neither its terrain's spacing nor its units.",
+        col(|r| r.1),
+        col(|r| r.2),
+        col(|r| r.3),
+        and_list(&PAPER_TABLE1.map(|r| format!("{}°", r.0))),
+        PAPER_TABLE4_PS_AS.0,
+        PAPER_TABLE4_PS_AS.1,
+        and_list(&t6)
+    )
+}
+
+/// `5432` as `5,432`.
+fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The paper's numbers the report compares against, for report.json.
+pub fn paper_numbers() -> serde_json::Value {
+    serde_json::json!({
+        "table1": PAPER_TABLE1
+            .iter()
+            .map(|r| serde_json::json!({"pitch": r.0, "P": r.1, "L": r.2, "V": r.3}))
+            .collect::<Vec<_>>(),
+        "table4": {
+            "ps_coverage": PAPER_TABLE4_PS_AS.0,
+            "as_M": PAPER_TABLE4_PS_AS.1,
+            "ss_coverage": PAPER_SS_COVERAGE_5
+                .iter()
+                .map(|(r, c)| serde_json::json!({"n": r.n(), "coverage": c}))
+                .collect::<Vec<_>>(),
+        },
+        "table6": PAPER_TABLE6
+            .iter()
+            .map(|(m, n)| serde_json::json!({"mode": m.to_string(), "changes_6_60": n}))
+            .collect::<Vec<_>>(),
+    })
+}
 
 /// `M1 e1, M2 e2, …` with upper-case mode names.
 fn list(v: &[(String, f64)]) -> String {
@@ -148,7 +218,7 @@ fn pixel_paragraph(p: &PixelChoice) -> String {
 pub fn differences_section(d: &Differences, t: &Tables15) -> String {
     let m = &d.map;
     let mut s = String::from("## Where our numbers differ from the paper's, and why\n\n");
-    s += PAPER_NOTES;
+    s += &paper_notes();
     s += "\n\n";
     s += &format!(
         "- **This map** ({}) is {}×{} voxels of {} m, {} east to west and {} north to south, \

@@ -61,13 +61,16 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
         "Map: {source}. FOV 10°, fit-first-hit, per-column averages; the walk steps through \
          {walk}.\n\n"
     );
-    s += "**Table 1.** The viewing parameters and the attributes of each case. *V* is the one \
-          denominator of every mode's coverage M/V in the case: the visible voxels of the \
-          sequence the area modes walk (the pyramid climbed at 2.4 footprints; level 0 with \
-          `--lod off`), the paper's V. *V at level 0* counts the same view's visible voxels at \
-          level 0, the ground truth's level. P and L are PS's walk's. *Pixel / voxel* is the \
-          pixel's footprint across at the first hit, in voxels (1 by the paper's rule; below \
-          1, magnification).\n\n";
+    s += &format!(
+        "**Table 1.** The viewing parameters and the attributes of each case. *V* is the one \
+         denominator of every mode's coverage M/V in the case: the visible voxels of the \
+         sequence the area modes walk (the pyramid climbed at {} footprints; level 0 with \
+         `--lod off`), the paper's V. *V at level 0* counts the same view's visible voxels at \
+         level 0, the ground truth's level. P and L are PS's walk's. *Pixel / voxel* is the \
+         pixel's footprint across at the first hit, in voxels (1 by the paper's rule; below \
+         1, magnification).\n\n",
+        t.v_switch_footprints
+    );
     s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) | V at level 0 | Pixel / voxel at first hit |\n|---|---|---|---|---|---|---|\n";
     for c in &t.cases {
         s += &format!(
