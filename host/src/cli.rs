@@ -40,7 +40,7 @@ pub enum Command {
     Specular(Box<commands::SpecularArgs>),
     /// The flight of Sect. 5: Table 6 (pixel changes between frames) and Fig. 14 (a column over time).
     Fly(Box<FlyArgs>),
-    /// Sun glint on water in the flight: each specular antialiasing method against
+    /// Sun glint on wet rock or water in the flight: each specular antialiasing method against
     /// the supersampled reference: RMSE, flicker (Table 6's bins) and shading work.
     Glint(Box<commands::GlintArgs>),
     /// The paper's diagnostic pictures: --zoom (Fig. 5), --pixel (Fig. 13), --footprint (Fig. 9),
