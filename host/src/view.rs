@@ -384,7 +384,7 @@ impl View {
     ) -> Result<Self> {
         let (w, h) = (cam.size.width, cam.size.height);
         crate::memory::check(
-            crate::memory::image_bytes(w, h),
+            crate::memory::image_bytes(w, h, cam.projection == ProjectionArg::Exact),
             &format!("--size {w}x{h}"),
             "the images",
         )?;

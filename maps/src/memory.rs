@@ -160,16 +160,27 @@ pub fn map_bytes(w: u32, h: u32) -> Option<u64> {
         .checked_mul(BYTES_PER_CELL)
 }
 
-/// Peak bytes per pixel while `render` or `inspect` draws an image and writes its PNG (the
-/// frame, the per-column buffers of the parallel render, the PNG's rows): measured 188 MB for
-/// 4096² on a 64² map, 11.2 bytes per pixel.
+/// Peak bytes per pixel while `render` or `inspect` draws an image of the exact projection (the
+/// CLI's default) and writes its PNG: the fan's grid (about 1.1 lines per image column, one
+/// `Rgb` per cell), the image, and the PNG encoder's rows. Measured 2026-11-26 on a 64² map,
+/// peak resident memory less a 64×64 run's: 11.9, 12.3 and 12.3 bytes per pixel at 1024²,
+/// 2048² and 4096² (host/tests/memory_estimate.rs checks it within 25 %).
 pub const BYTES_PER_PIXEL: u64 = 12;
 
-/// The bytes a `w × h` image needs while it is rendered and written.
-pub fn image_bytes(w: u32, h: u32) -> Option<u64> {
+/// [`BYTES_PER_PIXEL`] for the paper's projection, whose grid is the image: measured 5.7, 5.9
+/// and 5.9 bytes per pixel at the same sizes.
+pub const PAPER_BYTES_PER_PIXEL: u64 = 6;
+
+/// The bytes a `w × h` image needs while it is rendered and written, in the exact projection
+/// (`exact`) or the paper's.
+pub fn image_bytes(w: u32, h: u32, exact: bool) -> Option<u64> {
     u64::from(w)
         .checked_mul(u64::from(h))?
-        .checked_mul(BYTES_PER_PIXEL)
+        .checked_mul(if exact {
+            BYTES_PER_PIXEL
+        } else {
+            PAPER_BYTES_PER_PIXEL
+        })
 }
 
 #[cfg(test)]
