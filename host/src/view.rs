@@ -231,7 +231,7 @@ impl MapArgs {
                 map::procedural::check_size(self.terrain_size).map_err(anyhow::Error::msg)?;
                 let n = self.terrain_size;
                 crate::memory::check(
-                    crate::memory::map_bytes(n, n),
+                    crate::memory::builtin_map_bytes(n, n),
                     &format!("--terrain-size {n}"),
                     "the map and its pyramid",
                 )?;

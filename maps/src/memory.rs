@@ -8,9 +8,17 @@ use std::sync::OnceLock;
 
 use anyhow::{bail, Result};
 
-/// Peak bytes per map cell while a map is built or loaded and its pyramid made: measured for
-/// the built-in terrain (about 200 MB for 2048², 3 GB for 8192²), and used for every map.
+/// Peak bytes per map cell while the built-in terrain is generated and its pyramid made (the
+/// generator's noise and erosion fields): measured 2026-11-26, 47 bytes per cell at 4096² (790
+/// MB).
 pub const BYTES_PER_CELL: u64 = 48;
+
+/// Peak bytes per map cell while a map file is read and its pyramid made (the heights and
+/// colours of every level; the readers stream their input): measured 2026-11-26, peak resident
+/// memory less a 64² map's, 7.6, 7.8 and 7.8 bytes per cell at 1024², 2048² and 4096² for a
+/// 16-bit PNG and a float32 TIFF alike, 7.8 for an ESRI ASCII grid at 2048²
+/// (host/tests/memory_estimate.rs checks it within 25 %).
+pub const FILE_BYTES_PER_CELL: u64 = 8;
 
 static BUDGET: OnceLock<u64> = OnceLock::new();
 
@@ -153,8 +161,17 @@ pub fn check(need: Option<u64>, what: &str, for_what: &str) -> Result<()> {
     }
 }
 
-/// The bytes a `w × h` map needs while it is built or loaded and its pyramid made.
+/// The bytes a `w × h` map file needs while it is read and its pyramid made
+/// ([`FILE_BYTES_PER_CELL`]).
 pub fn map_bytes(w: u32, h: u32) -> Option<u64> {
+    u64::from(w)
+        .checked_mul(u64::from(h))?
+        .checked_mul(FILE_BYTES_PER_CELL)
+}
+
+/// The bytes the built-in `w × h` terrain needs while it is generated and its pyramid made
+/// ([`BYTES_PER_CELL`]).
+pub fn builtin_map_bytes(w: u32, h: u32) -> Option<u64> {
     u64::from(w)
         .checked_mul(u64::from(h))?
         .checked_mul(BYTES_PER_CELL)
@@ -203,7 +220,7 @@ mod tests {
     #[test]
     fn products_that_overflow_are_refused() {
         assert_eq!(
-            map_bytes(65_536, 65_536),
+            builtin_map_bytes(65_536, 65_536),
             Some(65_536 * 65_536 * BYTES_PER_CELL)
         );
         assert!(check(None, "--frames 1", "x").is_err());

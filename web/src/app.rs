@@ -193,7 +193,7 @@ impl App {
     pub fn load_builtin(&mut self, seed: u64, size: u32) -> Result<(), String> {
         procedural::check_size(size)?;
         memory::check(
-            memory::map_bytes(size, size),
+            memory::builtin_map_bytes(size, size),
             &format!("--terrain-size {size}"),
             "the map and its pyramid",
         )
