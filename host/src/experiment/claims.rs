@@ -117,10 +117,18 @@ fn verdict(holds: bool) -> Verdict {
 /// whether that is magnification.
 fn at(c: &Case) -> String {
     format!(
-        "{}° (a pixel {:.2} voxel wide at the first hit{})",
+        "{}° (a pixel {:.2} voxel wide at the first hit{}, {:.2} at the farthest visible voxel)",
         c.pitch,
         c.pixel_voxels,
-        if c.magnified { ": magnified" } else { "" }
+        if c.magnified {
+            format!(
+                ": magnified, {:.0} % of the visible voxels",
+                100.0 * c.magnified_share
+            )
+        } else {
+            String::new()
+        },
+        c.pixel_voxels_far
     )
 }
 

@@ -95,6 +95,12 @@ pub struct Case {
     /// [`MAGNIFIED_BELOW`]): magnification, where the paper's minification trends (PS coverage
     /// falling with the pitch, SS coverage below 1) are not expected to hold.
     pub magnified: bool,
+    /// The pixel's footprint across, in voxels, at the farthest visible voxel of the frame (of
+    /// the walk that counts `V`): with `pixel_voxels`, the range over the frame.
+    pub pixel_voxels_far: f64,
+    /// The share of the frame's visible voxels (of the walk that counts `V`) that lie nearer
+    /// than where a pixel is one voxel wide: the magnified part of what the case sees.
+    pub magnified_share: f64,
     /// Every mode asked for.
     pub modes: Vec<ModeRow>,
     /// SS coverage for N = 1 (PS), 2, 4, …, 256, for Table 5 and the coverage plot.
@@ -203,6 +209,8 @@ pub fn run(
         let per = |x: u64| x as f64 / cols;
         // The one denominator: the area modes' sequence; and the same at level 0.
         let v = visible(&frame, &terrain, Switch::Late);
+        let (pixel_voxels_far, magnified_share) =
+            spread(&frame, &terrain, Switch::Late, camera.pixel_angle());
         let v_case = per(v);
         let level0 = if lod {
             let terrain0 = pyramid.terrain(false)?;
@@ -268,6 +276,8 @@ pub fn run(
             V_level0: level0,
             pixel_voxels,
             magnified: pixel_voxels < MAGNIFIED_BELOW,
+            pixel_voxels_far,
+            magnified_share,
             modes: rows,
             coverage_by_rate,
             view: view.placement,
@@ -304,4 +314,40 @@ fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 {
         .into_par_iter()
         .map(|x| visible_voxels(frame, terrain, x, switch))
         .sum()
+}
+
+/// Where the visible voxels of `frame` (climbing at `switch`) lie, in pixel footprints: the
+/// pixel's footprint across at the farthest of them, in voxels (`pixel_angle` times the
+/// distance), and the share of them nearer than where a pixel is one voxel wide.
+fn spread(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    switch: Switch,
+    pixel_angle: f64,
+) -> (f64, f64) {
+    use footprint_core::terrain::visibility::visit_visible;
+    use rayon::prelude::*;
+    let (far, near, all) = (0..frame.width())
+        .into_par_iter()
+        .map(|x| {
+            let (mut far, mut near, mut all) = (0f64, 0u64, 0u64);
+            if let Some(column) = frame.column(x) {
+                visit_visible(frame, terrain, x, switch, |march| {
+                    // The horizontal distance in voxels, times the pixel angle: the pixel's
+                    // footprint across there, in voxels.
+                    let across = column.distance(march.n()) * pixel_angle;
+                    far = far.max(across);
+                    near += u64::from(across < 1.0);
+                    all += 1;
+                });
+            }
+            (far, near, all)
+        })
+        .reduce(|| (0.0, 0, 0), |a, b| (a.0.max(b.0), a.1 + b.1, a.2 + b.2));
+    let share = if all == 0 {
+        0.0
+    } else {
+        near as f64 / all as f64
+    };
+    (far, share)
 }

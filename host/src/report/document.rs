@@ -274,7 +274,16 @@ pub fn differences_section(d: &Differences, t: &Tables15) -> String {
         let ratios: Vec<String> = t
             .cases
             .iter()
-            .map(|c| format!("{:.2} voxel at {}°", c.pixel_voxels, c.pitch))
+            .map(|c| {
+                format!(
+                    "{:.2} voxel at {}° ({:.2} at the farthest visible voxel, {:.1} % of the \
+                     visible voxels magnified)",
+                    c.pixel_voxels,
+                    c.pitch,
+                    c.pixel_voxels_far,
+                    100.0 * c.magnified_share
+                )
+            })
             .collect();
         let magnified: Vec<String> = t
             .cases

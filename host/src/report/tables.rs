@@ -35,14 +35,21 @@ pub fn magnified_note(t: &Tables15) -> String {
         .cases
         .iter()
         .filter(|c| c.magnified)
-        .map(|c| format!("{}° ({:.2})", c.pitch, c.pixel_voxels))
+        .map(|c| {
+            format!(
+                "{}° ({:.2}; {:.0} % of the visible voxels magnified)",
+                c.pitch,
+                c.pixel_voxels,
+                100.0 * c.magnified_share
+            )
+        })
         .collect();
     if magnified.is_empty() {
         return String::new();
     }
     format!(
         "**Not the paper's geometry.** At {} a pixel is narrower than a voxel at the first hit \
-         (the pixel's footprint across, in voxels, in brackets; the paper's rule makes it 1, and \
+         (the pixel's footprint across there, in voxels, in brackets; the paper's rule makes it 1, and \
          a case counts as magnified below {MAGNIFIED_BELOW}): the view magnifies the map, where \
          the paper's views minify it. The paper's minification trends (PS coverage falling with \
          the pitch, SS coverage below 1) are not expected to hold in these cases.\n\n",
@@ -68,19 +75,22 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
          `--lod off`), the paper's V. *V at level 0* counts the same view's visible voxels at \
          level 0, the ground truth's level. P and L are PS's walk's. *Pixel / voxel* is the \
          pixel's footprint across at the first hit, in voxels (1 by the paper's rule; below \
-         1, magnification).\n\n",
+         1, magnification), and at the farthest visible voxel; *magnified* is the share of \
+         the visible voxels that lie where a pixel is narrower than a voxel.\n\n",
         t.v_switch_footprints
     );
-    s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) | V at level 0 | Pixel / voxel at first hit |\n|---|---|---|---|---|---|---|\n";
+    s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) | V at level 0 | Pixel / voxel, farthest | magnified | Pixel / voxel at first hit |\n|---|---|---|---|---|---|---|---|---|\n";
     for c in &t.cases {
         s += &format!(
-            "| {} | {:.0} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2}{} |\n",
+            "| {} | {:.0} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.1} % | {:.2}{} |\n",
             c.pitch,
             c.height,
             c.P,
             c.L,
             c.V,
             c.V_level0,
+            c.pixel_voxels_far,
+            100.0 * c.magnified_share,
             c.pixel_voxels,
             if c.magnified { " (magnified)" } else { "" }
         );
@@ -156,12 +166,12 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
 /// Tables 1–5 as CSV: a `table` column says which table a row belongs to.
 pub fn csv(t: &Tables15) -> String {
     let mut s = String::from(
-        "table,pitch,height,P,L,V,mode,M,hits,coverage,ms,rmse,psnr,target_coverage,rate,hidden,missed,V_walk,V_level0,pixel_voxels,magnified\n",
+        "table,pitch,height,P,L,V,mode,M,hits,coverage,ms,rmse,psnr,target_coverage,rate,hidden,missed,V_walk,V_level0,pixel_voxels,magnified,pixel_voxels_far,magnified_share\n",
     );
     for c in &t.cases {
         for m in &c.modes {
             s += &format!(
-                "1-4,{},{:.3},{:.3},{:.3},{:.3},{},{:.3},{:.3},{:.6},{:.4},{:.4},{},,,{:.3},{:.3},{:.3},{:.3},{:.4},{}\n",
+                "1-4,{},{:.3},{:.3},{:.3},{:.3},{},{:.3},{:.3},{:.6},{:.4},{:.4},{},,,{:.3},{:.3},{:.3},{:.3},{:.4},{},{:.4},{:.4}\n",
                 c.pitch,
                 c.height,
                 c.P,
@@ -179,12 +189,17 @@ pub fn csv(t: &Tables15) -> String {
                 m.V_walk,
                 c.V_level0,
                 c.pixel_voxels,
-                c.magnified
+                c.magnified,
+                c.pixel_voxels_far,
+                c.magnified_share
             );
         }
     }
     for e in &t.table5 {
-        s += &format!("5,{},,,,,,,,,,,,{},{},,,,,,\n", e.pitch, e.coverage, e.rate);
+        s += &format!(
+            "5,{},,,,,,,,,,,,{},{},,,,,,,,\n",
+            e.pitch, e.coverage, e.rate
+        );
     }
     s
 }
