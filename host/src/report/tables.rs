@@ -75,24 +75,24 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
          `--lod off`), the paper's V. *V at level 0* counts the same view's visible voxels at \
          level 0, the ground truth's level. P and L are PS's walk's. *Pixel / voxel* is the \
          pixel's footprint across at the first hit, in voxels (1 by the paper's rule; below \
-         1, magnification), and at the farthest visible voxel; *magnified* is the share of \
-         the visible voxels that lie where a pixel is narrower than a voxel.\n\n",
+         1, magnification), and at the farthest visible voxel; *visible voxels magnified* is the \
+         share of the visible voxels that lie where a pixel is narrower than a voxel.\n\n",
         t.v_switch_footprints
     );
-    s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) | V at level 0 | Pixel / voxel, farthest | magnified | Pixel / voxel at first hit |\n|---|---|---|---|---|---|---|---|---|\n";
+    s += "| Pitch (α) | Height (H), m | Pixels (P) | Voxels (L) | Visible (V) | V at level 0 | Pixel / voxel at first hit | Pixel / voxel, farthest | Visible voxels magnified |\n|---|---|---|---|---|---|---|---|---|\n";
     for c in &t.cases {
         s += &format!(
-            "| {} | {:.0} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.1} % | {:.2}{} |\n",
+            "| {} | {:.0} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2}{} | {:.2} | {:.1} % |\n",
             c.pitch,
             c.height,
             c.P,
             c.L,
             c.V,
             c.V_level0,
-            c.pixel_voxels_far,
-            100.0 * c.magnified_share,
             c.pixel_voxels,
-            if c.magnified { " (magnified)" } else { "" }
+            if c.magnified { " (magnified)" } else { "" },
+            c.pixel_voxels_far,
+            100.0 * c.magnified_share
         );
     }
     let note = magnified_note(t);
