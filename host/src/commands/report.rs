@@ -20,7 +20,7 @@ use crate::lighting::MaterialArg;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{MapArgs, OnOff, Size, SurfaceArg, TerrainArg};
+use crate::view::{MapArgs, OnOff, Size, SurfaceArg};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -143,7 +143,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let cwd = std::env::current_dir()
         .map_err(|e| anyhow::anyhow!("--out: the current folder is unreadable: {e}"))?;
     let command = regenerate_command(args, &cwd);
-    let glint_spec = GlintSpec::report(lod, MaterialArg::Water);
+    let glint_spec = GlintSpec::report(lod, MaterialArg::Wet);
     glint_spec.check_memory()?;
     let steps = table::steps(3, modes.len()) + args.frames as u64 + glint_spec.frames as u64 + 14;
     let bar = super::progress(steps, "steps", false);
@@ -222,10 +222,9 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         &bars,
     )?;
 
-    // The sun's glint: over the built-in plains (whose flat lowland is water) unless a map
-    // was given.
+    // The sun's glint over the report's own map, wet rock (as `footprint glint`'s default).
     bar.set_message("glint");
-    let (glint, glint_note) = glint_section(args, &pyramid, &glint_spec, || bar.inc(1))?;
+    let (glint, glint_note) = glint_section(&pyramid, &glint_spec, || bar.inc(1))?;
     for r in glint.runs.iter().chain(std::iter::once(&glint.reference)) {
         write_png(
             &file(&crate::report::glint::cut_file(&glint, r))?,
@@ -326,33 +325,14 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     Ok(())
 }
 
-/// The glint flight of the report and a sentence on its map: the report's map if it is a map
-/// file or the built-in plains, else the built-in plains with the same seed and size (the
-/// mountains' views show no water).
+/// The glint flight of the report, over the report's own map (with `--material wet` every map
+/// has rock to glint; `footprint glint`'s default scene is the built-in mountains).
 fn glint_section(
-    args: &ReportArgs,
     pyramid: &crate::pyramid::Pyramid,
     spec: &GlintSpec,
     progress: impl Fn() + Sync,
 ) -> Result<(glint::Glint, String)> {
-    let m = &args.map;
-    if m.dem.is_some() || m.terrain == TerrainArg::Plains {
-        let g = glint::run(pyramid.map(), pyramid, spec, progress)?;
-        return Ok((g, String::new()));
-    }
-    let plains = MapArgs {
-        terrain: TerrainArg::Plains,
-        ..m.clone()
-    }
-    .pyramid()?;
-    let g = glint::run(plains.map(), &plains, spec, progress)?;
-    let note = format!(
-        "The flight is over {} rather than this report's map: the pitch-5° view of the \
-         built-in {} has little or no water to glint. ",
-        g.map,
-        value_name(&m.terrain)
-    );
-    Ok((g, note))
+    Ok((glint::run(pyramid.map(), pyramid, spec, progress)?, String::new()))
 }
 
 fn write_text(path: &Path, text: &str) -> Result<()> {
