@@ -317,7 +317,10 @@ fn the_level_changes_continuously_in_a_slow_zoom() {
         wide <= ZOOM_STEP,
         "as2 pops by {wide} levels in a slow zoom"
     );
-    assert!(line >= wide, "as-exact steps less than as2: {line} against {wide}");
+    assert!(
+        line >= wide,
+        "as-exact steps less than as2: {line} against {wide}"
+    );
 }
 
 /// [`render`] at 16 × 16.

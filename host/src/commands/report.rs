@@ -332,7 +332,10 @@ fn glint_section(
     spec: &GlintSpec,
     progress: impl Fn() + Sync,
 ) -> Result<(glint::Glint, String)> {
-    Ok((glint::run(pyramid.map(), pyramid, spec, progress)?, String::new()))
+    Ok((
+        glint::run(pyramid.map(), pyramid, spec, progress)?,
+        String::new(),
+    ))
 }
 
 fn write_text(path: &Path, text: &str) -> Result<()> {
