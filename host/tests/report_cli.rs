@@ -148,7 +148,10 @@ fn without_times(v: &Value) -> Value {
     match v {
         Value::Object(m) => Value::Object(
             m.iter()
-                .filter(|(k, _)| *k != "ms" && !k.ends_with("_ms"))
+                // The times, and whether they repeated (`stable`, from the times).
+                .filter(|(k, _)| {
+                    *k != "ms" && !k.ends_with("_ms") && !k.starts_with("ms_") && *k != "stable"
+                })
                 .map(|(k, v)| (k.clone(), without_times(v)))
                 .collect(),
         ),

@@ -114,13 +114,22 @@ pub struct FlightFacts {
     pub unchanged: f64,
 }
 
-/// Frame time at pitch 5°.
+/// Frame time at pitch 5°: the fastest and the median of the table's interleaved rounds.
 #[derive(Clone, Debug, Serialize)]
 pub struct Time5 {
-    /// AS, ms per frame.
+    /// AS, ms per frame, fastest.
     pub as_ms: f64,
-    /// PS, ms per frame.
+    /// PS, ms per frame, fastest.
     pub ps_ms: f64,
+    /// AS, ms per frame, median.
+    pub as_median_ms: f64,
+    /// PS, ms per frame, median.
+    pub ps_median_ms: f64,
+    /// The rounds.
+    pub repeats: usize,
+    /// Whether both modes' times repeated within `table::STABLE_SPREAD`: only then is their
+    /// ratio stated.
+    pub stable: bool,
 }
 
 /// Everything the section says.
@@ -283,6 +292,10 @@ pub fn differences(
         (Some(a), Some(p)) => Some(Time5 {
             as_ms: a.ms,
             ps_ms: p.ms,
+            as_median_ms: a.ms_median,
+            ps_median_ms: p.ms_median,
+            repeats: a.repeats.min(p.repeats),
+            stable: crate::experiment::table::stable(a) && crate::experiment::table::stable(p),
         }),
         _ => None,
     };
