@@ -265,7 +265,7 @@ pub struct CameraArgs {
     #[arg(long, allow_hyphen_values = true, conflicts_with = "fit_first_hit")]
     pub height: Option<f64>,
     /// Choose the eye height so that the pixel footprint at the first hit is one voxel wide
-    /// (the paper's Table 1 rule); the default when --height is absent.
+    /// (the paper's Table 1 rule), in either view; the paper's view does without --height.
     #[arg(long)]
     pub fit_first_hit: bool,
     /// Heading, degrees clockwise from north (up the map) [default: the view's, 0].

@@ -4,9 +4,9 @@
 //! (Sect. 2). Near the eye on a real DEM a pixel is narrower than a voxel, and every mode draws
 //! those flat tops as they are: a steep slope becomes a wall of steps, each many pixels high.
 //!
-//! [`Surface::Bilinear`](crate::terrain::camera::Surface::Bilinear) puts a continuous surface there. Its heights are the bilinear
-//! interpolation of the cells' heights (the cells' centres are its vertices, as a magnified
-//! texture is filtered). Under a column's centre line the walk meets it at every voxel centre
+//! [`Surface::Bilinear`](crate::terrain::camera::Surface::Bilinear) puts a continuous surface
+//! there. Its heights are the bilinear interpolation of the cells' heights (the cells' centres
+//! are its vertices, as a magnified texture is filtered). Under a column's centre line the walk meets it at every voxel centre
 //! it steps to: there the height is Eq. 4 on the heights ([`Voxel::height_linear`]), the two
 //! cells whose centres straddle the line weighted by distance, which is exactly the bilinear
 //! surface at that point.
