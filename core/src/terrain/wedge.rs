@@ -22,7 +22,7 @@
 //! from the eye, the next ray through the mean top). Where the interval is a point (at the eye)
 //! the step is exactly `as-exact`'s.
 //!
-//! **Levels blend** ([`crate::terrain::blend`]). Over the first third of each pyramid level's
+//! **Levels blend** (`terrain/blend.rs`). Over the first third of each pyramid level's
 //! range (footprints from 1.2 to 1.6 of its voxels) the step's height and colour are blended,
 //! linearly in the distance, from the same wedge over the finer level's cells
 //! ([`Voxel::finer`]: the two child rows along, the larger of their mean heights and the mean
