@@ -23,7 +23,7 @@ use crate::terrain::frame::Frame;
 use crate::terrain::image::Sampling;
 use crate::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use crate::terrain::surface::Smooth;
-use crate::terrain::wedge::Wedge;
+use crate::terrain::wedge::{Wedge, WedgeOn};
 use crate::terrain::Terrain;
 use crate::Rgb;
 
@@ -222,8 +222,9 @@ impl Mode {
 }
 
 /// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), wrapped in
-/// [`Smooth`] when the frame's surface is continuous ([`Frame::surface`]; `as2` reads the
-/// surface itself); `classic` walks [`classic`]'s own walk, on flat tops.
+/// [`Smooth`] when the frame's surface is continuous ([`Frame::surface`]; `as2` is then
+/// [`WedgeOn<true>`], which reads the surface itself); `classic` walks [`classic`]'s own walk,
+/// on flat tops.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
         Mode::filter(*self)
@@ -237,7 +238,9 @@ impl Sampling for Mode {
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        if frame.surface() == Surface::Bilinear && *self != Mode::As2 {
+        if frame.surface() == Surface::Bilinear && *self == Mode::As2 {
+            WedgeOn::<true>::new().walk_column(frame, terrain, x, cost, out);
+        } else if frame.surface() == Surface::Bilinear {
             with_sampler!(*self, s => Smooth::new(s).walk_column(frame, terrain, x, cost, out),
                 classic => classic::walk(frame, terrain, x, cost, out));
         } else {
@@ -253,7 +256,9 @@ impl Sampling for Mode {
         cost: &mut C,
         image: &mut [P],
     ) -> Result<(), Error> {
-        if frame.surface() == Surface::Bilinear && *self != Mode::As2 {
+        if frame.surface() == Surface::Bilinear && *self == Mode::As2 {
+            WedgeOn::<true>::new().walk_image(frame, terrain, cost, image)
+        } else if frame.surface() == Surface::Bilinear {
             with_sampler!(*self, s => Smooth::new(s).walk_image(frame, terrain, cost, image),
                 classic => classic::render(frame, terrain, cost, image))
         } else {

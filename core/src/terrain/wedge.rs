@@ -67,9 +67,12 @@ const MAX_HALF: i64 = 3 << 31;
 /// One in the cross section's fixed point (cells, 32 fractional bits).
 const ONE: i64 = 1 << 32;
 
-/// `as2`: [`Area`] over the wedge between the column's two planes (see the module docs).
+/// `as2`: [`Area`] over the wedge between the column's two planes (see the module docs), on
+/// the flat tops ([`Wedge`]) or, with `SMOOTH`, on the continuous surface where voxels are
+/// magnified (`--surface bilinear`; its code is compiled only into that sampler, so that flat
+/// tops pay nothing for it).
 #[derive(Clone, Copy, Debug)]
-pub struct Wedge {
+pub struct WedgeOn<const SMOOTH: bool> {
     area: Area,
     /// The column's half-width across per half-voxel along the ray (level-0 cells, raw
     /// I32F32).
@@ -83,13 +86,16 @@ pub struct Wedge {
     surface: i64,
 }
 
-impl Default for Wedge {
+/// `as2` on the flat tops, the paper's voxels.
+pub type Wedge = WedgeOn<false>;
+
+impl<const SMOOTH: bool> Default for WedgeOn<SMOOTH> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl Wedge {
+impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
     /// A fresh sampler.
     pub const fn new() -> Self {
         Self {
@@ -222,7 +228,7 @@ fn row_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
     integrated_color(lo, hi, |k| cell_color(voxel, row, k)).unwrap_or_else(|| voxel.sample_linear())
 }
 
-impl Sampler for Wedge {
+impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
     const SWITCH: Switch = Switch::Late;
     const WIDE: bool = true;
 
@@ -253,7 +259,7 @@ impl Sampler for Wedge {
             // the eye, where the interval is a point, `as-exact`'s hit.
             cost.wedge(1);
             // On the continuous surface where voxels are magnified, its height at the centre.
-            let f = if self.surface > 0 {
+            let f = if SMOOTH && self.surface > 0 {
                 surface::weight(distance(voxel, self.n_eye), self.surface)
             } else {
                 0
@@ -297,7 +303,7 @@ impl Sampler for Wedge {
         // On the continuous surface (a wedge narrower than a voxel, level 0), the mean across
         // is the surface's height at the wedge's centre line (exact for the surface between
         // two centres, where it is linear across), blended into the flat cells' mean.
-        let smooth = if self.surface > 0 {
+        let smooth = if SMOOTH && self.surface > 0 {
             surface::weight(distance(voxel, self.n_eye), self.surface)
         } else {
             0
@@ -306,7 +312,7 @@ impl Sampler for Wedge {
             return Hit::Rejected;
         }
         let mut mean = (sum << 24) / total;
-        if smooth > 0 && voxel.level() == 0 {
+        if SMOOTH && smooth > 0 && voxel.level() == 0 {
             let line = voxel.height_linear().to_bits();
             mean += ((line - mean) * smooth) >> 16;
         }
