@@ -168,6 +168,26 @@ fn main() {
         write!(s, " Rgb::new({}, {}, {}),", c.r, c.g, c.b).unwrap();
     }
     s.push_str("\n];\n");
+    // The same map baked as `footprint map bake` bakes it (`footprint_scenes::baked::write`):
+    // the firmware lends the file's bytes, in flash, to a terrain and checks that it renders
+    // the frame of the pyramid it builds on the chip.
+    let pyramid = footprint_scenes::Pyramid::build(
+        map.clone(),
+        footprint_core::terrain::pyramid::HeightFilter::default(),
+    )
+    .expect("the scene's pyramid");
+    let mut baked = Vec::new();
+    footprint_scenes::baked::write(&pyramid, &map.source, &mut baked).expect("bake the scene");
+    fs::write(out.join("scene.fpmap"), &baked).expect("write scene.fpmap");
+    writeln!(
+        s,
+        "/// The scene's map baked into a `.fpmap` file's bytes (`footprint map bake`), in flash.\n\
+         #[link_section = \".scene\"]\n\
+         pub static BAKED: crate::Aligned<[u8; {}]> =\n    \
+         crate::Aligned(*include_bytes!(concat!(env!(\"OUT_DIR\"), \"/scene.fpmap\")));",
+        baked.len()
+    )
+    .unwrap();
     write_plate(&mut s);
     fs::write(out.join("scene.rs"), s).expect("write scene.rs");
 }

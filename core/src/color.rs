@@ -2,7 +2,11 @@
 //! [`to_color16`], [`to_rgb`]), shared by both rooms.
 
 /// An 8-bit-per-channel RGB colour, as stored in a terrain colour map and in the output image.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+///
+/// Three bytes in the order r, g, b (`repr(C)`, plain data): a baked map file stores its colour
+/// grids in exactly this layout ([`crate::terrain::baked`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub struct Rgb {
     /// Red.
     pub r: u8,

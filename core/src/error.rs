@@ -67,6 +67,11 @@ pub enum Error {
         /// The z component given.
         z: f64,
     },
+    /// A baked map file's bytes are not the layout the core reads ([`crate::terrain::baked`]).
+    Baked {
+        /// What is wrong, e.g. `"not a baked map (no FPMAP magic)"`.
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for Error {
@@ -104,6 +109,7 @@ impl fmt::Display for Error {
             Error::BadNormal { x, y, z } => {
                 write!(f, "normal ({x}, {y}, {z}) is zero or not finite")
             }
+            Error::Baked { what } => write!(f, "baked map: {what}"),
         }
     }
 }

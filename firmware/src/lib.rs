@@ -38,6 +38,12 @@ pub mod scene {
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
 
+/// Bytes aligned to a page, as a baked map's sections need (its heights are lent as `u16`):
+/// `include_bytes!` alone promises an alignment of 1.
+#[repr(C, align(4096))]
+#[derive(Debug)]
+pub struct Aligned<T: ?Sized>(pub T);
+
 /// The glint frame: the firmware's terrain frame lit by a low sun straight ahead
 /// (`scene::GLINT_AZIMUTH`, `scene::GLINT_ELEVATION`, baked from
 /// `footprint_scenes::firmware::Scene::glint_sun`), the core's `AMBIENT_DIFFUSE`, the paper's

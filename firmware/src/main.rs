@@ -45,11 +45,12 @@ use footprint_core::lit::{Materials, Sun, AMBIENT_DIFFUSE};
 use footprint_core::prelude::*;
 use footprint_core::specular::raster::Target;
 use footprint_core::specular::{Light, Material, Normal, Phong};
+use footprint_core::terrain::baked::Baked;
 use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Super};
 use footprint_core::terrain::wedge::Wedge;
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
-    COLORS, FAN_LINES, FAN_ROWS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS,
+    BAKED, COLORS, FAN_LINES, FAN_ROWS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS,
     HEIGHT_SCALE_M, LEVEL_NAME, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT, PLATE_BACKGROUND,
     PLATE_COLORS, PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD, PLATE_MODE, PLATE_N,
     PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M,
@@ -438,6 +439,35 @@ fn error_paths(
 }
 
 /// Everything after the clock is running; `Ok(true)` when every check passed.
+/// Renders the `as` frame from the baked map in flash (`scene::BAKED`, the `.fpmap` bytes of
+/// `footprint map bake`, lent in place by `Baked::parse`) and from the pyramid built on the
+/// chip: the two images must be equal. Prints a `#` line with the file's size and the
+/// instructions `Baked::parse` took.
+fn run_baked(frame: &Frame<'_>, terrain: &Terrain<'_>, image: &mut [Rgb]) -> Result<bool, Error> {
+    let (parse, baked) = instructions(|| Baked::parse(&BAKED.0));
+    let baked = baked?.terrain(true)?;
+    core_calls::render(frame, terrain, &ParallelArea::new(), &mut NoCost, &mut [], image)?;
+    let built = image_hash(image);
+    core_calls::render(frame, &baked, &ParallelArea::new(), &mut NoCost, &mut [], image)?;
+    let from_flash = image_hash(image);
+    if from_flash != built {
+        hprintln!(
+            "FAIL baked map: the as frame from flash ({:016x}) differs from the chip's pyramid's ({:016x})",
+            from_flash,
+            built
+        );
+        return Ok(false);
+    }
+    hprintln!(
+        "# baked map: {} bytes in flash, {} levels, parsed in {} instructions; its as frame equals the chip's pyramid's ({:016x})",
+        BAKED.0.len(),
+        baked.levels().len(),
+        parse,
+        from_flash
+    );
+    Ok(true)
+}
+
 fn run() -> Result<bool, Error> {
     let (expected, measured) = clock::calibrate();
     hprintln!(
@@ -515,6 +545,7 @@ fn run() -> Result<bool, Error> {
     let ss8 = run_mode("ss8", &Super::<8>::new(), &frame, &terrain, tables, image)?;
     let area = run_mode("as-exact", &Area::new(), &frame, &terrain, tables, image)?;
     let paper = run_mode("as", &ParallelArea::new(), &frame, &terrain, tables, image)?;
+    ok &= run_baked(&frame, &terrain, image)?;
     ok &= run_display(&frame, &terrain, image, display.pixels)?;
     // After the display, which compares against the `as` image.
     let wedge = run_mode("as2", &Wedge::new(), &frame, &terrain, tables, image)?;

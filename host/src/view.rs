@@ -59,6 +59,24 @@ pub enum HeightFilterArg {
     Mean,
 }
 
+impl HeightFilterArg {
+    /// The option's value for the core's filter.
+    pub fn from_core(filter: HeightFilter) -> Self {
+        match filter {
+            HeightFilter::Silhouette => HeightFilterArg::Silhouette,
+            HeightFilter::Mean => HeightFilterArg::Mean,
+        }
+    }
+
+    /// The name, as `--height-filter` takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            HeightFilterArg::Silhouette => "silhouette",
+            HeightFilterArg::Mean => "mean",
+        }
+    }
+}
+
 impl From<HeightFilterArg> for HeightFilter {
     fn from(a: HeightFilterArg) -> Self {
         match a {
@@ -175,18 +193,52 @@ pub struct MapArgs {
     /// Side of the built-in terrain, voxels.
     #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE, conflicts_with = "dem")]
     pub terrain_size: u32,
-    /// How the pyramid's coarse voxels get their heights (colours are always 2×2 averages).
-    #[arg(long = "height-filter", value_enum, default_value_t = HeightFilterArg::Silhouette)]
-    pub height_filter: HeightFilterArg,
+    /// How the pyramid's coarse voxels get their heights (colours are always 2×2 averages)
+    /// [default: silhouette; a baked map's own].
+    #[arg(long = "height-filter", value_enum)]
+    pub height_filter: Option<HeightFilterArg>,
 }
 
 impl MapArgs {
     /// Loads the map (or generates the built-in one) and builds its pyramid with
-    /// `--height-filter`; the pyramid keeps the map ([`Pyramid::map`]).
+    /// `--height-filter`; the pyramid keeps the map ([`Pyramid::map`]). A baked map
+    /// (`footprint map bake`) is memory-mapped with the pyramid it was baked with.
     pub fn pyramid(&self) -> Result<Pyramid> {
+        if let Some(dem) = self.dem.as_deref().filter(|d| map::baked::is_baked(d)) {
+            return self.open_baked(dem);
+        }
         let map = self.load()?;
         let source = map.source.clone();
-        Pyramid::build(map, self.height_filter.into()).with_context(|| format!("map {source}"))
+        let filter = self.height_filter.unwrap_or_default().into();
+        Pyramid::build(map, filter).with_context(|| format!("map {source}"))
+    }
+
+    /// Opens a baked map: its levels as they were baked, the scale overridable.
+    fn open_baked(&self, dem: &std::path::Path) -> Result<Pyramid> {
+        if self.color.is_some() {
+            bail!(
+                "--color: {} is a baked map, which has its colours",
+                dem.display()
+            );
+        }
+        if self.format.is_some() {
+            bail!(
+                "--format: {} is a baked map (.fpmap), read as one",
+                dem.display()
+            );
+        }
+        let (pyramid, _) = map::baked::open(dem, self.spacing, self.height_scale)?;
+        if let Some(asked) = self.height_filter {
+            if HeightFilter::from(asked) != pyramid.filter() {
+                bail!(
+                    "--height-filter {}: {} was baked with the other filter; bake it again with \
+                     --height-filter {0}",
+                    asked.name(),
+                    dem.display()
+                );
+            }
+        }
+        Ok(pyramid)
     }
 
     /// Loads the map (or generates the built-in one).

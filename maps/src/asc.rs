@@ -622,12 +622,13 @@ mod tests {
         let map = Map {
             width: 3,
             height: 2,
-            heights: vec![0, 1, 2, 10, 20, 65_535],
-            colors: vec![footprint_core::Rgb::default(); 6],
+            heights: vec![0, 1, 2, 10, 20, 65_535].into(),
+            colors: vec![footprint_core::Rgb::default(); 6].into(),
             spacing_m: 12.5,
             height_scale_m: 0.1,
             base_m: -0.5,
             source: String::new(),
+            known_range: None,
         };
         let mut out = Vec::new();
         write(&map, &mut out, "o").unwrap();

@@ -1,4 +1,5 @@
-#![forbid(unsafe_code)]
+// `unsafe` only to memory-map a baked map file (`baked::map_file`, with its SAFETY note).
+#![deny(unsafe_code)]
 //! # footprint-maps
 //!
 //! Terrain map files: reading and writing height/colour PNG pairs, SRTM `.hgt` tiles, ESRI
@@ -20,6 +21,7 @@ use std::io;
 use std::path::Path;
 
 pub mod asc;
+pub mod baked;
 pub mod format;
 pub mod grid;
 pub mod hgt;
@@ -384,12 +386,13 @@ mod tests {
         let map = Map {
             width: 2,
             height: 1,
-            heights: vec![1, 2],
-            colors: vec![footprint_core::Rgb::default(); 2],
+            heights: vec![1, 2].into(),
+            colors: vec![footprint_core::Rgb::default(); 2].into(),
             spacing_m: 30.0,
             height_scale_m: 0.1,
             base_m: 0.0,
             source: String::new(),
+            known_range: None,
         };
         for format in [Format::Asc, Format::Png, Format::Tiff] {
             let e = format::write(&map, format, &mut Closed, "output \"-\"").unwrap_err();

@@ -98,12 +98,13 @@ pub fn load_pair(
         Map {
             width,
             height,
-            heights,
-            colors,
+            heights: heights.into(),
+            colors: colors.into(),
             spacing_m,
             height_scale_m,
             base_m: 0.0,
             source,
+            known_range: None,
         },
         bit_depth,
     ))
@@ -428,7 +429,7 @@ mod tests {
         write_grey16(&dem, 20, 20);
         let map = load_png_pair(&dem, None, 30.0, 0.1).unwrap();
         assert_eq!(map.colors.len(), 400);
-        assert_eq!(map.colors, tint(20, 20, &map.heights, 30.0, 0.1));
+        assert_eq!(*map.colors, *tint(20, 20, &map.heights, 30.0, 0.1));
         assert_eq!(map.source, dem.display().to_string());
     }
 

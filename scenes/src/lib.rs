@@ -19,6 +19,8 @@
 //!
 //! The feature `cli` derives `clap` and `serde` traits for the host's command line.
 
+pub mod baked;
+pub mod cells;
 pub mod firmware;
 pub mod flight;
 pub mod map;
@@ -30,5 +32,6 @@ pub mod survey;
 pub mod tint;
 pub mod view;
 
+pub use cells::Cells;
 pub use map::Map;
 pub use pyramid::Pyramid;

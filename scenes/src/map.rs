@@ -4,6 +4,8 @@ use std::fmt;
 
 use footprint_core::Rgb;
 
+use crate::cells::Cells;
+
 /// An owned terrain map, ready to lend to `footprint_core::terrain::Level`.
 #[derive(Clone, PartialEq)]
 pub struct Map {
@@ -11,10 +13,10 @@ pub struct Map {
     pub width: u32,
     /// Height in voxels (north to south).
     pub height: u32,
-    /// Row-major, `heights[y * width + x]`, in height units.
-    pub heights: Vec<u16>,
+    /// Row-major, `heights[y * width + x]`, in height units (owned, or lent from a baked file).
+    pub heights: Cells<u16>,
     /// Row-major, same layout and length as `heights`.
-    pub colors: Vec<Rgb>,
+    pub colors: Cells<Rgb>,
     /// Metres per voxel (horizontal).
     pub spacing_m: f64,
     /// Metres per height unit.
@@ -24,6 +26,9 @@ pub struct Map {
     pub base_m: f64,
     /// Human-readable origin: a file path or "built-in (seed N)".
     pub source: String,
+    /// The lowest and highest height when known without reading every cell (a baked file's
+    /// header keeps them); `None` to scan ([`Map::height_range`]).
+    pub known_range: Option<(u16, u16)>,
 }
 
 impl Map {
@@ -37,8 +42,12 @@ impl Map {
         self.len() == 0
     }
 
-    /// Lowest and highest height in the map, in height units (`(0, 0)` for an empty map).
+    /// Lowest and highest height in the map, in height units (`(0, 0)` for an empty map):
+    /// [`Map::known_range`] if set, else a scan of every cell.
     pub fn height_range(&self) -> (u16, u16) {
+        if let Some(range) = self.known_range {
+            return range;
+        }
         let min = self.heights.iter().copied().min().unwrap_or(0);
         let max = self.heights.iter().copied().max().unwrap_or(0);
         (min, max)

@@ -5,16 +5,18 @@ use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::{Level, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 
+use crate::cells::Cells;
 use crate::map::Map;
 
 /// The map (level 0, owned: not copied) and every level above it, in the core's layout
-/// (`pyramid::build`).
+/// (`pyramid::build`): built in memory, or lent from a baked map file.
 pub struct Pyramid {
     map: Map,
     /// Per level above 0: the heights along x, along y, and the conservative maximum.
-    heights: Vec<u16>,
-    colors: Vec<Rgb>,
+    heights: Cells<u16>,
+    colors: Cells<Rgb>,
     scale: Scale,
+    filter: HeightFilter,
 }
 
 impl Pyramid {
@@ -30,10 +32,43 @@ impl Pyramid {
         pyramid::build(&level0, filter, &mut heights, &mut colors)?;
         Ok(Self {
             map,
+            heights: heights.into(),
+            colors: colors.into(),
+            scale,
+            filter,
+        })
+    }
+
+    /// A pyramid whose levels above 0 were built before with `filter` (a baked map file's,
+    /// lent in place): `heights` and `colors` are [`pyramid::build`]'s buffers for `map`.
+    ///
+    /// Errors: the map's scale out of range, or buffers of the wrong length.
+    pub fn from_levels(
+        map: Map,
+        filter: HeightFilter,
+        heights: Cells<u16>,
+        colors: Cells<Rgb>,
+    ) -> Result<Self, Error> {
+        let scale = Scale::new(map.spacing_m, map.height_scale_m)?;
+        let level0 = Level::new(map.width, map.height, &map.heights, &map.colors)?;
+        pyramid::assemble(level0, scale, &heights, &colors, true)?;
+        Ok(Self {
+            map,
             heights,
             colors,
             scale,
+            filter,
         })
+    }
+
+    /// The height filter the levels were built with.
+    pub fn filter(&self) -> HeightFilter {
+        self.filter
+    }
+
+    /// The levels above 0: [`pyramid::build`]'s height and colour buffers.
+    pub fn levels(&self) -> (&[u16], &[Rgb]) {
+        (&self.heights, &self.colors)
     }
 
     /// The map: level 0, its scale and where it came from.

@@ -87,12 +87,13 @@ pub fn survey(kind: Kind, seed: u64, size: u32) -> Map {
     Map {
         width: size,
         height: size,
-        heights,
-        colors,
+        heights: heights.into(),
+        colors: colors.into(),
         spacing_m: SPACING_M,
         height_scale_m: HEIGHT_SCALE_M,
         base_m: 0.0,
         source: format!("built-in {name} (seed {seed})"),
+        known_range: None,
     }
 }
 

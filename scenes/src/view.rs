@@ -160,8 +160,7 @@ fn line_of_sight(map: &Map, lowest: u16, reach_m: f64) -> f64 {
 /// the caller sets it.
 pub fn overview_params(map: &Map, width: u32, height: u32) -> CameraParams {
     let depth_m = f64::from(map.height) * map.spacing_m;
-    let lowest = map.heights.iter().copied().min().unwrap_or(0);
-    let highest = map.heights.iter().copied().max().unwrap_or(0);
+    let (lowest, highest) = map.height_range();
     let relief_m = f64::from(highest - lowest) * map.height_scale_m;
     let reach_m = OVERVIEW_REACH * depth_m;
     // The eye's height above the lowest ground, and the top row's depression: at least the
@@ -798,12 +797,13 @@ mod tests {
         let map = Map {
             width: w,
             height: h,
-            colors: vec![Rgb::BLACK; heights.len()],
-            heights,
+            colors: vec![Rgb::BLACK; heights.len()].into(),
+            heights: heights.into(),
             spacing_m,
             height_scale_m: 0.1,
             base_m: 0.0,
             source: "wall".into(),
+            known_range: None,
         };
         let p = overview_params(&map, 64, 64);
         let wall_m = 1000.0;

@@ -9,6 +9,7 @@
 //! baseline the paper's walk is measured against. The sun on the terrain, which joins both
 //! papers, is a room above this one ([`crate::lit`]).
 
+pub mod baked;
 mod blend;
 pub mod buffers;
 pub mod camera;

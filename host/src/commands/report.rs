@@ -83,7 +83,9 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
             push("--terrain-size", m.terrain_size.to_string());
         }
     }
-    push("--height-filter", value_name(&m.height_filter));
+    if let Some(filter) = &m.height_filter {
+        push("--height-filter", value_name(filter));
+    }
     push("--lod", value_name(&args.lod));
     push("--frames", args.frames.to_string());
     push("--out", path(&args.out));
@@ -284,7 +286,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     bar.inc(4);
 
     bar.set_message("pyramid height filters");
-    let study = heights::compare(map, args.map.height_filter.into(), 5.0, &modes, size)?;
+    let study = heights::compare(map, pyramid.filter(), 5.0, &modes, size)?;
     bar.set_message("differences");
     let diffs = differences::differences(&pyramid, &tables, &flight, &study, size)?;
     bar.inc(1);

@@ -347,19 +347,20 @@ mod tests {
 
     /// A `w × h` map with heights from `f(x, y)`.
     fn map(w: u32, h: u32, spacing_m: f64, scale: f64, f: impl Fn(u32, u32) -> u16) -> Map {
-        let heights = (0..h)
+        let heights: Vec<u16> = (0..h)
             .flat_map(|y| (0..w).map(move |x| (x, y)))
             .map(|(x, y)| f(x, y))
             .collect();
         Map {
             width: w,
             height: h,
-            heights,
-            colors: vec![footprint_core::Rgb::new(100, 120, 80); (w * h) as usize],
+            heights: heights.into(),
+            colors: vec![footprint_core::Rgb::new(100, 120, 80); (w * h) as usize].into(),
             spacing_m,
             height_scale_m: scale,
             base_m: 7.0,
             source: "test".into(),
+            known_range: None,
         }
     }
 

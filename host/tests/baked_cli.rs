@@ -1,0 +1,122 @@
+//! `footprint map bake` and `--dem FILE.fpmap` through the binary: the baked map renders the
+//! built-in terrain's PNG byte for byte in both projections and several modes; `map verify`
+//! and `map info` read it; a corrupt, truncated or mismatched file is one line, exit 2, no
+//! output left behind.
+
+use std::path::Path;
+
+mod common;
+use common::{assert_one_line_error, fails_writing, footprint};
+
+fn s(p: &Path) -> String {
+    p.to_str().unwrap().to_owned()
+}
+
+fn ok(args: &[&str]) -> Vec<u8> {
+    let o = footprint(args);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o.stdout
+}
+
+#[test]
+fn a_baked_map_renders_what_the_built_in_terrain_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let fpmap = s(&dir.path().join("mountains.fpmap"));
+    let said = ok(&[
+        "map",
+        "bake",
+        "--terrain-size",
+        "192",
+        "--seed",
+        "3",
+        "--out",
+        &fpmap,
+    ]);
+    let said = String::from_utf8(said).unwrap();
+    assert!(said.contains("every level verified"), "{said}");
+    let verified = ok(&["map", "verify", &fpmap, "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&verified).unwrap();
+    assert_eq!(v["levels"], v["levels_verified"]);
+    assert_eq!(
+        (v["width"].as_u64(), v["levels"].as_u64()),
+        (Some(192), Some(9))
+    );
+    let info = String::from_utf8(ok(&["map", "info", &fpmap])).unwrap();
+    assert!(
+        info.contains("baked map") && info.contains("192 × 192"),
+        "{info}"
+    );
+    for (k, view) in [
+        vec!["--mode", "as"],
+        vec!["--mode", "ps", "--view", "paper", "--projection", "paper"],
+        vec!["--mode", "as2", "--pitch", "30"],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let (a, b) = (
+            s(&dir.path().join(format!("ram{k}.png"))),
+            s(&dir.path().join(format!("baked{k}.png"))),
+        );
+        let common = ["render", "--size", "64x48"];
+        let mut ram = common.to_vec();
+        ram.extend(["--terrain-size", "192", "--seed", "3", "--out", &a]);
+        ram.extend(&view);
+        let mut baked = common.to_vec();
+        baked.extend(["--dem", &fpmap, "--out", &b]);
+        baked.extend(&view);
+        ok(&ram);
+        ok(&baked);
+        assert!(
+            std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap(),
+            "{view:?}: the baked map's PNG differs"
+        );
+    }
+}
+
+#[test]
+fn bad_baked_maps_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let fpmap = dir.path().join("m.fpmap");
+    let fp = s(&fpmap);
+    ok(&["map", "bake", "--terrain-size", "128", "--out", &fp]);
+    let good = std::fs::read(&fpmap).unwrap();
+    let cut = dir.path().join("cut.fpmap");
+    std::fs::write(&cut, &good[..good.len() - 4096]).unwrap();
+    let flipped = dir.path().join("flipped.fpmap");
+    let mut bytes = good.clone();
+    // A byte of the coarsest levels' colours, near the end.
+    let at = bytes.len() - 5000;
+    bytes[at] ^= 1;
+    std::fs::write(&flipped, &bytes).unwrap();
+    for (file, names) in [(&cut, "truncated"), (&flipped, "checksum is wrong")] {
+        fails_writing(&["render", "--size", "8x8", "--dem", &s(file)], &[], names);
+        let args = ["map", "verify", &s(file)];
+        assert_one_line_error(&footprint(&args), &args, names);
+    }
+    fails_writing(
+        &["render", "--size", "8x8", "--dem", &fp],
+        &["--height-filter", "mean"],
+        "--height-filter mean",
+    );
+    fails_writing(
+        &["render", "--size", "8x8", "--dem", &fp],
+        &["--color", &fp],
+        "--color",
+    );
+    // Baking a baked map, or into a folder that does not exist.
+    let args = [
+        "map",
+        "bake",
+        &fp,
+        "--out",
+        &s(&dir.path().join("again.fpmap")),
+    ];
+    assert_one_line_error(&footprint(&args), &args, "already a baked map");
+    let args = ["map", "bake", "--out", "/nonexistent-folder/x.fpmap"];
+    assert_one_line_error(&footprint(&args), &args, "/nonexistent-folder/x.fpmap");
+}

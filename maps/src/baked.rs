@@ -1,0 +1,333 @@
+//! Baked map files (`.fpmap`): a map and its whole pyramid, written once by `footprint map
+//! bake` and memory-mapped by every command after, so that a frame reads only the pages its
+//! rays touch and nothing is rebuilt. The layout is the core's
+//! (`footprint_core::terrain::baked`); this module writes it, checks its checksums and maps it.
+//!
+//! Each level has a CRC-32 in the header, and the header has one of its own. Opening a file
+//! checks the header, the file's length and the level checksums from the coarsest level down
+//! while they add up to at most [`VERIFY_AT_OPEN`] bytes (every level of a map up to about
+//! 5,000²); [`verify`] checks every level (`footprint map verify`), and `bake` checks what it
+//! wrote by reading it back.
+
+use std::fs::File;
+use std::io;
+use std::path::Path;
+use std::sync::Arc;
+
+use footprint_core::terrain::baked::{header_checksum_range, Baked, Header, HEADER_LEN};
+use footprint_core::Rgb;
+pub use footprint_scenes::baked::{crc, write};
+use footprint_scenes::cells::Bytes;
+use footprint_scenes::{Cells, Map, Pyramid};
+
+use super::{describe, MapError};
+
+/// The file extension of a baked map.
+pub const EXTENSION: &str = "fpmap";
+
+/// The most bytes of level data [`open`] checks against their checksums, coarsest level first:
+/// enough for every level of a map up to about 5,000², a few tenths of a second at most, and
+/// few enough pages of a large map that opening it does not read it all.
+pub const VERIFY_AT_OPEN: u64 = 256 << 20;
+
+/// The format's name in messages.
+const FORMAT: &str = "baked map";
+
+/// Whether `path` names a baked map: its extension is `.fpmap`, or its first bytes are the
+/// baked magic.
+pub fn is_baked(path: &Path) -> bool {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(EXTENSION))
+    {
+        return true;
+    }
+    let mut head = [0u8; 8];
+    File::open(path)
+        .and_then(|mut f| io::Read::read_exact(&mut f, &mut head))
+        .is_ok_and(|()| head == footprint_core::terrain::baked::MAGIC)
+}
+
+/// What [`open`] found in a baked file's header.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Opened {
+    /// The header.
+    pub header: Header,
+    /// Where the map came from, as the header says.
+    pub source: String,
+    /// How many levels were checked against their checksums, coarsest first.
+    pub levels_verified: usize,
+    /// How many levels the file has.
+    pub levels: usize,
+}
+
+/// A baked file's bytes, memory-mapped (or read whole where there is no memory map).
+struct Mapped(
+    #[cfg(any(unix, windows))] memmap2::Mmap,
+    #[cfg(not(any(unix, windows)))] Vec<u8>,
+);
+
+impl AsRef<[u8]> for Mapped {
+    fn as_ref(&self) -> &[u8] {
+        &self.0
+    }
+}
+
+/// Maps `file` into memory, read-only.
+#[cfg(any(unix, windows))]
+#[allow(
+    unsafe_code,
+    reason = "a memory map is unsafe to create; see the SAFETY note"
+)]
+fn map_file(file: &File) -> io::Result<Mapped> {
+    // SAFETY: the map is read-only and private to this process. memmap2's one condition is
+    // that no one changes the file while it is mapped; a baked map is written once (to a
+    // temporary, then renamed into place by `footprint map bake`, so a file being baked is
+    // never the one being read) and only read after. Should another program truncate it
+    // anyway, a read past its new end is a SIGBUS, as for every memory-mapped reader.
+    let map = unsafe { memmap2::Mmap::map(file)? };
+    #[cfg(unix)]
+    {
+        // The walk jumps from row to row: read-ahead would read pages no ray touches.
+        let _ = map.advise(memmap2::Advice::Random);
+    }
+    Ok(Mapped(map))
+}
+
+/// Reads `file` whole, where there is no memory map.
+#[cfg(not(any(unix, windows)))]
+fn map_file(mut file: &File) -> io::Result<Mapped> {
+    let mut bytes = Vec::new();
+    io::Read::read_to_end(&mut file, &mut bytes)?;
+    Ok(Mapped(bytes))
+}
+
+/// Opens the baked map at `path`: maps it, checks its header, its length and the checksums of
+/// its levels up to [`VERIFY_AT_OPEN`] bytes, and lends its bytes as a [`Pyramid`] (nothing is
+/// copied). `spacing_m` and `height_scale_m` override the header's scale.
+///
+/// Errors, naming the file: not a regular file, a header that is not a baked map's, a wrong
+/// checksum, a length that is not the header's, a scale out of range.
+pub fn open(
+    path: &Path,
+    spacing_m: Option<f64>,
+    height_scale_m: Option<f64>,
+) -> Result<(Pyramid, Opened), MapError> {
+    let (bytes, opened) = map_checked(path, VERIFY_AT_OPEN)?;
+    let what = describe(FORMAT, path);
+    let malformed = |detail: String| MapError::Malformed {
+        what: what.clone(),
+        format: FORMAT,
+        detail,
+    };
+    let header = opened.header;
+    let layout = header.layout().map_err(|e| malformed(e.to_string()))?;
+    let [h0, c0] = layout.level0();
+    let [ph, pc] = layout.pyramid();
+    let shared = (|| {
+        Ok::<_, &str>((
+            Cells::<u16>::shared(Arc::clone(&bytes), h0)?,
+            Cells::<Rgb>::shared(Arc::clone(&bytes), c0)?,
+            Cells::<u16>::shared(Arc::clone(&bytes), ph)?,
+            Cells::<Rgb>::shared(Arc::clone(&bytes), pc)?,
+        ))
+    })()
+    .map_err(|e| malformed(e.to_owned()))?;
+    let (heights, colors, pyramid_heights, pyramid_colors) = shared;
+    let (spacing_m, height_scale_m) = (
+        spacing_m.unwrap_or(header.spacing_m),
+        height_scale_m.unwrap_or(header.height_scale_m),
+    );
+    for (option, value) in [("--spacing", spacing_m), ("--height-scale", height_scale_m)] {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(MapError::BadParameter { option, value });
+        }
+    }
+    let map = Map {
+        width: header.width,
+        height: header.height,
+        heights,
+        colors,
+        spacing_m,
+        height_scale_m,
+        base_m: header.base_m,
+        source: path.display().to_string(),
+        known_range: Some((header.min_height, header.max_height)),
+    };
+    let pyramid = Pyramid::from_levels(map, header.filter, pyramid_heights, pyramid_colors)
+        .map_err(|e| malformed(e.to_string()))?;
+    Ok((pyramid, opened))
+}
+
+/// Checks every level of the baked map at `path` against its checksum (`footprint map
+/// verify`).
+///
+/// Errors: as [`open`], for any level.
+pub fn verify(path: &Path) -> Result<Opened, MapError> {
+    map_checked(path, u64::MAX).map(|(_, opened)| opened)
+}
+
+/// Maps the file and checks its header, its length, its layout and the checksums of its
+/// levels, coarsest first, while they add up to at most `budget` bytes.
+fn map_checked(path: &Path, budget: u64) -> Result<(Arc<dyn Bytes>, Opened), MapError> {
+    let what = describe(FORMAT, path);
+    let malformed = |detail: String| MapError::Malformed {
+        what: what.clone(),
+        format: FORMAT,
+        detail,
+    };
+    let io_error = |error| MapError::Io {
+        what: what.clone(),
+        error,
+    };
+    let file = File::open(path).map_err(io_error)?;
+    let meta = file.metadata().map_err(io_error)?;
+    if meta.is_dir() {
+        return Err(MapError::IsDirectory { what });
+    }
+    if !meta.is_file() {
+        return Err(malformed(
+            "not a regular file (a baked map is memory-mapped, so it cannot be a stream)".into(),
+        ));
+    }
+    if meta.len() < HEADER_LEN as u64 {
+        let magic = footprint_core::terrain::baked::MAGIC;
+        let mut head = Vec::new();
+        io::Read::read_to_end(&mut io::Read::take(&file, 8), &mut head).map_err(io_error)?;
+        return Err(malformed(if head.len() == 8 && head == magic {
+            format!(
+                "the file ends inside its header ({} bytes; truncated)",
+                meta.len()
+            )
+        } else {
+            "not a baked map (its first bytes are not the FPMAP magic)".into()
+        }));
+    }
+    let mapped = map_file(&file).map_err(io_error)?;
+    let bytes: &[u8] = mapped.as_ref();
+    let header = Header::decode(bytes).map_err(|e| malformed(without_prefix(e)))?;
+    let (covered, _) = header_checksum_range();
+    if crc([&bytes[covered]]) != Header::stored_checksum(bytes) {
+        return Err(malformed(
+            "the header's checksum is wrong (the file is corrupt)".into(),
+        ));
+    }
+    Baked::parse(bytes).map_err(|e| malformed(without_prefix(e)))?;
+    let layout = header.layout().map_err(|e| malformed(e.to_string()))?;
+    let levels = layout.levels();
+    let mut checked = 0u64;
+    let mut levels_verified = 0;
+    for k in (0..levels).rev() {
+        let Some(ranges) = layout.level(k) else { break };
+        let size: u64 = ranges.iter().map(|r| r.len() as u64).sum();
+        if checked.saturating_add(size) > budget {
+            break;
+        }
+        checked += size;
+        if crc(ranges.iter().map(|r| &bytes[r.clone()])) != header.checksums[k] {
+            return Err(malformed(format!(
+                "level {k}'s checksum is wrong (the file is corrupt; bake it again)"
+            )));
+        }
+        levels_verified += 1;
+    }
+    let opened = Opened {
+        header,
+        source: Header::source(bytes).to_owned(),
+        levels_verified,
+        levels,
+    };
+    Ok((Arc::new(mapped), opened))
+}
+
+/// The core's message without its own `baked map: ` prefix (the error names the format).
+fn without_prefix(e: footprint_core::Error) -> String {
+    match e {
+        footprint_core::Error::Baked { what } => what.to_owned(),
+        other => other.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use footprint_core::terrain::pyramid::HeightFilter;
+
+    /// A small map and its pyramid, baked into a temporary folder.
+    fn baked(dir: &Path, filter: HeightFilter) -> (Pyramid, std::path::PathBuf) {
+        let map = crate::procedural(3, 67);
+        let pyramid = Pyramid::build(map, filter).unwrap();
+        let path = dir.join("m.fpmap");
+        let mut out = Vec::new();
+        let n = write(&pyramid, "built-in", &mut out).unwrap();
+        assert_eq!(n, out.len() as u64);
+        std::fs::write(&path, out).unwrap();
+        (pyramid, path)
+    }
+
+    /// A baked map reads back as the same pyramid, level by level, every level verified.
+    #[test]
+    fn a_baked_map_reads_back_as_its_pyramid() {
+        let dir = tempfile::tempdir().unwrap();
+        for filter in [HeightFilter::Silhouette, HeightFilter::Mean] {
+            let (pyramid, path) = baked(dir.path(), filter);
+            assert!(is_baked(&path));
+            let (back, opened) = open(&path, None, None).unwrap();
+            assert_eq!(opened.source, "built-in");
+            assert_eq!((opened.levels_verified, opened.levels), (8, 8));
+            assert_eq!(back.filter(), filter);
+            assert!(back.map().heights.is_shared());
+            assert_eq!(back.map().heights, pyramid.map().heights);
+            assert_eq!(back.map().colors, pyramid.map().colors);
+            assert_eq!(back.levels(), pyramid.levels());
+            assert_eq!(back.map().height_range(), pyramid.map().height_range());
+            assert_eq!(back.map().spacing_m, pyramid.map().spacing_m);
+            let (scaled, _) = open(&path, Some(7.0), None).unwrap();
+            assert_eq!(scaled.map().spacing_m, 7.0);
+        }
+    }
+
+    /// A flipped byte anywhere, a cut or an extra byte: a one-line error naming the file.
+    #[test]
+    fn corrupt_and_truncated_files_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let (_, path) = baked(dir.path(), HeightFilter::Silhouette);
+        let good = std::fs::read(&path).unwrap();
+        let layout = footprint_core::terrain::baked::Layout::new(67, 67).unwrap();
+        let bad = dir.path().join("bad.fpmap");
+        let cases: Vec<(Vec<u8>, &str)> = vec![
+            (flip(&good, 8), "version"),
+            (flip(&good, 100), "header's checksum"),
+            (
+                flip(&good, layout.level0()[0].start + 5),
+                "level 0's checksum",
+            ),
+            (
+                flip(&good, layout.level0()[1].end - 1),
+                "level 0's checksum",
+            ),
+            (flip(&good, layout.pyramid()[0].start), "level 1's checksum"),
+            (
+                flip(&good, layout.pyramid()[1].end - 1),
+                "level 7's checksum",
+            ),
+            (good[..good.len() - 1].to_vec(), "truncated"),
+            (good[..100].to_vec(), "ends inside its header"),
+            ([&good[..], &[0]].concat(), "longer than its header says"),
+            (b"PNG, not a baked map".to_vec(), "FPMAP magic"),
+            (Vec::new(), "FPMAP magic"),
+        ];
+        for (bytes, expected) in cases {
+            std::fs::write(&bad, &bytes).unwrap();
+            let e = open(&bad, None, None).unwrap_err().to_string();
+            assert!(e.contains("bad.fpmap") && e.contains(expected), "{e}");
+            assert!(!e.contains('\n'), "{e}");
+        }
+    }
+
+    fn flip(bytes: &[u8], at: usize) -> Vec<u8> {
+        let mut b = bytes.to_vec();
+        b[at] ^= 0x10;
+        b
+    }
+}
