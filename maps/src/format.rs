@@ -10,10 +10,10 @@ use image::{ExtendedColorType, ImageEncoder};
 
 use super::grid::{Grid, Spacing};
 use super::input::{is_stdin, InMemory, Input};
-pub use super::kind::Format;
+pub use super::kind::{Format, VerticalUnit};
 pub use super::png::DEFAULT_PNG_HEIGHT_SCALE_M;
 use super::png::{self, load_color_map};
-use super::{asc, describe, hgt, tiff, tint::tint, Map, MapError};
+use super::{asc, bil, describe, hgt, tiff, tint::tint, Map, MapError};
 
 /// The spacing of a PNG height map, or of a TIFF without `ModelPixelScale`, when `--spacing`
 /// is not given: metres per voxel.
@@ -56,8 +56,8 @@ fn unknown(path: &Path, what: &str, empty: Option<bool>) -> MapError {
     MapError::Invalid {
         what: what.to_owned(),
         detail: format!(
-            "unknown map format ({ext}{bytes}): name it .png, .hgt, .asc, .tif or .tiff, or \
-             give --format png|hgt|asc|tiff"
+            "unknown map format ({ext}{bytes}): name it .png, .hgt, .asc, .tif, .tiff or .bil, \
+             or give --format png|hgt|asc|tiff|bil"
         ),
     }
 }
@@ -77,9 +77,148 @@ pub struct LoadOptions<'a> {
     /// [`DEFAULT_PNG_HEIGHT_SCALE_M`] ([`png::default_height_scale`]); other formats, chosen to
     /// fit the heights (see [`Grid::into_heights`]).
     pub height_scale_m: Option<f64>,
-    /// Files already in memory (the height map, the colour map, or both), read from there
-    /// instead of the file system: the browser page's dropped files.
+    /// Files already in memory (the height map, the colour map, or both, and a `.bil`'s
+    /// `.hdr`), read from there instead of the file system: the browser page's dropped files.
     pub in_memory: InMemory<'a>,
+    /// `--nodata`: a value to read as a void (no data), besides the file's own void value if
+    /// it declares one; compared as the file stores it (before any unit conversion), in
+    /// single precision for float samples. For the formats of heights (`.hgt`, `.asc`, TIFF,
+    /// `.bil`); a PNG holds height units and refuses it.
+    pub nodata: Option<f64>,
+    /// `--vertical-unit`: the unit of the file's heights, overriding what the file says (a
+    /// GeoTIFF's `VerticalUnitsGeoKey`) for every format; the heights are converted to metres.
+    /// For a PNG, its height scale (`--height-scale` or the default) is taken in this unit.
+    /// `None`: the file's own unit, else metres.
+    pub vertical_unit: Option<VerticalUnit>,
+}
+
+/// Values that DEMs use for voids, which read as heights when a file does not declare them
+/// (see [`Sentinel`]): −32768, −32767, −9999, −999999 (and any float at or below
+/// [`FLOAT_SENTINEL`]).
+pub const SENTINELS: [f32; 4] = [-32_768.0, -32_767.0, -9_999.0, -999_999.0];
+
+/// Any float at or below this is taken for a void sentinel (GDAL's float void is
+/// −3.4028235e38, the lowest float32).
+pub const FLOAT_SENTINEL: f32 = -3.0e38;
+
+/// A void sentinel found among the heights of a file that does not declare it as its void
+/// value: those cells are read as heights (deep pits), and the host warns in one line
+/// ([`Sentinel::warning`]) with the flag that treats them as voids ([`LoadOptions::nodata`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sentinel {
+    /// The value, as the file stores it (the most frequent sentinel, if there are several).
+    pub value: f64,
+    /// How many cells hold it.
+    pub count: u64,
+    /// The file's own void value, if it declares one (another value, then).
+    pub declared: Option<f64>,
+}
+
+impl Sentinel {
+    /// The one-line warning, without the file's name (the host puts it in front), e.g.
+    /// `-32767 appears in 1,234 cells and the file declares no nodata value: they are read as
+    /// heights (pits); give --nodata -32767 to treat them as voids`.
+    pub fn warning(&self) -> String {
+        let value = Shown(self.value).to_string();
+        let cells = if self.count == 1 {
+            "1 cell".to_owned()
+        } else {
+            format!("{} cells", grouped_u64(self.count))
+        };
+        let declared = match self.declared {
+            None => "the file declares no nodata value".to_owned(),
+            Some(d) => format!("the file's nodata value is {}", Shown(d)),
+        };
+        let (they, heights, them) = if self.count == 1 {
+            ("it is", "a height (a pit)", "it as a void")
+        } else {
+            ("they are", "heights (pits)", "them as voids")
+        };
+        format!(
+            "{value} appears in {cells} and {declared}: {they} read as {heights}; give --nodata \
+             {value} to treat {them}"
+        )
+    }
+}
+
+/// The most frequent void sentinel ([`SENTINELS`], [`FLOAT_SENTINEL`]) among `values` (voids,
+/// NaN, are not counted), if any; `declared` is the file's own void value, for the message.
+pub fn find_sentinel(values: &[f32], declared: Option<f64>) -> Option<Sentinel> {
+    let mut counts = [0u64; SENTINELS.len() + 1];
+    let mut first_float = None;
+    for &v in values {
+        if v <= FLOAT_SENTINEL && v.is_finite() {
+            counts[SENTINELS.len()] += 1;
+            first_float.get_or_insert(v);
+        } else if v <= -9_999.0 {
+            if let Some(i) = SENTINELS.iter().position(|&s| s == v) {
+                counts[i] += 1;
+            }
+        }
+    }
+    let (i, &count) = counts
+        .iter()
+        .enumerate()
+        .max_by_key(|&(i, &c)| (c, std::cmp::Reverse(i)))?;
+    (count > 0).then(|| Sentinel {
+        value: f64::from(
+            SENTINELS
+                .get(i)
+                .copied()
+                .or(first_float)
+                .unwrap_or(FLOAT_SENTINEL),
+        ),
+        count,
+        declared,
+    })
+}
+
+/// `n` with commas between groups of three digits: `-1,234,567`.
+pub(crate) fn grouped(n: i64) -> String {
+    let digits = grouped_u64(n.unsigned_abs());
+    if n < 0 {
+        format!("-{digits}")
+    } else {
+        digits
+    }
+}
+
+/// `n` with commas between groups of three digits: `1,234,567`.
+fn grouped_u64(n: u64) -> String {
+    let s = n.to_string();
+    let mut out = String::with_capacity(s.len() + s.len() / 3);
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The unit a file gives its heights in, as a reader found it.
+#[derive(Clone, Debug)]
+enum FileUnit {
+    /// The format's heights are metres (SRTM); the note says so.
+    Metres(&'static str),
+    /// The file does not say; a hint to add to the note (may be empty).
+    Unspecified(String),
+    /// The file says (e.g. `VerticalUnitsGeoKey 9002`).
+    Declared(VerticalUnit, String),
+    /// The file gives a unit code the readers do not know: the key's name and the code.
+    Unknown(&'static str, u16),
+}
+
+/// A grid as a reader of heights gave it, before the options apply.
+struct Read {
+    grid: Grid,
+    detail: String,
+    spacing: Option<Spacing>,
+    /// Look for void sentinels (TIFF, ASCII grids, BIL; not SRTM, whose void is fixed).
+    scan: bool,
+    /// The file's own void value.
+    declared: Option<f64>,
+    unit: FileUnit,
 }
 
 /// A loaded map and what was learnt on the way.
@@ -100,6 +239,13 @@ pub struct Loaded {
     /// Lowest and highest heights in metres, after void filling and before rounding to height
     /// units.
     pub range_m: (f64, f64),
+    /// A void sentinel the file holds without declaring it (TIFF, ASCII grids and BIL files
+    /// only): the host prints [`Sentinel::warning`].
+    pub sentinel: Option<Sentinel>,
+    /// The unit the file's heights were read in (and converted to metres from).
+    pub vertical_unit: VerticalUnit,
+    /// Where that unit came from, e.g. `VerticalUnitsGeoKey 9002 (foot)` or `--vertical-unit`.
+    pub vertical_note: String,
 }
 
 /// Checks a `--spacing` or `--height-scale` value.
@@ -118,6 +264,12 @@ fn check_option(option: &'static str, value: Option<f64>) -> Result<(), MapError
 pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     check_option("--spacing", opts.spacing_m)?;
     check_option("--height-scale", opts.height_scale_m)?;
+    if let Some(v) = opts.nodata.filter(|v| v.is_nan()) {
+        return Err(MapError::Invalid {
+            what: format!("--nodata {v}"),
+            detail: "NaN is always a void: give the value the file uses for its voids".to_owned(),
+        });
+    }
     let what = describe("height map", path);
     if is_stdin(path) && opts.color.is_some_and(is_stdin) {
         return Err(MapError::Invalid {
@@ -128,8 +280,18 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     let input = Input::open_in(path, &what, opts.in_memory)?;
     let format = Format::resolve(opts.format, &input)?;
 
-    let (grid, detail, file_spacing) = match format {
+    let read = match format {
         Format::Png => {
+            if let Some(v) = opts.nodata {
+                return Err(MapError::Invalid {
+                    what,
+                    detail: format!(
+                        "--nodata {}: a PNG holds height units, not heights with a void value; \
+                         --nodata is for .hgt, .asc, TIFF and .bil files",
+                        Shown(v)
+                    ),
+                });
+            }
             let spacing = opts.spacing_m.unwrap_or(DEFAULT_SPACING_M);
             let spacing_from = spacing_note(
                 opts.spacing_m,
@@ -138,13 +300,35 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
             if let Some(scale) = opts.height_scale_m {
                 check_scale(&what, spacing, &spacing_from, scale)?;
             }
-            let (map, bits) = png::load_pair(
+            let (mut map, bits) = png::load_pair(
                 input,
                 opts.color,
                 opts.in_memory,
                 spacing,
                 opts.height_scale_m,
             )?;
+            let unit = opts.vertical_unit.unwrap_or(VerticalUnit::Metre);
+            let vertical_note = match opts.vertical_unit {
+                Some(u) => format!(
+                    "--vertical-unit {u}: the PNG's height scale is taken in {}",
+                    unit_plural(u)
+                ),
+                None => "a PNG's height scale is metres per height unit".to_owned(),
+            };
+            if unit != VerticalUnit::Metre {
+                map.height_scale_m *= unit.metres();
+                map.base_m *= unit.metres();
+                if opts.color.is_none() {
+                    map.colors = tint(
+                        map.width,
+                        map.height,
+                        &map.heights,
+                        map.spacing_m,
+                        map.height_scale_m,
+                    )
+                    .into();
+                }
+            }
             let scale = map.height_scale_m;
             check_scale(&what, spacing, &spacing_from, scale)?;
             let height_note = match (opts.height_scale_m, bits <= 8) {
@@ -167,6 +351,9 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
                 height_note,
                 voids_filled: 0,
                 range_m,
+                sentinel: None,
+                vertical_unit: unit,
+                vertical_note,
             });
         }
         Format::Hgt => {
@@ -189,19 +376,111 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
             };
             let looks = input.looks_like();
             let (grid, detail) = hgt::read(input).map_err(|e| hint(e, looks))?;
-            (grid, detail, spacing)
+            Read {
+                grid,
+                detail,
+                spacing,
+                scan: false,
+                declared: Some(f64::from(hgt::VOID)),
+                unit: FileUnit::Metres("SRTM heights are metres"),
+            }
         }
         Format::Asc => {
             let looks = input.looks_like();
-            let (grid, _, spacing) = asc::read(input).map_err(|e| hint(e, looks))?;
-            (grid, asc::FORMAT.to_owned(), Some(spacing))
+            let (grid, header, spacing) = asc::read(input).map_err(|e| hint(e, looks))?;
+            Read {
+                grid,
+                detail: asc::FORMAT.to_owned(),
+                spacing: Some(spacing),
+                scan: true,
+                declared: header.nodata.map(f64::from),
+                unit: FileUnit::Unspecified(String::new()),
+            }
         }
         Format::Tiff => {
             let looks = input.looks_like();
             let (grid, info) = tiff::read(input).map_err(|e| hint(e, looks))?;
-            (grid, info.detail, info.spacing)
+            let unit = match info.vertical_units {
+                Some(code) => match VerticalUnit::from_epsg(code) {
+                    Some(u) => FileUnit::Declared(u, format!("VerticalUnitsGeoKey {code} ({u})")),
+                    None => FileUnit::Unknown("VerticalUnitsGeoKey", code),
+                },
+                None => FileUnit::Unspecified(feet_hint(info.linear_units)),
+            };
+            Read {
+                grid,
+                detail: info.detail,
+                spacing: info.spacing,
+                scan: true,
+                declared: info.nodata,
+                unit,
+            }
+        }
+        Format::Bil => {
+            let (grid, info) = bil::read(input, opts.in_memory)?;
+            Read {
+                grid,
+                detail: info.detail,
+                spacing: info.spacing,
+                scan: true,
+                declared: info.nodata,
+                unit: FileUnit::Unspecified(String::new()),
+            }
         }
     };
+    let Read {
+        mut grid,
+        detail,
+        spacing: file_spacing,
+        scan,
+        declared,
+        unit,
+    } = read;
+    // --nodata: the value as stored, compared in single precision (as the grid holds it).
+    if let Some(nd) = opts.nodata {
+        let nd = nd as f32;
+        for v in &mut grid.values {
+            if *v == nd {
+                *v = f32::NAN;
+            }
+        }
+    }
+    let sentinel = if scan {
+        find_sentinel(&grid.values, declared)
+    } else {
+        None
+    };
+    let (vertical_unit, vertical_note) = match (opts.vertical_unit, unit) {
+        (Some(u), file) => {
+            let file = match file {
+                FileUnit::Declared(f, note) if f != u => format!(" (the file says {note})"),
+                FileUnit::Unknown(key, code) => format!(" (the file says {key} {code})"),
+                _ => String::new(),
+            };
+            (u, format!("--vertical-unit {u}{file}"))
+        }
+        (None, FileUnit::Declared(u, note)) => (u, note),
+        (None, FileUnit::Metres(note)) => (VerticalUnit::Metre, format!("metres: {note}")),
+        (None, FileUnit::Unspecified(hint)) => (
+            VerticalUnit::Metre,
+            format!("metres, assumed: the file declares no vertical unit{hint}"),
+        ),
+        (None, FileUnit::Unknown(key, code)) => {
+            return Err(MapError::Unsupported {
+                what,
+                detail: format!(
+                    "{key} {code} is a unit the reader does not know (it knows 9001 metre, 9002 \
+                     foot and 9003 US survey foot): give --vertical-unit metre|foot|us-foot"
+                ),
+            })
+        }
+    };
+    if vertical_unit != VerticalUnit::Metre {
+        let k = vertical_unit.metres();
+        for v in &mut grid.values {
+            *v = (f64::from(*v) * k) as f32;
+        }
+    }
     let spacing = match (opts.spacing_m, file_spacing) {
         (Some(s), _) => Spacing::metres(s, "--spacing"),
         (None, Some(s)) => s,
@@ -210,7 +489,44 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
             "the default: the file gives no pixel size (give --spacing)",
         ),
     };
-    from_grid(grid, path, &what, format, detail, spacing, opts)
+    // A sentinel may make the heights span too much to hold: the error then says why.
+    let mut loaded =
+        from_grid(grid, path, &what, format, detail, spacing, opts).map_err(|e| {
+            match (e, &sentinel) {
+                (MapError::Invalid { what, detail }, Some(s)) => MapError::Invalid {
+                    what,
+                    detail: format!("{detail}: {}", s.warning()),
+                },
+                (e, _) => e,
+            }
+        })?;
+    loaded.sentinel = sentinel;
+    loaded.vertical_unit = vertical_unit;
+    loaded.vertical_note = vertical_note;
+    Ok(loaded)
+}
+
+/// A hint for a TIFF that gives no vertical unit: if its horizontal unit (the EPSG code of
+/// `ProjLinearUnitsGeoKey`) is feet, its heights may be too.
+fn feet_hint(linear_units: Option<u16>) -> String {
+    let unit = linear_units.and_then(VerticalUnit::from_epsg);
+    match (linear_units, unit) {
+        (Some(code), Some(u)) if u != VerticalUnit::Metre => format!(
+            ", though its horizontal unit is {} (ProjLinearUnitsGeoKey {code}): give \
+             --vertical-unit {u} if its heights are too",
+            unit_plural(u)
+        ),
+        _ => String::new(),
+    }
+}
+
+/// A unit's name in the plural, for notes: `metres`, `feet`, `US survey feet`.
+fn unit_plural(u: VerticalUnit) -> &'static str {
+    match u {
+        VerticalUnit::Metre => "metres",
+        VerticalUnit::Foot => "feet",
+        VerticalUnit::UsSurveyFoot => "US survey feet",
+    }
 }
 
 /// The note for a spacing that is either `--spacing` or a default.
@@ -291,6 +607,9 @@ fn from_grid(
         },
         voids_filled: h.voids_filled,
         range_m: (h.min_m, h.max_m),
+        sentinel: None,
+        vertical_unit: VerticalUnit::Metre,
+        vertical_note: String::new(),
     })
 }
 
@@ -302,6 +621,7 @@ pub fn write(map: &Map, format: Format, out: &mut dyn Write, what: &str) -> Resu
         Format::Asc => asc::write(map, out, what),
         Format::Hgt => hgt::write(map, out, what),
         Format::Tiff => tiff::write(map, out, what),
+        Format::Bil => Err(bil_unwritable(what)),
         Format::Png => {
             // The encoder takes 16-bit samples in native byte order.
             let bytes: Vec<u8> = map.heights.iter().flat_map(|h| h.to_ne_bytes()).collect();
@@ -325,7 +645,19 @@ pub fn write(map: &Map, format: Format, out: &mut dyn Write, what: &str) -> Resu
 pub fn check_writable(map: &Map, format: Format, what: &str) -> Result<(), MapError> {
     match format {
         Format::Hgt => hgt::check_writable(map, what),
+        Format::Bil => Err(bil_unwritable(what)),
         _ => Ok(()),
+    }
+}
+
+/// The error for writing a `.bil`: it would need its `.hdr` beside it, which a single output
+/// cannot be.
+fn bil_unwritable(what: &str) -> MapError {
+    MapError::Unsupported {
+        what: what.to_owned(),
+        detail: "writing ESRI BIL (a .bil needs a .hdr beside it): write .tif, .asc, .hgt or \
+                 .png instead"
+            .to_owned(),
     }
 }
 

@@ -5,10 +5,17 @@
 //! `N46E008.hgt` being the tile whose south-west corner is at 46°N 8°E. The cells are 1″ or 3″
 //! of latitude and longitude, converted to metres at the tile's centre latitude (see
 //! [`Spacing::geographic`]).
+//!
+//! A file of a tile's length that is little-endian (an SRTM `.bil` without its `.hdr`, say)
+//! would read as garbage: heights jumping by kilometres between neighbours. While the tile is
+//! read, its big-endian reading is compared with its little-endian one ([`ByteOrderCheck`]), and
+//! a tile whose big-endian reading is implausible next to its little-endian one is refused,
+//! with both readings' figures in the message.
 
 use std::io::{self, Read, Write};
 use std::path::Path;
 
+use super::format::grouped;
 use super::grid::{Grid, Spacing};
 use super::input::Input;
 use super::{validate_memory, Map, MapError};
@@ -105,7 +112,9 @@ pub fn read(mut input: Input) -> Result<(Grid, String), MapError> {
     let n = side as usize * side as usize;
     let mut values = Vec::with_capacity(n);
     let mut row = vec![0u8; side as usize * 2];
-    for _ in 0..side {
+    let mut previous = vec![0u8; side as usize * 2];
+    let mut check = ByteOrderCheck::default();
+    for y in 0..side {
         input.read_exact(&mut row).map_err(|e| {
             if e.kind() == io::ErrorKind::UnexpectedEof {
                 MapError::Malformed {
@@ -125,6 +134,18 @@ pub fn read(mut input: Input) -> Result<(Grid, String), MapError> {
                 f32::from(v)
             }
         }));
+        // Every other row, with its west and north neighbours: half the cost, and as telling.
+        if y % 2 == 1 {
+            check.add_row(&row, Some(&previous));
+        }
+        std::mem::swap(&mut row, &mut previous);
+    }
+    if let Some(detail) = check.verdict() {
+        return Err(MapError::Malformed {
+            what: what.to_owned(),
+            format: FORMAT,
+            detail,
+        });
     }
     let grid = Grid {
         width: side,
@@ -135,6 +156,156 @@ pub fn read(mut input: Input) -> Result<(Grid, String), MapError> {
         grid,
         format!("SRTM {arcsec}″ tile, big-endian int16 metres"),
     ))
+}
+
+/// How rough and how high one reading (big- or little-endian) of a tile's 16-bit samples is,
+/// voids (−32768 in that reading) left out.
+#[derive(Clone, Copy, Debug)]
+pub struct Reading {
+    /// The sum of the absolute differences between neighbours (west-east and north-south).
+    pub diff_sum: u64,
+    /// The number of neighbour pairs with no void.
+    pub pairs: u64,
+    /// How many of those pairs differ by a nonzero multiple of 256 (a byte-swapped smooth
+    /// reading differs by little else).
+    pub steps_of_256: u64,
+    /// How many of them differ at all.
+    pub nonzero: u64,
+    /// The lowest sample that is not a void.
+    pub min: i16,
+    /// The highest sample that is not a void.
+    pub max: i16,
+}
+
+impl Default for Reading {
+    fn default() -> Self {
+        Self {
+            diff_sum: 0,
+            pairs: 0,
+            steps_of_256: 0,
+            nonzero: 0,
+            min: i16::MAX,
+            max: i16::MIN,
+        }
+    }
+}
+
+impl Reading {
+    /// Adds one sample to the range (a void is left out).
+    #[inline]
+    fn sample(&mut self, v: i16) {
+        if v != VOID {
+            self.min = self.min.min(v);
+            self.max = self.max.max(v);
+        }
+    }
+
+    /// Adds one pair of neighbours (left out if either is a void).
+    #[inline]
+    fn pair(&mut self, a: i16, b: i16) {
+        if a == VOID || b == VOID {
+            return;
+        }
+        let d = (i32::from(a) - i32::from(b)).unsigned_abs();
+        self.diff_sum += u64::from(d);
+        self.pairs += 1;
+        self.nonzero += u64::from(d != 0);
+        self.steps_of_256 += u64::from(d != 0 && d % 256 == 0);
+    }
+
+    /// The mean absolute difference between neighbours, metres (0 without pairs).
+    pub fn mean_step(&self) -> f64 {
+        if self.pairs == 0 {
+            0.0
+        } else {
+            self.diff_sum as f64 / self.pairs as f64
+        }
+    }
+
+    /// The share of the differing neighbours that differ by a multiple of 256 (0 if none
+    /// differ).
+    pub fn share_of_256(&self) -> f64 {
+        if self.nonzero == 0 {
+            0.0
+        } else {
+            self.steps_of_256 as f64 / self.nonzero as f64
+        }
+    }
+}
+
+/// A tile's big-endian reading next to its little-endian one, built row by row as it is read
+/// (see the module docs).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ByteOrderCheck {
+    /// The big-endian reading (the format's).
+    pub big: Reading,
+    /// The little-endian reading.
+    pub little: Reading,
+}
+
+impl ByteOrderCheck {
+    /// Adds a row of raw samples (2 bytes each), with the row above it if there is one.
+    pub fn add_row(&mut self, row: &[u8], above: Option<&[u8]>) {
+        let cell = |b: &[u8]| [b[0], b[1]];
+        let mut west: Option<[u8; 2]> = None;
+        for (x, b) in row.chunks_exact(2).map(cell).enumerate() {
+            let (be, le) = (i16::from_be_bytes(b), i16::from_le_bytes(b));
+            self.big.sample(be);
+            self.little.sample(le);
+            if let Some(w) = west {
+                self.big.pair(be, i16::from_be_bytes(w));
+                self.little.pair(le, i16::from_le_bytes(w));
+            }
+            if let Some(n) = above.and_then(|a| a.get(2 * x..2 * x + 2)).map(cell) {
+                self.big.pair(be, i16::from_be_bytes(n));
+                self.little.pair(le, i16::from_le_bytes(n));
+            }
+            west = Some(b);
+        }
+    }
+
+    /// Why the big-endian reading is implausible next to the little-endian one, if it is: it
+    /// jumps more than 8 times as much between neighbours (and more than 8 m), or its
+    /// differing neighbours mostly differ by whole multiples of 256 while the little-endian
+    /// reading's almost never do (a smooth little-endian tile, read big-endian). `None` for a
+    /// plausible big-endian tile (and for one too flat to tell).
+    pub fn verdict(&self) -> Option<String> {
+        let (be, le) = (&self.big, &self.little);
+        if be.pairs == 0 || le.pairs == 0 {
+            return None;
+        }
+        let rough = be.mean_step() > 8.0 * le.mean_step().max(1.0);
+        let swapped = be.nonzero >= 100 && be.share_of_256() > 0.5 && le.share_of_256() < 0.05;
+        if !(rough || swapped) {
+            return None;
+        }
+        let range = |r: &Reading| {
+            format!(
+                "from {} to {} m",
+                grouped(i64::from(r.min)),
+                grouped(i64::from(r.max))
+            )
+        };
+        Some(format!(
+            "read big-endian, as a .hgt tile is, its heights run {} and jump {} m between \
+             neighbours on average; read little-endian they run {} and jump {} m: it looks like \
+             a little-endian file (an SRTM .bil, say): give it its .hdr side file and name it \
+             .bil, or convert it to big-endian",
+            range(be),
+            step(be.mean_step()),
+            range(le),
+            step(le.mean_step())
+        ))
+    }
+}
+
+/// A mean step for a message: one decimal under 100, else whole and grouped.
+fn step(m: f64) -> String {
+    if m < 100.0 {
+        format!("{m:.1}")
+    } else {
+        grouped(m.round() as i64)
+    }
 }
 
 /// Writes `map` as a `.hgt` tile: heights in whole metres (`base_m + u · height_scale_m`,
@@ -214,6 +385,46 @@ mod tests {
         assert_eq!(side_from_len(2_884_801), None);
         assert_eq!(side_from_len(0), None);
         assert_eq!(side_from_len(2 * 1200 * 1200), None);
+    }
+
+    /// A smooth ramp reads plausibly big-endian; its bytes swapped do not; a flat tile tells
+    /// nothing and passes.
+    #[test]
+    fn byte_order_verdicts() {
+        let rows = |f: &dyn Fn(usize, usize) -> i16, swap: bool| {
+            let mut c = ByteOrderCheck::default();
+            let mut above: Option<Vec<u8>> = None;
+            for y in 0..50 {
+                let row: Vec<u8> = (0..50)
+                    .flat_map(|x| {
+                        let v = f(x, y);
+                        if swap {
+                            v.to_le_bytes()
+                        } else {
+                            v.to_be_bytes()
+                        }
+                    })
+                    .collect();
+                c.add_row(&row, above.as_deref());
+                above = Some(row);
+            }
+            c
+        };
+        let hills = |x: usize, y: usize| (800 + 7 * x + 3 * y) as i16;
+        let be = rows(&hills, false);
+        assert!(be.verdict().is_none());
+        assert!((be.big.mean_step() - 5.0).abs() < 0.1, "{be:?}");
+        let le = rows(&hills, true);
+        let why = le.verdict().unwrap();
+        assert!(
+            why.contains("read little-endian they run from 800 to 1,290 m"),
+            "{why}"
+        );
+        let flat = |_: usize, _: usize| 12i16;
+        assert!(rows(&flat, true).verdict().is_none());
+        // Voids are left out of both readings.
+        let voids = |x: usize, _: usize| if x % 2 == 0 { VOID } else { 100 };
+        assert!(rows(&voids, false).verdict().is_none());
     }
 
     #[test]

@@ -195,6 +195,7 @@ impl Input {
             Format::Tiff => "a TIFF file",
             Format::Asc => "an ESRI ASCII grid",
             Format::Hgt => "an SRTM .hgt tile",
+            Format::Bil => "an ESRI BIL file",
         })
     }
 }

@@ -22,6 +22,7 @@ use std::path::Path;
 
 pub mod asc;
 pub mod baked;
+pub mod bil;
 pub mod format;
 pub mod grid;
 pub mod hgt;
@@ -38,6 +39,7 @@ pub use footprint_scenes::Map;
 pub use footprint_scenes::{procedural, tint};
 
 pub use self::format::{load, relief_hint, Format, LoadOptions, Loaded};
+pub use self::format::{Sentinel, VerticalUnit};
 pub use self::grid::Grid;
 pub use self::png::load_png_pair;
 pub use self::procedural::{procedural, DEFAULT_SIZE, MIN_SIZE};

@@ -4,7 +4,9 @@
 //! Deflate or PackBits. The pixel size comes from the GeoTIFF `ModelPixelScale` tag when it is
 //! present: metres for a projected model (feet are converted), degrees for a geographic one
 //! (`GTModelTypeGeoKey` = 2), converted to metres at the centre latitude found from
-//! `ModelTiepoint`. GDAL's `GDAL_NODATA` tag gives the void value; NaN is always a void.
+//! `ModelTiepoint`. GDAL's `GDAL_NODATA` tag gives the void value; NaN is always a void. The
+//! unit of the heights, `VerticalUnitsGeoKey`, is reported ([`TiffInfo::vertical_units`]) and
+//! converted by the loader ([`crate::format::load`]).
 //!
 //! Before any pixel is decoded, the chunks' offsets and byte counts are checked against the
 //! file's length, and their total against the most that the compression could expand it to, so
@@ -29,6 +31,8 @@ const GEO_KEY_DIRECTORY: u16 = 34_735;
 const KEY_MODEL_TYPE: u16 = 1024;
 /// ProjLinearUnitsGeoKey: 9001 metre, 9002 foot, 9003 US survey foot.
 const KEY_LINEAR_UNITS: u16 = 3076;
+/// VerticalUnitsGeoKey: the unit of the heights, codes as [`KEY_LINEAR_UNITS`].
+const KEY_VERTICAL_UNITS: u16 = 4099;
 
 /// What a TIFF told about itself, for `footprint map info`.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,6 +41,13 @@ pub struct TiffInfo {
     pub detail: String,
     /// The pixel size, if the file gives one (`ModelPixelScale`).
     pub spacing: Option<Spacing>,
+    /// The void value the file declares (`GDAL_NODATA`), if any.
+    pub nodata: Option<f64>,
+    /// `VerticalUnitsGeoKey`, if present and not 0 (undefined) or 32767 (user-defined): an
+    /// EPSG unit code, 9001 metre, 9002 foot, 9003 US survey foot, ….
+    pub vertical_units: Option<u16>,
+    /// `ProjLinearUnitsGeoKey`, if present: the horizontal unit's EPSG code.
+    pub linear_units: Option<u16>,
 }
 
 fn malformed(what: &str, detail: impl Into<String>) -> MapError {
@@ -231,8 +242,15 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
 
     validate_memory(width, height, what)?;
 
-    // Georeferencing, read before the pixels (the tags are small).
-    let spacing = pixel_spacing(&mut dec, height, what)?;
+    // Georeferencing, read before the pixels (the tags are small). GeoKeys: a header of 4
+    // shorts, then 4 shorts per key (id, location, count, value).
+    let keys: Vec<u16> = match dec.find_tag(Tag::Unknown(GEO_KEY_DIRECTORY)).map_err(err)? {
+        Some(v) => v.into_u16_vec().map_err(err)?,
+        None => Vec::new(),
+    };
+    let spacing = pixel_spacing(&mut dec, height, &keys, what)?;
+    let vertical_units = geo_key(&keys, KEY_VERTICAL_UNITS).filter(|&c| c != 0 && c != 32_767);
+    let linear_units = geo_key(&keys, KEY_LINEAR_UNITS);
     let nodata: Option<f64> = match dec.find_tag(Tag::GdalNodata).map_err(err)? {
         Some(v) => {
             let text = v.into_string().map_err(err)?;
@@ -289,7 +307,25 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
         "TIFF {type_name}, {layout}, {}",
         compression_name(compression)
     );
-    Ok((grid, TiffInfo { detail, spacing }))
+    Ok((
+        grid,
+        TiffInfo {
+            detail,
+            spacing,
+            nodata,
+            vertical_units,
+            linear_units,
+        },
+    ))
+}
+
+/// The value of the GeoKey `id`, if `keys` (the GeoKeyDirectory) holds it in place.
+fn geo_key(keys: &[u16], id: u16) -> Option<u16> {
+    keys.get(4..)
+        .unwrap_or(&[])
+        .chunks_exact(4)
+        .find(|k| k[0] == id && k[1] == 0)
+        .map(|k| k[3])
 }
 
 fn convert<T: Copy>(v: Vec<T>, f: impl Fn(T) -> f64, void: impl Fn(f64) -> bool) -> Vec<f32> {
@@ -309,6 +345,7 @@ fn convert<T: Copy>(v: Vec<T>, f: impl Fn(T) -> f64, void: impl Fn(f64) -> bool)
 fn pixel_spacing<R: io::Read + io::Seek>(
     dec: &mut Decoder<R>,
     height: u32,
+    keys: &[u16],
     what: &str,
 ) -> Result<Option<Spacing>, MapError> {
     let err = |e| tiff_error(what, e);
@@ -326,18 +363,7 @@ fn pixel_spacing<R: io::Read + io::Seek>(
             format!("ModelPixelScale {sx} × {sy} is not a positive size"),
         ));
     }
-    // GeoKeys: a header of 4 shorts, then 4 shorts per key (id, location, count, value).
-    let keys: Vec<u16> = match dec.find_tag(Tag::Unknown(GEO_KEY_DIRECTORY)).map_err(err)? {
-        Some(v) => v.into_u16_vec().map_err(err)?,
-        None => Vec::new(),
-    };
-    let key = |id: u16| {
-        keys.get(4..)
-            .unwrap_or(&[])
-            .chunks_exact(4)
-            .find(|k| k[0] == id && k[1] == 0)
-            .map(|k| k[3])
-    };
+    let key = |id: u16| geo_key(keys, id);
     if key(KEY_MODEL_TYPE) == Some(2) {
         let tie = match dec.find_tag(Tag::ModelTiepointTag).map_err(err)? {
             Some(v) => v.into_f64_vec().map_err(err)?,
