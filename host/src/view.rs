@@ -183,6 +183,14 @@ pub struct MapArgs {
     /// formats].
     #[arg(long = "height-scale", allow_hyphen_values = true, requires = "dem")]
     pub height_scale: Option<f64>,
+    /// A value of --dem to read as a void (no data), for a file that does not declare its own
+    /// (-32767, -9999, …): voids are filled from their neighbours.
+    #[arg(long, allow_hyphen_values = true, requires = "dem")]
+    pub nodata: Option<f64>,
+    /// The unit of --dem's heights, overriding the file's (a GeoTIFF's vertical unit key)
+    /// [default: the file's, else metres].
+    #[arg(long = "vertical-unit", value_enum, requires = "dem")]
+    pub vertical_unit: Option<map::VerticalUnit>,
     /// Which built-in terrain: the mountains (30 m voxels, the paper's kind of scene) or a
     /// survey-like map (10 m voxels: smooth eroded hills, or the same with large flat plains).
     #[arg(long, value_enum, default_value_t = TerrainArg::Mountains, conflicts_with = "dem")]
@@ -252,9 +260,14 @@ impl MapArgs {
                         color: self.color.as_deref(),
                         spacing_m: self.spacing,
                         height_scale_m: self.height_scale,
+                        nodata: self.nodata,
+                        vertical_unit: self.vertical_unit,
                         ..map::LoadOptions::default()
                     },
                 )?;
+                if let Some(sentinel) = &loaded.sentinel {
+                    crate::note!("warning: {}: {}", dem.display(), sentinel.warning());
+                }
                 if loaded.voids_filled > 0 {
                     crate::note!(
                         "note: {}: {} voids filled from their neighbours",
@@ -275,6 +288,8 @@ impl MapArgs {
                     ("--color", self.color.is_some()),
                     ("--spacing", self.spacing.is_some()),
                     ("--height-scale", self.height_scale.is_some()),
+                    ("--nodata", self.nodata.is_some()),
+                    ("--vertical-unit", self.vertical_unit.is_some()),
                 ] {
                     if given {
                         bail!("{option}: only a --dem map takes it (the built-in terrain has its own scale)");

@@ -33,14 +33,18 @@ pub const VERIFY_AT_OPEN: u64 = 256 << 20;
 /// The format's name in messages.
 const FORMAT: &str = "baked map";
 
-/// Whether `path` names a baked map: its extension is `.fpmap`, or its first bytes are the
-/// baked magic.
+/// Whether `path` names a baked map: its extension is `.fpmap`, or it is a regular file whose
+/// first bytes are the baked magic. Standard input, FIFOs and devices are never opened here
+/// (their bytes are the loader's to read, once).
 pub fn is_baked(path: &Path) -> bool {
     if path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case(EXTENSION))
     {
         return true;
+    }
+    if crate::input::is_stdin(path) || !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return false;
     }
     let mut head = [0u8; 8];
     File::open(path)

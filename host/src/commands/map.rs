@@ -95,6 +95,12 @@ pub struct ReadArgs {
     /// formats].
     #[arg(long = "height-scale", allow_hyphen_values = true)]
     pub height_scale: Option<f64>,
+    /// A value to read as a void (no data), for a file that does not declare its own.
+    #[arg(long, allow_hyphen_values = true)]
+    pub nodata: Option<f64>,
+    /// The unit of the heights, overriding the file's [default: the file's, else metres].
+    #[arg(long = "vertical-unit", value_enum)]
+    pub vertical_unit: Option<map::VerticalUnit>,
 }
 
 impl ReadArgs {
@@ -106,9 +112,16 @@ impl ReadArgs {
                 color: None,
                 spacing_m: self.spacing,
                 height_scale_m: self.height_scale,
+                nodata: self.nodata,
+                vertical_unit: self.vertical_unit,
                 ..LoadOptions::default()
             },
-        )?)
+        )
+        .inspect(|loaded| {
+            if let Some(sentinel) = &loaded.sentinel {
+                crate::note!("warning: {}: {}", path.display(), sentinel.warning());
+            }
+        })?)
     }
 }
 
@@ -160,6 +173,10 @@ struct InfoJson {
     base_m: f64,
     height_scale_m: f64,
     height_note: String,
+    vertical_unit: &'static str,
+    vertical_note: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sentinel: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     relief_hint: Option<String>,
     min_unit: u16,
@@ -229,6 +246,8 @@ fn bake(args: &BakeArgs) -> Result<()> {
         color: args.color.clone(),
         spacing: args.read.spacing,
         height_scale: args.read.height_scale,
+        nodata: args.read.nodata,
+        vertical_unit: args.read.vertical_unit,
         terrain: args.terrain,
         seed: args.seed,
         terrain_size: args.terrain_size,
@@ -376,6 +395,9 @@ fn info(args: &InfoArgs) -> Result<()> {
         base_m: m.base_m,
         height_scale_m: m.height_scale_m,
         height_note: loaded.height_note.clone(),
+        vertical_unit: loaded.vertical_unit.name(),
+        vertical_note: loaded.vertical_note.clone(),
+        sentinel: loaded.sentinel.as_ref().map(|s| s.warning()),
         relief_hint: map::relief_hint(m, loaded.format, loaded.range_m),
         min_unit: lo,
         max_unit: hi,
@@ -406,6 +428,10 @@ fn info(args: &InfoArgs) -> Result<()> {
         m.height_scale_m,
         json.height_note
     )?;
+    crate::outln!("vertical  {} ({})", json.vertical_unit, json.vertical_note)?;
+    if let Some(warning) = &json.sentinel {
+        crate::outln!("warning   {warning}")?;
+    }
     if let Some(hint) = &json.relief_hint {
         crate::outln!("hint      {hint}")?;
     }
@@ -463,7 +489,7 @@ fn convert(args: &ConvertArgs) -> Result<()> {
             "\na .hgt tile's spacing comes from its name (e.g. N46E008.hgt); else give --spacing {}",
             m.spacing_m
         )),
-        Format::Asc | Format::Tiff => {}
+        Format::Asc | Format::Tiff | Format::Bil => {}
     }
     // Written to standard output, the map is followed by nothing: the summary goes to stderr
     // (`crate::console::stdout_is_output`).

@@ -20,7 +20,7 @@ use crate::lighting::MaterialArg;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{MapArgs, OnOff, Size, SurfaceArg};
+use crate::view::{HeightFilterArg, MapArgs, OnOff, Size, SurfaceArg};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -76,6 +76,12 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
             if let Some(h) = m.height_scale {
                 push("--height-scale", h.to_string());
             }
+            if let Some(v) = m.nodata {
+                push("--nodata", v.to_string());
+            }
+            if let Some(u) = &m.vertical_unit {
+                push("--vertical-unit", value_name(u));
+            }
         }
         None => {
             push("--terrain", value_name(&m.terrain));
@@ -83,8 +89,10 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
             push("--terrain-size", m.terrain_size.to_string());
         }
     }
-    if let Some(filter) = &m.height_filter {
-        push("--height-filter", value_name(filter));
+    // A baked map's filter is the file's own; any other map's is stated, default or not.
+    let baked = m.dem.as_deref().is_some_and(crate::map::baked::is_baked);
+    if let Some(filter) = m.height_filter.or((!baked).then(HeightFilterArg::default)) {
+        push("--height-filter", value_name(&filter));
     }
     push("--lod", value_name(&args.lod));
     push("--frames", args.frames.to_string());
