@@ -462,8 +462,14 @@ mod tests {
         let l = Layout::new(5, 3).unwrap();
         let [h0, c0] = l.level0();
         let [ph, pc] = l.pyramid();
-        assert_eq!((h0.start, h0.len(), c0.start, c0.len()), (4096, 30, 8192, 45));
-        assert_eq!((ph.start, ph.len(), pc.start, pc.len()), (12288, 54, 16384, 27));
+        assert_eq!(
+            (h0.start, h0.len(), c0.start, c0.len()),
+            (4096, 30, 8192, 45)
+        );
+        assert_eq!(
+            (ph.start, ph.len(), pc.start, pc.len()),
+            (12288, 54, 16384, 27)
+        );
         assert_eq!(l.len(), 20480);
         // 5×3 → 3×2 → 2×1 → 1×1.
         assert_eq!(l.levels(), 4);
@@ -473,7 +479,10 @@ mod tests {
         assert_eq!((a.end, b.end), (ph.end, pc.end));
         assert_eq!(l.level(4), None);
         assert!(matches!(Layout::new(0, 3), Err(Error::MapSize { .. })));
-        assert!(matches!(Layout::new(3, MAX_SIDE + 1), Err(Error::MapSize { .. })));
+        assert!(matches!(
+            Layout::new(3, MAX_SIDE + 1),
+            Err(Error::MapSize { .. })
+        ));
     }
 
     /// A header reads back as written; a wrong magic, version or level count is refused.
@@ -503,10 +512,21 @@ mod tests {
             b[at] = value;
             Header::decode(&b)
         };
-        for (at, value) in [(0, b'X'), (at::VERSION, 2), (at::LEVELS, 9), (at::FILTER, 2)] {
-            assert!(matches!(refused(at, value), Err(Error::Baked { .. })), "{at}");
+        for (at, value) in [
+            (0, b'X'),
+            (at::VERSION, 2),
+            (at::LEVELS, 9),
+            (at::FILTER, 2),
+        ] {
+            assert!(
+                matches!(refused(at, value), Err(Error::Baked { .. })),
+                "{at}"
+            );
         }
-        assert!(matches!(refused(at::WIDTH + 3, 1), Err(Error::MapSize { .. })));
+        assert!(matches!(
+            refused(at::WIDTH + 3, 1),
+            Err(Error::MapSize { .. })
+        ));
         assert!(Header::decode(&bytes[..100]).is_err());
     }
 
@@ -537,7 +557,10 @@ mod tests {
         let baked = Baked::parse(bytes).unwrap();
         let terrain = baked.terrain(true).unwrap();
         assert_eq!(terrain.levels().len(), 2);
-        assert_eq!(terrain.base().heights(crate::terrain::Axis::X), &[0, 1, 2, 3]);
+        assert_eq!(
+            terrain.base().heights(crate::terrain::Axis::X),
+            &[0, 1, 2, 3]
+        );
         assert!(Baked::parse(&bytes[..bytes.len() - 1]).is_err());
         let mut other = [0u16; 16384];
         let odd: &mut [u8] = bytemuck::cast_slice_mut(&mut other[..]);
