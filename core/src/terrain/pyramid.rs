@@ -155,6 +155,132 @@ impl Level<'_> {
     }
 }
 
+/// One row of a level's grids, as [`reduce_row`] reads them: the heights along x, along y
+/// and the colours, each one row of the level's width (level 0 lends its heights as both).
+#[derive(Clone, Copy, Debug)]
+pub struct LevelRow<'a> {
+    /// The row of heights for rays along x.
+    pub along_x: &'a [u16],
+    /// The row of heights for rays along y.
+    pub along_y: &'a [u16],
+    /// The row of colours.
+    pub colors: &'a [Rgb],
+}
+
+/// One row of a level's grids being written by [`reduce_row`], each `width.div_ceil(2)` long
+/// for rows below of `width` voxels.
+#[derive(Debug)]
+pub struct LevelRowMut<'a> {
+    /// The row of heights for rays along x.
+    pub along_x: &'a mut [u16],
+    /// The row of heights for rays along y.
+    pub along_y: &'a mut [u16],
+    /// The row of colours.
+    pub colors: &'a mut [Rgb],
+}
+
+/// Builds one row of the next level from two rows of the level below, exactly as
+/// [`Level::build_next`] builds that row: `below` is rows `2y` and `2y + 1` of the level
+/// below (the last row twice when its height is odd: the missing neighbour is the edge voxel
+/// itself), `out` is row `y` of the next level. A streaming baker reduces a map row pair by
+/// row pair with it, holding a few rows of each level rather than the whole pyramid.
+///
+/// Errors ([`Error::SliceLength`]): rows below of unequal or zero lengths, or rows out that
+/// are not half as long (rounded up).
+pub fn reduce_row(
+    filter: HeightFilter,
+    below: [LevelRow<'_>; 2],
+    out: LevelRowMut<'_>,
+) -> Result<(), Error> {
+    let [a, b] = below;
+    let wb = a.along_x.len();
+    for (what, len) in [
+        ("row below along y", a.along_y.len()),
+        ("row below colours", a.colors.len()),
+        ("second row below along x", b.along_x.len()),
+        ("second row below along y", b.along_y.len()),
+        ("second row below colours", b.colors.len()),
+    ] {
+        check_len(what, wb, len)?;
+    }
+    if wb == 0 {
+        return Err(Error::SliceLength {
+            what: "row below",
+            expected: 1,
+            actual: 0,
+        });
+    }
+    let w = wb.div_ceil(2);
+    check_len("row along x", w, out.along_x.len())?;
+    check_len("row along y", w, out.along_y.len())?;
+    check_len("row colours", w, out.colors.len())?;
+    // The lengths are checked above, so no fallback below is ever taken.
+    let at = |row: &[u16], i: usize| row.get(i).copied().unwrap_or(0);
+    let cat = |row: &[Rgb], i: usize| row.get(i).copied().unwrap_or_default();
+    let cells = out
+        .along_x
+        .iter_mut()
+        .zip(out.along_y.iter_mut())
+        .zip(out.colors.iter_mut())
+        .enumerate();
+    for (x, ((out_x, out_y), out_c)) in cells {
+        let (x0, x1) = (2 * x, (2 * x + 1).min(wb - 1));
+        // Top-left, top-right, bottom-left, bottom-right, as `build_next`.
+        let qx = [
+            at(a.along_x, x0),
+            at(a.along_x, x1),
+            at(b.along_x, x0),
+            at(b.along_x, x1),
+        ];
+        let qy = [
+            at(a.along_y, x0),
+            at(a.along_y, x1),
+            at(b.along_y, x0),
+            at(b.along_y, x1),
+        ];
+        (*out_x, *out_y) = match filter {
+            HeightFilter::Mean => (mean4(qx), mean4(qy)),
+            HeightFilter::Silhouette => (
+                mean2(qx[0].max(qx[1]), qx[2].max(qx[3])),
+                mean2(qy[0].max(qy[2]), qy[1].max(qy[3])),
+            ),
+        };
+        *out_c = mean_color([
+            cat(a.colors, x0),
+            cat(a.colors, x1),
+            cat(b.colors, x0),
+            cat(b.colors, x1),
+        ]);
+    }
+    Ok(())
+}
+
+/// Builds one row of the next level's conservative maximum from two rows of the maximum grid
+/// below (the last row twice for an odd height), exactly as [`Level::build_next_max`] builds
+/// that row; level 0's maximum grid is its heights.
+///
+/// Errors ([`Error::SliceLength`]): rows below of unequal or zero lengths, or `out` not half
+/// as long (rounded up).
+pub fn reduce_max_row(below: [&[u16]; 2], out: &mut [u16]) -> Result<(), Error> {
+    let [a, b] = below;
+    let wb = a.len();
+    check_len("second max row below", wb, b.len())?;
+    if wb == 0 {
+        return Err(Error::SliceLength {
+            what: "max row below",
+            expected: 1,
+            actual: 0,
+        });
+    }
+    check_len("max row", wb.div_ceil(2), out.len())?;
+    let at = |row: &[u16], i: usize| row.get(i).copied().unwrap_or(u16::MAX);
+    for (x, o) in out.iter_mut().enumerate() {
+        let (x0, x1) = (2 * x, (2 * x + 1).min(wb - 1));
+        *o = at(a, x0).max(at(a, x1)).max(at(b, x0)).max(at(b, x1));
+    }
+    Ok(())
+}
+
 /// The cells of every level above level 0 of a `width × height` map, summed down to 1×1: what
 /// the colour buffer of [`build`] holds (its height buffer holds three times as many: the
 /// heights along x, along y, and the conservative maximum). A `const fn`, so a firmware sizes
@@ -309,5 +435,129 @@ mod tests {
             level0.build_next_max(&mut [0; 5]),
             Err(short("max heights", 6, 5))
         );
+    }
+
+    /// `reduce_row` and `reduce_max_row`, row pair by row pair, give exactly the levels
+    /// `build` makes, for both filters and odd and even sides, on random maps.
+    #[test]
+    fn rows_reduce_as_the_builder_builds() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for (w, h) in [
+            (1, 1),
+            (1, 5),
+            (5, 1),
+            (2, 2),
+            (7, 3),
+            (8, 8),
+            (13, 10),
+            (33, 17),
+        ] {
+            for filter in [HeightFilter::Silhouette, HeightFilter::Mean] {
+                let n = (w * h) as usize;
+                let heights: std::vec::Vec<u16> = (0..n).map(|_| next() as u16).collect();
+                let colors: std::vec::Vec<Rgb> = (0..n)
+                    .map(|_| {
+                        let v = next();
+                        Rgb::new(v as u8, (v >> 8) as u8, (v >> 16) as u8)
+                    })
+                    .collect();
+                let level0 = Level::new(w, h, &heights, &colors).unwrap();
+                let total = cells(w, h);
+                let mut grid = std::vec![0u16; 3 * total];
+                let mut palette = std::vec![Rgb::default(); total];
+                build(&level0, filter, &mut grid, &mut palette).unwrap();
+                // Row by row, level by level.
+                let (mut bx, mut by, mut bm, mut bc) = (
+                    heights.clone(),
+                    heights.clone(),
+                    heights.clone(),
+                    colors.clone(),
+                );
+                let (mut lw, mut lh) = (w as usize, h as usize);
+                let (mut hat, mut cat) = (0usize, 0usize);
+                while let Some((nw, nh)) = next_size(lw as u32, lh as u32) {
+                    let (nw, nh) = (nw as usize, nh as usize);
+                    let (mut nx, mut ny, mut nm, mut nc) = (
+                        std::vec![0u16; nw * nh],
+                        std::vec![0u16; nw * nh],
+                        std::vec![0u16; nw * nh],
+                        std::vec![Rgb::default(); nw * nh],
+                    );
+                    for y in 0..nh {
+                        let rows = [2 * y, (2 * y + 1).min(lh - 1)];
+                        fn row(g: &[u16], r: usize, lw: usize) -> &[u16] {
+                            &g[r * lw..(r + 1) * lw]
+                        }
+                        let below = rows.map(|r| LevelRow {
+                            along_x: row(&bx, r, lw),
+                            along_y: row(&by, r, lw),
+                            colors: &bc[r * lw..(r + 1) * lw],
+                        });
+                        let span = y * nw..(y + 1) * nw;
+                        reduce_row(
+                            filter,
+                            below,
+                            LevelRowMut {
+                                along_x: &mut nx[span.clone()],
+                                along_y: &mut ny[span.clone()],
+                                colors: &mut nc[span.clone()],
+                            },
+                        )
+                        .unwrap();
+                        reduce_max_row(rows.map(|r| row(&bm, r, lw)), &mut nm[span]).unwrap();
+                    }
+                    let k = nw * nh;
+                    assert_eq!(&grid[hat..hat + k], &nx[..], "{w}×{h} {filter:?} along x");
+                    assert_eq!(&grid[hat + k..hat + 2 * k], &ny[..], "along y");
+                    assert_eq!(&grid[hat + 2 * k..hat + 3 * k], &nm[..], "max");
+                    assert_eq!(&palette[cat..cat + k], &nc[..], "colours");
+                    (hat, cat) = (hat + 3 * k, cat + k);
+                    (bx, by, bm, bc) = (nx, ny, nm, nc);
+                    (lw, lh) = (nw, nh);
+                }
+            }
+        }
+        // Refusals: ragged rows, rows out of the wrong width.
+        let (r, c) = ([1u16; 4], [Rgb::default(); 4]);
+        let row = LevelRow {
+            along_x: &r,
+            along_y: &r,
+            colors: &c,
+        };
+        let short = LevelRow {
+            along_x: &r[..3],
+            ..row
+        };
+        let (mut ox, mut oy, mut oc) = ([0u16; 2], [0u16; 2], [Rgb::default(); 2]);
+        assert!(reduce_row(
+            HeightFilter::Mean,
+            [row, short],
+            LevelRowMut {
+                along_x: &mut ox,
+                along_y: &mut oy,
+                colors: &mut oc
+            }
+        )
+        .is_err());
+        assert!(reduce_row(
+            HeightFilter::Mean,
+            [row, row],
+            LevelRowMut {
+                along_x: &mut ox[..1],
+                along_y: &mut oy,
+                colors: &mut oc
+            }
+        )
+        .is_err());
+        assert!(reduce_max_row([&r, &r[..3]], &mut ox).is_err());
+        assert!(reduce_max_row([&r, &r], &mut ox[..1]).is_err());
+        reduce_max_row([&r, &r], &mut ox).unwrap();
+        assert_eq!(ox, [1, 1]);
     }
 }
