@@ -305,9 +305,34 @@ impl<'a> Terrain<'a> {
         }
     }
 
-    /// Appends the next pyramid level. Errors if its size is not [`next_size`] of the level
-    /// below, or if the pyramid is full.
-    pub fn push_level(&mut self, level: Level<'a>) -> Result<(), Error> {
+    /// A terrain of one level whose largest height is known: `max_height` must be at least
+    /// every height of `level0` (and of every level pushed after, with
+    /// [`Terrain::push_built_level`]). Reads no cell, so a memory-mapped map is not paged in
+    /// whole ([`crate::terrain::pyramid::assemble`] takes it from the pyramid's coarsest
+    /// maximum grid).
+    pub(crate) fn with_max_height(level0: Level<'a>, scale: Scale, max_height: u16) -> Self {
+        let mut levels = heapless::Vec::new();
+        // Capacity is MAX_LEVELS ≥ 1, so the first push cannot fail.
+        let _ = levels.push(level0);
+        Self {
+            levels,
+            scale,
+            max_height,
+        }
+    }
+
+    /// [`Terrain::push_level`] for a level that [`Level::build_next`] made from the level
+    /// below: no height of it exceeds the one below, so the terrain's largest height stands
+    /// without reading its cells.
+    pub(crate) fn push_built_level(&mut self, level: Level<'a>) -> Result<(), Error> {
+        let max_height = self.max_height;
+        self.push_level_unscanned(level)?;
+        self.max_height = max_height;
+        Ok(())
+    }
+
+    /// Appends a level after checking its size.
+    fn push_level_unscanned(&mut self, level: Level<'a>) -> Result<(), Error> {
         let below = self.top();
         let expected = next_size(below.width, below.height).ok_or(Error::TooManyLevels)?;
         if (level.width, level.height) != expected {
@@ -315,7 +340,13 @@ impl<'a> Terrain<'a> {
                 level: self.levels.len(),
             });
         }
-        self.levels.push(level).map_err(|_| Error::TooManyLevels)?;
+        self.levels.push(level).map_err(|_| Error::TooManyLevels)
+    }
+
+    /// Appends the next pyramid level. Errors if its size is not [`next_size`] of the level
+    /// below, or if the pyramid is full.
+    pub fn push_level(&mut self, level: Level<'a>) -> Result<(), Error> {
+        self.push_level_unscanned(level)?;
         self.max_height = self.max_height.max(level.max_height());
         Ok(())
     }

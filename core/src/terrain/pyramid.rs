@@ -355,7 +355,13 @@ pub fn assemble<'a>(
     let total = cells(w, h);
     check_len("pyramid heights", 3 * total, heights.len())?;
     check_len("pyramid colors", total, colors.len())?;
-    let mut terrain = Terrain::new(level0, scale);
+    // The coarsest level's maximum grid (1×1) is level 0's largest height, read without
+    // touching level 0: a memory-mapped map pages in only what the walk reads. A 1×1 map has
+    // no level above it, and its one height is scanned.
+    let mut terrain = match heights.last() {
+        Some(&top) => Terrain::with_max_height(level0, scale, top),
+        None => Terrain::new(level0, scale),
+    };
     if !lod {
         return Ok(terrain);
     }
@@ -368,7 +374,7 @@ pub fn assemble<'a>(
         (heights, colors) = (rest, rest_c);
         let (hx, level) = level.split_at(n);
         let (hy, mx) = level.split_at(n);
-        terrain.push_level(Level::directional(nw, nh, hx, hy, cs)?.with_max(mx)?)?;
+        terrain.push_built_level(Level::directional(nw, nh, hx, hy, cs)?.with_max(mx)?)?;
         (lw, lh) = (nw, nh);
     }
     Ok(terrain)
@@ -397,6 +403,16 @@ mod tests {
         // The coarsest level's maximum is the map's.
         assert_eq!(grid[26], 15);
         let scale = Scale::new(30.0, 0.1).unwrap();
+        // The assembled terrain takes its largest height from the coarsest maximum grid,
+        // without scanning level 0: the same as the scan.
+        for lod in [true, false] {
+            assert_eq!(
+                assemble(level0, scale, &grid, &palette, lod)
+                    .unwrap()
+                    .max_height(),
+                Terrain::new(level0, scale).max_height()
+            );
+        }
         assert_eq!(
             assemble(level0, scale, &grid, &palette, true)
                 .unwrap()
