@@ -12,6 +12,7 @@
 
 use std::io::{self, BufRead, Write};
 
+use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use footprint_core::error::Shown;
 
@@ -44,16 +45,16 @@ pub struct Header {
 }
 
 impl Header {
-    /// The grid's spacing: metres, or a geographic grid converted at its centre latitude.
-    /// `prj` is the text of the `.prj` file beside the grid, if there is one.
-    pub fn spacing(&self, prj: Option<&str>) -> Spacing {
+    /// Whether the grid is in degrees: a `.prj` (its text, `prj`) with a `GEOGCS` and no
+    /// `PROJCS`, or, without one, a cell under 0.1 whose whole extent lies within ±180°, ±90°.
+    pub fn is_geographic(&self, prj: Option<&str>) -> bool {
         let (dx, dy) = self.cell;
         let shift = if self.center { 0.5 } else { 0.0 };
         let south = self.yll - shift * dy;
         let north = south + f64::from(self.nrows) * dy;
         let west = self.xll - shift * dx;
         let east = west + f64::from(self.ncols) * dx;
-        let geographic = match prj {
+        match prj {
             Some(text) => {
                 let t = text.to_ascii_uppercase();
                 t.contains("GEOGCS") && !t.contains("PROJCS")
@@ -65,8 +66,47 @@ impl Header {
                     && (-90.0..=90.0).contains(&south)
                     && (-90.0..=90.0).contains(&north)
             }
-        };
-        if geographic {
+        }
+    }
+
+    /// The outer corner of the north-west cell: `(west, north)`.
+    fn north_west(&self) -> (f64, f64) {
+        let (dx, dy) = self.cell;
+        let shift = if self.center { 0.5 } else { 0.0 };
+        (
+            self.xll - shift * dx,
+            self.yll - shift * dy + f64::from(self.nrows) * dy,
+        )
+    }
+
+    /// The grid's georeferencing (see [`Header::is_geographic`] for `prj`).
+    pub fn georef(&self, prj: Option<&str>) -> Georef {
+        let (west, north) = self.north_west();
+        Georef {
+            crs: if self.is_geographic(prj) {
+                Crs::Geographic
+            } else {
+                Crs::Projected
+            },
+            west,
+            north,
+            cell: self.cell,
+            from: if self.center {
+                "xllcenter"
+            } else {
+                "xllcorner"
+            },
+        }
+    }
+
+    /// The grid's spacing: metres, or a geographic grid converted at its centre latitude.
+    /// `prj` is the text of the `.prj` file beside the grid, if there is one.
+    pub fn spacing(&self, prj: Option<&str>) -> Spacing {
+        let (dx, dy) = self.cell;
+        let shift = if self.center { 0.5 } else { 0.0 };
+        let south = self.yll - shift * dy;
+        let north = south + f64::from(self.nrows) * dy;
+        if self.is_geographic(prj) {
             let why = if prj.is_some() {
                 "degrees (.prj)"
             } else {
@@ -357,7 +397,7 @@ fn parse_value(
 /// The header's size is checked before anything is allocated: a side over 65,536 is refused,
 /// and so is a file too short to hold the declared number of values (each takes at least two
 /// bytes, a digit and a separator). Too few values, or more than declared, are errors.
-pub fn read(mut reader: Input) -> Result<(Grid, Header, Spacing), MapError> {
+pub fn read(mut reader: Input) -> Result<(Grid, Header, Spacing, Georef), MapError> {
     let what = reader.what().to_owned();
     let what = what.as_str();
     let io_err = |error: io::Error| MapError::Io {
@@ -457,12 +497,13 @@ pub fn read(mut reader: Input) -> Result<(Grid, Header, Spacing), MapError> {
         .then(|| super::input::read_side_file(&reader.path().with_extension("prj")))
         .flatten();
     let spacing = header.spacing(prj.as_deref());
+    let georef = header.georef(prj.as_deref());
     let grid = Grid {
         width: header.ncols,
         height: header.nrows,
         values,
     };
-    Ok((grid, header, spacing))
+    Ok((grid, header, spacing, georef))
 }
 
 /// The number of decimals that show a multiple of `step` exactly (at most 6).
@@ -515,7 +556,7 @@ pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>
 mod tests {
     use super::*;
 
-    fn read_str(text: &str) -> Result<(Grid, Header, Spacing), MapError> {
+    fn read_str(text: &str) -> Result<(Grid, Header, Spacing, Georef), MapError> {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("g.asc");
         std::fs::write(&p, text).unwrap();
@@ -524,7 +565,7 @@ mod tests {
 
     #[test]
     fn keys_in_any_case_and_order() {
-        let (g, h, s) = read_str(
+        let (g, h, s, _) = read_str(
             "NODATA_VALUE -9999\nCellSize 25\nyllcorner 5000\nNROWS 2\nxllCorner 1000\n\
              ncols 3\n1 2 3\n4 -9999 6.5\n",
         )
@@ -540,7 +581,7 @@ mod tests {
 
     #[test]
     fn values_may_wrap_lines_and_nodata_is_optional() {
-        let (g, h, _) =
+        let (g, h, _, _) =
             read_str("ncols 2\nnrows 2\nxllcenter 0\nyllcenter 0\ncellsize 1\n 1\n2 3\n\n   nan\n")
                 .unwrap();
         assert!(h.center && h.nodata.is_none());
@@ -551,7 +592,7 @@ mod tests {
     #[test]
     fn geographic_grids_are_converted_to_metres() {
         // 3″ cells around 46.5°N.
-        let (_, _, s) = read_str(
+        let (_, _, s, _) = read_str(
             "ncols 2\nnrows 2\nxllcorner 8.0\nyllcorner 46.5\ncellsize 0.000833333333\n1 2\n3 4\n",
         )
         .unwrap();
@@ -636,7 +677,7 @@ mod tests {
         assert!(text.starts_with("ncols 3\nnrows 2\n"), "{text}");
         assert!(text.contains("cellsize 12.5\n"), "{text}");
         assert!(text.ends_with("-0.5 -0.4 -0.3\n0.5 1.5 6553.0\n"), "{text}");
-        let (g, _, _) = read_str(&text).unwrap();
+        let (g, _, _, _) = read_str(&text).unwrap();
         assert_eq!(g.values, vec![-0.5, -0.4, -0.3, 0.5, 1.5, 6553.0]);
     }
 }

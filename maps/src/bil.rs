@@ -26,6 +26,7 @@ use std::path::{Path, PathBuf};
 
 use footprint_core::error::Shown;
 
+use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::{is_stdin, read_side_file, InMemory, Input};
 use super::{validate_memory, validate_size, MapError};
@@ -156,12 +157,13 @@ impl Header {
             .saturating_add(u64::from(self.nrows).saturating_mul(self.row_stride))
     }
 
-    /// The grid's spacing, if the header gives a cell size: degrees converted at the centre
-    /// latitude if geographic (see the module docs; `prj` is the text of the `.prj` beside the
-    /// file, if any), else metres.
-    pub fn spacing(&self, prj: Option<&str>) -> Option<Spacing> {
-        let (dx, dy) = self.cell?;
-        let geographic = match prj {
+    /// Whether the cell size is in degrees: a `.prj` (its text, `prj`) says `GEOGCS` without
+    /// `PROJCS`, or, without one, `|ULXMAP| ≤ 180`, `|ULYMAP| ≤ 90` and cells under 1.
+    pub fn is_geographic(&self, prj: Option<&str>) -> bool {
+        let Some((dx, dy)) = self.cell else {
+            return false;
+        };
+        match prj {
             Some(text) => {
                 let t = text.to_ascii_uppercase();
                 t.contains("GEOGCS") && !t.contains("PROJCS")
@@ -169,8 +171,31 @@ impl Header {
             None => self
                 .upper_left
                 .is_some_and(|(x, y)| x.abs() <= 180.0 && y.abs() <= 90.0 && dx < 1.0 && dy < 1.0),
+        }
+    }
+
+    /// The grid's georeferencing, if the header gives both `ULXMAP`/`ULYMAP` (the centre of
+    /// the upper-left cell) and `XDIM`/`YDIM`.
+    pub fn georef(&self, prj: Option<&str>) -> Option<Georef> {
+        let crs = if self.is_geographic(prj) {
+            Crs::Geographic
+        } else {
+            Crs::Projected
         };
-        if geographic {
+        Some(Georef::from_centre(
+            crs,
+            self.upper_left?,
+            self.cell?,
+            "ULXMAP",
+        ))
+    }
+
+    /// The grid's spacing, if the header gives a cell size: degrees converted at the centre
+    /// latitude if geographic (see the module docs; `prj` is the text of the `.prj` beside the
+    /// file, if any), else metres.
+    pub fn spacing(&self, prj: Option<&str>) -> Option<Spacing> {
+        let (dx, dy) = self.cell?;
+        if self.is_geographic(prj) {
             let why = if prj.is_some() {
                 "degrees (.prj)"
             } else {
@@ -210,6 +235,8 @@ pub struct BilInfo {
     pub nodata: Option<f64>,
     /// The header.
     pub header: Header,
+    /// Where the grid lies (`ULXMAP`, `ULYMAP`, `XDIM`, `YDIM`), if the header says.
+    pub georef: Option<Georef>,
 }
 
 /// The `.hdr` paths tried for `path`, in order: `x.hdr`, `x.HDR`, `x.bil.hdr`.
@@ -556,6 +583,7 @@ pub fn read(mut input: Input, in_memory: InMemory<'_>) -> Result<(Grid, BilInfo)
     // The projection file beside it, if any.
     let prj = read_side_file(&path.with_extension("prj"));
     let spacing = header.spacing(prj.as_deref());
+    let georef = header.georef(prj.as_deref());
     let order = match (size, header.big_endian) {
         (1, _) => String::new(),
         (_, false) => ", little-endian (BYTEORDER I)".to_owned(),
@@ -578,6 +606,7 @@ pub fn read(mut input: Input, in_memory: InMemory<'_>) -> Result<(Grid, BilInfo)
             spacing,
             nodata: header.nodata,
             header,
+            georef,
         },
     ))
 }

@@ -8,6 +8,7 @@ use footprint_core::terrain::Scale;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 
+use super::georef::Georef;
 use super::grid::{Grid, Spacing};
 use super::input::{is_stdin, InMemory, Input};
 pub use super::kind::{Format, VerticalUnit};
@@ -214,6 +215,7 @@ struct Read {
     grid: Grid,
     detail: String,
     spacing: Option<Spacing>,
+    georef: Option<Georef>,
     /// Look for void sentinels (TIFF, ASCII grids, BIL; not SRTM, whose void is fixed).
     scan: bool,
     /// The file's own void value.
@@ -262,6 +264,91 @@ fn check_option(option: &'static str, value: Option<f64>) -> Result<(), MapError
 /// Every error is one line naming the file or the option; sizes are checked before the data is
 /// allocated.
 pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
+    let file = match open_file(path, opts)? {
+        Opened::Png(loaded) => return Ok(*loaded),
+        Opened::Grid(file) => file,
+    };
+    let what = describe("height map", path);
+    let GridFile {
+        grid,
+        format,
+        detail,
+        spacing: file_spacing,
+        sentinel,
+        vertical_unit,
+        vertical_note,
+        ..
+    } = file;
+    let spacing = match (opts.spacing_m, file_spacing) {
+        (Some(s), _) => Spacing::metres(s, "--spacing"),
+        (None, Some(s)) => s,
+        (None, None) => Spacing::metres(
+            DEFAULT_SPACING_M,
+            "the default: the file gives no pixel size (give --spacing)",
+        ),
+    };
+    // A sentinel may make the heights span too much to hold: the error then says why.
+    let mut loaded =
+        from_grid(grid, path, &what, format, detail, spacing, opts).map_err(|e| {
+            match (e, &sentinel) {
+                (MapError::Invalid { what, detail }, Some(s)) => MapError::Invalid {
+                    what,
+                    detail: format!("{detail}: {}", s.warning()),
+                },
+                (e, _) => e,
+            }
+        })?;
+    loaded.sentinel = sentinel;
+    loaded.vertical_unit = vertical_unit;
+    loaded.vertical_note = vertical_note;
+    Ok(loaded)
+}
+
+/// A file of heights as its reader gave it, before it becomes a [`Map`]: metres (converted
+/// from the file's vertical unit), voids as NaN (`--nodata` applied), not yet filled.
+#[derive(Clone, Debug)]
+pub struct GridFile {
+    /// The heights.
+    pub grid: Grid,
+    /// The file's format.
+    pub format: Format,
+    /// The file's own description.
+    pub detail: String,
+    /// The spacing the file gives, if any (`--spacing` not applied).
+    pub spacing: Option<Spacing>,
+    /// Where the grid lies, if the file says (for mosaics, [`crate::mosaic`]).
+    pub georef: Option<Georef>,
+    /// A void sentinel held without being declared, as [`Loaded::sentinel`].
+    pub sentinel: Option<Sentinel>,
+    /// The unit the heights were read in.
+    pub vertical_unit: VerticalUnit,
+    /// Where that unit came from.
+    pub vertical_note: String,
+}
+
+/// What [`open_file`] read: a PNG is a map already; the other formats are grids of metres.
+enum Opened {
+    Png(Box<Loaded>),
+    Grid(GridFile),
+}
+
+/// Reads a file of heights (`.hgt`, `.asc`, TIFF, `.bil`; not a PNG, which holds height
+/// units and no georeferencing) into a [`GridFile`], with `opts`' format, `--nodata` and
+/// `--vertical-unit` applied (`--spacing`, `--height-scale` and `--color` are the caller's).
+pub fn read_grid(path: &Path, opts: &LoadOptions<'_>) -> Result<GridFile, MapError> {
+    match open_file(path, opts)? {
+        Opened::Grid(file) => Ok(file),
+        Opened::Png(_) => Err(MapError::Unsupported {
+            what: describe("height map", path),
+            detail: "a PNG in a mosaic: a PNG holds no georeferencing to place it by (use \
+                     GeoTIFF, .asc, .hgt or .bil tiles)"
+                .to_owned(),
+        }),
+    }
+}
+
+/// Opens and reads `path`: a PNG into a map, any other format into a grid of metres.
+fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
     check_option("--spacing", opts.spacing_m)?;
     check_option("--height-scale", opts.height_scale_m)?;
     if let Some(v) = opts.nodata.filter(|v| v.is_nan()) {
@@ -343,7 +430,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
             };
             let (lo, hi) = map.height_range();
             let range_m = (f64::from(lo) * scale, f64::from(hi) * scale);
-            return Ok(Loaded {
+            return Ok(Opened::Png(Box::new(Loaded {
                 map,
                 format,
                 detail: format!("PNG {bits}-bit greyscale height units"),
@@ -354,7 +441,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
                 sentinel: None,
                 vertical_unit: unit,
                 vertical_note,
-            });
+            })));
         }
         Format::Hgt => {
             // The spacing comes from the name: check it before reading the data.
@@ -375,11 +462,13 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
                 },
             };
             let looks = input.looks_like();
+            let georef = hgt::georef(path, side);
             let (grid, detail) = hgt::read(input).map_err(|e| hint(e, looks))?;
             Read {
                 grid,
                 detail,
                 spacing,
+                georef,
                 scan: false,
                 declared: Some(f64::from(hgt::VOID)),
                 unit: FileUnit::Metres("SRTM heights are metres"),
@@ -387,11 +476,12 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
         }
         Format::Asc => {
             let looks = input.looks_like();
-            let (grid, header, spacing) = asc::read(input).map_err(|e| hint(e, looks))?;
+            let (grid, header, spacing, georef) = asc::read(input).map_err(|e| hint(e, looks))?;
             Read {
                 grid,
                 detail: asc::FORMAT.to_owned(),
                 spacing: Some(spacing),
+                georef: Some(georef),
                 scan: true,
                 declared: header.nodata.map(f64::from),
                 unit: FileUnit::Unspecified(String::new()),
@@ -411,6 +501,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
                 grid,
                 detail: info.detail,
                 spacing: info.spacing,
+                georef: info.georef,
                 scan: true,
                 declared: info.nodata,
                 unit,
@@ -422,6 +513,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
                 grid,
                 detail: info.detail,
                 spacing: info.spacing,
+                georef: info.georef,
                 scan: true,
                 declared: info.nodata,
                 unit: FileUnit::Unspecified(String::new()),
@@ -432,6 +524,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
         mut grid,
         detail,
         spacing: file_spacing,
+        georef,
         scan,
         declared,
         unit,
@@ -481,29 +574,16 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
             *v = (f64::from(*v) * k) as f32;
         }
     }
-    let spacing = match (opts.spacing_m, file_spacing) {
-        (Some(s), _) => Spacing::metres(s, "--spacing"),
-        (None, Some(s)) => s,
-        (None, None) => Spacing::metres(
-            DEFAULT_SPACING_M,
-            "the default: the file gives no pixel size (give --spacing)",
-        ),
-    };
-    // A sentinel may make the heights span too much to hold: the error then says why.
-    let mut loaded =
-        from_grid(grid, path, &what, format, detail, spacing, opts).map_err(|e| {
-            match (e, &sentinel) {
-                (MapError::Invalid { what, detail }, Some(s)) => MapError::Invalid {
-                    what,
-                    detail: format!("{detail}: {}", s.warning()),
-                },
-                (e, _) => e,
-            }
-        })?;
-    loaded.sentinel = sentinel;
-    loaded.vertical_unit = vertical_unit;
-    loaded.vertical_note = vertical_note;
-    Ok(loaded)
+    Ok(Opened::Grid(GridFile {
+        grid,
+        format,
+        detail,
+        spacing: file_spacing,
+        georef,
+        sentinel,
+        vertical_unit,
+        vertical_note,
+    }))
 }
 
 /// A hint for a TIFF that gives no vertical unit: if its horizontal unit (the EPSG code of

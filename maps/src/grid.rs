@@ -146,7 +146,7 @@ impl Grid {
 }
 
 /// The height unit nearest to `v` metres, clamped to `0..=65535`.
-fn to_unit(v: f64, base_m: f64, step: f64) -> u16 {
+pub(crate) fn to_unit(v: f64, base_m: f64, step: f64) -> u16 {
     ((v - base_m) / step).round().clamp(0.0, 65_535.0) as u16
 }
 

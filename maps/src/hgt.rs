@@ -16,6 +16,7 @@ use std::io::{self, Read, Write};
 use std::path::Path;
 
 use super::format::grouped;
+use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::Input;
 use super::{validate_memory, Map, MapError};
@@ -78,6 +79,21 @@ pub fn spacing(path: &Path, side: u32) -> Option<Spacing> {
         cell,
         cell,
         &format!("{arcsec}″"),
+    ))
+}
+
+/// Where a tile of `side` cells named like `path` lies: its cells are centred on whole
+/// multiples of 1″ or 3″, the first row on the tile's northern degree and the first column on
+/// its western one (neighbouring tiles share their edge rows). `None` if the name gives no
+/// corner or the side is not an SRTM size.
+pub fn georef(path: &Path, side: u32) -> Option<Georef> {
+    let (lat, lon) = tile_corner(path)?;
+    let cell = f64::from(arcsec_for_side(side)?) / 3600.0;
+    Some(Georef::from_centre(
+        Crs::Geographic,
+        (f64::from(lon), f64::from(lat) + 1.0),
+        (cell, cell),
+        "the tile's name",
     ))
 }
 

@@ -21,17 +21,21 @@ use std::io;
 use std::path::Path;
 
 pub mod asc;
+pub mod bake_stream;
 pub mod baked;
 pub mod bil;
 pub mod format;
+pub mod georef;
 pub mod grid;
 pub mod hgt;
 pub mod input;
 pub mod kind;
 pub mod memory;
+pub mod mosaic;
 pub mod png;
 pub mod tiff;
 pub mod voids;
+pub mod vrt;
 
 pub use footprint_scenes::Map;
 /// The built-in terrain and the height tint live in the scenes crate (the firmware bakes them

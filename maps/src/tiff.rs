@@ -18,6 +18,7 @@ use tiff::decoder::{ChunkType, Decoder, DecodingResult, Limits};
 use tiff::tags::{SampleFormat, Tag};
 use tiff::{ColorType, TiffError, TiffFormatError};
 
+use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::Input;
 use super::{validate_memory, validate_size, Map, MapError};
@@ -48,6 +49,8 @@ pub struct TiffInfo {
     pub vertical_units: Option<u16>,
     /// `ProjLinearUnitsGeoKey`, if present: the horizontal unit's EPSG code.
     pub linear_units: Option<u16>,
+    /// Where the image lies (`ModelTiepoint` and `ModelPixelScale`), if it says.
+    pub georef: Option<Georef>,
 }
 
 fn malformed(what: &str, detail: impl Into<String>) -> MapError {
@@ -249,6 +252,7 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
         None => Vec::new(),
     };
     let spacing = pixel_spacing(&mut dec, height, &keys, what)?;
+    let georef = georeferencing(&mut dec, &keys, what)?;
     let vertical_units = geo_key(&keys, KEY_VERTICAL_UNITS).filter(|&c| c != 0 && c != 32_767);
     let linear_units = geo_key(&keys, KEY_LINEAR_UNITS);
     let nodata: Option<f64> = match dec.find_tag(Tag::GdalNodata).map_err(err)? {
@@ -315,6 +319,7 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
             nodata,
             vertical_units,
             linear_units,
+            georef,
         },
     ))
 }
@@ -339,6 +344,51 @@ fn convert<T: Copy>(v: Vec<T>, f: impl Fn(T) -> f64, void: impl Fn(f64) -> bool)
             }
         })
         .collect()
+}
+
+/// GTRasterTypeGeoKey: 1 pixels are areas, 2 pixels are points.
+const KEY_RASTER_TYPE: u16 = 1025;
+
+/// Where the image lies, from `ModelTiepoint` (raster `(i, j)` at model `(X, Y)`) and
+/// `ModelPixelScale`, if both are present: `None` without them.
+fn georeferencing<R: io::Read + io::Seek>(
+    dec: &mut Decoder<R>,
+    keys: &[u16],
+    what: &str,
+) -> Result<Option<Georef>, MapError> {
+    let err = |e| tiff_error(what, e);
+    let (Some(scale), Some(tie)) = (
+        dec.find_tag(Tag::ModelPixelScaleTag).map_err(err)?,
+        dec.find_tag(Tag::ModelTiepointTag).map_err(err)?,
+    ) else {
+        return Ok(None);
+    };
+    let (scale, tie) = (
+        scale.into_f64_vec().map_err(err)?,
+        tie.into_f64_vec().map_err(err)?,
+    );
+    let ([sx, sy, ..], [i, j, _, x, y, ..]) = (scale.as_slice(), tie.as_slice()) else {
+        return Ok(None);
+    };
+    let (sx, sy) = (sx.abs(), sy.abs());
+    let crs = if geo_key(keys, KEY_MODEL_TYPE) == Some(2) {
+        Crs::Geographic
+    } else {
+        Crs::Projected
+    };
+    // The corner of pixel (0, 0); a point pixel's value is at its centre.
+    let (mut west, mut north) = (x - i * sx, y + j * sy);
+    if geo_key(keys, KEY_RASTER_TYPE) == Some(2) {
+        (west, north) = (west - sx / 2.0, north + sy / 2.0);
+    }
+    let georef = Georef {
+        crs,
+        west,
+        north,
+        cell: (sx, sy),
+        from: "ModelTiepoint",
+    };
+    Ok(georef.is_valid().then_some(georef))
 }
 
 /// The pixel size from `ModelPixelScale`, in metres (see the module docs), if present.

@@ -39,33 +39,75 @@ pub fn tint(
     if heights.is_empty() {
         return Vec::new();
     }
-    let min = i64::from(*heights.iter().min().unwrap_or(&0));
-    let max = i64::from(*heights.iter().max().unwrap_or(&0));
-    let range = (max - min).max(1);
-    // Height units → slope (rise over run) per voxel of run, in 1/65536.
-    let ratio = height_scale_m / spacing_m;
-    let slope_q16 = if ratio.is_finite() && ratio > 0.0 {
-        (ratio * 65_536.0).clamp(0.0, 1e12)
-    } else {
-        0.0
-    };
-
+    let min = *heights.iter().min().unwrap_or(&0);
+    let max = *heights.iter().max().unwrap_or(&0);
+    let scale = TintScale::new((min, max), spacing_m, height_scale_m);
     let mut out = Vec::with_capacity(w * h);
     for y in 0..h {
         let (yn, ys) = (y.saturating_sub(1), (y + 1).min(h - 1));
-        let dy_run = (ys - yn) as f64;
+        let row = |r: usize| &heights[r * w..(r + 1) * w];
+        scale.row([row(yn), row(y), row(ys)], (ys - yn) as u32, &mut out);
+    }
+    out
+}
+
+/// What [`tint`] colours every row with: the map's height range and its slope scale. A
+/// streaming writer that knows the range before it has every row colours row by row with
+/// [`TintScale::row`], exactly as [`tint`] does.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TintScale {
+    min: i64,
+    range: i64,
+    slope_q16: f64,
+}
+
+impl TintScale {
+    /// The scale for a map whose heights span `range` (lowest, highest height units), with
+    /// `spacing_m` metres per voxel and `height_scale_m` metres per height unit.
+    pub fn new(range: (u16, u16), spacing_m: f64, height_scale_m: f64) -> Self {
+        let (min, max) = (i64::from(range.0), i64::from(range.1));
+        // Height units → slope (rise over run) per voxel of run, in 1/65536.
+        let ratio = height_scale_m / spacing_m;
+        let slope_q16 = if ratio.is_finite() && ratio > 0.0 {
+            (ratio * 65_536.0).clamp(0.0, 1e12)
+        } else {
+            0.0
+        };
+        Self {
+            min,
+            range: (max - min).max(1),
+            slope_q16,
+        }
+    }
+
+    /// Appends to `out` the colours of one row, `rows[1]`, given the rows north and south of
+    /// it (`rows[0]`, `rows[2]`: the row itself at the map's edge) and the rows between those
+    /// two, `dy_run` (2 inside the map, 1 on its first or last row, 0 on a one-row map).
+    ///
+    /// # Panics
+    /// If the three rows differ in length.
+    pub fn row(&self, rows: [&[u16]; 3], dy_run: u32, out: &mut Vec<Rgb>) {
+        let [north, row, south] = rows;
+        let w = row.len();
+        assert!(
+            north.len() == w && south.len() == w,
+            "the rows must be equally long"
+        );
+        if w == 0 {
+            return;
+        }
+        let dy_run = f64::from(dy_run);
         for x in 0..w {
             let (xw, xe) = (x.saturating_sub(1), (x + 1).min(w - 1));
             let dx_run = (xe - xw) as f64;
-            let dzx = i64::from(heights[y * w + xe]) - i64::from(heights[y * w + xw]);
-            let dzy = i64::from(heights[ys * w + x]) - i64::from(heights[yn * w + x]);
-            let gx = gradient_q16(dzx, dx_run, slope_q16);
-            let gy = gradient_q16(dzy, dy_run, slope_q16);
-            let t = (i64::from(heights[y * w + x]) - min) * 65_536 / range;
+            let dzx = i64::from(row[xe]) - i64::from(row[xw]);
+            let dzy = i64::from(south[x]) - i64::from(north[x]);
+            let gx = gradient_q16(dzx, dx_run, self.slope_q16);
+            let gy = gradient_q16(dzy, dy_run, self.slope_q16);
+            let t = (i64::from(row[x]) - self.min) * 65_536 / self.range;
             out.push(shade(hypsometric(t), hillshade_q8(gx, gy)));
         }
     }
-    out
 }
 
 /// The slope `dz * scale / run` in 1/65536, or 0 when `run` is 0 (a one-voxel-wide map).

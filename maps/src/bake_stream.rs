@@ -1,0 +1,420 @@
+//! Baking a map into a `.fpmap` file row by row, without holding the map or its pyramid:
+//! the bytes [`crate::baked::write`] writes for the whole pyramid in memory, from a few rows of
+//! each level.
+//!
+//! Level 0's rows come from a source in order, north first ([`crate::mosaic::Rows`], or any
+//! closure); each is coloured by the height tint ([`TintScale::row`]: it needs the rows north and
+//! south of it, so the colours lag one row behind) and written into its place in the file.
+//! Every level's row `y` is reduced from rows `2y` and `2y + 1` of the level below as soon as
+//! both are there ([`pyramid::reduce_row`], the core's own arithmetic), so each level holds
+//! at most one row waiting for its pair. Each section is written through a buffer of
+//! [`BUFFER`] bytes at its offset, and its CRC-32 is kept as it goes; a level's checksum
+//! joins its sections' in file order ([`crc32fast::Hasher::combine`]). The header is written
+//! last.
+
+use std::fs::File;
+use std::io::{self, Seek, SeekFrom, Write};
+
+use footprint_core::terrain::baked::{header_checksum_range, Header, Layout, HEADER_LEN};
+use footprint_core::terrain::pyramid::{self, HeightFilter, LevelRow, LevelRowMut};
+use footprint_core::terrain::{Scale, MAX_LEVELS};
+use footprint_core::Rgb;
+use footprint_scenes::tint::TintScale;
+
+use super::mosaic::Mosaic;
+use super::MapError;
+
+/// Bytes gathered per section before they are written.
+pub const BUFFER: usize = 1 << 20;
+
+/// What a streamed map is, before its rows: its size, scale, height range and name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// Width in voxels.
+    pub width: u32,
+    /// Height in voxels.
+    pub height: u32,
+    /// Metres per voxel.
+    pub spacing_m: f64,
+    /// Metres per height unit.
+    pub height_scale_m: f64,
+    /// Metres of height unit 0.
+    pub base_m: f64,
+    /// The lowest and highest height units the rows will hold: the tint spans them, and the
+    /// bake fails if the rows do not (the source changed).
+    pub range: (u16, u16),
+    /// The height filter of the pyramid.
+    pub filter: HeightFilter,
+    /// Where the map came from, for the header.
+    pub source: String,
+}
+
+impl Plan {
+    /// The plan of a surveyed mosaic.
+    pub fn of_mosaic(m: &Mosaic, filter: HeightFilter) -> Self {
+        Self {
+            width: m.width,
+            height: m.height,
+            spacing_m: m.spacing.spacing_m,
+            height_scale_m: m.height_scale_m,
+            base_m: m.base_m,
+            range: m.unit_range(),
+            filter,
+            source: m.source.clone(),
+        }
+    }
+}
+
+/// A section of the file being written in order: its next offset, a buffer and its CRC.
+struct Section {
+    at: u64,
+    buf: Vec<u8>,
+    crc: crc32fast::Hasher,
+}
+
+impl Section {
+    fn new(at: usize) -> Self {
+        Self {
+            at: at as u64,
+            buf: Vec::new(),
+            crc: crc32fast::Hasher::new(),
+        }
+    }
+
+    fn push(&mut self, bytes: &[u8], file: &mut File) -> io::Result<()> {
+        self.crc.update(bytes);
+        self.buf.extend_from_slice(bytes);
+        if self.buf.len() >= BUFFER {
+            self.flush(file)?;
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self, file: &mut File) -> io::Result<()> {
+        if !self.buf.is_empty() {
+            file.seek(SeekFrom::Start(self.at))?;
+            file.write_all(&self.buf)?;
+            self.at += self.buf.len() as u64;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+}
+
+/// One level above 0 of the pyramid being built: its sections and the row waiting for its pair.
+struct LevelState {
+    width: usize,
+    height: u32,
+    /// Rows written so far.
+    rows: u32,
+    /// Along x, along y, max, colours.
+    sections: [Section; 4],
+    /// A row waiting for its pair (along x, along y, max, colours), if `waiting`.
+    waiting: bool,
+    wx: Vec<u16>,
+    wy: Vec<u16>,
+    wm: Vec<u16>,
+    wc: Vec<Rgb>,
+    /// The row being made from the pair below.
+    ox: Vec<u16>,
+    oy: Vec<u16>,
+    om: Vec<u16>,
+    oc: Vec<Rgb>,
+}
+
+/// The little-endian bytes of a row of heights.
+fn le_bytes<'a>(row: &[u16], out: &'a mut Vec<u8>) -> &'a [u8] {
+    out.clear();
+    if cfg!(target_endian = "little") {
+        out.extend_from_slice(bytemuck::cast_slice(row));
+    } else {
+        out.extend(row.iter().flat_map(|h| h.to_le_bytes()));
+    }
+    out
+}
+
+/// Builds and writes the levels above 0 as rows of the level below arrive.
+struct Levels {
+    levels: Vec<LevelState>,
+    filter: HeightFilter,
+    scratch: Vec<u8>,
+}
+
+impl Levels {
+    /// Takes row `y` of level `k` (0: level 0, whose heights are all three grids) and makes
+    /// the rows above it that it completes.
+    fn push(
+        &mut self,
+        k: usize,
+        row: LevelRow<'_>,
+        max: &[u16],
+        height_below: u32,
+        y: u32,
+        file: &mut File,
+    ) -> io::Result<()> {
+        let Some((this, above)) = self.levels.split_at_mut(k).1.split_first_mut() else {
+            return Ok(());
+        };
+        let last_odd = y + 1 == height_below && height_below % 2 == 1;
+        if !this.waiting && !last_odd {
+            this.wx.clear();
+            this.wx.extend_from_slice(row.along_x);
+            this.wy.clear();
+            this.wy.extend_from_slice(row.along_y);
+            this.wm.clear();
+            this.wm.extend_from_slice(max);
+            this.wc.clear();
+            this.wc.extend_from_slice(row.colors);
+            this.waiting = true;
+            return Ok(());
+        }
+        let first = if this.waiting {
+            LevelRow {
+                along_x: &this.wx,
+                along_y: &this.wy,
+                colors: &this.wc,
+            }
+        } else {
+            row
+        };
+        let first_max: &[u16] = if this.waiting { &this.wm } else { max };
+        pyramid::reduce_row(
+            self.filter,
+            [first, row],
+            LevelRowMut {
+                along_x: &mut this.ox,
+                along_y: &mut this.oy,
+                colors: &mut this.oc,
+            },
+        )
+        .map_err(io::Error::other)?;
+        pyramid::reduce_max_row([first_max, max], &mut this.om).map_err(io::Error::other)?;
+        this.waiting = false;
+        let [sx, sy, sm, sc] = &mut this.sections;
+        sx.push(le_bytes(&this.ox, &mut self.scratch), file)?;
+        sy.push(le_bytes(&this.oy, &mut self.scratch), file)?;
+        sm.push(le_bytes(&this.om, &mut self.scratch), file)?;
+        sc.push(bytemuck::cast_slice(&this.oc), file)?;
+        let ry = this.rows;
+        this.rows += 1;
+        let height = this.height;
+        if above.is_empty() {
+            return Ok(());
+        }
+        // The next level up reads this level's new row.
+        let (ox, oy, om, oc) = (
+            std::mem::take(&mut this.ox),
+            std::mem::take(&mut this.oy),
+            std::mem::take(&mut this.om),
+            std::mem::take(&mut this.oc),
+        );
+        let r = self.push(
+            k + 1,
+            LevelRow {
+                along_x: &ox,
+                along_y: &oy,
+                colors: &oc,
+            },
+            &om,
+            height,
+            ry,
+            file,
+        );
+        let this = &mut self.levels[k];
+        (this.ox, this.oy, this.om, this.oc) = (ox, oy, om, oc);
+        r
+    }
+}
+
+/// Writes the baked file of the map `plan` describes into `file` (truncated to the file's
+/// length first), reading level 0's rows in order from `next_row`, which fills the row it is
+/// given (`plan.width` long). Returns the bytes of the file.
+///
+/// The file equals, byte for byte, [`crate::baked::write`] of the pyramid
+/// (`footprint_scenes::Pyramid::build`) of the same map coloured by [`crate::tint`], with the
+/// same source.
+///
+/// Errors: `next_row`'s, the file's (as [`MapError::Write`] naming `what`), a plan out of
+/// range, rows outside `plan.range`.
+pub fn bake(
+    plan: &Plan,
+    mut next_row: impl FnMut(&mut [u16]) -> Result<(), MapError>,
+    file: &mut File,
+    what: &str,
+) -> Result<u64, MapError> {
+    let invalid = |detail: String| MapError::Invalid {
+        what: what.to_owned(),
+        detail,
+    };
+    let write_err = |error: io::Error| MapError::Write {
+        what: what.to_owned(),
+        error,
+    };
+    if cfg!(target_endian = "big") {
+        return Err(invalid(
+            "baking on a big-endian host is not supported (the file is little-endian)".to_owned(),
+        ));
+    }
+    let layout = Layout::new(plan.width, plan.height).map_err(|e| invalid(e.to_string()))?;
+    Scale::new(plan.spacing_m, plan.height_scale_m).map_err(|e| invalid(e.to_string()))?;
+    if layout.levels() > MAX_LEVELS {
+        return Err(invalid("too many pyramid levels".to_owned()));
+    }
+    file.set_len(0).map_err(write_err)?;
+    file.set_len(layout.len() as u64).map_err(write_err)?;
+    let (w, h) = (plan.width as usize, plan.height);
+    let [h0, c0] = layout.level0();
+    let mut level0 = [Section::new(h0.start), Section::new(c0.start)];
+    let mut levels = Vec::new();
+    for k in 1..layout.levels() {
+        let Some([hs, cs]) = layout.level(k) else {
+            break;
+        };
+        let n = (hs.end - hs.start) / 6;
+        let (mut lw, mut lh) = (plan.width, plan.height);
+        for _ in 0..k {
+            (lw, lh) = footprint_core::terrain::next_size(lw, lh).unwrap_or((1, 1));
+        }
+        let lw = lw as usize;
+        debug_assert_eq!(lw * lh as usize, n);
+        levels.push(LevelState {
+            width: lw,
+            height: lh,
+            rows: 0,
+            sections: [
+                Section::new(hs.start),
+                Section::new(hs.start + 2 * n),
+                Section::new(hs.start + 4 * n),
+                Section::new(cs.start),
+            ],
+            waiting: false,
+            wx: Vec::with_capacity(2 * lw),
+            wy: Vec::with_capacity(2 * lw),
+            wm: Vec::with_capacity(2 * lw),
+            wc: Vec::with_capacity(2 * lw),
+            ox: vec![0; lw],
+            oy: vec![0; lw],
+            om: vec![0; lw],
+            oc: vec![Rgb::default(); lw],
+        });
+    }
+    let mut levels = Levels {
+        levels,
+        filter: plan.filter,
+        scratch: Vec::new(),
+    };
+    let tint = TintScale::new(plan.range, plan.spacing_m, plan.height_scale_m);
+    // Rows y − 1, y and y + 1 of level 0 (clamped at the edges).
+    let (mut north, mut row, mut south) = (vec![0u16; w], vec![0u16; w], vec![0u16; w]);
+    let mut colors: Vec<Rgb> = Vec::with_capacity(w);
+    let mut scratch = Vec::new();
+    let (mut lo, mut hi) = (u16::MAX, u16::MIN);
+    let mut track = |r: &[u16]| {
+        for &v in r {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    };
+    next_row(&mut row)?;
+    track(&row);
+    north.copy_from_slice(&row);
+    for y in 0..h {
+        if y + 1 < h {
+            next_row(&mut south)?;
+            track(&south);
+        } else {
+            south.copy_from_slice(&row);
+        }
+        let dy_run = (y + 1).min(h - 1) - y.saturating_sub(1);
+        colors.clear();
+        tint.row([&north, &row, &south], dy_run, &mut colors);
+        let [sh, sc] = &mut level0;
+        sh.push(le_bytes(&row, &mut scratch), file)
+            .map_err(write_err)?;
+        sc.push(bytemuck::cast_slice(&colors), file)
+            .map_err(write_err)?;
+        levels
+            .push(
+                0,
+                LevelRow {
+                    along_x: &row,
+                    along_y: &row,
+                    colors: &colors,
+                },
+                &row,
+                h,
+                y,
+                file,
+            )
+            .map_err(write_err)?;
+        // Rotate: north ← row ← south.
+        std::mem::swap(&mut north, &mut row);
+        std::mem::swap(&mut row, &mut south);
+    }
+    if (lo, hi) != plan.range {
+        return Err(invalid(format!(
+            "its heights span units {lo} to {hi}, not {} to {} as surveyed: a file changed while \
+             it was read",
+            plan.range.0, plan.range.1
+        )));
+    }
+    let mut checksums = [0u32; MAX_LEVELS];
+    let [mut sh, mut sc] = level0;
+    sh.flush(file).map_err(write_err)?;
+    sc.flush(file).map_err(write_err)?;
+    let mut crc = sh.crc;
+    crc.combine(&sc.crc);
+    checksums[0] = crc.finalize();
+    for (k, level) in levels.levels.iter_mut().enumerate() {
+        if level.rows != level.height {
+            return Err(invalid(format!(
+                "level {} got {} of its {} rows",
+                k + 1,
+                level.rows,
+                level.height
+            )));
+        }
+        let _ = level.width;
+        for s in &mut level.sections {
+            s.flush(file).map_err(write_err)?;
+        }
+        let [a, b, c, d] = &level.sections;
+        let mut crc = a.crc.clone();
+        crc.combine(&b.crc);
+        crc.combine(&c.crc);
+        crc.combine(&d.crc);
+        checksums[k + 1] = crc.finalize();
+    }
+    let header = Header {
+        width: plan.width,
+        height: plan.height,
+        filter: plan.filter,
+        spacing_m: plan.spacing_m,
+        height_scale_m: plan.height_scale_m,
+        base_m: plan.base_m,
+        min_height: lo,
+        max_height: hi,
+        checksums,
+    };
+    let mut head = [0u8; HEADER_LEN];
+    header.encode(&plan.source, &mut head);
+    let (covered, at) = header_checksum_range();
+    let sum = crate::baked::crc([&head[covered]]);
+    head[at..at + 4].copy_from_slice(&sum.to_le_bytes());
+    file.seek(SeekFrom::Start(0)).map_err(write_err)?;
+    file.write_all(&head).map_err(write_err)?;
+    file.flush().map_err(write_err)?;
+    Ok(layout.len() as u64)
+}
+
+/// Bakes a surveyed mosaic into `file` ([`bake`] over [`Mosaic::rows`]).
+pub fn bake_mosaic(
+    mosaic: &Mosaic,
+    filter: HeightFilter,
+    file: &mut File,
+    what: &str,
+) -> Result<u64, MapError> {
+    let plan = Plan::of_mosaic(mosaic, filter);
+    let mut rows = mosaic.rows();
+    bake(&plan, |row| rows.next_row(row), file, what)
+}
