@@ -164,11 +164,12 @@ pub enum TerrainArg {
 /// Where the terrain comes from.
 #[derive(Args, Clone, Debug)]
 pub struct MapArgs {
-    /// Height map: .png (8/16-bit grey), .hgt (SRTM), .asc (ESRI ASCII grid) or .tif/.tiff
-    /// (GeoTIFF), by extension, else --format, else its first bytes; `-` reads standard input.
-    /// Without it, the built-in procedural terrain.
+    /// Height map: .png (8/16-bit grey), .hgt (SRTM), .asc (ESRI ASCII grid), .tif/.tiff
+    /// (GeoTIFF) or .bil, by extension, else --format, else its first bytes; `-` reads standard
+    /// input; a baked map (.fpmap). Given several times, or a folder of tiles, or a GDAL .vrt:
+    /// a mosaic of tiles placed by their geo tags. Without it, the built-in procedural terrain.
     #[arg(long, value_name = "FILE")]
-    pub dem: Option<PathBuf>,
+    pub dem: Vec<PathBuf>,
     /// The format of --dem, overriding its extension.
     #[arg(long, value_enum, requires = "dem")]
     pub format: Option<map::Format>,
@@ -212,13 +213,26 @@ impl MapArgs {
     /// `--height-filter`; the pyramid keeps the map ([`Pyramid::map`]). A baked map
     /// (`footprint map bake`) is memory-mapped with the pyramid it was baked with.
     pub fn pyramid(&self) -> Result<Pyramid> {
-        if let Some(dem) = self.dem.as_deref().filter(|d| map::baked::is_baked(d)) {
+        if let Some(dem) = self.baked() {
             return self.open_baked(dem);
         }
         let map = self.load()?;
         let source = map.source.clone();
         let filter = self.height_filter.unwrap_or_default().into();
         Pyramid::build(map, filter).with_context(|| format!("map {source}"))
+    }
+
+    /// The one `--dem`, if exactly one is given (not a mosaic).
+    pub fn single_dem(&self) -> Option<&std::path::Path> {
+        match self.dem.as_slice() {
+            [one] => Some(one.as_path()),
+            _ => None,
+        }
+    }
+
+    /// The baked map `--dem` names, if it names one (alone).
+    pub fn baked(&self) -> Option<&std::path::Path> {
+        self.single_dem().filter(|d| map::baked::is_baked(d))
     }
 
     /// Opens a baked map: its levels as they were baked, the scale overridable.
@@ -251,20 +265,32 @@ impl MapArgs {
 
     /// Loads the map (or generates the built-in one).
     pub fn load(&self) -> Result<Map> {
-        match &self.dem {
-            Some(dem) => {
-                let loaded = map::load(
-                    dem,
-                    &map::LoadOptions {
-                        format: self.format,
-                        color: self.color.as_deref(),
-                        spacing_m: self.spacing,
-                        height_scale_m: self.height_scale,
-                        nodata: self.nodata,
-                        vertical_unit: self.vertical_unit,
-                        ..map::LoadOptions::default()
-                    },
-                )?;
+        match self.dem.as_slice() {
+            dems @ [first, ..] => {
+                if dems.len() > 1 {
+                    if let Some(b) = dems.iter().find(|d| map::baked::is_baked(d)) {
+                        bail!(
+                            "--dem {}: a baked map is a whole map, not a tile of a mosaic",
+                            b.display()
+                        );
+                    }
+                }
+                let opts = map::LoadOptions {
+                    format: self.format,
+                    color: self.color.as_deref(),
+                    spacing_m: self.spacing,
+                    height_scale_m: self.height_scale,
+                    nodata: self.nodata,
+                    vertical_unit: self.vertical_unit,
+                    ..map::LoadOptions::default()
+                };
+                let (loaded, dem) = if map::mosaic::is_mosaic(dems) {
+                    let loaded = map::mosaic::load_mosaic(dems, &opts)?;
+                    let name = PathBuf::from(&loaded.map.source);
+                    (loaded, name)
+                } else {
+                    (map::load(first, &opts)?, first.clone())
+                };
                 if let Some(sentinel) = &loaded.sentinel {
                     crate::note!("warning: {}: {}", dem.display(), sentinel.warning());
                 }
@@ -280,7 +306,7 @@ impl MapArgs {
                 }
                 Ok(loaded.map)
             }
-            None => {
+            [] => {
                 // clap's `requires` is not checked when `--terrain-size` (which conflicts with
                 // --dem) is given, so the built-in terrain refuses the map-file options itself.
                 for (option, given) in [

@@ -41,10 +41,11 @@ pub enum MapAction {
 /// `footprint map bake`.
 #[derive(Args, Debug)]
 pub struct BakeArgs {
-    /// The height map (as for `render --dem`); without it, the built-in terrain (--terrain,
-    /// --seed, --terrain-size).
+    /// The height map (as for `render --dem`); several files, a folder of tiles or a GDAL .vrt
+    /// make a mosaic, baked as a stream (never whole in memory); without it, the built-in
+    /// terrain (--terrain, --seed, --terrain-size).
     #[arg(value_name = "IN")]
-    pub input: Option<PathBuf>,
+    pub input: Vec<PathBuf>,
     /// The baked file to write (.fpmap).
     #[arg(long, value_name = "FILE.fpmap")]
     pub out: PathBuf,
@@ -237,8 +238,11 @@ impl BakedJson {
 }
 
 fn bake(args: &BakeArgs) -> Result<()> {
-    if let Some(input) = args.input.as_deref().filter(|p| map::baked::is_baked(p)) {
+    if let Some(input) = args.input.iter().find(|p| map::baked::is_baked(p)) {
         bail!("{}: already a baked map", crate::output::shown(input));
+    }
+    if map::mosaic::is_mosaic(&args.input) {
+        return bake_mosaic(args);
     }
     let map_args = MapArgs {
         dem: args.input.clone(),
@@ -308,6 +312,72 @@ fn bake(args: &BakeArgs) -> Result<()> {
         } else {
             ""
         }
+    )?;
+    Ok(())
+}
+
+/// `map bake` of a mosaic: surveyed (every tile read once), then streamed into the file row by
+/// row ([`map::bake_stream`]), never whole in memory.
+fn bake_mosaic(args: &BakeArgs) -> Result<()> {
+    let opts = LoadOptions {
+        format: args.read.format,
+        color: args.color.as_deref(),
+        spacing_m: args.read.spacing,
+        height_scale_m: args.read.height_scale,
+        nodata: args.read.nodata,
+        vertical_unit: args.read.vertical_unit,
+        ..LoadOptions::default()
+    };
+    let start = Instant::now();
+    let mosaic = map::mosaic::Mosaic::survey(&args.input, &opts)?;
+    let surveyed = start.elapsed().as_secs_f64();
+    let name = &mosaic.source;
+    if let Some(sentinel) = &mosaic.sentinel {
+        crate::note!("warning: {}: {}", name, sentinel.warning());
+    }
+    if mosaic.tile_voids + mosaic.gap_cells > 0 {
+        crate::note!(
+            "note: {}: {} voids filled from their neighbours, {} cells between tiles set to the \
+             lowest height",
+            name,
+            mosaic.tile_voids,
+            mosaic.gap_cells
+        );
+    }
+    let out_what = format!("output {:?}", crate::output::shown(&args.out));
+    let mut sink = crate::output::Sink::create(&args.out)?;
+    if matches!(sink, crate::output::Sink::Through { .. }) {
+        bail!(
+            "{out_what}: a mosaic is baked into a regular file (it is written out of order), not \
+             a stream or a device"
+        );
+    }
+    let bytes =
+        map::bake_stream::bake_mosaic(&mosaic, args.height_filter.into(), sink.file(), &out_what)?;
+    sink.finish()?;
+    let seconds = start.elapsed().as_secs_f64();
+    let cells = mosaic.cells() as f64;
+    let opened = map::baked::verify(&args.out)?;
+    let mut json = BakedJson::new(&args.out, &opened, bytes);
+    json.bake_ms = Some(seconds * 1e3);
+    json.cells_per_s = Some(cells / seconds.max(1e-9));
+    if args.format.json {
+        crate::outln!("{}", serde_json::to_string(&json)?)?;
+        return Ok(());
+    }
+    crate::outln!(
+        "wrote {}: {}×{} from {} tiles, {} levels ({} filter), {}, baked in {:.0} ms ({:.0} ms \
+         surveying; {:.0} M cells/s), every level verified",
+        crate::output::shown(&args.out),
+        mosaic.width,
+        mosaic.height,
+        mosaic.tiles.len(),
+        json.levels,
+        json.height_filter,
+        map::memory::show(bytes),
+        seconds * 1e3,
+        surveyed * 1e3,
+        cells / seconds.max(1e-9) / 1e6
     )?;
     Ok(())
 }

@@ -61,9 +61,11 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
     };
     let path = |p: &Path| p.to_string_lossy().into_owned();
     let m = &args.map;
-    match &m.dem {
-        Some(dem) => {
-            push("--dem", path(dem));
+    match m.dem.as_slice() {
+        [_, ..] => {
+            for dem in &m.dem {
+                push("--dem", path(dem));
+            }
             if let Some(f) = &m.format {
                 push("--format", value_name(f));
             }
@@ -83,14 +85,14 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
                 push("--vertical-unit", value_name(u));
             }
         }
-        None => {
+        [] => {
             push("--terrain", value_name(&m.terrain));
             push("--seed", m.seed.to_string());
             push("--terrain-size", m.terrain_size.to_string());
         }
     }
     // A baked map's filter is the file's own; any other map's is stated, default or not.
-    let baked = m.dem.as_deref().is_some_and(crate::map::baked::is_baked);
+    let baked = m.baked().is_some();
     if let Some(filter) = m.height_filter.or((!baked).then(HeightFilterArg::default)) {
         push("--height-filter", value_name(&filter));
     }
@@ -104,14 +106,16 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
 /// input) are relative to, `cwd`, if any is relative; `None` if every path is absolute.
 pub fn relative_to<'a>(args: &ReportArgs, cwd: &'a Path) -> Option<&'a Path> {
     let m = &args.map;
-    let relative = [
-        m.dem.as_deref(),
-        m.color.as_deref(),
-        Some(args.out.as_path()),
-    ]
-    .into_iter()
-    .flatten()
-    .any(|p| p != Path::new("-") && p.is_relative());
+    let relative = m
+        .dem
+        .iter()
+        .map(PathBuf::as_path)
+        .chain(
+            [m.color.as_deref(), Some(args.out.as_path())]
+                .into_iter()
+                .flatten(),
+        )
+        .any(|p| p != Path::new("-") && p.is_relative());
     relative.then_some(cwd)
 }
 
@@ -122,7 +126,8 @@ pub fn regenerate_command(args: &ReportArgs, cwd: &Path) -> String {
     let cd = relative_to(args, cwd).map(|d| d.to_string_lossy().into_owned());
     let mut line = shell::line(&regenerate_words(args), cd.as_deref());
     let stdin = Some(Path::new("-"));
-    if args.map.dem.as_deref() == stdin || args.map.color.as_deref() == stdin {
+    if args.map.dem.iter().any(|d| Some(d.as_path()) == stdin) || args.map.color.as_deref() == stdin
+    {
         line += "  # the map was read from standard input: pipe the same file into it";
     }
     line
