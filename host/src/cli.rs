@@ -197,6 +197,8 @@ pub fn main() -> ExitCode {
     if let Some(bytes) = cli.max_memory {
         crate::memory::set_budget(bytes);
     }
+    // The hard guard: never past what the process really has, whatever --max-memory says.
+    crate::alloc_guard::set_limit(crate::memory::budget().min(crate::memory::room()));
     if let Some(n) = cli.threads {
         if let Err(e) = rayon::ThreadPoolBuilder::new()
             .num_threads(usize::from(n))

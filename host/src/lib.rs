@@ -6,6 +6,7 @@
 //! the memory budget from `footprint-maps` (which the browser page shares); [`pyramid`],
 //! [`scene`], [`map`] and [`memory`] re-export them under the names the host has always used.
 
+pub mod alloc_guard;
 pub mod args;
 pub mod camera;
 pub mod cli;

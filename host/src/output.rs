@@ -67,6 +67,35 @@ pub fn unregister(path: &Path) {
     live().retain(|p| p != path);
 }
 
+/// Removes every registered temporary file and folder now, newest first (a folder once it is
+/// empty): for a run that is ending (a signal, the memory guard). Never waits long for the
+/// list: the thread ending the run may hold it itself (an allocation while registering a
+/// path), so after a thousand tries it gives up and leaves the paths to the next run's sweep
+/// ([`stale`]).
+pub fn remove_temporaries_now() {
+    let mut paths: Option<Vec<PathBuf>> = None;
+    for _ in 0..1000 {
+        match LIVE.try_lock() {
+            Ok(mut live) => paths = Some(live.drain(..).rev().collect()),
+            Err(std::sync::TryLockError::Poisoned(e)) => {
+                paths = Some(e.into_inner().drain(..).rev().collect());
+            }
+            Err(std::sync::TryLockError::WouldBlock) => std::thread::yield_now(),
+        }
+        if paths.is_some() {
+            break;
+        }
+    }
+    let Some(paths) = paths else { return };
+    for p in paths {
+        if p.is_dir() {
+            let _ = std::fs::remove_dir(&p);
+        } else {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+}
+
 /// Installs a SIGINT/SIGTERM handler that removes every registered temporary file and folder
 /// (newest first: a folder once it is empty, never what another program put in it) and exits
 /// with status 130 (the shell's code for an interrupted command).

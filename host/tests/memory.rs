@@ -242,3 +242,67 @@ fn the_budget_follows_the_address_space_limit() {
     assert!(stderr.contains("memory budget"), "{stderr}");
     assert!(!out.exists(), "an output was left behind");
 }
+
+/// The hard guard (`footprint_host::alloc_guard`): with `--max-memory` larger than what the
+/// process has (here a `ulimit -v` of 1.5 GB), the estimate lets the run start, and the
+/// allocation that would pass what the process really has ends it with one line and exit 2,
+/// no output and no temporary file left, instead of the kernel's killer (exit 137) or Rust's
+/// abort (exit 134); `fly`, whose outputs go into a folder, leaves nothing in it.
+#[test]
+fn an_allocation_past_the_real_memory_is_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let flight = dir.path().join("flight");
+    std::fs::create_dir(&flight).unwrap();
+    let runs: [Vec<&str>; 2] = [
+        vec![
+            "render",
+            "--terrain-size",
+            "8192",
+            "--max-memory",
+            "100G",
+            "--size",
+            "64x64",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        vec![
+            "fly",
+            "--terrain-size",
+            "8192",
+            "--max-memory",
+            "100G",
+            "--frames",
+            "3",
+            "--size",
+            "32x32",
+            "--modes",
+            "ps",
+            "--no-reference",
+            "--out",
+            flight.to_str().unwrap(),
+        ],
+    ];
+    for args in runs {
+        let o = std::process::Command::new("sh")
+            .arg("-c")
+            .arg("ulimit -v 1500000 || exit 77; exec \"$0\" \"$@\"")
+            .arg(env!("CARGO_BIN_EXE_footprint"))
+            .args(&args)
+            .output()
+            .unwrap();
+        if o.status.code() == Some(77) {
+            println!("skipped: this shell cannot set ulimit -v");
+            return;
+        }
+        assert_one_line_error(&o, &args, "out of memory");
+        assert!(!out.exists(), "{args:?}: an output was left behind");
+        for (folder, expected) in [(dir.path(), 1), (flight.as_path(), 0)] {
+            let left: Vec<_> = std::fs::read_dir(folder)
+                .unwrap()
+                .map(|e| e.unwrap().file_name())
+                .collect();
+            assert_eq!(left.len(), expected, "{args:?}: left behind {left:?}");
+        }
+    }
+}

@@ -27,27 +27,30 @@ pub fn set_budget(bytes: u64) {
     let _ = BUDGET.set(bytes);
 }
 
-/// The budget in bytes: `--max-memory`, or what the process may really use less an eighth:
-/// the least of the machine's available memory (`MemAvailable` of `/proc/meminfo`; 8 GiB where
-/// it cannot be read), what its control group has left ([`cgroup_room`]) and what its address
-/// space and data limits leave ([`rlimit_room`]).
+/// The budget in bytes: `--max-memory`, or else [`room`] (read once).
 pub fn budget() -> u64 {
-    *BUDGET.get_or_init(|| {
-        let available = std::fs::read_to_string("/proc/meminfo")
-            .ok()
-            .and_then(|s| {
-                s.lines()
-                    .find_map(|l| l.strip_prefix("MemAvailable:"))
-                    .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
-            })
-            .map_or(8 << 30, |kb| kb.saturating_mul(1024));
-        let room = [Some(available), cgroup_room(), rlimit_room()]
-            .into_iter()
-            .flatten()
-            .min()
-            .unwrap_or(available);
-        room - room / 8
-    })
+    *BUDGET.get_or_init(room)
+}
+
+/// What the process may really use, less an eighth: the least of the machine's available
+/// memory (`MemAvailable` of `/proc/meminfo`; 8 GiB where it cannot be read), what its control
+/// group has left ([`cgroup_room`]) and what its address space and data limits leave
+/// ([`rlimit_room`]). Read anew on every call.
+pub fn room() -> u64 {
+    let available = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find_map(|l| l.strip_prefix("MemAvailable:"))
+                .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+        })
+        .map_or(8 << 30, |kb| kb.saturating_mul(1024));
+    let room = [Some(available), cgroup_room(), rlimit_room()]
+        .into_iter()
+        .flatten()
+        .min()
+        .unwrap_or(available);
+    room - room / 8
 }
 
 /// What the process's control group lets it allocate still: its limit less its usage, for

@@ -1,0 +1,114 @@
+//! The hard memory guard: the `footprint` binary's global allocator counts the bytes it has
+//! lent, and an allocation that would take them past the limit ([`set_limit`]: the least of
+//! `--max-memory` and what the machine, its control group and `ulimit -v` really leave, read
+//! when the command starts) ends the run with one line and exit code 2, its temporary files
+//! removed, instead of the kernel's out-of-memory killer (exit 137, no message) or Rust's abort
+//! (exit 134, `memory allocation of N bytes failed`).
+//!
+//! The estimates of [`crate::memory`] refuse a run before it starts; this guard catches what
+//! they miss (a `--max-memory` larger than the machine, an estimate too low). It counts the
+//! bytes asked for, not the pages touched, so a baked map's memory map does not count.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::io::Write;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// The allocator: [`System`]'s, counted.
+#[derive(Debug)]
+pub struct Guard;
+
+/// Bytes lent now.
+static LENT: AtomicUsize = AtomicUsize::new(0);
+
+/// The most bytes that may be lent at once (no limit until [`set_limit`]).
+static LIMIT: AtomicUsize = AtomicUsize::new(usize::MAX);
+
+/// Set once the limit is hit: the run is ending, and what it allocates to say so is lent
+/// without a limit.
+static TRIPPED: AtomicBool = AtomicBool::new(false);
+
+/// Sets the limit, in bytes.
+pub fn set_limit(bytes: u64) {
+    LIMIT.store(
+        usize::try_from(bytes).unwrap_or(usize::MAX),
+        Ordering::Relaxed,
+    );
+}
+
+/// Bytes lent now (for tests and measurements).
+pub fn lent() -> usize {
+    LENT.load(Ordering::Relaxed)
+}
+
+/// Takes `size` more bytes from the count, or ends the run if they do not fit.
+fn take(size: usize) {
+    let before = LENT.fetch_add(size, Ordering::Relaxed);
+    let limit = LIMIT.load(Ordering::Relaxed);
+    if before.saturating_add(size) > limit && !TRIPPED.swap(true, Ordering::Relaxed) {
+        out_of_memory(size, limit);
+    }
+}
+
+/// Ends the run: one line, the temporary files removed, exit code 2. Whatever it allocates is
+/// lent without a limit ([`TRIPPED`]).
+#[cold]
+fn out_of_memory(size: usize, limit: usize) -> ! {
+    crate::output::remove_temporaries_now();
+    let _ = writeln!(
+        std::io::stderr(),
+        "error: out of memory: {} more would pass the memory budget of {} (--max-memory, or \
+         what this machine, its control group and ulimit -v leave): give a smaller --size, \
+         --terrain-size or map, or bake the map (footprint map bake)",
+        crate::memory::show(size as u64),
+        crate::memory::show(limit as u64)
+    );
+    std::process::exit(2)
+}
+
+// SAFETY: every method forwards to `System` with the same arguments and returns its result;
+// the count is bookkeeping only. `take` may end the process, never unwind.
+#[allow(unsafe_code, reason = "a global allocator is an unsafe trait")]
+unsafe impl GlobalAlloc for Guard {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        take(layout.size());
+        // SAFETY: the caller's layout, as `GlobalAlloc::alloc` requires.
+        let p = unsafe { System.alloc(layout) };
+        if p.is_null() {
+            LENT.fetch_sub(layout.size(), Ordering::Relaxed);
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        take(layout.size());
+        // SAFETY: as `alloc`.
+        let p = unsafe { System.alloc_zeroed(layout) };
+        if p.is_null() {
+            LENT.fetch_sub(layout.size(), Ordering::Relaxed);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: `ptr` was lent by this allocator (so by `System`) with `layout`.
+        unsafe { System.dealloc(ptr, layout) };
+        LENT.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let old = layout.size();
+        if new_size > old {
+            take(new_size - old);
+        }
+        // SAFETY: the caller's pointer, layout and size, as `GlobalAlloc::realloc` requires.
+        let p = unsafe { System.realloc(ptr, layout, new_size) };
+        if p.is_null() {
+            if new_size > old {
+                LENT.fetch_sub(new_size - old, Ordering::Relaxed);
+            }
+        } else if new_size < old {
+            LENT.fetch_sub(old - new_size, Ordering::Relaxed);
+        }
+        p
+    }
+}
