@@ -176,3 +176,31 @@ fn only_get_and_head_from_loopback_names_and_the_map_read_once() {
     let (status, _, _) = exchange(port, "NONSENSE\r\n\r\n");
     assert_eq!(status, 400);
 }
+
+/// A baked map (`footprint map bake`) is served as it is, for the page to read with the same
+/// code (`baked::from_bytes`); a corrupt one is refused at start, in one line.
+#[test]
+fn a_baked_map_is_served_and_a_corrupt_one_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let fpmap = dir.path().join("m.fpmap");
+    let fp = fpmap.to_str().unwrap();
+    let o = common::footprint(&["map", "bake", "--terrain-size", "64", "--out", fp]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = std::fs::read(&fpmap).unwrap();
+    let served = Served::start(&["--dem", fp]);
+    let port = served.port;
+    let (status, _, body) = get(port, "/map/height", "localhost");
+    assert!(status == 200 && body == bytes, "status {status}");
+    let (_, _, json) = get(port, "/map.json", "localhost");
+    assert!(String::from_utf8_lossy(&json).contains("m.fpmap"));
+    drop(served);
+    let mut corrupt = bytes.clone();
+    corrupt[HEADER + 10] ^= 1;
+    std::fs::write(&fpmap, corrupt).unwrap();
+    let args = ["serve", "--port", "0", "--dem", fp];
+    let o = common::footprint_bounded(&args, 20).expect("serve refuses at once");
+    common::assert_one_line_error(&o, &args, "checksum");
+}
+
+/// The first byte of a baked map's level 0.
+const HEADER: usize = 4096;

@@ -53,6 +53,14 @@ pub fn is_baked(path: &Path) -> bool {
         .is_ok_and(|()| head == footprint_core::terrain::baked::MAGIC)
 }
 
+/// Whether bytes already in memory, named `path`, are a baked map: by the extension or the
+/// magic.
+pub fn is_baked_bytes(path: &Path, bytes: &[u8]) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(EXTENSION))
+        || bytes.starts_with(&footprint_core::terrain::baked::MAGIC)
+}
+
 /// What [`open`] found in a baked file's header.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Opened {
@@ -119,6 +127,80 @@ pub fn open(
     height_scale_m: Option<f64>,
 ) -> Result<(Pyramid, Opened), MapError> {
     let (bytes, opened) = map_checked(path, VERIFY_AT_OPEN)?;
+    let pyramid = lend(bytes, &opened, path, spacing_m, height_scale_m)?;
+    Ok((pyramid, opened))
+}
+
+/// A baked map's bytes already in memory (the browser page's dropped or served file), named
+/// `path` in messages: copied once into page-aligned memory, every level checked, and lent as
+/// a [`Pyramid`].
+///
+/// Errors: as [`open`].
+pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<(Pyramid, Opened), MapError> {
+    let what = describe(FORMAT, path);
+    let malformed = |detail: String| MapError::Malformed {
+        what: what.clone(),
+        format: FORMAT,
+        detail,
+    };
+    if bytes.len() < HEADER_LEN {
+        return Err(malformed(short_header(bytes)));
+    }
+    let aligned = Aligned::copy(bytes);
+    let opened = check(aligned.as_ref(), &malformed, u64::MAX, |ranges| {
+        Ok(crc(ranges.iter().map(|r| {
+            aligned.as_ref().get(r.clone()).unwrap_or_default()
+        })))
+    })?;
+    let pyramid = lend(Arc::new(aligned), &opened, path, None, None)?;
+    Ok((pyramid, opened))
+}
+
+/// Bytes copied into 8-byte words, so that their heights can be lent as `u16`.
+struct Aligned {
+    words: Vec<u64>,
+    len: usize,
+}
+
+impl Aligned {
+    fn copy(bytes: &[u8]) -> Self {
+        let mut words = vec![0u64; bytes.len().div_ceil(8)];
+        let all: &mut [u8] = bytemuck::cast_slice_mut(&mut words);
+        all[..bytes.len()].copy_from_slice(bytes);
+        Self {
+            words,
+            len: bytes.len(),
+        }
+    }
+}
+
+impl AsRef<[u8]> for Aligned {
+    fn as_ref(&self) -> &[u8] {
+        let all: &[u8] = bytemuck::cast_slice(&self.words);
+        &all[..self.len]
+    }
+}
+
+/// The header's complaint about a file shorter than a header.
+fn short_header(bytes: &[u8]) -> String {
+    if bytes.len() >= 8 && bytes[..8] == footprint_core::terrain::baked::MAGIC {
+        format!(
+            "the file ends inside its header ({} bytes; truncated)",
+            bytes.len()
+        )
+    } else {
+        "not a baked map (its first bytes are not the FPMAP magic)".into()
+    }
+}
+
+/// Lends checked bytes as a pyramid, the scale overridable.
+fn lend(
+    bytes: Arc<dyn Bytes>,
+    opened: &Opened,
+    path: &Path,
+    spacing_m: Option<f64>,
+    height_scale_m: Option<f64>,
+) -> Result<Pyramid, MapError> {
     let what = describe(FORMAT, path);
     let malformed = |detail: String| MapError::Malformed {
         what: what.clone(),
@@ -159,9 +241,8 @@ pub fn open(
         source: path.display().to_string(),
         known_range: Some((header.min_height, header.max_height)),
     };
-    let pyramid = Pyramid::from_levels(map, header.filter, pyramid_heights, pyramid_colors)
-        .map_err(|e| malformed(e.to_string()))?;
-    Ok((pyramid, opened))
+    Pyramid::from_levels(map, header.filter, pyramid_heights, pyramid_colors)
+        .map_err(|e| malformed(e.to_string()))
 }
 
 /// Checks every level of the baked map at `path` against its checksum (`footprint map
@@ -196,20 +277,25 @@ fn map_checked(path: &Path, budget: u64) -> Result<(Arc<dyn Bytes>, Opened), Map
         ));
     }
     if meta.len() < HEADER_LEN as u64 {
-        let magic = footprint_core::terrain::baked::MAGIC;
         let mut head = Vec::new();
         io::Read::read_to_end(&mut io::Read::take(&file, 8), &mut head).map_err(io_error)?;
-        return Err(malformed(if head.len() == 8 && head == magic {
-            format!(
-                "the file ends inside its header ({} bytes; truncated)",
-                meta.len()
-            )
-        } else {
-            "not a baked map (its first bytes are not the FPMAP magic)".into()
-        }));
+        return Err(malformed(short_header(&head)));
     }
     let mapped = map_file(&file).map_err(io_error)?;
-    let bytes: &[u8] = mapped.as_ref();
+    let opened = check(mapped.as_ref(), &malformed, budget, |ranges| {
+        level_crc(&file, mapped.as_ref(), ranges).map_err(io_error)
+    })?;
+    Ok((Arc::new(mapped), opened))
+}
+
+/// Checks a baked file's header, its length, its layout and the checksums of its levels,
+/// coarsest first, while they add up to at most `budget` bytes (`level_crc` reads a level).
+fn check(
+    bytes: &[u8],
+    malformed: &dyn Fn(String) -> MapError,
+    budget: u64,
+    level_crc: impl Fn(&[Range<usize>]) -> Result<u32, MapError>,
+) -> Result<Opened, MapError> {
     let header = Header::decode(bytes).map_err(|e| malformed(without_prefix(e)))?;
     let (covered, _) = header_checksum_range();
     if crc([&bytes[covered]]) != Header::stored_checksum(bytes) {
@@ -229,20 +315,19 @@ fn map_checked(path: &Path, budget: u64) -> Result<(Arc<dyn Bytes>, Opened), Map
             break;
         }
         checked += size;
-        if level_crc(&file, bytes, &ranges).map_err(io_error)? != header.checksums[k] {
+        if level_crc(&ranges)? != header.checksums[k] {
             return Err(malformed(format!(
                 "level {k}'s checksum is wrong (the file is corrupt; bake it again)"
             )));
         }
         levels_verified += 1;
     }
-    let opened = Opened {
+    Ok(Opened {
         header,
         source: Header::source(bytes).to_owned(),
         levels_verified,
         levels,
-    };
-    Ok((Arc::new(mapped), opened))
+    })
 }
 
 /// The CRC-32 of a level's byte ranges, read with `read_at` through a small buffer rather than

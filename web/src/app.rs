@@ -211,6 +211,14 @@ impl App {
         color: Option<(&str, &[u8])>,
     ) -> Result<(), String> {
         let path = Path::new(name);
+        if footprint_maps::baked::is_baked_bytes(path, bytes) {
+            if color.is_some() {
+                return Err(format!("{name} is a baked map, which has its colours"));
+            }
+            let (pyramid, _) =
+                footprint_maps::baked::from_bytes(path, bytes).map_err(|e| e.to_string())?;
+            return self.replace(pyramid);
+        }
         let color_path = color.map(|(n, _)| Path::new(n));
         let mut files = vec![(path, bytes)];
         if let Some((n, b)) = color {
@@ -456,5 +464,26 @@ mod tests {
         );
         app.render(0).unwrap();
         app.render(1).unwrap();
+    }
+
+    /// A baked map (`footprint map bake`) loads on the page as on the CLI, and a corrupt one
+    /// is one line that leaves the map as it was.
+    #[test]
+    fn a_baked_map_loads_and_a_corrupt_one_is_refused() {
+        let map = procedural::procedural(2, 64);
+        let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+        let mut bytes = Vec::new();
+        footprint_maps::baked::write(&pyramid, "test", &mut bytes).unwrap();
+        let mut app = App::new().unwrap();
+        app.load_files("m.fpmap", &bytes, None).unwrap();
+        assert_eq!((app.map().width, app.map().height), (64, 64));
+        assert_eq!(app.map().heights, map.heights);
+        let before = app.map().source.clone();
+        // The last byte of the coarsest level's colour (the padding after it is no level's).
+        let layout = footprint_core::terrain::baked::Layout::new(64, 64).unwrap();
+        bytes[layout.pyramid()[1].end - 1] ^= 1;
+        let e = app.load_files("m.fpmap", &bytes, None).unwrap_err();
+        assert!(e.contains("m.fpmap") && e.contains("checksum"), "{e}");
+        assert_eq!(app.map().source, before);
     }
 }

@@ -221,7 +221,7 @@ canvas.addEventListener('pointermove', (e) => {
   setView(0, 0, 0, dx * 0.2, dy * 0.1);
 });
 
-// Maps: a height map (.png, .asc, .hgt, .tif) and optionally its colour PNG, the height map
+// Maps: a height map (.png, .asc, .hgt, .tif, .fpmap) and optionally its colour PNG, the height map
 // first (two files dropped at once: the one named like a colour map, `color`/`colour`/`C1W`,
 // is the colour map). Parsed in Rust by the CLI's readers: the same limits, the same one-line
 // errors.

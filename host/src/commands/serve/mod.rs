@@ -193,15 +193,27 @@ fn map_files(args: &ServeArgs) -> Result<MapFiles> {
     if let (Some(c), Some(b)) = (&args.color, &color_bytes) {
         in_memory.push((c.as_path(), b.as_slice()));
     }
-    map::load(
-        dem,
-        &LoadOptions {
-            color: args.color.as_deref(),
-            in_memory: &in_memory,
-            ..LoadOptions::default()
-        },
-    )
-    .with_context(|| format!("--dem {}", crate::output::shown(dem)))?;
+    if map::baked::is_baked_bytes(dem, &dem_bytes) {
+        if args.color.is_some() {
+            anyhow::bail!(
+                "--color: {} is a baked map, which has its colours",
+                dem.display()
+            );
+        }
+        // The page reads it with the same code (`baked::from_bytes`), every level checked.
+        map::baked::from_bytes(dem, &dem_bytes)
+            .with_context(|| format!("--dem {}", crate::output::shown(dem)))?;
+    } else {
+        map::load(
+            dem,
+            &LoadOptions {
+                color: args.color.as_deref(),
+                in_memory: &in_memory,
+                ..LoadOptions::default()
+            },
+        )
+        .with_context(|| format!("--dem {}", crate::output::shown(dem)))?;
+    }
     let name = |p: &Path| -> Result<String> {
         p.file_name()
             .and_then(|n| n.to_str())
