@@ -5,6 +5,10 @@
 //! removed, instead of the kernel's out-of-memory killer (exit 137, no message) or Rust's abort
 //! (exit 134, `memory allocation of N bytes failed`).
 //!
+//! An allocation the system itself refuses (an address-space limit the count did not
+//! foresee) ends the run with the same line: no allocation of the binary aborts, which is
+//! what `try_reserve` at every large allocation would give, for every allocation at once.
+//!
 //! The estimates of [`crate::memory`] refuse a run before it starts; this guard catches what
 //! they miss (a `--max-memory` larger than the machine, an estimate too low). It counts the
 //! bytes asked for, not the pages touched, so a baked map's memory map does not count.
@@ -49,6 +53,19 @@ fn take(size: usize) {
     }
 }
 
+/// `p` as `System` returned it; if it is null (the system refused: an address-space limit
+/// the count did not foresee, an overcommit refusal), the run ends with the same one line
+/// instead of Rust's abort (exit 134). `size` is given back to the count first.
+fn given(p: *mut u8, size: usize) -> *mut u8 {
+    if p.is_null() {
+        LENT.fetch_sub(size, Ordering::Relaxed);
+        if !TRIPPED.swap(true, Ordering::Relaxed) {
+            out_of_memory(size, LIMIT.load(Ordering::Relaxed));
+        }
+    }
+    p
+}
+
 /// Ends the run: one line, the temporary files removed, exit code 2. Whatever it allocates is
 /// lent without a limit ([`TRIPPED`]).
 #[cold]
@@ -72,21 +89,13 @@ unsafe impl GlobalAlloc for Guard {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         take(layout.size());
         // SAFETY: the caller's layout, as `GlobalAlloc::alloc` requires.
-        let p = unsafe { System.alloc(layout) };
-        if p.is_null() {
-            LENT.fetch_sub(layout.size(), Ordering::Relaxed);
-        }
-        p
+        given(unsafe { System.alloc(layout) }, layout.size())
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
         take(layout.size());
         // SAFETY: as `alloc`.
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if p.is_null() {
-            LENT.fetch_sub(layout.size(), Ordering::Relaxed);
-        }
-        p
+        given(unsafe { System.alloc_zeroed(layout) }, layout.size())
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
@@ -102,13 +111,13 @@ unsafe impl GlobalAlloc for Guard {
         }
         // SAFETY: the caller's pointer, layout and size, as `GlobalAlloc::realloc` requires.
         let p = unsafe { System.realloc(ptr, layout, new_size) };
-        if p.is_null() {
-            if new_size > old {
-                LENT.fetch_sub(new_size - old, Ordering::Relaxed);
+        if new_size > old {
+            given(p, new_size - old)
+        } else {
+            if !p.is_null() {
+                LENT.fetch_sub(old - new_size, Ordering::Relaxed);
             }
-        } else if new_size < old {
-            LENT.fetch_sub(old - new_size, Ordering::Relaxed);
+            p
         }
-        p
     }
 }
