@@ -179,8 +179,10 @@ fn expand(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Option<vrt::Vrt>), MapErro
         }
         if files.is_empty() {
             return Err(MapError::Invalid {
-                what,
-                detail: "no map tiles in it (.hgt, .asc, .tif, .tiff or .bil)".to_owned(),
+                what: describe("height map", p),
+                detail: "is a directory with no map tiles in it (.hgt, .asc, .tif, .tiff or \
+                         .bil) to read as a mosaic"
+                    .to_owned(),
             });
         }
         files.sort();
