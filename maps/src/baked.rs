@@ -238,7 +238,13 @@ fn lend(
         spacing_m,
         height_scale_m,
         base_m: header.base_m,
-        source: path.display().to_string(),
+        // Where the map came from first, so that a baked built-in terrain is placed and
+        // described as the built-in terrain is (`footprint_scenes::view::Placement::for_map`).
+        source: if opened.source.is_empty() {
+            path.display().to_string()
+        } else {
+            format!("{}, baked in {}", opened.source, path.display())
+        },
         known_range: Some((header.min_height, header.max_height)),
     };
     Pyramid::from_levels(map, header.filter, pyramid_heights, pyramid_colors)
