@@ -118,6 +118,28 @@ pub enum ViewArg {
     Paper,
 }
 
+/// Where the paper's views are placed on a map (`--geometry`,
+/// `footprint_scenes::view::Placement`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum GeometryArg {
+    /// The paper's geometry: from the map's centre heading north, the first hit where the
+    /// pixel footprint is one voxel wide (Table 1), over the map's mirrored copies if the map
+    /// is too small to hold it (the built-in terrain's default).
+    Paper,
+    /// Moved and brought nearer until the view shows the map itself (a map file's default):
+    /// on a small map its pixels may be narrower than a voxel (magnification).
+    OnMap,
+}
+
+impl From<GeometryArg> for footprint_scenes::view::Placement {
+    fn from(g: GeometryArg) -> Self {
+        match g {
+            GeometryArg::Paper => Self::Paper,
+            GeometryArg::OnMap => Self::OnMap,
+        }
+    }
+}
+
 /// The surface the walk meets (`footprint_core::terrain::camera::Surface`, `--surface`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum SurfaceArg {

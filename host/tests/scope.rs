@@ -93,6 +93,7 @@ fn every_mode_is_divided_by_the_one_v_of_its_case_where_the_walks_differ() {
         SIZE,
         true,
         SurfaceArg::Flat,
+        None,
         |_| {},
     )
     .unwrap();
@@ -185,6 +186,7 @@ fn a_claim_on_too_few_events_says_so() {
         SIZE,
         true,
         SurfaceArg::Flat,
+        None,
         |_| {},
     )
     .unwrap();
@@ -423,4 +425,51 @@ fn every_number_in_the_report_is_in_report_json() {
         missing.len(),
         missing.join("\n")
     );
+}
+
+/// The paper's geometry on request (`--geometry paper`): on a map too small to hold the
+/// paper's views, `table` places them by default on the map itself, brought near (magnified);
+/// with `--geometry paper` they keep the paper's first hit, where a pixel is one voxel wide,
+/// over the map's mirrored copies, and are not labelled magnified.
+#[test]
+fn the_papers_geometry_over_the_mirrored_map_is_an_option() {
+    let table = |extra: &[&str]| -> Value {
+        let mut args = vec![
+            "table",
+            "--terrain",
+            "eroded",
+            "--terrain-size",
+            "128",
+            "--case",
+            "5",
+            "--modes",
+            "ps,as",
+            "--size",
+            "64x64",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let o = footprint(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let json: Value = serde_json::from_slice(&o.stdout).unwrap();
+        json["cases"][0].clone()
+    };
+    let on_map = table(&[]);
+    assert_eq!(on_map["view"]["placement"], "on-map");
+    assert_eq!(on_map["magnified"], true, "{on_map}");
+    for case in [
+        table(&["--geometry", "paper"]),
+        table(&["--geometry", "on-map"]),
+    ] {
+        let paper = case["view"]["placement"] == "paper";
+        assert_eq!(case["magnified"], !paper, "{case}");
+        if paper {
+            let ratio = case["pixel_voxels"].as_f64().unwrap();
+            assert!((ratio - 1.0).abs() < 0.05, "{case}");
+            assert!(
+                case["view"]["mirrored_fraction"].as_f64().unwrap() > 0.5,
+                "{case}"
+            );
+        }
+    }
 }

@@ -35,6 +35,7 @@ fn results() -> &'static (Tables15, Fly) {
             SIZE,
             true,
             SurfaceArg::Flat,
+            None,
             |_| {},
         )
         .unwrap();

@@ -35,6 +35,7 @@ fn claims_on(kind: Kind) -> Vec<Claim> {
         SIZE,
         true,
         SurfaceArg::Flat,
+        None,
         |_| {},
     )
     .unwrap();

@@ -173,6 +173,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         size,
         lod,
         SurfaceArg::Flat,
+        None,
         |msg| {
             bar.set_message(msg.to_string());
             bar.inc(1);

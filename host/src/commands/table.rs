@@ -7,7 +7,7 @@ use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes};
 use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table;
 use crate::report::tables;
-use crate::view::{MapArgs, OnOff, SurfaceArg};
+use crate::view::{GeometryArg, MapArgs, OnOff, SurfaceArg};
 
 /// Which case(s) of Table 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -57,6 +57,11 @@ pub struct TableArgs {
     /// paper's), or continuous where a pixel is narrower than a voxel (bilinear).
     #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
     pub surface: SurfaceArg,
+    /// Where the paper's views are placed: paper (its geometry, over the mirrored copies of a
+    /// map too small to hold it) or on-map (moved and brought nearer until they show the map)
+    /// [default: paper on the built-in terrain, on-map on a map file].
+    #[arg(long, value_enum)]
+    pub geometry: Option<GeometryArg>,
 }
 
 impl CaseArg {
@@ -91,6 +96,7 @@ pub fn table(args: &TableArgs) -> Result<()> {
         args.size.size,
         lod,
         args.surface,
+        args.geometry.map(Into::into),
         |msg| {
             bar.set_message(msg.to_string());
             bar.inc(1);

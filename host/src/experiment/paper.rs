@@ -39,7 +39,7 @@ pub fn paper_camera(
     size: Size,
     lod: bool,
 ) -> Result<Camera> {
-    Ok(placed_camera(map, pyramid, pitch, size, lod)?.0)
+    Ok(placed_camera(map, pyramid, pitch, size, lod, Placement::for_map(map))?.0)
 }
 
 /// How one of the paper's views was placed on a map, and how much of it is the map.
@@ -103,7 +103,22 @@ pub fn paper_view(
     size: Size,
     lod: bool,
 ) -> Result<PaperView> {
-    let (camera, placed) = placed_camera(map, pyramid, pitch, size, lod)?;
+    paper_view_placed(map, pyramid, pitch, size, lod, Placement::for_map(map))
+}
+
+/// [`paper_view`] with the placement chosen by the caller (`--geometry`): [`Placement::Paper`]
+/// keeps the paper's geometry (the first hit where the pixel footprint is one voxel wide, from
+/// the map's centre heading north) over the mirrored copies of a small map, where
+/// [`Placement::OnMap`] moves the view and brings the first hit nearer until it shows the map.
+pub fn paper_view_placed(
+    map: &Map,
+    pyramid: &Pyramid,
+    pitch: f64,
+    size: Size,
+    lod: bool,
+    placement: Placement,
+) -> Result<PaperView> {
+    let (camera, placed) = placed_camera(map, pyramid, pitch, size, lod, placement)?;
     let placed = match placed {
         Some(p) => p,
         None => {
@@ -112,7 +127,7 @@ pub fn paper_view(
         }
     };
     let name = format!("the view at pitch {pitch}°");
-    let why = match Placement::for_map(map) {
+    let why = match placement {
         Placement::Paper => Why::PapersDistances,
         Placement::OnMap => Why::MapTooSmall,
     };
@@ -120,7 +135,7 @@ pub fn paper_view(
     Ok(PaperView {
         placement: ViewPlacement {
             pitch,
-            placement: match Placement::for_map(map) {
+            placement: match placement {
                 Placement::Paper => "paper",
                 Placement::OnMap => "on-map",
             },
@@ -155,10 +170,11 @@ fn placed_camera(
     pitch: f64,
     size: Size,
     lod: bool,
+    placement: Placement,
 ) -> Result<(Camera, Option<view::Placed>)> {
     let params = view::paper_params(map, pitch, size.width, size.height);
     let options = options(lod);
-    if Placement::for_map(map) == Placement::OnMap {
+    if placement == Placement::OnMap {
         // The far distance `place` gives the paper's view, so that both agree.
         let mut far = params;
         if let Ok(probe) = Camera::new(far) {

@@ -20,12 +20,13 @@ use footprint_core::terrain::visibility::visible_voxels;
 use footprint_core::terrain::Terrain;
 use serde::Serialize;
 
-use super::paper::{paper_view, ViewPlacement};
+use super::paper::{paper_view_placed, ViewPlacement};
 use super::reference::{psnr, reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{count, render_timed, Mode, Tables, SS_RATES};
 use crate::view::{Size, SurfaceArg};
+use footprint_scenes::view::Placement;
 
 /// A case is magnified when the pixel's footprint at the first hit is below this many voxels
 /// across: 1 (a pixel exactly one voxel wide, the paper's rule) less 2 % for the fit of the
@@ -198,6 +199,7 @@ pub fn run(
     size: Size,
     lod: bool,
     surface: SurfaceArg,
+    placement: Option<Placement>,
     mut progress: impl FnMut(&str),
 ) -> Result<Tables15> {
     let terrain = pyramid.terrain(lod)?;
@@ -208,7 +210,8 @@ pub fn run(
     };
     let mut cases = Vec::new();
     for &pitch in pitches {
-        let view = paper_view(map, pyramid, pitch, size, lod)?;
+        let placement = placement.unwrap_or_else(|| Placement::for_map(map));
+        let view = paper_view_placed(map, pyramid, pitch, size, lod, placement)?;
         let camera = view.camera;
         progress(&format!("pitch {pitch}°: ground truth"));
         let truth = reference(
