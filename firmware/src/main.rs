@@ -50,11 +50,11 @@ use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Super};
 use footprint_core::terrain::wedge::Wedge;
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
-    BAKED, COLORS, FAN_LINES, FAN_ROWS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT, HEIGHTS,
-    HEIGHT_SCALE_M, LEVEL_NAME, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT, PLATE_BACKGROUND,
-    PLATE_COLORS, PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD, PLATE_MODE, PLATE_N,
-    PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME, ROLL_DEG, SPACING_M,
-    WIDTH,
+    BAKED, COLORS, FAN_LINES, FAN_ROWS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT,
+    HEIGHTS, HEIGHT_SCALE_M, LEVEL_NAME, MAP_HEIGHT, MAP_WIDTH, PARAMS, PLATE_AMBIENT,
+    PLATE_BACKGROUND, PLATE_COLORS, PLATE_DIFFUSE, PLATE_K_SPEC, PLATE_LIGHT, PLATE_METHOD,
+    PLATE_MODE, PLATE_N, PLATE_PIXELS, PLATE_SIZE, PLATE_TRIANGLES, PLATE_VERTICES, ROLLED_NAME,
+    ROLL_DEG, SPACING_M, WIDTH,
 };
 use footprint_firmware::{
     core_calls, display, glint, image_hash, stack, take_fan_buffers, Buffers, DisplayBuffer,
@@ -446,9 +446,23 @@ fn error_paths(
 fn run_baked(frame: &Frame<'_>, terrain: &Terrain<'_>, image: &mut [Rgb]) -> Result<bool, Error> {
     let (parse, baked) = instructions(|| Baked::parse(&BAKED.0));
     let baked = baked?.terrain(true)?;
-    core_calls::render(frame, terrain, &ParallelArea::new(), &mut NoCost, &mut [], image)?;
+    core_calls::render(
+        frame,
+        terrain,
+        &ParallelArea::new(),
+        &mut NoCost,
+        &mut [],
+        image,
+    )?;
     let built = image_hash(image);
-    core_calls::render(frame, &baked, &ParallelArea::new(), &mut NoCost, &mut [], image)?;
+    core_calls::render(
+        frame,
+        &baked,
+        &ParallelArea::new(),
+        &mut NoCost,
+        &mut [],
+        image,
+    )?;
     let from_flash = image_hash(image);
     if from_flash != built {
         hprintln!(

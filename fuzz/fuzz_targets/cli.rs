@@ -117,7 +117,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         }
         _ => return,
     };
-    if map.dem.is_some() || map.color.is_some() {
+    if !map.dem.is_empty() || map.color.is_some() {
         return;
     }
     let mut map = map;

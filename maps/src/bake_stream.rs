@@ -231,7 +231,7 @@ impl Levels {
 /// given (`plan.width` long). Returns the bytes of the file.
 ///
 /// The file equals, byte for byte, [`crate::baked::write`] of the pyramid
-/// (`footprint_scenes::Pyramid::build`) of the same map coloured by [`crate::tint`], with the
+/// (`footprint_scenes::Pyramid::build`) of the same map coloured by [`crate::tint()`], with the
 /// same source.
 ///
 /// Errors: `next_row`'s, the file's (as [`MapError::Write`] naming `what`), a plan out of

@@ -728,7 +728,7 @@ impl Rows<'_> {
 }
 
 /// Loads the mosaic `paths` (several files, a folder, a `.vrt`) into memory as one map,
-/// coloured by [`tint`]: for rendering a mosaic that fits the memory budget (a large one is
+/// coloured by [`tint()`]: for rendering a mosaic that fits the memory budget (a large one is
 /// baked instead, `crate::bake_stream`). See [`Mosaic::survey`] for `opts` and the errors.
 pub fn load_mosaic(paths: &[PathBuf], opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     let m = Mosaic::survey(paths, opts)?;
