@@ -83,40 +83,27 @@ impl<'a> Level<'a> {
         check_len("heights along x", cells, along_x.len())?;
         check_len("heights along y", cells, along_y.len())?;
         check_len("colors", cells, colors.len())?;
+        // Row by row, through the one reduction ([`reduce_row`]) the streaming baker uses too.
+        let (wb, hb) = (self.width() as usize, self.height() as usize);
         let (hx, hy, cs) = (self.heights(Axis::X), self.heights(Axis::Y), self.colors());
-        // The constructors check every length, so no fallback below is ever taken.
-        let height = |grid: &[u16], i: usize| grid.get(i).copied().unwrap_or(0);
-        for y in 0..h {
-            let (y0, y1) = (2 * y, (2 * y + 1).min(self.height() - 1));
-            for x in 0..w {
-                let (x0, x1) = (2 * x, (2 * x + 1).min(self.width() - 1));
-                // Top-left, top-right, bottom-left, bottom-right.
-                let quad = [
-                    self.index(x0, y0),
-                    self.index(x1, y0),
-                    self.index(x0, y1),
-                    self.index(x1, y1),
-                ];
-                let out = y as usize * w as usize + x as usize;
-                let (Some(out_x), Some(out_y), Some(out_c)) = (
-                    along_x.get_mut(out),
-                    along_y.get_mut(out),
-                    colors.get_mut(out),
-                ) else {
-                    continue;
-                };
-                let (qx, qy) = (quad.map(|i| height(hx, i)), quad.map(|i| height(hy, i)));
-                (*out_x, *out_y) = match filter {
-                    HeightFilter::Mean => (mean4(qx), mean4(qy)),
-                    HeightFilter::Silhouette => (
-                        // Along x: the taller of each row, then the mean of the two rows.
-                        mean2(qx[0].max(qx[1]), qx[2].max(qx[3])),
-                        // Along y: the taller of each column, then the mean of the columns.
-                        mean2(qy[0].max(qy[2]), qy[1].max(qy[3])),
-                    ),
-                };
-                *out_c = mean_color(quad.map(|i| cs.get(i).copied().unwrap_or_default()));
-            }
+        let row = |y: usize| LevelRow {
+            along_x: hx.get(y * wb..(y + 1) * wb).unwrap_or_default(),
+            along_y: hy.get(y * wb..(y + 1) * wb).unwrap_or_default(),
+            colors: cs.get(y * wb..(y + 1) * wb).unwrap_or_default(),
+        };
+        let rows = along_x
+            .chunks_exact_mut(w as usize)
+            .zip(along_y.chunks_exact_mut(w as usize))
+            .zip(colors.chunks_exact_mut(w as usize))
+            .enumerate();
+        for (y, ((out_x, out_y), out_c)) in rows {
+            let below = [row(2 * y), row((2 * y + 1).min(hb - 1))];
+            let out = LevelRowMut {
+                along_x: out_x,
+                along_y: out_y,
+                colors: out_c,
+            };
+            reduce_row(filter, below, out)?;
         }
         Level::directional(w, h, along_x, along_y, colors)
     }
@@ -137,19 +124,10 @@ impl Level<'_> {
             expected: self.cells(),
             actual: 0,
         })?;
-        for y in 0..h {
-            let (y0, y1) = (2 * y, (2 * y + 1).min(self.height() - 1));
-            for x in 0..w {
-                let (x0, x1) = (2 * x, (2 * x + 1).min(self.width() - 1));
-                let top = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
-                    .map(|(x, y)| below.get(self.index(x, y)).copied().unwrap_or(u16::MAX))
-                    .into_iter()
-                    .max()
-                    .unwrap_or(u16::MAX);
-                if let Some(out) = max.get_mut(y as usize * w as usize + x as usize) {
-                    *out = top;
-                }
-            }
+        let (wb, hb) = (self.width() as usize, self.height() as usize);
+        let row = |y: usize| below.get(y * wb..(y + 1) * wb).unwrap_or_default();
+        for (y, out) in max.chunks_exact_mut(w as usize).enumerate() {
+            reduce_max_row([row(2 * y), row((2 * y + 1).min(hb - 1))], out)?;
         }
         Ok(())
     }
@@ -455,6 +433,8 @@ mod tests {
 
     /// `reduce_row` and `reduce_max_row`, row pair by row pair, give exactly the levels
     /// `build` makes, for both filters and odd and even sides, on random maps.
+    /// The builder (row by row through [`reduce_row`] and [`reduce_max_row`]) against the
+    /// filters' definitions, cell by cell, on random maps of odd and even sides.
     #[test]
     fn rows_reduce_as_the_builder_builds() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
@@ -505,28 +485,25 @@ mod tests {
                         std::vec![0u16; nw * nh],
                         std::vec![Rgb::default(); nw * nh],
                     );
+                    // Cell by cell, from the filters' definitions (the module docs): the
+                    // 2×2 block below, its missing neighbour on an odd side the edge voxel.
                     for y in 0..nh {
-                        let rows = [2 * y, (2 * y + 1).min(lh - 1)];
-                        fn row(g: &[u16], r: usize, lw: usize) -> &[u16] {
-                            &g[r * lw..(r + 1) * lw]
+                        let (y0, y1) = (2 * y, (2 * y + 1).min(lh - 1));
+                        for x in 0..nw {
+                            let (x0, x1) = (2 * x, (2 * x + 1).min(lw - 1));
+                            let at = [y0 * lw + x0, y0 * lw + x1, y1 * lw + x0, y1 * lw + x1];
+                            let (qx, qy) = (at.map(|i| bx[i]), at.map(|i| by[i]));
+                            let o = y * nw + x;
+                            (nx[o], ny[o]) = match filter {
+                                HeightFilter::Mean => (mean4(qx), mean4(qy)),
+                                HeightFilter::Silhouette => (
+                                    mean2(qx[0].max(qx[1]), qx[2].max(qx[3])),
+                                    mean2(qy[0].max(qy[2]), qy[1].max(qy[3])),
+                                ),
+                            };
+                            nm[o] = at.map(|i| bm[i]).into_iter().max().unwrap();
+                            nc[o] = mean_color(at.map(|i| bc[i]));
                         }
-                        let below = rows.map(|r| LevelRow {
-                            along_x: row(&bx, r, lw),
-                            along_y: row(&by, r, lw),
-                            colors: &bc[r * lw..(r + 1) * lw],
-                        });
-                        let span = y * nw..(y + 1) * nw;
-                        reduce_row(
-                            filter,
-                            below,
-                            LevelRowMut {
-                                along_x: &mut nx[span.clone()],
-                                along_y: &mut ny[span.clone()],
-                                colors: &mut nc[span.clone()],
-                            },
-                        )
-                        .unwrap();
-                        reduce_max_row(rows.map(|r| row(&bm, r, lw)), &mut nm[span]).unwrap();
                     }
                     let k = nw * nh;
                     assert_eq!(&grid[hat..hat + k], &nx[..], "{w}×{h} {filter:?} along x");
