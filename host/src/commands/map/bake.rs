@@ -1,0 +1,304 @@
+//! `footprint map bake IN... --out FILE.fpmap` and `footprint map verify FILE`: a map, or a
+//! mosaic of tiles streamed row by row, baked with its whole pyramid into one file that every
+//! command memory-maps as `--dem` (`footprint_maps::baked`, docs/maps.md); and `map info` of
+//! a baked file.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use serde::Serialize;
+
+use super::{InfoArgs, ReadArgs};
+use crate::args::OutputFormat;
+use crate::map::{self, LoadOptions};
+use crate::report::write_atomic;
+use crate::view::{HeightFilterArg, MapArgs, TerrainArg};
+
+/// `footprint map bake`.
+#[derive(Args, Debug)]
+pub struct BakeArgs {
+    /// The height map (as for `render --dem`); several files, a folder of tiles or a GDAL .vrt
+    /// make a mosaic, baked as a stream (never whole in memory); without it, the built-in
+    /// terrain (--terrain, --seed, --terrain-size).
+    #[arg(value_name = "IN")]
+    pub input: Vec<PathBuf>,
+    /// The baked file to write (.fpmap).
+    #[arg(long, value_name = "FILE.fpmap")]
+    pub out: PathBuf,
+    /// How to read the input.
+    #[command(flatten)]
+    pub read: ReadArgs,
+    /// Colour map (RGB or palette PNG) of the same size as IN; without it, a tint from height.
+    #[arg(long, value_name = "COLOR.png", requires = "input")]
+    pub color: Option<PathBuf>,
+    /// How the pyramid's coarse voxels get their heights.
+    #[arg(long = "height-filter", value_enum, default_value_t = HeightFilterArg::Silhouette)]
+    pub height_filter: HeightFilterArg,
+    /// Which built-in terrain, without IN.
+    #[arg(long, value_enum, default_value_t = TerrainArg::Mountains, conflicts_with = "input")]
+    pub terrain: TerrainArg,
+    /// Seed of the built-in terrain.
+    #[arg(long, default_value_t = 1, conflicts_with = "input")]
+    pub seed: u64,
+    /// Side of the built-in terrain, voxels.
+    #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE, conflicts_with = "input")]
+    pub terrain_size: u32,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
+}
+
+/// `footprint map verify`.
+#[derive(Args, Debug)]
+pub struct VerifyArgs {
+    /// The baked map (.fpmap).
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
+}
+
+/// What `map bake` and `map verify` print, as JSON.
+#[derive(Serialize, Debug)]
+struct BakedJson {
+    file: String,
+    source: String,
+    width: u32,
+    height: u32,
+    levels: usize,
+    levels_verified: usize,
+    height_filter: &'static str,
+    bytes: u64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bake_ms: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cells_per_s: Option<f64>,
+}
+
+impl BakedJson {
+    fn new(file: &Path, opened: &map::baked::Opened, bytes: u64) -> Self {
+        let h = &opened.header;
+        Self {
+            file: file.display().to_string(),
+            source: opened.source.clone(),
+            width: h.width,
+            height: h.height,
+            levels: opened.levels,
+            levels_verified: opened.levels_verified,
+            height_filter: HeightFilterArg::from_core(h.filter).name(),
+            bytes,
+            bake_ms: None,
+            cells_per_s: None,
+        }
+    }
+}
+
+pub(super) fn bake(args: &BakeArgs) -> Result<()> {
+    if let Some(input) = args.input.iter().find(|p| map::baked::is_baked(p)) {
+        bail!("{}: already a baked map", crate::output::shown(input));
+    }
+    if map::mosaic::is_mosaic(&args.input) {
+        return bake_mosaic(args);
+    }
+    let map_args = MapArgs {
+        dem: args.input.clone(),
+        format: args.read.format,
+        color: args.color.clone(),
+        spacing: args.read.spacing,
+        height_scale: args.read.height_scale,
+        nodata: args.read.nodata,
+        vertical_unit: args.read.vertical_unit,
+        terrain: args.terrain,
+        seed: args.seed,
+        terrain_size: args.terrain_size,
+        height_filter: Some(args.height_filter),
+    };
+    let map = map_args.load()?;
+    let source = map.source.clone();
+    let start = Instant::now();
+    let pyramid = crate::pyramid::Pyramid::build(map, args.height_filter.into())
+        .with_context(|| format!("map {source}"))?;
+    let mut bytes = 0;
+    write_atomic(&args.out, |w| {
+        bytes = map::baked::write(&pyramid, &source, &mut std::io::BufWriter::new(w))?;
+        Ok(())
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+    let cells = pyramid.map().len() as f64;
+    // Read back: what was written is what a render will read (standard output cannot be).
+    let opened = if crate::output::is_stdout(&args.out) {
+        None
+    } else {
+        Some(map::baked::verify(&args.out)?)
+    };
+    let shown = crate::output::shown(&args.out);
+    let m = pyramid.map();
+    let mut json = match &opened {
+        Some(o) => BakedJson::new(&args.out, o, bytes),
+        None => BakedJson {
+            file: args.out.display().to_string(),
+            source: source.clone(),
+            width: m.width,
+            height: m.height,
+            levels: pyramid.len(),
+            levels_verified: 0,
+            height_filter: args.height_filter.name(),
+            bytes,
+            bake_ms: None,
+            cells_per_s: None,
+        },
+    };
+    json.bake_ms = Some(seconds * 1e3);
+    json.cells_per_s = Some(cells / seconds.max(1e-9));
+    if args.format.json {
+        crate::outln!("{}", serde_json::to_string(&json)?)?;
+        return Ok(());
+    }
+    crate::outln!(
+        "wrote {shown}: {}×{}, {} levels ({} filter), {}, baked in {:.0} ms ({:.0} M cells/s){}",
+        m.width,
+        m.height,
+        json.levels,
+        json.height_filter,
+        map::memory::show(bytes),
+        seconds * 1e3,
+        cells / seconds.max(1e-9) / 1e6,
+        if opened.is_some() {
+            ", every level verified"
+        } else {
+            ""
+        }
+    )?;
+    Ok(())
+}
+
+/// `map bake` of a mosaic: surveyed (every tile read once), then streamed into the file row by
+/// row ([`map::bake_stream`]), never whole in memory.
+fn bake_mosaic(args: &BakeArgs) -> Result<()> {
+    let opts = LoadOptions {
+        format: args.read.format,
+        color: args.color.as_deref(),
+        spacing_m: args.read.spacing,
+        height_scale_m: args.read.height_scale,
+        nodata: args.read.nodata,
+        vertical_unit: args.read.vertical_unit,
+        ..LoadOptions::default()
+    };
+    let start = Instant::now();
+    let mosaic = map::mosaic::Mosaic::survey(&args.input, &opts)?;
+    let surveyed = start.elapsed().as_secs_f64();
+    let name = &mosaic.source;
+    if let Some(sentinel) = &mosaic.sentinel {
+        crate::note!("warning: {}: {}", name, sentinel.warning());
+    }
+    if mosaic.tile_voids + mosaic.gap_cells > 0 {
+        crate::note!(
+            "note: {}: {} voids filled from their neighbours, {} cells between tiles set to the \
+             lowest height",
+            name,
+            mosaic.tile_voids,
+            mosaic.gap_cells
+        );
+    }
+    let out_what = format!("output {:?}", crate::output::shown(&args.out));
+    let mut sink = crate::output::Sink::create(&args.out)?;
+    if matches!(sink, crate::output::Sink::Through { .. }) {
+        bail!(
+            "{out_what}: a mosaic is baked into a regular file (it is written out of order), not \
+             a stream or a device"
+        );
+    }
+    let bytes =
+        map::bake_stream::bake_mosaic(&mosaic, args.height_filter.into(), sink.file(), &out_what)?;
+    sink.finish()?;
+    let seconds = start.elapsed().as_secs_f64();
+    let cells = mosaic.cells() as f64;
+    let opened = map::baked::verify(&args.out)?;
+    let mut json = BakedJson::new(&args.out, &opened, bytes);
+    json.bake_ms = Some(seconds * 1e3);
+    json.cells_per_s = Some(cells / seconds.max(1e-9));
+    if args.format.json {
+        crate::outln!("{}", serde_json::to_string(&json)?)?;
+        return Ok(());
+    }
+    crate::outln!(
+        "wrote {}: {}×{} from {} tiles, {} levels ({} filter), {}, baked in {:.0} ms ({:.0} ms \
+         surveying; {:.0} M cells/s), every level verified",
+        crate::output::shown(&args.out),
+        mosaic.width,
+        mosaic.height,
+        mosaic.tiles.len(),
+        json.levels,
+        json.height_filter,
+        map::memory::show(bytes),
+        seconds * 1e3,
+        surveyed * 1e3,
+        cells / seconds.max(1e-9) / 1e6
+    )?;
+    Ok(())
+}
+
+/// `map info` of a baked map: its header, and the levels checked on opening it.
+pub(super) fn info(args: &InfoArgs) -> Result<()> {
+    let (pyramid, opened) =
+        map::baked::open(&args.file, args.read.spacing, args.read.height_scale)?;
+    let bytes = std::fs::metadata(&args.file).map(|m| m.len()).unwrap_or(0);
+    let json = BakedJson::new(&args.file, &opened, bytes);
+    if args.format.json {
+        crate::outln!("{}", serde_json::to_string(&json)?)?;
+        return Ok(());
+    }
+    let m = pyramid.map();
+    let (lo, hi) = m.height_range();
+    let metres = |u: u16| m.base_m + f64::from(u) * m.height_scale_m;
+    crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
+    crate::outln!(
+        "format    baked map (.fpmap, layout {})",
+        footprint_core::terrain::baked::VERSION
+    )?;
+    crate::outln!("source    {}", crate::output::escape_controls(&json.source))?;
+    crate::outln!(
+        "size      {} × {} ({} cells), {}",
+        m.width,
+        m.height,
+        m.len(),
+        map::memory::show(bytes)
+    )?;
+    crate::outln!("spacing   {:.3} m", m.spacing_m)?;
+    crate::outln!(
+        "heights   {:.2} to {:.2} m ({} m per height unit)",
+        metres(lo),
+        metres(hi),
+        m.height_scale_m
+    )?;
+    crate::outln!(
+        "pyramid   {} levels, {} filter; {} checked on opening (map verify checks all)",
+        json.levels,
+        json.height_filter,
+        json.levels_verified
+    )?;
+    Ok(())
+}
+
+pub(super) fn verify(args: &VerifyArgs) -> Result<()> {
+    let opened = map::baked::verify(&args.file)?;
+    let bytes = std::fs::metadata(&args.file).map(|m| m.len()).unwrap_or(0);
+    let json = BakedJson::new(&args.file, &opened, bytes);
+    if args.format.json {
+        crate::outln!("{}", serde_json::to_string(&json)?)?;
+        return Ok(());
+    }
+    crate::outln!(
+        "{}: all {} levels match their checksums ({}×{}, {} filter, from {})",
+        crate::output::shown(&args.file),
+        json.levels,
+        json.width,
+        json.height,
+        json.height_filter,
+        crate::output::escape_controls(&json.source)
+    )?;
+    Ok(())
+}

@@ -1,0 +1,306 @@
+//! `footprint map info FILE` and `footprint map convert IN OUT`: check a height map before
+//! rendering it, and convert between formats; `map bake` and `map verify` are in [`bake`].
+
+mod bake;
+
+pub use bake::{BakeArgs, VerifyArgs};
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use clap::{Args, Subcommand};
+use serde::Serialize;
+
+use crate::args::OutputFormat;
+use crate::map::{self, Format, LoadOptions, Loaded};
+use crate::report::write_atomic;
+
+/// `footprint map`.
+#[derive(Args, Debug)]
+pub struct MapCommandArgs {
+    /// What to do.
+    #[command(subcommand)]
+    pub action: MapAction,
+}
+
+/// The `map` subcommands.
+#[derive(Subcommand, Debug)]
+pub enum MapAction {
+    /// Print a height map's format, size, spacing, height range, voids filled and pyramid levels.
+    Info(InfoArgs),
+    /// Convert a height map to another format: .asc, .png (16-bit grey height units), .hgt
+    /// (1201² or 3601² maps) or .tif (float32 metres).
+    Convert(ConvertArgs),
+    /// Bake a map and its whole pyramid into one file (.fpmap) that every command reads as
+    /// --dem without a rebuild: memory-mapped, so a frame reads only the pages it touches.
+    Bake(BakeArgs),
+    /// Check every level of a baked map (.fpmap) against its checksum (opening one checks
+    /// the header and the levels up to 256 MiB).
+    Verify(VerifyArgs),
+}
+
+/// How to read the input map (as for `render --dem`).
+#[derive(Args, Debug, Clone)]
+pub struct ReadArgs {
+    /// The input's format, overriding its extension.
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+    /// Metres per voxel [default: from the file; 30 for PNG].
+    #[arg(long, allow_hyphen_values = true)]
+    pub spacing: Option<f64>,
+    /// Metres per height unit [default: 0.1 for PNG; chosen to fit the heights for other
+    /// formats].
+    #[arg(long = "height-scale", allow_hyphen_values = true)]
+    pub height_scale: Option<f64>,
+    /// A value to read as a void (no data), for a file that does not declare its own.
+    #[arg(long, allow_hyphen_values = true)]
+    pub nodata: Option<f64>,
+    /// The unit of the heights, overriding the file's [default: the file's, else metres].
+    #[arg(long = "vertical-unit", value_enum)]
+    pub vertical_unit: Option<map::VerticalUnit>,
+}
+
+impl ReadArgs {
+    fn load(&self, path: &Path) -> Result<Loaded> {
+        Ok(map::load(
+            path,
+            &LoadOptions {
+                format: self.format,
+                color: None,
+                spacing_m: self.spacing,
+                height_scale_m: self.height_scale,
+                nodata: self.nodata,
+                vertical_unit: self.vertical_unit,
+                ..LoadOptions::default()
+            },
+        )
+        .inspect(|loaded| {
+            if let Some(sentinel) = &loaded.sentinel {
+                crate::note!("warning: {}: {}", path.display(), sentinel.warning());
+            }
+        })?)
+    }
+}
+
+/// `footprint map info`.
+#[derive(Args, Debug)]
+pub struct InfoArgs {
+    /// The height map: .png, .hgt, .asc, .tif or .tiff (else --format, else its first bytes);
+    /// `-` reads standard input.
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// How to read it.
+    #[command(flatten)]
+    pub read: ReadArgs,
+    #[command(flatten)]
+    /// `--json`.
+    pub format: OutputFormat,
+}
+
+/// `footprint map convert`.
+#[derive(Args, Debug)]
+pub struct ConvertArgs {
+    /// The input height map; `-` reads standard input.
+    #[arg(value_name = "IN")]
+    pub input: PathBuf,
+    /// The output file; its format comes from its extension (see --to). `-` is standard
+    /// output (give --to).
+    #[arg(value_name = "OUT")]
+    pub output: PathBuf,
+    /// How to read the input.
+    #[command(flatten)]
+    pub read: ReadArgs,
+    /// The output's format, overriding its extension.
+    #[arg(long, value_enum)]
+    pub to: Option<Format>,
+}
+
+/// What `map info` prints, as JSON.
+#[derive(Serialize, Debug)]
+struct InfoJson {
+    file: String,
+    format: String,
+    detail: String,
+    width: u32,
+    height: u32,
+    spacing_m: f64,
+    spacing_note: String,
+    min_m: f64,
+    max_m: f64,
+    base_m: f64,
+    height_scale_m: f64,
+    height_note: String,
+    vertical_unit: &'static str,
+    vertical_note: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sentinel: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    relief_hint: Option<String>,
+    min_unit: u16,
+    max_unit: u16,
+    voids_filled: u64,
+    pyramid_levels: usize,
+}
+
+/// The number of pyramid levels of a `width`×`height` map (level 0 down to 1×1), as the
+/// core's pyramid builder makes them.
+pub fn pyramid_levels(width: u32, height: u32) -> usize {
+    footprint_core::terrain::pyramid::levels(width, height)
+}
+
+/// Runs `footprint map …`.
+pub fn map(args: &MapCommandArgs) -> Result<()> {
+    match &args.action {
+        MapAction::Info(a) => info(a),
+        MapAction::Convert(a) => convert(a),
+        MapAction::Bake(a) => bake::bake(a),
+        MapAction::Verify(a) => bake::verify(a),
+    }
+}
+
+fn info(args: &InfoArgs) -> Result<()> {
+    if map::baked::is_baked(&args.file) {
+        return bake::info(args);
+    }
+    let loaded = args.read.load(&args.file)?;
+    let m = &loaded.map;
+    let (lo, hi) = m.height_range();
+    let levels = pyramid_levels(m.width, m.height);
+    let json = InfoJson {
+        file: args.file.display().to_string(),
+        format: loaded.format.to_string(),
+        detail: loaded.detail.clone(),
+        width: m.width,
+        height: m.height,
+        spacing_m: m.spacing_m,
+        spacing_note: loaded.spacing_note.clone(),
+        min_m: loaded.range_m.0,
+        max_m: loaded.range_m.1,
+        base_m: m.base_m,
+        height_scale_m: m.height_scale_m,
+        height_note: loaded.height_note.clone(),
+        vertical_unit: loaded.vertical_unit.name(),
+        vertical_note: loaded.vertical_note.clone(),
+        sentinel: loaded.sentinel.as_ref().map(|s| s.warning()),
+        relief_hint: map::relief_hint(m, loaded.format, loaded.range_m),
+        min_unit: lo,
+        max_unit: hi,
+        voids_filled: loaded.voids_filled,
+        pyramid_levels: levels,
+    };
+    if args.format.json {
+        crate::outln!("{}", serde_json::to_string(&json)?)?;
+        return Ok(());
+    }
+    crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
+    crate::outln!("format    {} ({})", json.format, json.detail)?;
+    crate::outln!("size      {} × {} ({} cells)", m.width, m.height, m.len())?;
+    crate::outln!("spacing   {:.3} m ({})", m.spacing_m, json.spacing_note)?;
+    crate::outln!(
+        "heights   {:.2} to {:.2} m (range {:.2} m)",
+        json.min_m,
+        json.max_m,
+        json.max_m - json.min_m
+    )?;
+    crate::outln!(
+        "stored    height units of {} m above {} m: {lo} to {hi}",
+        m.height_scale_m,
+        m.base_m
+    )?;
+    crate::outln!(
+        "scale     {} m per height unit ({})",
+        m.height_scale_m,
+        json.height_note
+    )?;
+    crate::outln!("vertical  {} ({})", json.vertical_unit, json.vertical_note)?;
+    if let Some(warning) = &json.sentinel {
+        crate::outln!("warning   {warning}")?;
+    }
+    if let Some(hint) = &json.relief_hint {
+        crate::outln!("hint      {hint}")?;
+    }
+    crate::outln!(
+        "voids     {} filled from their neighbours",
+        loaded.voids_filled
+    )?;
+    crate::outln!(
+        "pyramid   {levels} levels ({}×{} down to 1×1)",
+        m.width,
+        m.height
+    )?;
+    Ok(())
+}
+
+fn convert(args: &ConvertArgs) -> Result<()> {
+    // As `write_atomic` names the output, so that its errors carry the name once.
+    let out_what = format!("output {:?}", crate::output::shown(&args.output));
+    // The output format first: a wrong name fails before the input is read.
+    let Some(to) = args.to.or_else(|| Format::from_path(&args.output)) else {
+        let ext = args.output.extension().map_or_else(
+            || "no extension".to_owned(),
+            |e| format!("extension .{}", e.to_string_lossy()),
+        );
+        anyhow::bail!(
+            "{out_what}: unknown map format ({}): name it .png, .hgt, .asc, .tif or .tiff, or \
+             give --to png|hgt|asc|tiff",
+            crate::output::escape_controls(&ext)
+        );
+    };
+    let loaded = args.read.load(&args.input)?;
+    let m = &loaded.map;
+    map::format::check_writable(m, to, &out_what)?;
+    write_atomic(&args.output, |w| {
+        map::format::write(m, to, w, &out_what)?;
+        Ok(())
+    })?;
+    let mut summary = format!(
+        "wrote {}: {to}, {}×{}, heights {:.2} to {:.2} m, spacing {:.3} m, {} voids filled",
+        crate::output::shown(&args.output),
+        m.width,
+        m.height,
+        loaded.range_m.0,
+        loaded.range_m.1,
+        m.spacing_m,
+        loaded.voids_filled
+    );
+    match to {
+        Format::Png => summary.push_str(&format!(
+            "\nthe PNG holds height units: render it with --spacing {} --height-scale {} (unit 0 \
+             is {} m above the datum)",
+            m.spacing_m, m.height_scale_m, m.base_m
+        )),
+        Format::Hgt => summary.push_str(&format!(
+            "\na .hgt tile's spacing comes from its name (e.g. N46E008.hgt); else give --spacing {}",
+            m.spacing_m
+        )),
+        Format::Asc | Format::Tiff | Format::Bil => {}
+    }
+    // Written to standard output, the map is followed by nothing: the summary goes to stderr
+    // (`crate::console::stdout_is_output`).
+    crate::outln!("{summary}")?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pyramid_levels_match_the_pyramid() {
+        for (w, h) in [(1, 1), (2, 2), (64, 64), (65, 17), (1201, 1201)] {
+            let map = map::Map {
+                width: w,
+                height: h,
+                heights: vec![0; (w * h) as usize].into(),
+                colors: vec![footprint_core::Rgb::default(); (w * h) as usize].into(),
+                spacing_m: 30.0,
+                height_scale_m: 0.1,
+                base_m: 0.0,
+                source: String::new(),
+                known_range: None,
+            };
+            let p = crate::pyramid::Pyramid::build(map, Default::default()).unwrap();
+            assert_eq!(pyramid_levels(w, h), p.len(), "{w}×{h}");
+        }
+    }
+}
