@@ -297,3 +297,54 @@ fn a_vrt_that_disagrees_with_its_tiles_is_refused() {
         .to_string();
     assert!(e.contains("t10.tif") && e.contains("DstRect"), "{e}");
 }
+
+/// Geographic tiles: two SRTM 3″ tiles side by side (N46E008, N46E009) are placed by their
+/// names, share their edge column (the east column of the first is the west column of the
+/// second), and read as one map 2 × 1200 + 1 cells wide, equal to both tiles where each lies.
+#[test]
+fn srtm_tiles_are_placed_by_their_names_and_share_their_edge() {
+    const N: usize = 1201;
+    let dir = tempfile::tempdir().unwrap();
+    // A smooth terrain over the two tiles' shared grid, the shared column the same in both.
+    let h = |x: usize, y: usize| {
+        (1000.0 + 300.0 * ((x as f64) / 150.0).sin() + (y as f64) * 0.5) as i16
+    };
+    let write = |name: &str, x0: usize| {
+        let mut bytes = Vec::with_capacity(2 * N * N);
+        for y in 0..N {
+            for x in 0..N {
+                bytes.extend_from_slice(&h(x0 + x, y).to_be_bytes());
+            }
+        }
+        std::fs::write(dir.path().join(name), bytes).unwrap();
+    };
+    write("N46E008.hgt", 0);
+    write("N46E009.hgt", N - 1);
+    let paths = vec![
+        dir.path().join("N46E009.hgt"),
+        dir.path().join("N46E008.hgt"),
+    ];
+    let loaded = load_mosaic(&paths, &LoadOptions::default()).unwrap();
+    let m = &loaded.map;
+    assert_eq!((m.width, m.height), (2 * N as u32 - 1, N as u32));
+    let metres = |x: usize, y: usize| {
+        m.base_m + f64::from(m.heights[y * m.width as usize + x]) * m.height_scale_m
+    };
+    for (x, y) in [
+        (0, 0),
+        (N - 1, 600),
+        (N, 17),
+        (2 * N - 2, N - 1),
+        (1700, 900),
+    ] {
+        let want = f64::from(h(x, y));
+        assert!(
+            (metres(x, y) - want).abs() <= m.height_scale_m,
+            "({x}, {y}): {} against {want}",
+            metres(x, y)
+        );
+    }
+    // The spacing is the tiles' (3″ at 46.5°N, the geometric mean of the cell's sides).
+    let single = load(&dir.path().join("N46E008.hgt"), &LoadOptions::default()).unwrap();
+    assert!((m.spacing_m - single.map.spacing_m).abs() < 1e-9);
+}
