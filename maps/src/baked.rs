@@ -1,12 +1,15 @@
 //! Baked map files (`.fpmap`): a map and its whole pyramid, written once by `footprint map
 //! bake` and memory-mapped by every command after, so that a frame reads only the pages its
 //! rays touch and nothing is rebuilt. The layout is the core's
-//! (`footprint_core::terrain::baked`); this module writes it, checks its checksums and maps it.
+//! (`footprint_core::terrain::baked`); this module opens a file, checks its checksums and
+//! maps it. The writer is the scenes crate's (`footprint_scenes::baked::write`, re-exported
+//! here, which the firmware's build script shares); a mosaic is written as a stream by
+//! [`crate::bake_stream`].
 //!
 //! Each level has a CRC-32 in the header, and the header has one of its own. Opening a file
 //! checks the header, the file's length and the level checksums from the coarsest level down
 //! while they add up to at most [`VERIFY_AT_OPEN`] bytes (every level of a map up to about
-//! 5,000²); [`verify`] checks every level (`footprint map verify`), and `bake` checks what it
+//! 5,700²); [`verify`] checks every level (`footprint map verify`), and `bake` checks what it
 //! wrote by reading it back.
 
 use std::fs::File;
@@ -27,7 +30,7 @@ use super::{describe, MapError};
 pub const EXTENSION: &str = "fpmap";
 
 /// The most bytes of level data [`open`] checks against their checksums, coarsest level first:
-/// enough for every level of a map up to about 5,000², a few tenths of a second at most, and
+/// enough for every level of a map up to about 5,700², a few tenths of a second at most, and
 /// few enough pages of a large map that opening it does not read it all.
 pub const VERIFY_AT_OPEN: u64 = 256 << 20;
 
