@@ -76,6 +76,9 @@ struct BakedJson {
     bake_ms: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     cells_per_s: Option<f64>,
+    /// Of `bake_ms`, the pyramid's build (the rest is writing the file); in-memory bakes only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pyramid_ms: Option<f64>,
 }
 
 impl BakedJson {
@@ -92,6 +95,7 @@ impl BakedJson {
             bytes,
             bake_ms: None,
             cells_per_s: None,
+            pyramid_ms: None,
         }
     }
 }
@@ -121,6 +125,7 @@ pub(super) fn bake(args: &BakeArgs) -> Result<()> {
     let start = Instant::now();
     let pyramid = crate::pyramid::Pyramid::build(map, args.height_filter.into())
         .with_context(|| format!("map {source}"))?;
+    let pyramid_ms = start.elapsed().as_secs_f64() * 1e3;
     let mut bytes = 0;
     write_atomic(&args.out, |w| {
         bytes = map::baked::write(&pyramid, &source, &mut std::io::BufWriter::new(w))?;
@@ -149,10 +154,12 @@ pub(super) fn bake(args: &BakeArgs) -> Result<()> {
             bytes,
             bake_ms: None,
             cells_per_s: None,
+            pyramid_ms: None,
         },
     };
     json.bake_ms = Some(seconds * 1e3);
     json.cells_per_s = Some(cells / seconds.max(1e-9));
+    json.pyramid_ms = Some(pyramid_ms);
     if args.format.json {
         crate::outln!("{}", serde_json::to_string(&json)?)?;
         return Ok(());
