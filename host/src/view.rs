@@ -265,11 +265,17 @@ impl MapArgs {
                 dem.display()
             );
         }
-        if self.format.is_some() {
-            bail!(
-                "--format: {} is a baked map (.fpmap), read as one",
-                dem.display()
-            );
+        for (option, given) in [
+            ("--format", self.format.is_some()),
+            ("--nodata", self.nodata.is_some()),
+            ("--vertical-unit", self.vertical_unit.is_some()),
+        ] {
+            if given {
+                bail!(
+                    "{option}: {} is a baked map (.fpmap): it applies when a map is baked",
+                    dem.display()
+                );
+            }
         }
         let (pyramid, _) = map::baked::open(dem, self.spacing, self.height_scale)?;
         if let Some(asked) = self.height_filter {

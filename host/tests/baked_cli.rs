@@ -108,6 +108,17 @@ fn bad_baked_maps_are_one_line_errors() {
         &["--color", &fp],
         "--color",
     );
+    for (option, value) in [
+        ("--nodata", "-9999"),
+        ("--vertical-unit", "foot"),
+        ("--format", "asc"),
+    ] {
+        fails_writing(
+            &["render", "--size", "8x8", "--dem", &fp],
+            &[option, value],
+            option,
+        );
+    }
     // Baking a baked map, or into a folder that does not exist.
     let args = [
         "map",
