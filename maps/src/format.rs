@@ -45,6 +45,19 @@ impl Format {
 /// The error for a map whose format neither `--format`, its extension nor (when `empty` is
 /// given: its bytes were read) its first bytes tell.
 fn unknown(path: &Path, what: &str, empty: Option<bool>) -> MapError {
+    // A BIL's header side file given for the map: name the map it describes.
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("hdr"))
+    {
+        return MapError::Invalid {
+            what: what.to_owned(),
+            detail: format!(
+                "this is an ESRI BIL's header side file: give its map, {}",
+                path.with_extension("bil").display()
+            ),
+        };
+    }
     let ext = path
         .extension()
         .map(|e| format!("extension .{}", e.to_string_lossy()))

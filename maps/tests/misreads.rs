@@ -96,6 +96,13 @@ fn a_little_endian_bil_is_read_with_its_header() {
     assert!(l.sentinel.is_none());
     assert_eq!(l.vertical_unit, VerticalUnit::Metre);
     assert!(l.spacing_note.contains("degrees"), "{}", l.spacing_note);
+
+    // The header given for the map names the map it describes.
+    let e = refused(&dir.path().join("N46E008.hdr"), &LoadOptions::default());
+    assert!(
+        e.contains("header side file") && e.contains("N46E008.bil"),
+        "{e}"
+    );
 }
 
 #[test]
