@@ -323,11 +323,14 @@ impl MapArgs {
                     crate::note!("warning: {}: {}", dem.display(), sentinel.warning());
                 }
                 if loaded.voids_filled > 0 {
-                    crate::note!(
-                        "note: {}: {} voids filled from their neighbours",
-                        dem.display(),
-                        loaded.voids_filled
-                    );
+                    // A mosaic's count holds its gaps too (cells no tile covers, set to the
+                    // lowest height: `footprint_maps::mosaic`).
+                    let how = if map::mosaic::is_mosaic(dems) {
+                        "voids filled, or cells between tiles set to the lowest height"
+                    } else {
+                        "voids filled from their neighbours"
+                    };
+                    crate::note!("note: {}: {} {how}", dem.display(), loaded.voids_filled);
                 }
                 if let Some(hint) = map::relief_hint(&loaded.map, loaded.format, loaded.range_m) {
                     crate::note!("hint: {}: {hint}", dem.display());
