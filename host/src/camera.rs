@@ -117,6 +117,8 @@ pub enum Why {
     PapersDistances,
     /// [`view::place_on_map`] found no view mostly on the map.
     MapTooSmall,
+    /// `--geometry paper` asked for the paper's view on a map that would be placed otherwise.
+    GeometryPaper,
     /// The user's camera (`render`, `inspect`).
     UsersCamera,
 }
@@ -138,6 +140,10 @@ pub fn mirrored_warning(view: &str, map: &Map, placed: &view::Placed, why: Why) 
         ),
         Why::MapTooSmall => format!(
             "the {size} map is too small for this view even with the first hit {first} away"
+        ),
+        Why::GeometryPaper => format!(
+            "--geometry paper keeps the paper's view, its first hit {first} away beyond the \
+             {size} map, as the paper's own terrain is mirrored to infinity (Sect. 7)"
         ),
         Why::UsersCamera => format!(
             "the first hit is {first} away and the {size} map spans {} × {}; aim over the map \

@@ -454,6 +454,36 @@ fn the_papers_geometry_over_the_mirrored_map_is_an_option() {
         let json: Value = serde_json::from_slice(&o.stdout).unwrap();
         json["cases"][0].clone()
     };
+    // fly and bench place their views the same way: the start view is moved onto the map,
+    // or kept where the paper puts it, and say so.
+    for command in [
+        &["fly", "--frames", "2", "--modes", "ps", "--no-reference"][..],
+        &["bench", "--modes", "ps", "--repeats", "1"][..],
+    ] {
+        for (geometry, says) in [
+            (None, "eye moved"),
+            (Some("paper"), "--geometry paper keeps"),
+        ] {
+            let mut args = command.to_vec();
+            args.extend([
+                "--terrain",
+                "eroded",
+                "--terrain-size",
+                "128",
+                "--size",
+                "32x32",
+            ]);
+            if let Some(g) = geometry {
+                args.extend(["--geometry", g]);
+            }
+            let o = footprint(&args);
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert!(
+                o.status.success() && stderr.contains(says),
+                "{args:?}: {stderr}"
+            );
+        }
+    }
     let on_map = table(&[]);
     assert_eq!(on_map["view"]["placement"], "on-map");
     assert_eq!(on_map["magnified"], true, "{on_map}");

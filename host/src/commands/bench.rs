@@ -9,7 +9,7 @@ use clap::Args;
 use crate::args::{BenchModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::bench;
 use crate::render::Mode;
-use crate::view::{MapArgs, OnOff};
+use crate::view::{GeometryArg, MapArgs, OnOff};
 
 /// `footprint bench`.
 #[derive(Args, Debug)]
@@ -30,6 +30,11 @@ pub struct BenchArgs {
     /// Multiresolution traversal.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
+    /// Where the paper's views are placed: paper (its geometry, over the mirrored copies of a
+    /// map too small to hold it) or on-map [default: paper on the built-in terrain, on-map on
+    /// a map file].
+    #[arg(long, value_enum)]
+    pub geometry: Option<GeometryArg>,
     /// Also time each paper case in the exact projection at these rolls (degrees, comma
     /// separated, e.g. 0,15,45), each against the case in the paper's projection at roll 0
     /// (×unrolled) and, when the list has 0, against the exact projection at roll 0 (×level:
@@ -72,15 +77,27 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         args.lod == OnOff::On,
         &args.roll,
         args.repeats as usize,
+        args.geometry.map(Into::into),
         || bar.inc(1),
     )?;
     bar.finish_and_clear();
     // The paper's views the bench timed: say where they are placed and what they show.
     for pitch in crate::experiment::paper::PAPER_PITCHES {
         let lod = args.lod == OnOff::On;
-        crate::experiment::paper::paper_view(map, &pyramid, pitch, args.size.size, lod)?
-            .placement
-            .print();
+        let placement = args.geometry.map_or_else(
+            || footprint_scenes::view::Placement::for_map(map),
+            Into::into,
+        );
+        crate::experiment::paper::paper_view_placed(
+            map,
+            &pyramid,
+            pitch,
+            args.size.size,
+            lod,
+            placement,
+        )?
+        .placement
+        .print();
     }
     if args.format.json {
         crate::outln!(

@@ -15,7 +15,7 @@ use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
-use crate::view::{MapArgs, OnOff, ProjectionArg, SurfaceArg};
+use crate::view::{GeometryArg, MapArgs, OnOff, ProjectionArg, SurfaceArg};
 
 /// The modes of `--animation`, left to right.
 const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];
@@ -75,6 +75,11 @@ pub struct FlyArgs {
     /// paper's), or continuous where a pixel is narrower than a voxel (bilinear).
     #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
     pub surface: SurfaceArg,
+    /// Where the start view (the paper's pitch-5° view) is placed: paper (its geometry, over
+    /// the mirrored copies of a map too small to hold it) or on-map [default: paper on the
+    /// built-in terrain, on-map on a map file].
+    #[arg(long, value_enum)]
+    pub geometry: Option<GeometryArg>,
     /// Columns the modes walk per pixel, box-filtered to one (1–64; the paper's is 1): with
     /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
     #[arg(long, default_value_t = 1, value_name = "K")]
@@ -163,6 +168,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         reference: !args.no_reference,
         causes: args.causes,
         reference_columns: args.reference_columns,
+        placement: args.geometry.map(Into::into),
     };
     spec.check()?;
     spec.check_memory(if args.animation { PANELS.len() } else { 0 })?;
@@ -227,9 +233,14 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     };
     bar.finish_and_clear();
     // The flight starts from the paper's pitch-5° view: say where it is placed.
-    crate::experiment::paper::paper_view(map, &pyramid, 5.0, spec.size, spec.lod)?
+    let placement = spec
         .placement
-        .print();
+        .unwrap_or_else(|| footprint_scenes::view::Placement::for_map(map));
+    crate::experiment::paper::paper_view_placed(
+        map, &pyramid, 5.0, spec.size, spec.lod, placement,
+    )?
+    .placement
+    .print();
     if let Some(folder) = folder {
         for m in &result.modes {
             let path = folder.file(&cut_name(m.mode))?;

@@ -11,11 +11,12 @@ use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection}
 use footprint_core::terrain::cost::NoCost;
 use serde::Serialize;
 
-use super::paper::{paper_camera, PAPER_PITCHES};
+use super::paper::{paper_camera_placed, PAPER_PITCHES};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{count, render_parallel, render_with, Mode, Tables};
 use crate::view::Size;
+use footprint_scenes::view::Placement;
 
 /// One mode's timing in one view.
 #[derive(Clone, Debug, Serialize)]
@@ -100,6 +101,7 @@ pub fn run(
     lod: bool,
     rolls: &[f64],
     repeats: usize,
+    placement: Option<Placement>,
     mut progress: impl FnMut(),
 ) -> Result<Vec<CaseTime>> {
     let paper = Options {
@@ -115,7 +117,7 @@ pub fn run(
     // paper projection's and, when `rolls` has 0, the exact projection's)
     let mut views = Vec::new();
     for pitch in PAPER_PITCHES {
-        let camera = paper_camera(map, pyramid, pitch, size, lod)?;
+        let camera = paper_camera_placed(map, pyramid, pitch, size, lod, placement)?;
         let rolled = rolls
             .iter()
             .map(|&roll_deg| {

@@ -42,6 +42,20 @@ pub fn paper_camera(
     Ok(placed_camera(map, pyramid, pitch, size, lod, Placement::for_map(map))?.0)
 }
 
+/// [`paper_camera`] with the placement chosen by the caller (`--geometry`), or the map's own
+/// ([`Placement::for_map`]) for `None`.
+pub fn paper_camera_placed(
+    map: &Map,
+    pyramid: &Pyramid,
+    pitch: f64,
+    size: Size,
+    lod: bool,
+    placement: Option<Placement>,
+) -> Result<Camera> {
+    let placement = placement.unwrap_or_else(|| Placement::for_map(map));
+    Ok(placed_camera(map, pyramid, pitch, size, lod, placement)?.0)
+}
+
 /// How one of the paper's views was placed on a map, and how much of it is the map.
 #[derive(Clone, Debug, Serialize)]
 pub struct ViewPlacement {
@@ -127,9 +141,10 @@ pub fn paper_view_placed(
         }
     };
     let name = format!("the view at pitch {pitch}°");
-    let why = match placement {
-        Placement::Paper => Why::PapersDistances,
-        Placement::OnMap => Why::MapTooSmall,
+    let why = match (placement, Placement::for_map(map)) {
+        (Placement::Paper, Placement::Paper) => Why::PapersDistances,
+        (Placement::Paper, Placement::OnMap) => Why::GeometryPaper,
+        (Placement::OnMap, _) => Why::MapTooSmall,
     };
     let p = camera.params();
     Ok(PaperView {

@@ -23,13 +23,14 @@ pub use excess::{large_changes, Excess, FLICKER_BINS};
 pub use mode::{FlyMode, ParseFlyModeError};
 
 use crate::experiment::causes::{classify, ClassFlicker, CLASSES};
-use crate::experiment::paper::paper_camera;
+use crate::experiment::paper::paper_camera_placed;
 use crate::experiment::path::FlightPath;
 use crate::experiment::reference::{box_columns, rmse, supersampled, REFERENCE_COLUMNS};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column, Mode, Rate, Tables};
 use crate::view::{Size, SurfaceArg};
+use footprint_scenes::view::Placement;
 
 /// What to fly.
 #[derive(Clone, Debug)]
@@ -72,6 +73,9 @@ pub struct FlySpec {
     /// Columns per pixel of the reference flight (1–64; the ground truth's is
     /// [`REFERENCE_COLUMNS`]).
     pub reference_columns: u32,
+    /// Where the start view (the paper's pitch-5° view) is placed (`--geometry`); `None`: the
+    /// map's own rule ([`Placement::for_map`]).
+    pub placement: Option<Placement>,
 }
 
 impl FlySpec {
@@ -108,6 +112,7 @@ impl FlySpec {
             reference: true,
             reference_columns: REFERENCE_COLUMNS,
             causes: false,
+            placement: None,
         }
     }
 
@@ -405,7 +410,8 @@ pub fn run_with_frames(
     mut on_frame: impl FnMut(usize, &[Vec<Rgb>]) -> Result<()>,
 ) -> Result<Fly> {
     spec.check()?;
-    let start = *paper_camera(map, pyramid, 5.0, spec.size, spec.lod)?.params();
+    let start =
+        *paper_camera_placed(map, pyramid, 5.0, spec.size, spec.lod, spec.placement)?.params();
     let (w, h) = (start.width as usize, start.height as usize);
     let column = spec.column.unwrap_or(w / 2);
     if column >= w {
