@@ -3,7 +3,9 @@
 //! terrain in one file; refusals in one line with exit code 2 and no output left.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+mod common;
+use common::footprint;
 
 /// Tile sides (odd, so the pyramid's odd edges are crossed), metres per cell, the corner.
 const TW: u32 = 41;
@@ -11,13 +13,6 @@ const TH: u32 = 33;
 const CELL: f64 = 10.0;
 const WEST: f64 = 300_000.0;
 const SOUTH: f64 = 5_000_000.0;
-
-fn footprint(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_footprint"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
 
 fn s(p: &Path) -> String {
     p.to_str().unwrap().to_owned()

@@ -15,7 +15,7 @@
 use std::fs::File;
 use std::io::{self, Seek, SeekFrom, Write};
 
-use footprint_core::terrain::baked::{header_checksum_range, Header, Layout, HEADER_LEN};
+use footprint_core::terrain::baked::{Header, Layout};
 use footprint_core::terrain::pyramid::{self, HeightFilter, LevelRow, LevelRowMut};
 use footprint_core::terrain::{Scale, MAX_LEVELS};
 use footprint_core::Rgb;
@@ -396,11 +396,7 @@ pub fn bake(
         max_height: hi,
         checksums,
     };
-    let mut head = [0u8; HEADER_LEN];
-    header.encode(&plan.source, &mut head);
-    let (covered, at) = header_checksum_range();
-    let sum = crate::baked::crc([&head[covered]]);
-    head[at..at + 4].copy_from_slice(&sum.to_le_bytes());
+    let head = footprint_scenes::baked::sealed(&header, &plan.source);
     file.seek(SeekFrom::Start(0)).map_err(write_err)?;
     file.write_all(&head).map_err(write_err)?;
     file.flush().map_err(write_err)?;

@@ -63,12 +63,7 @@ pub fn write(pyramid: &Pyramid, source: &str, out: &mut dyn Write) -> io::Result
         max_height,
         checksums,
     };
-    let mut head = [0u8; HEADER_LEN];
-    header.encode(source, &mut head);
-    let (covered, at) = header_checksum_range();
-    let sum = crc([&head[covered]]);
-    head[at..at + 4].copy_from_slice(&sum.to_le_bytes());
-    out.write_all(&head)?;
+    out.write_all(&sealed(&header, source))?;
     let mut written = HEADER_LEN;
     let zeros = [0u8; SECTION_ALIGN];
     for (section, start) in sections.iter().zip(starts) {
@@ -78,6 +73,18 @@ pub fn write(pyramid: &Pyramid, source: &str, out: &mut dyn Write) -> io::Result
     }
     out.write_all(&zeros[..layout.len() - written])?;
     Ok(layout.len() as u64)
+}
+
+/// `header` with `source` as the file's first [`HEADER_LEN`] bytes, its own CRC-32 in its last
+/// four ([`header_checksum_range`]): what both writers, this one and the maps crate's streaming
+/// baker, put at the start of a file.
+pub fn sealed(header: &Header, source: &str) -> [u8; HEADER_LEN] {
+    let mut head = [0u8; HEADER_LEN];
+    header.encode(source, &mut head);
+    let (covered, at) = header_checksum_range();
+    let sum = crc([&head[covered]]);
+    head[at..at + 4].copy_from_slice(&sum.to_le_bytes());
+    head
 }
 
 /// The CRC-32 (IEEE) of some byte runs, one after the other.

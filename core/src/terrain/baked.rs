@@ -24,7 +24,7 @@ use core::ops::Range;
 
 use crate::color::Rgb;
 use crate::error::Error;
-use crate::terrain::map::{next_size, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
+use crate::terrain::map::{cells, next_size, Level, Scale, Terrain, MAX_LEVELS};
 use crate::terrain::pyramid::{self, HeightFilter};
 
 /// The first 8 bytes of every baked map: a name and the bytes that text-mode transfers and
@@ -103,17 +103,10 @@ fn small(n: usize) -> u32 {
 impl Layout {
     /// The layout of a `width × height` map and its pyramid.
     ///
-    /// Errors: a side of 0 or over [`MAX_SIDE`], or a file too large for the address space
+    /// Errors: a side of 0 or over [`MAX_SIDE`](crate::terrain::MAX_SIDE), or a file too large for the address space
     /// (65,536² on a 32-bit target).
     pub fn new(width: u32, height: u32) -> Result<Self, Error> {
-        let refused = Error::MapSize {
-            width,
-            height,
-            max: MAX_SIDE,
-        };
-        if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
-            return Err(refused);
-        }
+        let n = cells(width, height)?;
         // Each section starts where the one before it ends, aligned.
         let sum = |sizes: [usize; 4]| -> Option<[usize; 5]> {
             let mut at = [HEADER_LEN; 5];
@@ -124,11 +117,6 @@ impl Layout {
             }
             Some(at)
         };
-        let n = (width as usize)
-            .checked_mul(height as usize)
-            .ok_or(Error::Baked {
-                what: "the map is too large for this target's address space",
-            })?;
         let p = pyramid::cells(width, height);
         let at = (|| {
             sum([
@@ -455,6 +443,7 @@ impl<'a> Baked<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::terrain::MAX_SIDE;
 
     /// Sections start on page boundaries in order; levels tile the pyramid sections exactly.
     #[test]

@@ -93,7 +93,7 @@ pub(crate) fn fold(p: u32, len: u32) -> u32 {
 
 /// The number of cells of a `width × height` level; errors if a side is 0 or over
 /// [`MAX_SIDE`], or if the count overflows `usize` (65,536² on a 32-bit target).
-fn cells(width: u32, height: u32) -> Result<usize, Error> {
+pub(crate) fn cells(width: u32, height: u32) -> Result<usize, Error> {
     let refused = Error::MapSize {
         width,
         height,
@@ -295,14 +295,7 @@ impl<'a> Terrain<'a> {
     /// A terrain of one level; add pyramid levels with [`Terrain::push_level`].
     pub fn new(level0: Level<'a>, scale: Scale) -> Self {
         let max_height = level0.max_height();
-        let mut levels = heapless::Vec::new();
-        // Capacity is MAX_LEVELS ≥ 1, so the first push cannot fail.
-        let _ = levels.push(level0);
-        Self {
-            levels,
-            scale,
-            max_height,
-        }
+        Self::with_max_height(level0, scale, max_height)
     }
 
     /// A terrain of one level whose largest height is known: `max_height` must be at least
