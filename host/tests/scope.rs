@@ -503,3 +503,69 @@ fn the_papers_geometry_over_the_mirrored_map_is_an_option() {
         }
     }
 }
+
+/// `report --geometry paper` places every section's views as the paper does, over the mirrored
+/// copies of the small map: Tables 1–5, the views and the flight are minification, the claims
+/// are judged, and the regenerating command keeps the option.
+#[test]
+fn report_takes_the_papers_geometry_on_request() {
+    let dir = tempfile::tempdir().unwrap();
+    let out: PathBuf = dir.path().join("report");
+    let o = footprint(&[
+        "report",
+        "--terrain",
+        "eroded",
+        "--terrain-size",
+        "128",
+        "--frames",
+        "3",
+        "--geometry",
+        "paper",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(stderr.contains("--geometry paper keeps"), "{stderr}");
+    let json: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let md = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    let cases = json["tables"]["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 3);
+    for c in cases {
+        assert_eq!(c["view"]["placement"], "paper", "{c}");
+        assert_eq!(c["magnified"], false, "{c}");
+    }
+    assert!(!md.contains("**Not the paper's geometry.**"), "{md}");
+    let ps = json["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| {
+            c["claim"]
+                .as_str()
+                .unwrap()
+                .starts_with("PS coverage falls")
+        })
+        .unwrap();
+    assert_ne!(ps["verdict"], "not-the-papers-geometry", "{ps}");
+    let words: Vec<&str> = json["command_words"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap())
+        .collect();
+    assert!(
+        words.windows(2).any(|w| w == ["--geometry", "paper"]),
+        "{words:?}"
+    );
+    // The differences section walks the tables' own views: its first hits are where the
+    // paper aims them (on the map's default, on-map, they would be several times nearer).
+    let views = json["differences"]["views"].as_array().unwrap();
+    assert_eq!(views.len(), 3);
+    for (v, c) in views.iter().zip(cases) {
+        let walked = v["first_hit_m"].as_f64().unwrap();
+        let aimed = c["view"]["paper_first_hit_m"].as_f64().unwrap();
+        assert!((walked / aimed - 1.0).abs() < 0.2, "{walked} vs {aimed}");
+    }
+}

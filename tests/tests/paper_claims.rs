@@ -128,8 +128,15 @@ fn area_sampling_has_the_lowest_error_at_5_degrees() {
 #[test]
 fn the_silhouette_pyramid_puts_distant_terrain_where_the_ground_truth_has_it() {
     let map = procedural(1, DEFAULT_SIZE);
-    let study =
-        heights::compare(&map, HeightFilter::Silhouette, 5.0, &[Mode::AsExact], SIZE).unwrap();
+    let study = heights::compare(
+        &map,
+        HeightFilter::Silhouette,
+        5.0,
+        &[Mode::AsExact],
+        SIZE,
+        None,
+    )
+    .unwrap();
     let get = |name: &str| study.iter().find(|v| v.pyramid == name).unwrap();
     let (silhouette, mean) = (get("silhouette"), get("mean"));
     assert!(

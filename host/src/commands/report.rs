@@ -14,13 +14,13 @@ use crate::experiment::fly::{self, FlySpec, BINS};
 use crate::experiment::glint::{self, GlintSpec};
 use crate::experiment::heights;
 use crate::experiment::inspect;
-use crate::experiment::paper::{paper_camera, PAPER_PITCHES};
+use crate::experiment::paper::{paper_camera_placed, PAPER_PITCHES};
 use crate::experiment::table;
 use crate::lighting::MaterialArg;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{HeightFilterArg, MapArgs, OnOff, Size, SurfaceArg};
+use crate::view::{GeometryArg, HeightFilterArg, MapArgs, OnOff, Size, SurfaceArg};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -39,6 +39,11 @@ pub struct ReportArgs {
     /// of the error.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
+    /// Where the paper's views are placed, in every section: paper (its geometry, over the
+    /// mirrored copies of a map too small to hold it) or on-map (moved and brought nearer
+    /// until they show the map) [default: paper on the built-in terrain, on-map on a map file].
+    #[arg(long, value_enum)]
+    pub geometry: Option<GeometryArg>,
 }
 
 /// The name a `clap` value is given by on the command line.
@@ -51,7 +56,7 @@ fn value_name(v: &impl ValueEnum) -> String {
 /// option that changes what the report says (the map's, as given: --dem, --format, --color,
 /// --spacing, --height-scale, or the built-in terrain's --terrain, --seed and --terrain-size; then
 /// --height-filter, --lod and --frames, always, so that a change of default does not change
-/// the report), and --out. --threads and --max-memory are left out: images are the same for
+/// the report; --geometry when given), and --out. --threads and --max-memory are left out: images are the same for
 /// any number of threads, and the budget only refuses runs.
 pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
     let mut w: Vec<String> = vec!["footprint".into(), "report".into()];
@@ -98,6 +103,9 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
     }
     push("--lod", value_name(&args.lod));
     push("--frames", args.frames.to_string());
+    if let Some(g) = &args.geometry {
+        push("--geometry", value_name(g));
+    }
     push("--out", path(&args.out));
     w
 }
@@ -142,8 +150,10 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     // interrupted run leaves nothing behind (and no folder it made).
     let folder = Folder::create("--out", &args.out)?;
     let lod = args.lod == OnOff::On;
+    let placement = args.geometry.map(Into::into);
     let fly_spec = FlySpec {
         lod,
+        placement,
         ..FlySpec::paper(args.frames)
     };
     fly_spec.check_memory(0)?;
@@ -173,7 +183,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         size,
         lod,
         SurfaceArg::Flat,
-        None,
+        placement,
         |msg| {
             bar.set_message(msg.to_string());
             bar.inc(1);
@@ -195,7 +205,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let terrain = pyramid.terrain(lod)?;
     let mut views = String::new();
     for pitch in PAPER_PITCHES {
-        let camera = paper_camera(map, &pyramid, pitch, size, lod)?;
+        let camera = paper_camera_placed(map, &pyramid, pitch, size, lod, placement)?;
         let mut t = Tables::new(&camera);
         let frame = t.frame(&camera, &terrain, options)?;
         for mode in [Mode::Ps, Mode::As] {
@@ -252,7 +262,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
 
     // Diagnostic pictures.
     bar.set_message("pictures");
-    let camera5 = paper_camera(map, &pyramid, 5.0, size, lod)?;
+    let camera5 = paper_camera_placed(map, &pyramid, 5.0, size, lod, placement)?;
     let five = *camera5.params();
     let zoom = inspect::zoom(&five, &pyramid, options, Mode::Li, 16.0, 48, 6)?;
     write_png(&file("zoom.png")?, zoom.width, zoom.height, &zoom.pixels)?;
@@ -284,7 +294,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         width: 32,
         height: 32,
     };
-    let small = paper_camera(map, &pyramid, 20.0, window, lod)?;
+    let small = paper_camera_placed(map, &pyramid, 20.0, window, lod, placement)?;
     let small = footprint_core::terrain::camera::Camera::new(CameraParams { ..*small.params() })?;
     let mut fp_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
@@ -300,7 +310,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     bar.inc(4);
 
     bar.set_message("pyramid height filters");
-    let study = heights::compare(map, pyramid.filter(), 5.0, &modes, size)?;
+    let study = heights::compare(map, pyramid.filter(), 5.0, &modes, size, placement)?;
     bar.set_message("differences");
     let diffs = differences::differences(&pyramid, &tables, &flight, &study, size)?;
     bar.inc(1);

@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use super::fly::Fly;
 use super::heights::Variant;
-use super::paper::paper_camera;
+use super::paper::paper_camera_placed;
 use super::table::Tables15;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
@@ -240,7 +240,8 @@ pub fn differences(
     let mut views = Vec::new();
     let mut pixel_angle_rad = 0.0;
     for c in &t.cases {
-        let camera: Camera = paper_camera(map, pyramid, c.pitch, size, t.lod)?;
+        let camera: Camera =
+            paper_camera_placed(map, pyramid, c.pitch, size, t.lod, Some(t.placement))?;
         pixel_angle_rad = camera.pixel_angle();
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;

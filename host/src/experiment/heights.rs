@@ -13,9 +13,10 @@ use anyhow::Result;
 use footprint_core::terrain::camera::{Camera, Options, Projection, Surface};
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::Rgb;
+use footprint_scenes::view::Placement;
 use serde::Serialize;
 
-use super::paper::paper_camera;
+use super::paper::paper_camera_placed;
 use super::reference::{reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
@@ -41,17 +42,18 @@ pub struct Variant {
 }
 
 /// Renders `modes` at the paper's view at `pitch` over each height filter and over level 0
-/// alone. The camera is the one the table uses (fit over the `filter` pyramid), so only the
-/// terrain walked changes.
+/// alone. The camera is the one the table uses (fit over the `filter` pyramid, placed as
+/// `placement` says or as the map's default for `None`), so only the terrain walked changes.
 pub fn compare(
     map: &Map,
     filter: HeightFilter,
     pitch: f64,
     modes: &[Mode],
     size: Size,
+    placement: Option<Placement>,
 ) -> Result<Vec<Variant>> {
     let main = Pyramid::build(map.clone(), filter)?;
-    let camera = paper_camera(map, &main, pitch, size, true)?;
+    let camera = paper_camera_placed(map, &main, pitch, size, true, placement)?;
     let truth = reference(
         &camera,
         &main,

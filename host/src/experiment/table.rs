@@ -157,6 +157,10 @@ pub struct Tables15 {
     pub lod: bool,
     /// The surface the modes and the ground truth met: `flat` or `bilinear` (`--surface`).
     pub surface: &'static str,
+    /// Where the paper's views were placed (`--geometry`, or the map's own default), for the
+    /// report's other views of the same cases; each case's `view` says it by name.
+    #[serde(skip)]
+    pub placement: Placement,
     /// The switch of the walk whose visible voxels are each case's one denominator `V`: the
     /// pyramid climbed past this many footprints ([`Switch::Late`]; level 0 throughout with
     /// `--lod off`).
@@ -208,9 +212,9 @@ pub fn run(
         surface: surface.into(),
         ..Options::default()
     };
+    let placement = placement.unwrap_or_else(|| Placement::for_map(map));
     let mut cases = Vec::new();
     for &pitch in pitches {
-        let placement = placement.unwrap_or_else(|| Placement::for_map(map));
         let view = paper_view_placed(map, pyramid, pitch, size, lod, placement)?;
         let camera = view.camera;
         progress(&format!("pitch {pitch}°: ground truth"));
@@ -336,6 +340,7 @@ pub fn run(
         .collect();
     Ok(Tables15 {
         lod,
+        placement,
         v_switch_footprints: Switch::Late.voxels(),
         surface: surface.name(),
         cases,
