@@ -116,16 +116,16 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
     )?;
     for case in &cases {
         crate::outln!(
-            "{} view, pitch {}°, roll {}°, {} projection, eye {:.1} m, far {:.0} voxels",
+            "{} view, pitch {}°, roll {}°, {} projection, eye {:.0} m, far {} voxels",
             case.view,
             case.pitch,
             case.roll,
             case.projection,
             case.height,
-            case.far_voxels
+            crate::report::number::thousands(case.far_voxels.round() as u64)
         )?;
         crate::outln!(
-            "  {:>8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}  {:>8}  {:>10}",
+            "  {:<8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}  {:>8}  {:>10}",
             "mode",
             "1 thread ms",
             "all ms",
@@ -139,8 +139,8 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         let ratio = |r: Option<f64>| r.map_or_else(|| "-".to_owned(), |r| format!("{r:.2}"));
         for m in &case.modes {
             crate::outln!(
-                "  {:>8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>8}  {:>10}",
-                m.mode,
+                "  {:<8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>8}  {:>10}",
+                m.mode.to_string(),
                 m.ms,
                 m.ms_median,
                 m.ms_threads,
@@ -149,7 +149,7 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
                 m.ratio_to_ps,
                 ratio(m.ratio_to_unrolled),
                 ratio(m.ratio_to_level),
-                m.steps
+                crate::report::number::thousands(m.steps)
             )?;
         }
     }

@@ -9,6 +9,7 @@ use footprint_core::terrain::cost::Tally;
 use serde::Serialize;
 
 use crate::render::{Measured, Mode};
+use crate::report::number::thousands;
 
 /// One measured frame: what `render --counts` prints.
 #[derive(Debug)]
@@ -211,7 +212,15 @@ pub fn text(s: &RenderSummary<'_>) -> String {
     let _ = writeln!(
         out,
         "frame: a {}  b {}  c {}  d {}  d' {}  top divisions {}  shifts {}  divisions {}  e {}",
-        t.a, t.b, t.c, t.d, t.d_prime, t.top_divisions, t.shifts, t.divisions, t.e
+        thousands(t.a),
+        thousands(t.b),
+        thousands(t.c),
+        thousands(t.d),
+        thousands(t.d_prime),
+        thousands(t.top_divisions),
+        thousands(t.shifts),
+        thousands(t.divisions),
+        thousands(t.e)
     );
     let _ = writeln!(
         out,

@@ -9,6 +9,7 @@ use crate::experiment::glint::Glint;
 use crate::experiment::heights::Variant;
 use crate::experiment::inspect::PixelChoice;
 use crate::experiment::table::Tables15;
+use crate::report::number::thousands;
 
 /// The paper's Table 1: pitch, `P`, `L` and `V` per column.
 pub const PAPER_TABLE1: [(f64, f64, f64, f64); 3] = [
@@ -50,19 +51,6 @@ fn paper_notes() -> String {
         PAPER_TABLE4_PS_AS.1,
         and_list(&t6)
     )
-}
-
-/// `5432` as `5,432`.
-fn thousands(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 /// The paper's numbers the report compares against, for report.json.

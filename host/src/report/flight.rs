@@ -2,6 +2,7 @@
 //! every column, and each mode's excess over the reference flight.
 
 use crate::experiment::fly::{self, BINS};
+use crate::report::number::{signed_thousands, thousands};
 
 /// One Table 6 of `f`'s modes: a row per bin, a column per mode, `get` choosing the
 /// histogram (a mode without one shows 0).
@@ -16,7 +17,7 @@ fn table(f: &fly::Fly, get: &dyn Fn(&fly::ModeFly) -> Option<fly::Histogram>) ->
     for (b, name) in BINS.iter().enumerate() {
         s += &format!("| {name} |");
         for m in &f.modes {
-            s += &format!(" {} |", get(m).map_or(0, |h| h.0[b]));
+            s += &format!(" {} |", thousands(get(m).map_or(0, |h| h.0[b])));
         }
         s += "\n";
     }
@@ -31,10 +32,11 @@ fn excess(f: &fly::Fly, reference: &fly::ModeFly) -> String {
         "\nAgainst the reference flight (`as-exact` at level 0, {} columns per pixel): large \
          changes (6 and more) and the excess over the reference's own ({} in the column{}).\n\n",
         f.reference_columns.unwrap_or(0),
-        reference.column_large_changes,
-        reference
-            .large_changes
-            .map_or(String::new(), |c| format!(", {c} over the frame"))
+        thousands(reference.column_large_changes),
+        reference.large_changes.map_or(String::new(), |c| format!(
+            ", {} over the frame",
+            thousands(c)
+        ))
     );
     s += "| Mode | column | column excess |";
     if frame {
@@ -50,15 +52,15 @@ fn excess(f: &fly::Fly, reference: &fly::ModeFly) -> String {
         s += &format!(
             "| {} | {} | {} |",
             m.mode.to_string().to_uppercase(),
-            m.column_large_changes,
-            e.map_or("—".into(), |e| format!("{:+}", e.column))
+            thousands(m.column_large_changes),
+            e.map_or("—".into(), |e| signed_thousands(e.column))
         );
         if frame {
             s += &format!(
                 " {} | {} | {} |",
-                m.large_changes.map_or("—".into(), |c| c.to_string()),
+                m.large_changes.map_or("—".into(), thousands),
                 e.and_then(|e| e.all_columns)
-                    .map_or("—".into(), |c| format!("{c:+}")),
+                    .map_or("—".into(), signed_thousands),
                 m.rmse.map_or("—".into(), |r| format!("{r:.3}"))
             );
         }
@@ -130,8 +132,9 @@ fn classes(f: &fly::Fly) -> String {
         for c in classes {
             s += &format!(
                 " {}{} |",
-                c.large_changes,
-                c.excess.map_or(String::new(), |e| format!(" ({e:+})"))
+                thousands(c.large_changes),
+                c.excess
+                    .map_or(String::new(), |e| format!(" ({})", signed_thousands(e)))
             );
         }
         s += "\n";
@@ -142,7 +145,7 @@ fn classes(f: &fly::Fly) -> String {
         .find_map(|m| m.classes.as_ref())
         .map(|c| {
             c.iter()
-                .map(|c| format!("{} {}", c.class, c.pixels))
+                .map(|c| format!("{} {}", c.class, thousands(c.pixels)))
                 .collect::<Vec<_>>()
                 .join(", ")
         })

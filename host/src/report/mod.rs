@@ -8,6 +8,7 @@ pub mod document;
 pub mod flight;
 pub mod glint;
 pub mod html;
+pub mod number;
 pub mod plot;
 pub mod png;
 pub mod shell;
