@@ -303,7 +303,7 @@ pub fn bake(
         filter: plan.filter,
         scratch: Vec::new(),
     };
-    let tint = TintScale::new(plan.range, plan.spacing_m, plan.height_scale_m);
+    let mut tint = TintScale::new(plan.range, plan.spacing_m, plan.height_scale_m);
     // Rows y − 1, y and y + 1 of level 0 (clamped at the edges).
     let (mut north, mut row, mut south) = (vec![0u16; w], vec![0u16; w], vec![0u16; w]);
     let mut colors: Vec<Rgb> = Vec::with_capacity(w);

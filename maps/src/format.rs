@@ -158,6 +158,19 @@ impl Sentinel {
 /// The most frequent void sentinel ([`SENTINELS`], [`FLOAT_SENTINEL`]) among `values` (voids,
 /// NaN, are not counted), if any; `declared` is the file's own void value, for the message.
 pub fn find_sentinel(values: &[f32], declared: Option<f64>) -> Option<Sentinel> {
+    // Most maps hold no value as low as the highest sentinel: one branch-free pass says so
+    // (a void, NaN, compares false), at 2–3 instructions a cell where the counting loop took 15.
+    let mut low = [false; 8];
+    let chunks = values.chunks_exact(8);
+    let rest = chunks.remainder();
+    for chunk in chunks {
+        for (low, &v) in low.iter_mut().zip(chunk) {
+            *low |= v <= -9_999.0;
+        }
+    }
+    if !low.contains(&true) && !rest.iter().any(|&v| v <= -9_999.0) {
+        return None;
+    }
     let mut counts = [0u64; SENTINELS.len() + 1];
     let mut first_float = None;
     for &v in values {

@@ -537,13 +537,7 @@ fn fill_tile(grid: &mut Grid, what: &str) -> Result<(u64, Option<(f64, f64)>), M
             None => return Ok((0, None)),
         }
     };
-    let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &v in &grid.values {
-        let v = f64::from(v);
-        min = min.min(v);
-        max = max.max(v);
-    }
-    Ok((filled, min.is_finite().then_some((min, max))))
+    Ok((filled, grid.range()))
 }
 
 /// Checks that a tile's georeferencing matches the first tile's: the same kind of

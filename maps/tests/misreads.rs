@@ -470,6 +470,13 @@ fn float_and_ascii_sentinels() {
     ];
     assert_eq!(find_sentinel(&v, None).unwrap().value, -32768.0);
     assert!(find_sentinel(&[1.0, -9998.0, f32::NAN], None).is_none());
+    // In a long row too, wherever it lies (the first pass reads eight values at a time).
+    for at in [0, 7, 8, 15, 16, 20] {
+        let mut v = vec![1.0f32; 21];
+        v[at] = -32767.0;
+        assert_eq!(find_sentinel(&v, None).unwrap().value, -32767.0, "{at}");
+    }
+    assert!(find_sentinel(&[5.0; 40], None).is_none());
 }
 
 #[test]

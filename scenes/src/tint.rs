@@ -41,7 +41,7 @@ pub fn tint(
     }
     let min = *heights.iter().min().unwrap_or(&0);
     let max = *heights.iter().max().unwrap_or(&0);
-    let scale = TintScale::new((min, max), spacing_m, height_scale_m);
+    let mut scale = TintScale::new((min, max), spacing_m, height_scale_m);
     let mut out = Vec::with_capacity(w * h);
     for y in 0..h {
         let (yn, ys) = (y.saturating_sub(1), (y + 1).min(h - 1));
@@ -62,6 +62,69 @@ pub struct TintScale {
     /// The hypsometric tint of every height from `min` to the highest: the same values as
     /// computing it per cell, once per height.
     tints: Vec<[i64; 3]>,
+    /// The hillshade of the cells inside the map, by their neighbours' height differences.
+    shades: ShadeCache,
+}
+
+/// The height differences across a cell, either way, whose hillshade [`ShadeCache`] keeps.
+const SHADE_REACH: i64 = 255;
+
+/// Cells per side of [`ShadeCache`]'s table: every difference from `-SHADE_REACH` to
+/// `SHADE_REACH`.
+const SHADE_SIDE: usize = 2 * SHADE_REACH as usize + 1;
+
+/// The hillshade factor of every cell inside a map (two cells of run either way) whose
+/// neighbours' height differences are within [`SHADE_REACH`], filled as they are met: the
+/// same value as computing it, once per pair of differences (0: not yet met; a factor is at
+/// least 90). Most of a real map's cells fall in it, and the factor is most of a cell's cost.
+#[derive(Clone)]
+struct ShadeCache(Vec<u16>);
+
+impl ShadeCache {
+    fn new() -> Self {
+        Self(vec![0; SHADE_SIDE * SHADE_SIDE])
+    }
+
+    /// The hillshade of an inside cell with differences `dzx` (east less west) and `dzy`
+    /// (south less north), its slopes scaled by `slope_q16`.
+    #[inline]
+    fn shade(&mut self, dzx: i64, dzy: i64, slope_q16: f64) -> i64 {
+        let compute = || {
+            hillshade_q8(
+                gradient_q16(dzx, 2.0, slope_q16),
+                gradient_q16(dzy, 2.0, slope_q16),
+            )
+        };
+        // Both differences within the reach, in one unsigned compare each.
+        let (x, y) = ((dzx + SHADE_REACH) as u64, (dzy + SHADE_REACH) as u64);
+        let side = SHADE_SIDE as u64;
+        let slot = if x < side && y < side {
+            self.0.get_mut((y * side + x) as usize)
+        } else {
+            None
+        };
+        let Some(slot) = slot else {
+            return compute();
+        };
+        if *slot == 0 {
+            // 90..=324 (hillshade_q8): it fits, and is never 0.
+            *slot = u16::try_from(compute()).unwrap_or(0);
+        }
+        i64::from(*slot)
+    }
+}
+
+impl std::fmt::Debug for ShadeCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("ShadeCache")
+    }
+}
+
+/// A cache holds nothing of its own: any two are alike.
+impl PartialEq for ShadeCache {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl TintScale {
@@ -85,6 +148,7 @@ impl TintScale {
             range,
             slope_q16,
             tints,
+            shades: ShadeCache::new(),
         }
     }
 
@@ -104,7 +168,7 @@ impl TintScale {
     ///
     /// # Panics
     /// If the three rows differ in length.
-    pub fn row(&self, rows: [&[u16]; 3], dy_run: u32, out: &mut Vec<Rgb>) {
+    pub fn row(&mut self, rows: [&[u16]; 3], dy_run: u32, out: &mut Vec<Rgb>) {
         let [north, row, south] = rows;
         let w = row.len();
         assert!(
@@ -114,16 +178,32 @@ impl TintScale {
         if w == 0 {
             return;
         }
-        let dy_run = f64::from(dy_run);
-        for x in 0..w {
+        out.reserve(w);
+        // A cell at the map's edge (or any cell of its first and last rows): the formula.
+        let edge = |s: &Self, x: usize| {
             let (xw, xe) = (x.saturating_sub(1), (x + 1).min(w - 1));
-            let dx_run = (xe - xw) as f64;
             let dzx = i64::from(row[xe]) - i64::from(row[xw]);
             let dzy = i64::from(south[x]) - i64::from(north[x]);
-            let gx = gradient_q16(dzx, dx_run, self.slope_q16);
-            let gy = gradient_q16(dzy, dy_run, self.slope_q16);
-            out.push(shade(self.tint_of(row[x]), hillshade_q8(gx, gy)));
+            let gx = gradient_q16(dzx, (xe - xw) as f64, s.slope_q16);
+            let gy = gradient_q16(dzy, f64::from(dy_run), s.slope_q16);
+            shade(s.tint_of(row[x]), hillshade_q8(gx, gy))
+        };
+        if dy_run != 2 || w < 3 {
+            out.extend((0..w).map(|x| edge(self, x)));
+            return;
         }
+        // Inside: two cells of run either way, the hillshade from the cache.
+        out.push(edge(self, 0));
+        let inside = row.windows(3).zip(&north[1..]).zip(&south[1..]);
+        for ((around, &n), &s) in inside {
+            let (dzx, dzy) = (
+                i64::from(around[2]) - i64::from(around[0]),
+                i64::from(s) - i64::from(n),
+            );
+            let factor = self.shades.shade(dzx, dzy, self.slope_q16);
+            out.push(shade(self.tint_of(around[1]), factor));
+        }
+        out.push(edge(self, w - 1));
     }
 }
 
@@ -170,7 +250,9 @@ pub(crate) fn lerp(a: [i64; 3], b: [i64; 3], f: i64) -> [i64; 3] {
 
 /// Multiplies a colour by a shade factor in 1/256 (256 = unchanged) and clamps it to 0..=255.
 pub(crate) fn shade(c: [i64; 3], factor_q8: i64) -> Rgb {
-    let ch = |v: i64| (v * factor_q8 / 256).clamp(0, 255) as u8;
+    // `v · factor / 256` clamped to 0..=255: a negative product clamps to 0 either way, and a
+    // shift divides the others exactly.
+    let ch = |v: i64| ((v * factor_q8).max(0) >> 8).min(255) as u8;
     Rgb::new(ch(c[0]), ch(c[1]), ch(c[2]))
 }
 
@@ -278,5 +360,49 @@ mod tests {
         assert_eq!(tint(1, 1, &[5], 1.0, 1.0).len(), 1);
         assert_eq!(tint(3, 1, &[7, 7, 7], 1.0, 1.0).len(), 3);
         assert!(tint(0, 0, &[], 1.0, 1.0).is_empty());
+    }
+
+    /// The cached hillshade and the shifted shade give every cell the colour of the formula
+    /// itself (slopes, hillshade, `v · factor / 256` clamped), at the edges and beyond the
+    /// cache's reach too, on rough and smooth maps at two slope scales.
+    #[test]
+    fn tint_equals_the_formula_cell_by_cell() {
+        let (w, h) = (61usize, 47usize);
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for (amplitude, spacing, scale) in [(40u64, 30.0, 0.1), (2_000, 10.0, 0.1), (300, 1.0, 1.0)]
+        {
+            let heights: Vec<u16> = (0..w * h)
+                .map(|i| (30_000 + (i % w) as u64 * 7 + next() % amplitude) as u16)
+                .collect();
+            let got = tint(w as u32, h as u32, &heights, spacing, scale);
+            let min = *heights.iter().min().unwrap();
+            let max = *heights.iter().max().unwrap();
+            let range = (i64::from(max) - i64::from(min)).max(1);
+            let slope_q16 = scale / spacing * 65_536.0;
+            for y in 0..h {
+                let (yn, ys) = (y.saturating_sub(1), (y + 1).min(h - 1));
+                for x in 0..w {
+                    let (xw, xe) = (x.saturating_sub(1), (x + 1).min(w - 1));
+                    let at = |x: usize, y: usize| i64::from(heights[y * w + x]);
+                    let gx = gradient_q16(at(xe, y) - at(xw, y), (xe - xw) as f64, slope_q16);
+                    let gy = gradient_q16(at(x, ys) - at(x, yn), (ys - yn) as f64, slope_q16);
+                    let factor = hillshade_q8(gx, gy);
+                    let c = hypsometric((at(x, y) - i64::from(min)) * 65_536 / range);
+                    let ch = |v: i64| (v * factor / 256).clamp(0, 255) as u8;
+                    let want = Rgb::new(ch(c[0]), ch(c[1]), ch(c[2]));
+                    assert_eq!(
+                        got[y * w + x],
+                        want,
+                        "cell ({x}, {y}), amplitude {amplitude}"
+                    );
+                }
+            }
+        }
     }
 }
