@@ -56,8 +56,8 @@ fn value_name(v: &impl ValueEnum) -> String {
 /// option that changes what the report says (the map's, as given: --dem, --format, --color,
 /// --spacing, --height-scale, or the built-in terrain's --terrain, --seed and --terrain-size; then
 /// --height-filter, --lod and --frames, always, so that a change of default does not change
-/// the report; --geometry when given), and --out. --threads and --max-memory are left out: images are the same for
-/// any number of threads, and the budget only refuses runs.
+/// the report; --geometry when given), and --out. --threads and --max-memory are left out:
+/// images are the same for any number of threads, and the budget only refuses runs.
 pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
     let mut w: Vec<String> = vec!["footprint".into(), "report".into()];
     let mut push = |flag: &str, value: String| {
