@@ -30,44 +30,58 @@ const SIZE: Size = Size {
     height: 400,
 };
 
-/// The shared report: its folder (kept while the tests run), report.json and REPORT.md.
+/// A report: its folder (kept while the tests run), report.json, REPORT.md and what it said on
+/// standard error.
 struct Run {
     _dir: tempfile::TempDir,
     json: Value,
     md: String,
+    stderr: String,
 }
 
+/// `footprint report` on the 128² eroded map with a three-frame flight, and `extra` options.
+fn report(extra: &[&str]) -> Run {
+    let dir = tempfile::tempdir().unwrap();
+    let out: PathBuf = dir.path().join("report");
+    let mut args = vec![
+        "report",
+        "--terrain",
+        "eroded",
+        "--terrain-size",
+        "128",
+        "--frames",
+        "3",
+    ];
+    args.extend_from_slice(extra);
+    args.extend(["--out", out.to_str().unwrap()]);
+    let o = footprint(&args);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{args:?}: {stderr}");
+    let json =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let md = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    Run {
+        _dir: dir,
+        json,
+        md,
+        stderr,
+    }
+}
+
+/// The shared report, with the map's own placement.
 fn run() -> &'static Run {
     static RUN: OnceLock<Run> = OnceLock::new();
-    RUN.get_or_init(|| {
-        let dir = tempfile::tempdir().unwrap();
-        let out: PathBuf = dir.path().join("report");
-        let args = [
-            "report",
-            "--terrain",
-            "eroded",
-            "--terrain-size",
-            "128",
-            "--frames",
-            "3",
-            "--out",
-            out.to_str().unwrap(),
-        ];
-        let o = footprint(&args);
-        assert!(
-            o.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-        let json = serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
-            .unwrap();
-        let md = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
-        Run {
-            _dir: dir,
-            json,
-            md,
-        }
-    })
+    RUN.get_or_init(|| report(&[]))
+}
+
+/// The claim of report.json `json` that starts with `words`.
+fn claim<'a>(json: &'a Value, words: &str) -> &'a Value {
+    json["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["claim"].as_str().unwrap().starts_with(words))
+        .unwrap_or_else(|| panic!("no claim starts with {words:?}"))
 }
 
 /// Before: PS, SS2 and SS4 were divided by the visible voxels of their own walk (the pyramid
@@ -214,10 +228,7 @@ fn a_claim_on_too_few_events_says_so() {
     // The report prints it so, in REPORT.md and report.json.
     let r = run();
     let claims = r.json["claims"].as_array().unwrap();
-    let table6 = claims
-        .iter()
-        .find(|c| c["claim"].as_str().unwrap().starts_with("In Table 6"))
-        .unwrap();
+    let table6 = claim(&r.json, "In Table 6");
     assert_eq!(table6["verdict"], "too-few-events", "{table6}");
     assert_eq!(table6["holds"], false);
     let line =
@@ -269,16 +280,7 @@ fn a_magnified_case_is_labelled_as_such() {
     assert!(r
         .md
         .contains("magnification (a pixel narrower than a voxel)"));
-    let claims = r.json["claims"].as_array().unwrap();
-    let ps = claims
-        .iter()
-        .find(|c| {
-            c["claim"]
-                .as_str()
-                .unwrap()
-                .starts_with("PS coverage falls")
-        })
-        .unwrap();
+    let ps = claim(&r.json, "PS coverage falls");
     assert_eq!(ps["verdict"], "not-the-papers-geometry", "{ps}");
     assert!(
         ps["scope"].as_str().unwrap().contains(": magnified"),
@@ -509,27 +511,9 @@ fn the_papers_geometry_over_the_mirrored_map_is_an_option() {
 /// are judged, and the regenerating command keeps the option.
 #[test]
 fn report_takes_the_papers_geometry_on_request() {
-    let dir = tempfile::tempdir().unwrap();
-    let out: PathBuf = dir.path().join("report");
-    let o = footprint(&[
-        "report",
-        "--terrain",
-        "eroded",
-        "--terrain-size",
-        "128",
-        "--frames",
-        "3",
-        "--geometry",
-        "paper",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "{stderr}");
-    assert!(stderr.contains("--geometry paper keeps"), "{stderr}");
-    let json: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
-    let md = std::fs::read_to_string(out.join("REPORT.md")).unwrap();
+    let r = report(&["--geometry", "paper"]);
+    assert!(r.stderr.contains("--geometry paper keeps"), "{}", r.stderr);
+    let (json, md) = (&r.json, &r.md);
     let cases = json["tables"]["cases"].as_array().unwrap();
     assert_eq!(cases.len(), 3);
     for c in cases {
@@ -537,17 +521,7 @@ fn report_takes_the_papers_geometry_on_request() {
         assert_eq!(c["magnified"], false, "{c}");
     }
     assert!(!md.contains("**Not the paper's geometry.**"), "{md}");
-    let ps = json["claims"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|c| {
-            c["claim"]
-                .as_str()
-                .unwrap()
-                .starts_with("PS coverage falls")
-        })
-        .unwrap();
+    let ps = claim(json, "PS coverage falls");
     assert_ne!(ps["verdict"], "not-the-papers-geometry", "{ps}");
     let words: Vec<&str> = json["command_words"]
         .as_array()

@@ -201,7 +201,7 @@ pub fn find_sentinel(values: &[f32], declared: Option<f64>) -> Option<Sentinel> 
 }
 
 /// `n` with commas between groups of three digits: `-1,234,567`.
-pub(crate) fn grouped(n: i64) -> String {
+pub fn grouped(n: i64) -> String {
     let digits = grouped_u64(n.unsigned_abs());
     if n < 0 {
         format!("-{digits}")
@@ -211,7 +211,7 @@ pub(crate) fn grouped(n: i64) -> String {
 }
 
 /// `n` with commas between groups of three digits: `1,234,567`.
-fn grouped_u64(n: u64) -> String {
+pub fn grouped_u64(n: u64) -> String {
     let s = n.to_string();
     let mut out = String::with_capacity(s.len() + s.len() / 3);
     for (i, c) in s.chars().enumerate() {
