@@ -41,7 +41,9 @@
 //! (16 fractional bits), so the firmware and the host resample bit for bit alike. A box's
 //! weights are its lines' overlaps and its two rows' shares, each to 1/256 of the box and each
 //! made to sum to exactly 256 (the last takes what the others leave), so an average is a
-//! shift, not a division; one multiply gives a pixel's position across the fan lines.
+//! shift, not a division; one multiply gives a pixel's position across the fan lines. Without
+//! roll (the paper's views) an output row lies on one fan row, and the resampling goes row by
+//! row (`rows.rs`): a pixel's position is an addition and a box's scale is a division per row.
 
 use core::ops::Range;
 
@@ -51,6 +53,7 @@ use crate::terrain::camera::{floor_i64, Camera, Column};
 use crate::trig::sin_cos_deg;
 
 mod resample;
+mod rows;
 
 pub use resample::Filter;
 

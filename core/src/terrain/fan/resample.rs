@@ -56,6 +56,26 @@ impl Fan {
                 });
             }
         }
+        if self.rows_apply() {
+            self.resample_rows(slopes, grid, sky, filter, image);
+        } else {
+            self.resample_each_pixel(slopes, grid, sky, filter, image);
+        }
+        Ok(())
+    }
+
+    /// [`Fan::resample`]'s pixels one by one, for any roll ([`Fan::each_pixel`]); without roll
+    /// [`Fan::resample_rows`] gives the same pixels faster. The slices' lengths are checked by
+    /// the caller.
+    pub(super) fn resample_each_pixel<P: PixelSink>(
+        &self,
+        slopes: &[Coord],
+        grid: &[Rgb],
+        sky: Rgb,
+        filter: Filter,
+        image: &mut [P],
+    ) {
+        let (lines, rows) = (self.lines(), self.rows());
         match filter {
             Filter::Box => self.each_pixel(
                 slopes,
@@ -70,7 +90,6 @@ impl Fan {
                 |x, u, row| row.cell(grid, rows, lines, self.across(x, row.width(u)).0, sky),
             ),
         }
-        Ok(())
     }
 
     /// Sets every pixel of `image` (`W × H`, row-major from the top) to `pixel(x, u, row)`:
@@ -159,7 +178,7 @@ impl Fan {
     /// `lo` and `hi`; a row outside the grid is put at the grid's end, so that any cell looked
     /// up in it is past the grid (sky).
     #[inline(always)]
-    fn tile_row(&self, e: i64, lo: i64, hi: i64) -> TileRow {
+    pub(super) fn tile_row(&self, e: i64, lo: i64, hi: i64) -> TileRow {
         let (lines, rows) = (self.lines(), self.rows());
         let row = usize::try_from(e)
             .ok()
@@ -270,17 +289,14 @@ impl Fan {
         // Cell (line j, row r) is the grid's `j·rows + r`: the box's first cell in its lower
         // row; its second line's is `rows` on, and each one's upper neighbour just after.
         let at = first * rows + r0;
-        // The first line's overlap, 2^16 − start, is below the width (the box reaches the
-        // second line), so times ⌊2^24/width⌋ it stays below 2^24.
+        // width > 0: the box reaches the second line from inside the first.
         let scale = (1u32 << 24) / width;
-        let f = ((((1 << FRAC) - start) * scale + (1 << 15)) >> 16).min(256);
+        if upper == 0 {
+            return two_cells(grid, at, rows, start, scale);
+        }
+        let f = first_share(start, scale);
         let l = 256 - f;
         let across = |a: u8, b: u8| f * u32::from(a) + l * u32::from(b);
-        if upper == 0 {
-            let (a, b) = (*grid.get(at)?, *grid.get(at + rows)?);
-            let ch = |a: u8, b: u8| round16(across(a, b) << 8);
-            return Some(Rgb::new(ch(a.r, b.r), ch(a.g, b.g), ch(a.b, b.b)));
-        }
         // The first line's lower and upper cells, then (one line on) the second's.
         let cells = grid.get(at..=at + rows + 1)?;
         let ([a, c], [b, d]) = (*cells.first_chunk::<2>()?, *cells.last_chunk::<2>()?);
@@ -307,14 +323,81 @@ impl Fan {
     }
 }
 
+/// The first line's 8-bit share of a box over two fan lines that starts `start` (fixed point,
+/// below 2^16) into its first line, with the box's [`box_scale`] `scale`: the overlap
+/// `2^16 − start` is below the box's width (the box reaches the second line), so times the
+/// scale (at most `2^24/width`) it stays below 2^24.
+#[inline(always)]
+fn first_share(start: u32, scale: u32) -> u32 {
+    ((((1 << FRAC) - start) * scale + (1 << 15)) >> 16).min(256)
+}
+
+/// [`Fan::two_lines`] of a box on one fan row: its first line's cell at `at` in the grid and
+/// the second's `rows` on, the first taking [`first_share`] and the second what it leaves.
+/// `None` if a cell is past the grid.
+#[inline(always)]
+pub(super) fn two_cells(
+    grid: &[Rgb],
+    at: usize,
+    rows: usize,
+    start: u32,
+    scale: u32,
+) -> Option<Rgb> {
+    let f = first_share(start, scale);
+    let l = 256 - f;
+    let (a, b) = (*grid.get(at)?, *grid.get(at + rows)?);
+    // `round16(v·2^8)`, the shares summing to 2^8: `(v + 2^7) >> 8`, at most 255.
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "f·a + l·b ≤ 255·256, so (… + 128) >> 8 ≤ 255"
+    )]
+    let ch = |a: u8, b: u8| ((f * u32::from(a) + l * u32::from(b) + (1 << 7)) >> 8) as u8;
+    Some(Rgb::new(ch(a.r, b.r), ch(a.g, b.g), ch(a.b, b.b)))
+}
+
+/// The box on one fan row over exactly three fan lines, as [`Fan::any_lines`] weighs it
+/// ([`Shares`]): its first line's cell at `at` in the grid with [`first_share`], the middle
+/// line's `rows` on with the whole line's share `whole` (`share8(2^16, scale)`), the last's
+/// `2·rows` on with what the two leave. `None` if a cell is past the grid.
+#[inline(always)]
+pub(super) fn three_cells(
+    grid: &[Rgb],
+    at: usize,
+    rows: usize,
+    start: u32,
+    scale: u32,
+    whole: u32,
+) -> Option<Rgb> {
+    let f = first_share(start, scale);
+    let l = 256u32.saturating_sub(f.saturating_add(whole));
+    let (a, b, c) = (
+        *grid.get(at)?,
+        *grid.get(at + rows)?,
+        *grid.get(at + 2 * rows)?,
+    );
+    // As `two_cells`: the shares sum to 2^8, so the sum is at most 255·256.
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "f·a + whole·b + l·c ≤ 255·256, so (… + 128) >> 8 ≤ 255"
+    )]
+    let ch = |a: u8, b: u8, c: u8| {
+        ((f * u32::from(a) + whole * u32::from(b) + l * u32::from(c) + (1 << 7)) >> 8) as u8
+    };
+    Some(Rgb::new(
+        ch(a.r, b.r, c.r),
+        ch(a.g, b.g, c.g),
+        ch(a.b, b.b, c.b),
+    ))
+}
+
 /// One fan row of a tile ([`Fan::each_pixel`]): the width at its lower edge, the rise to
 /// its upper edge's, and the row itself (counted from the bottom; the grid's length for a row
 /// outside it).
 #[derive(Clone, Copy, Debug)]
-struct TileRow {
+pub(super) struct TileRow {
     lo: i64,
     rise: i64,
-    row: usize,
+    pub(super) row: usize,
 }
 
 impl TileRow {
@@ -328,7 +411,7 @@ impl TileRow {
 
     /// The pixel's width in fan lines at `u`, linear between the edges' ([`lerp`]).
     #[inline(always)]
-    fn width(&self, u: i64) -> i64 {
+    pub(super) fn width(&self, u: i64) -> i64 {
         lerp(self.lo, self.rise, u)
     }
 
