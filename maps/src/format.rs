@@ -158,17 +158,17 @@ impl Sentinel {
 /// The most frequent void sentinel ([`SENTINELS`], [`FLOAT_SENTINEL`]) among `values` (voids,
 /// NaN, are not counted), if any; `declared` is the file's own void value, for the message.
 pub fn find_sentinel(values: &[f32], declared: Option<f64>) -> Option<Sentinel> {
-    // Most maps hold no value as low as the highest sentinel: one branch-free pass says so
-    // (a void, NaN, compares false), at 2–3 instructions a cell where the counting loop took 15.
-    let mut low = [false; 8];
+    // Most maps hold no value as low as the highest sentinel: one branch-free pass over eight
+    // lanes of the lowest value says so (a void, NaN, compares false and is skipped).
+    let mut low = [f32::INFINITY; 8];
     let chunks = values.chunks_exact(8);
     let rest = chunks.remainder();
     for chunk in chunks {
-        for (low, &v) in low.iter_mut().zip(chunk) {
-            *low |= v <= -9_999.0;
+        if let Ok(c) = <&[f32; 8]>::try_from(chunk) {
+            low = lowest_lanes(c, low);
         }
     }
-    if !low.contains(&true) && !rest.iter().any(|&v| v <= -9_999.0) {
+    if !low.iter().any(|&v| v <= -9_999.0) && !rest.iter().any(|&v| v <= -9_999.0) {
         return None;
     }
     let mut counts = [0u64; SENTINELS.len() + 1];
@@ -198,6 +198,14 @@ pub fn find_sentinel(values: &[f32], declared: Option<f64>) -> Option<Sentinel> 
         count,
         declared,
     })
+}
+
+/// Eight lanes of [`find_sentinel`]'s first pass: each lane's lowest value so far, a void
+/// (NaN) skipped by comparing false. (Whole arrays through a function compile to one `minps`
+/// per four cells; the same selects written in the loop did not vectorise as well.)
+#[inline]
+fn lowest_lanes(c: &[f32; 8], low: [f32; 8]) -> [f32; 8] {
+    std::array::from_fn(|i| if c[i] < low[i] { c[i] } else { low[i] })
 }
 
 /// `n` with commas between groups of three digits: `-1,234,567`.

@@ -61,14 +61,15 @@ impl Grid {
     /// a height.
     pub fn range(&self) -> Option<(f64, f64)> {
         // Eight lanes, the loop's carried dependence split eight ways; a select keeps the lane
-        // where a void (NaN) compares false.
+        // where a void (NaN) compares false. Whole arrays of eight through `lanes` compile to
+        // two `minps` and two `maxps` a chunk (a loop over zipped lanes, or the same selects
+        // written in the loop, compiled to compares, packs and shuffles at a third the speed).
         let (mut lo, mut hi) = ([f32::INFINITY; 8], [f32::NEG_INFINITY; 8]);
         let chunks = self.values.chunks_exact(8);
         let rest = chunks.remainder();
         for chunk in chunks {
-            for ((lo, hi), &v) in lo.iter_mut().zip(hi.iter_mut()).zip(chunk) {
-                *lo = if v < *lo { v } else { *lo };
-                *hi = if v > *hi { v } else { *hi };
+            if let Ok(c) = <&[f32; 8]>::try_from(chunk) {
+                (lo, hi) = lanes(c, lo, hi);
             }
         }
         for &v in rest {
@@ -83,16 +84,17 @@ impl Grid {
     /// Checks that every height is finite or a void: an infinite height is an error naming its
     /// cell. Returns the number of voids.
     pub fn check_finite(&self, what: &str) -> Result<u64, MapError> {
-        // Most grids hold neither: one branch-free pass says so (3 instructions a cell).
-        let mut odd = [false; 8];
+        // Most grids hold neither: one branch-free pass says so. `v − v` is 0 for a finite
+        // height and NaN for a void or an infinity, and a NaN stays in its lane's sum.
+        let mut odd = [0f32; 8];
         let chunks = self.values.chunks_exact(8);
         let rest = chunks.remainder();
         for chunk in chunks {
-            for (odd, &v) in odd.iter_mut().zip(chunk) {
-                *odd |= !v.is_finite();
+            if let Ok(c) = <&[f32; 8]>::try_from(chunk) {
+                odd = not_finite_lanes(c, odd);
             }
         }
-        if !odd.contains(&true) && rest.iter().all(|v| v.is_finite()) {
+        if odd.iter().all(|&s| s == 0.0) && rest.iter().all(|v| v.is_finite()) {
             return Ok(0);
         }
         let mut voids = 0u64;
@@ -158,11 +160,7 @@ impl Grid {
                 ),
             })?,
         };
-        let heights = self
-            .values
-            .iter()
-            .map(|&v| to_unit(f64::from(v), base_m, height_scale_m))
-            .collect();
+        let heights = to_units(&self.values, base_m, height_scale_m);
         Ok(Heights {
             heights,
             base_m,
@@ -174,35 +172,58 @@ impl Grid {
     }
 }
 
-/// The height unit nearest to `v` metres, clamped to `0..=65535`.
-pub(crate) fn to_unit(v: f64, base_m: f64, step: f64) -> u16 {
-    round(((v - base_m) / step).clamp(-1.0, 65_536.0)) as u16
+/// Eight lanes of [`Grid::range`]: each lane's lowest and highest so far, a void (NaN)
+/// skipped by comparing false.
+#[inline]
+fn lanes(c: &[f32; 8], lo: [f32; 8], hi: [f32; 8]) -> ([f32; 8], [f32; 8]) {
+    (
+        std::array::from_fn(|i| if c[i] < lo[i] { c[i] } else { lo[i] }),
+        std::array::from_fn(|i| if c[i] > hi[i] { c[i] } else { hi[i] }),
+    )
 }
 
-/// `x.round()` (half away from zero) for `|x| < 2^52`, inline: a target without SSE4.1 calls a
-/// library function for `f64::round`, once per cell of every map read. The truncation is exact
-/// there, and so is the fraction `x − trunc(x)`. (A result of zero may lose its sign, which no
-/// caller can see.)
+/// Eight lanes of [`Grid::check_finite`]'s pass: each lane's sum of `v − v`, NaN once a void
+/// or an infinity has passed through it.
 #[inline]
-fn round(x: f64) -> f64 {
-    const EXACT: f64 = 4_503_599_627_370_496.0; // 2^52
-    if x.is_nan() || x.abs() >= EXACT {
-        return x.round();
-    }
+#[allow(
+    clippy::eq_op,
+    reason = "v − v is the test: 0 when finite, NaN otherwise"
+)]
+fn not_finite_lanes(c: &[f32; 8], sum: [f32; 8]) -> [f32; 8] {
+    std::array::from_fn(|i| sum[i] + (c[i] - c[i]))
+}
+
+/// The height unit nearest to `v` metres (a half rounds up, away from zero), clamped to
+/// `0..=65535`; NaN gives 0. The same unit as `((v - base_m) / step).round()` clamped and cast,
+/// without a branch or a conversion, so that a loop over a tile's cells is vectorised (a
+/// rounding branch on the fraction mispredicts on every other cell of a real map).
+#[inline]
+pub(crate) fn to_unit(v: f64, base_m: f64, step: f64) -> u16 {
+    /// 2^52: added to `0 ≤ x < 2^52`, it leaves `x` rounded to a whole number (half to even)
+    /// in the low bits of the sum.
+    const WHOLE: f64 = 4_503_599_627_370_496.0;
+    let q = (v - base_m) / step;
+    // Clamping before rounding gives the same unit: everything at or below 0 (and NaN, which
+    // compares false) rounds to 0 or −1 and casts to 0, everything above 65,535 to 65,535.
+    let x = if q > 0.0 { q } else { 0.0 };
+    let x = if x < 65_535.0 { x } else { 65_535.0 };
+    let bits = (x + WHOLE).to_bits();
+    // x − n is exact; a half that went down to an even n goes up instead.
+    let tie_down = x - (f64::from_bits(bits) - WHOLE) == 0.5;
     #[allow(
         clippy::cast_possible_truncation,
-        clippy::cast_precision_loss,
-        reason = "|x| < 2^52: the integer part fits an i64 and converts back exactly"
+        reason = "n ≤ 65,535 fills the low 16 bits; a half goes up only from an even n < 65,535"
     )]
-    let t = x as i64 as f64;
-    let fraction = x - t;
-    if fraction >= 0.5 {
-        t + 1.0
-    } else if fraction <= -0.5 {
-        t - 1.0
-    } else {
-        t
-    }
+    let n = bits as u16;
+    n + u16::from(tie_down)
+}
+
+/// [`to_unit`] of every height of `values` (metres): a tile's or a map's height units.
+pub(crate) fn to_units(values: &[f32], base_m: f64, step: f64) -> Vec<u16> {
+    values
+        .iter()
+        .map(|&v| to_unit(f64::from(v), base_m, step))
+        .collect()
 }
 
 /// The offset (a whole number of `step`s at or below `min`) for heights `min..=max` at `step`
@@ -314,11 +335,11 @@ impl Spacing {
 mod tests {
     use super::*;
 
-    /// The inline rounding is `f64::round` wherever a height unit can come from (halves,
-    /// neighbours of halves, negatives, huge values, NaN), and `to_unit` is the formula it
-    /// replaced: round, clamp to `0..=65535`, cast.
+    /// `to_unit` is the formula it replaced (round half away from zero, clamp to `0..=65535`,
+    /// cast) wherever a height can come from: halves, neighbours of halves, negatives, the
+    /// ends of the range, huge values, infinities and NaN; `to_units` is `to_unit` of each.
     #[test]
-    fn the_inline_rounding_is_f64_round() {
+    fn to_unit_is_the_rounding_formula() {
         let mut x = 0x2545_f491_4f6c_dd1du64;
         let mut values = vec![
             0.0,
@@ -330,6 +351,9 @@ mod tests {
             2.5,
             65_535.5,
             65_534.5,
+            65_535.499_999_999_99,
+            65_536.0,
+            -1.0,
             -0.49999999999999994,
             0.49999999999999994,
             4_503_599_627_370_495.5,
@@ -345,14 +369,33 @@ mod tests {
             x ^= x >> 7;
             x ^= x << 17;
             let v = (x % 20_000_000) as f64 / 256.0 - 10_000.0;
-            values.extend([v, f64::from_bits(v.to_bits() + 1), f64::from_bits(x)]);
+            values.extend([
+                v,
+                f64::from_bits(v.to_bits() + 1),
+                f64::from_bits(v.to_bits() - 1),
+                f64::from_bits(x),
+            ]);
         }
+        let cases = [
+            (0.0, 1.0),
+            (-12.3, 0.1),
+            (100.0, 0.2),
+            (780.0, 0.1),
+            (0.0, 0.5),
+        ];
         for &v in &values {
-            let r = round(v);
-            assert!(r == v.round() || (r.is_nan() && v.is_nan()), "{v}: {r}");
-            for (base, step) in [(0.0, 1.0), (-12.3, 0.1), (100.0, 0.2)] {
+            for (base, step) in cases {
                 let want = ((v - base) / step).round().clamp(0.0, 65_535.0) as u16;
                 assert_eq!(to_unit(v, base, step), want, "{v} {base} {step}");
+            }
+        }
+        // Single-precision heights, as the readers give them, through the slice.
+        let heights: Vec<f32> = values.iter().map(|&v| v as f32).collect();
+        for (base, step) in cases {
+            let units = to_units(&heights, base, step);
+            for (&v, &u) in heights.iter().zip(&units) {
+                let want = ((f64::from(v) - base) / step).round().clamp(0.0, 65_535.0) as u16;
+                assert_eq!(u, want, "{v} {base} {step}");
             }
         }
     }

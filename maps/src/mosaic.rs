@@ -25,7 +25,7 @@ use footprint_core::error::Shown;
 
 use super::format::{read_grid, Format, GridFile, LoadOptions, Loaded, Sentinel, VerticalUnit};
 use super::georef::{Crs, Georef};
-use super::grid::{to_unit, Grid, Spacing};
+use super::grid::{to_unit, to_units, Grid, Spacing};
 use super::voids::fill_voids;
 use super::{describe, tint, validate_memory, validate_size, vrt, Map, MapError};
 
@@ -711,13 +711,7 @@ impl Rows<'_> {
                 detail: "it changed while the mosaic was being read".to_owned(),
             });
         }
-        let (base, step) = (m.base_m, m.height_scale_m);
-        Ok(file
-            .grid
-            .values
-            .iter()
-            .map(|&v| to_unit(f64::from(v), base, step))
-            .collect())
+        Ok(to_units(&file.grid.values, m.base_m, m.height_scale_m))
     }
 }
 

@@ -60,8 +60,9 @@ pub struct TintScale {
     range: i64,
     slope_q16: f64,
     /// The hypsometric tint of every height from `min` to the highest: the same values as
-    /// computing it per cell, once per height.
-    tints: Vec<[i64; 3]>,
+    /// computing it per cell, once per height (every channel of every stop is within
+    /// `0..=255`, and so is every blend of two, so a byte holds it exactly).
+    tints: Vec<[u8; 3]>,
     /// The hillshade of the cells inside the map, by their neighbours' height differences.
     shades: ShadeCache,
 }
@@ -78,11 +79,45 @@ const SHADE_SIDE: usize = 2 * SHADE_REACH as usize + 1;
 /// same value as computing it, once per pair of differences (0: not yet met; a factor is at
 /// least 90). Most of a real map's cells fall in it, and the factor is most of a cell's cost.
 #[derive(Clone)]
-struct ShadeCache(Vec<u16>);
+struct ShadeCache {
+    /// The factors, by `(dzy + SHADE_REACH) · SHADE_SIDE + dzx + SHADE_REACH`.
+    table: Vec<u16>,
+    /// The factors of the row being coloured (a buffer reused row after row).
+    row: Vec<u32>,
+}
 
 impl ShadeCache {
     fn new() -> Self {
-        Self(vec![0; SHADE_SIDE * SHADE_SIDE])
+        Self {
+            table: vec![0; SHADE_SIDE * SHADE_SIDE],
+            row: Vec::new(),
+        }
+    }
+
+    /// The hillshade factors of the inside cells of a row (`x` from 1 to `w − 2`), given the
+    /// rows north and south of it, each clamped to `0..=65,536` (as [`shade_bytes`] takes
+    /// it: the same colour). A pass of its own, apart from the colouring, so that each loop
+    /// is short.
+    fn inside(&mut self, rows: [&[u16]; 3], slope_q16: f64) -> &[u32] {
+        let [north, row, south] = rows;
+        let mut factors = std::mem::take(&mut self.row);
+        factors.clear();
+        let cells = row.windows(3).zip(&north[1..]).zip(&south[1..]);
+        factors.extend(cells.map(|((around, &n), &s)| {
+            let (dzx, dzy) = (
+                i64::from(around[2]) - i64::from(around[0]),
+                i64::from(s) - i64::from(n),
+            );
+            #[allow(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "clamped to 0..=65,536"
+            )]
+            let f = self.shade(dzx, dzy, slope_q16).clamp(0, 65_536) as u32;
+            f
+        }));
+        self.row = factors;
+        &self.row
     }
 
     /// The hillshade of an inside cell with differences `dzx` (east less west) and `dzy`
@@ -99,7 +134,7 @@ impl ShadeCache {
         let (x, y) = ((dzx + SHADE_REACH) as u64, (dzy + SHADE_REACH) as u64);
         let side = SHADE_SIDE as u64;
         let slot = if x < side && y < side {
-            self.0.get_mut((y * side + x) as usize)
+            self.table.get_mut((y * side + x) as usize)
         } else {
             None
         };
@@ -141,7 +176,7 @@ impl TintScale {
         };
         let range = (max - min).max(1);
         let tints = (min..=max.max(min))
-            .map(|h| hypsometric((h - min) * 65_536 / range))
+            .map(|h| hypsometric((h - min) * 65_536 / range).map(channel_byte))
             .collect();
         Self {
             min,
@@ -157,7 +192,7 @@ impl TintScale {
     fn tint_of(&self, h: u16) -> [i64; 3] {
         let d = i64::from(h) - self.min;
         match usize::try_from(d).ok().and_then(|i| self.tints.get(i)) {
-            Some(&c) => c,
+            Some(&c) => c.map(i64::from),
             None => hypsometric(d * 65_536 / self.range),
         }
     }
@@ -192,19 +227,46 @@ impl TintScale {
             out.extend((0..w).map(|x| edge(self, x)));
             return;
         }
-        // Inside: two cells of run either way, the hillshade from the cache.
-        out.push(edge(self, 0));
-        let inside = row.windows(3).zip(&north[1..]).zip(&south[1..]);
-        for ((around, &n), &s) in inside {
-            let (dzx, dzy) = (
-                i64::from(around[2]) - i64::from(around[0]),
-                i64::from(s) - i64::from(n),
-            );
-            let factor = self.shades.shade(dzx, dzy, self.slope_q16);
-            out.push(shade(self.tint_of(around[1]), factor));
+        // Inside: two cells of run either way, the hillshade from the cache, the tint from the
+        // table; written in place (a push per cell stores the vector's length per cell).
+        let start = out.len();
+        out.resize(start + w, Rgb::BLACK);
+        let cells = &mut out[start..];
+        cells[0] = edge(self, 0);
+        cells[w - 1] = edge(self, w - 1);
+        let Self {
+            min,
+            range,
+            slope_q16,
+            tints,
+            shades,
+        } = self;
+        let factors = shades.inside([north, row, south], *slope_q16);
+        let inside = cells[1..w - 1].iter_mut().zip(&row[1..]).zip(factors);
+        for ((cell, &h), &factor) in inside {
+            let d = i64::from(h) - *min;
+            *cell = match usize::try_from(d).ok().and_then(|i| tints.get(i)) {
+                Some(&c) => shade_bytes(c, factor),
+                None => shade(hypsometric(d * 65_536 / *range), i64::from(factor)),
+            };
         }
-        out.push(edge(self, w - 1));
     }
+}
+
+/// A tint channel (`0..=255`, as every stop's and every blend of two) as a byte.
+fn channel_byte(c: i64) -> u8 {
+    u8::try_from(c.clamp(0, 255)).unwrap_or(u8::MAX)
+}
+
+/// [`shade`] of a tint held in bytes, for a factor clamped to `0..=65,536`: the same colour, in
+/// 32-bit arithmetic. (A factor below 0 gives 0 and one above 65,536 saturates every channel
+/// but a 0 as 65,536 does, so the clamp keeps the colour and every product within `u32`; the
+/// hillshade's factors are 90..=324.)
+#[inline]
+fn shade_bytes(c: [u8; 3], f: u32) -> Rgb {
+    #[allow(clippy::cast_possible_truncation, reason = "at most 255")]
+    let ch = |v: u8| ((u32::from(v) * f) >> 8).min(255) as u8;
+    Rgb::new(ch(c[0]), ch(c[1]), ch(c[2]))
 }
 
 /// The slope `dz * scale / run` in 1/65536, or 0 when `run` is 0 (a one-voxel-wide map).
@@ -360,6 +422,30 @@ mod tests {
         assert_eq!(tint(1, 1, &[5], 1.0, 1.0).len(), 1);
         assert_eq!(tint(3, 1, &[7, 7, 7], 1.0, 1.0).len(), 3);
         assert!(tint(0, 0, &[], 1.0, 1.0).is_empty());
+    }
+
+    /// The byte tint's shade is `shade` for every channel value and every factor the
+    /// hillshade gives (90..=324), and beyond: negative, zero and huge factors (up to where
+    /// `shade`'s own products would overflow).
+    #[test]
+    fn shade_bytes_is_shade() {
+        let huge = i64::MAX / 255;
+        let factors = (-300..=70_000).chain([-huge, -1 << 40, 1 << 40, huge]);
+        for f in factors {
+            for v in 0..=255u8 {
+                let c = [v, 255 - v, v / 3];
+                let clamped = u32::try_from(f.clamp(0, 65_536)).unwrap();
+                assert_eq!(
+                    shade_bytes(c, clamped),
+                    shade(c.map(i64::from), f),
+                    "{c:?} {f}"
+                );
+            }
+        }
+        for t in 0..=65_536 {
+            let c = hypsometric(t);
+            assert_eq!(c.map(channel_byte).map(i64::from), c, "{t}");
+        }
     }
 
     /// The cached hillshade and the shifted shade give every cell the colour of the formula

@@ -192,45 +192,45 @@ pub fn reduce_row(
     check_len("row along x", w, out.along_x.len())?;
     check_len("row along y", w, out.along_y.len())?;
     check_len("row colours", w, out.colors.len())?;
-    // The lengths are checked above, so no fallback below is ever taken.
-    let at = |row: &[u16], i: usize| row.get(i).copied().unwrap_or(0);
-    let cat = |row: &[Rgb], i: usize| row.get(i).copied().unwrap_or_default();
-    let cells = out
-        .along_x
-        .iter_mut()
-        .zip(out.along_y.iter_mut())
-        .zip(out.colors.iter_mut())
-        .enumerate();
-    for (x, ((out_x, out_y), out_c)) in cells {
-        let (x0, x1) = (2 * x, (2 * x + 1).min(wb - 1));
-        // Top-left, top-right, bottom-left, bottom-right, as `build_next`.
-        let qx = [
-            at(a.along_x, x0),
-            at(a.along_x, x1),
-            at(b.along_x, x0),
-            at(b.along_x, x1),
-        ];
-        let qy = [
-            at(a.along_y, x0),
-            at(a.along_y, x1),
-            at(b.along_y, x0),
-            at(b.along_y, x1),
-        ];
-        (*out_x, *out_y) = match filter {
-            HeightFilter::Mean => (mean4(qx), mean4(qy)),
-            HeightFilter::Silhouette => (
-                mean2(qx[0].max(qx[1]), qx[2].max(qx[3])),
-                mean2(qy[0].max(qy[2]), qy[1].max(qy[3])),
-            ),
-        };
-        *out_c = mean_color([
-            cat(a.colors, x0),
-            cat(a.colors, x1),
-            cat(b.colors, x0),
-            cat(b.colors, x1),
-        ]);
+    // Top-left, top-right, bottom-left, bottom-right, as `build_next`.
+    match filter {
+        HeightFilter::Mean => {
+            pairs(a.along_x, b.along_x, out.along_x, mean4);
+            pairs(a.along_y, b.along_y, out.along_y, mean4);
+        }
+        HeightFilter::Silhouette => {
+            pairs(a.along_x, b.along_x, out.along_x, |q| {
+                mean2(q[0].max(q[1]), q[2].max(q[3]))
+            });
+            pairs(a.along_y, b.along_y, out.along_y, |q| {
+                mean2(q[0].max(q[2]), q[1].max(q[3]))
+            });
+        }
     }
+    pairs(a.colors, b.colors, out.colors, mean_color);
     Ok(())
+}
+
+/// Reduces a pair of rows below (`a` north of `b`, equally long) into `out` (half as long,
+/// rounded up): `f` of each 2×2 block, top-left, top-right, bottom-left, bottom-right; an odd
+/// width's last block mirrors its column (the edge voxel is its own neighbour). One loop over
+/// whole pairs of columns, without a bound or an edge test per cell.
+#[inline]
+fn pairs<T: Copy>(a: &[T], b: &[T], out: &mut [T], f: impl Fn([T; 4]) -> T) {
+    let (whole, last) = out.split_at_mut((a.len() / 2).min(out.len()));
+    let blocks = whole
+        .iter_mut()
+        .zip(a.chunks_exact(2))
+        .zip(b.chunks_exact(2));
+    for ((o, ta), tb) in blocks {
+        // Always two each (`chunks_exact`): the pattern compiles to no test.
+        if let (&[a0, a1], &[b0, b1]) = (ta, tb) {
+            *o = f([a0, a1, b0, b1]);
+        }
+    }
+    if let ([o], Some(&ta), Some(&tb)) = (last, a.last(), b.last()) {
+        *o = f([ta, ta, tb, tb]);
+    }
 }
 
 /// Builds one row of the next level's conservative maximum from two rows of the maximum grid
@@ -251,11 +251,7 @@ pub fn reduce_max_row(below: [&[u16]; 2], out: &mut [u16]) -> Result<(), Error> 
         });
     }
     check_len("max row", wb.div_ceil(2), out.len())?;
-    let at = |row: &[u16], i: usize| row.get(i).copied().unwrap_or(u16::MAX);
-    for (x, o) in out.iter_mut().enumerate() {
-        let (x0, x1) = (2 * x, (2 * x + 1).min(wb - 1));
-        *o = at(a, x0).max(at(a, x1)).max(at(b, x0)).max(at(b, x1));
-    }
+    pairs(a, b, out, |q| q[0].max(q[1]).max(q[2]).max(q[3]));
     Ok(())
 }
 
