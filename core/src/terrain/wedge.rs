@@ -360,7 +360,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         let (mut sum, mut total, mut cells) = (0i64, 0i64, 0u32);
         let mut highest = 0u16;
         let row = voxel.row_around(2);
-        for k in first.max(-2)..=last.min(2) {
+        for k in first.max(-2)..last.min(2) + 1 {
             let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
             #[allow(
                 clippy::cast_possible_truncation,
@@ -406,7 +406,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
             let (lo2, hi2) = (lo << 1, hi << 1);
             let (k_lo, k_hi) = ((lo2 >> 32).max(-4), ((hi2 - 1) >> 32).min(5));
             let mut offsets = [0usize; 10];
-            for (k, slot) in (k_lo..=k_hi).zip(offsets.iter_mut()) {
+            for (k, slot) in (k_lo..k_hi + 1).zip(offsets.iter_mut()) {
                 *slot = finer.across(k);
             }
             let mut mean2 = i64::MIN;
@@ -414,7 +414,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
             for (along, row_color) in (0..2).zip(colors.iter_mut()) {
                 let row = finer.along(along);
                 let (mut sum2, mut total2) = (0i64, 0i64);
-                for (k, &offset) in (k_lo..=k_hi).zip(offsets.iter()) {
+                for (k, &offset) in (k_lo..k_hi + 1).zip(offsets.iter()) {
                     let cover = (hi2.min((k + 1) << 32) - lo2.max(k << 32)) >> 16;
                     sum2 += i64::from(finer.cell(row + offset).0) * cover;
                     total2 += cover;
