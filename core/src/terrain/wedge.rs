@@ -107,13 +107,13 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         }
     }
 
-    /// The wedge's cross-section at `voxel`, in cells of its level measured from its cell's
-    /// edge behind (in the direction the ray moves across): `[lo, hi)`, 32 fractional bits.
+    /// The wedge's cross-section at `voxel`, `d` half-voxels from the eye ([`distance`]), in
+    /// cells of its level measured from its cell's edge behind (in the direction the ray moves
+    /// across): `[lo, hi)`, 32 fractional bits.
     #[inline(always)]
-    fn section(&self, voxel: &Voxel<'_>) -> (i64, i64) {
+    fn section(&self, voxel: &Voxel<'_>, d: i64) -> (i64, i64) {
         // |n − n_eye| ≤ 2^23 half-voxels and wedge ≤ 4·2^32 (Frame::new clamps it): the
         // product is below 2^58.
-        let d = distance(voxel, self.n_eye);
         let half = ((d * self.wedge) >> voxel.level()).min(MAX_HALF);
         let t = i64::from(voxel.fraction_ahead());
         (t - half, t + half)
@@ -329,7 +329,9 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         ray: &mut Ray,
         cost: &mut C,
     ) -> Hit {
-        let (lo, hi) = self.section(voxel);
+        // The step's distance from the eye, once for the section, the surface and the blend.
+        let d = distance(voxel, self.n_eye);
+        let (lo, hi) = self.section(voxel, d);
         let (first, last) = (lo >> 32, (hi - 1) >> 32);
         if first >= last {
             // The wedge lies inside the voxel's cell: its height, and Eq. 4's colour integrated
@@ -338,7 +340,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
             cost.wedge(1);
             // On the continuous surface where voxels are magnified, its height at the centre.
             let f = if SMOOTH && self.surface > 0 {
-                surface::weight(distance(voxel, self.n_eye), self.surface)
+                surface::weight(d, self.surface)
             } else {
                 0
             };
@@ -359,30 +361,39 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
         let (mut sum, mut total, mut cells) = (0i64, 0i64, 0u32);
         let mut highest = 0u16;
-        let row = voxel.row_around(2);
-        for k in first.max(-2)..last.min(2) + 1 {
+        let mut add = |k: i64, at: usize| {
             let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
-            #[allow(
-                clippy::cast_possible_truncation,
-                reason = "-2 ≤ k ≤ 2 (clamped above)"
-            )]
-            let k = k as isize;
-            let at = match row {
-                Some((idx, step)) => idx.wrapping_add_signed(k * step),
-                None => voxel.across(k),
-            };
             let h = voxel.height_at(at);
             highest = highest.max(h);
             sum += i64::from(h) * cover;
             total += cover;
             cells += 1;
+        };
+        let cells_across = first.max(-2)..last.min(2) + 1;
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "-2 ≤ k ≤ 2 (clamped above)"
+        )]
+        // Away from the mirror edges a stride apart (one loop without the test), else through
+        // the mirror.
+        match voxel.row_around(2) {
+            Some((idx, step)) => {
+                for k in cells_across {
+                    add(k, idx.wrapping_add_signed(k as isize * step));
+                }
+            }
+            None => {
+                for k in cells_across {
+                    add(k, voxel.across(k as isize));
+                }
+            }
         }
         cost.wedge(cells);
         // On the continuous surface (a wedge narrower than a voxel, level 0), the mean across
         // is the surface's height at the wedge's centre line (exact for the surface between
         // two centres, where it is linear across), blended into the flat cells' mean.
         let smooth = if SMOOTH && self.surface > 0 {
-            surface::weight(distance(voxel, self.n_eye), self.surface)
+            surface::weight(d, self.surface)
         } else {
             0
         };
@@ -399,7 +410,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         // cells (the two child rows along, the silhouette's maximum of their means, as the
         // pyramid makes a height), blended out as the step moves into the level: at the climb
         // the step is the finer level's, as the step before it was, so no pixel pops there.
-        let f = weight(distance(voxel, self.n_eye), self.climb, voxel.level());
+        let f = weight(d, self.climb, voxel.level());
         if let Some(finer) = voxel.finer().filter(|_| f > 0) {
             // The interval in the children's cells, from the first child's edge behind, and
             // the cells it reaches across (their offsets, shared by both rows).
