@@ -286,24 +286,20 @@ fn integrated_color_general(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> O
     Lanes { sum, total }.mean()
 }
 
-/// The colour of cell `k` across from `voxel`'s (in the direction the ray moves across): a
-/// stride apart away from the map's mirror edges (`row`, [`Voxel::row_around`]), else through
-/// the mirror ([`Voxel::across`]).
-#[inline(always)]
-fn cell_color(voxel: &Voxel<'_>, row: Option<(usize, isize)>, k: isize) -> Rgb {
-    let at = match row {
-        Some((idx, step)) => idx.wrapping_add_signed(k * step),
-        None => voxel.across(k),
-    };
-    voxel.color_at(at)
-}
-
 /// [`integrated_color`] of the row around `voxel`, or Eq. 4 at its centre line for an interval
-/// too short to weigh.
+/// too short to weigh. Cell `k` across from the voxel's (in the direction the ray moves across)
+/// is a stride apart away from the map's mirror edges ([`Voxel::row_around`]), else found
+/// through the mirror ([`Voxel::across`]): two loops, so that neither tests which at every
+/// cell.
 #[inline(always)]
 fn row_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
-    let row = voxel.row_around(4);
-    integrated_color(lo, hi, |k| cell_color(voxel, row, k)).unwrap_or_else(|| voxel.sample_linear())
+    match voxel.row_around(4) {
+        Some((idx, step)) => integrated_color(lo, hi, |k| {
+            voxel.color_at(idx.wrapping_add_signed(k * step))
+        }),
+        None => integrated_color(lo, hi, |k| voxel.color_at(voxel.across(k))),
+    }
+    .unwrap_or_else(|| voxel.sample_linear())
 }
 
 impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
