@@ -366,12 +366,12 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
             cells += 1;
         };
         let cells_across = first.max(-2)..last.min(2) + 1;
+        // Away from the mirror edges a stride apart (one loop without the test), else through
+        // the mirror.
         #[allow(
             clippy::cast_possible_truncation,
             reason = "-2 ≤ k ≤ 2 (clamped above)"
         )]
-        // Away from the mirror edges a stride apart (one loop without the test), else through
-        // the mirror.
         match voxel.row_around(2) {
             Some((idx, step)) => {
                 for k in cells_across {
@@ -477,7 +477,7 @@ mod tests {
     /// The written-out weights give the general gathering's colour, bit for bit, over intervals
     /// at every offset and width across the reach, including the ones that reach past it.
     #[test]
-    fn the_short_interval_is_the_general_one_bit_for_bit() {
+    fn the_written_out_weights_are_the_general_ones_bit_for_bit() {
         let color = |k: isize| {
             let k = k as i64 + 7;
             Rgb::new(

@@ -91,6 +91,7 @@ impl Fan {
         } else {
             (0, 0)
         };
+        // `first ≤ end ≤ out.len()` (`inside`): the splits cannot fail.
         let Some((before, rest)) = out.split_at_mut_checked(first) else {
             return;
         };
@@ -161,6 +162,7 @@ impl Fan {
             let x = x + c as i64 * ONE;
             *px = P::from_rgb(self.any_lines(grid, x, u, g).unwrap_or(sky));
         };
+        // As in `nearest_row`, the splits cannot fail.
         let Some((before, rest)) = out.split_at_mut_checked(first) else {
             return;
         };
