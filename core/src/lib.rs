@@ -110,6 +110,8 @@
 
 #[cfg(test)]
 extern crate std;
+#[cfg(test)]
+mod testing;
 
 // The shared floor, below both rooms.
 pub mod color;

@@ -486,13 +486,7 @@ mod tests {
                 (k * 13 % 256) as u8,
             )
         };
-        let mut rng = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: i64| {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            (rng % m as u64) as i64
-        };
+        let mut next = crate::testing::uniform(0x2545_f491_4f6c_dd1d);
         let mut short = 0;
         for i in 0..200_000 {
             // From −5 cells (past the reach, as the finer level's intervals can start).

@@ -457,7 +457,8 @@ mod tests {
     use std::vec;
     use std::vec::Vec;
 
-    fn camera(pitch: f64, roll: f64, fov: f64, w: u32, h: u32) -> Camera {
+    /// A camera 100 m up at heading 17°, with the given pitch, roll, field of view and size.
+    pub(super) fn camera(pitch: f64, roll: f64, fov: f64, w: u32, h: u32) -> Camera {
         Camera::new(CameraParams {
             x_m: 0.0,
             y_m: 0.0,
@@ -474,9 +475,22 @@ mod tests {
     }
 
     /// Eq. 2's slopes at the fan's row edges, as `Frame::new` builds them (unclamped).
-    fn slopes(cam: &Camera, fan: &Fan) -> Vec<Coord> {
+    pub(super) fn slopes(cam: &Camera, fan: &Fan) -> Vec<Coord> {
         (0..=fan.rows())
             .map(|i| Coord::from_num(cam.slope_at(fan.row_y(i)).clamp(-1e6, 1e6)))
+            .collect()
+    }
+
+    /// The fan's grid in distinct colours, so that every cell and weight shows.
+    pub(super) fn distinct_grid(fan: &Fan) -> Vec<Rgb> {
+        (0..fan.lines() * fan.rows())
+            .map(|i| {
+                Rgb::new(
+                    (i * 37 % 256) as u8,
+                    (i * 101 % 256) as u8,
+                    (i * 13 % 256) as u8,
+                )
+            })
             .collect()
     }
 
@@ -579,24 +593,10 @@ mod tests {
         // and of a row, and widths from under one line to past two.
         let cam = camera(40.0, 30.0, 10.0, 40, 32);
         let fan = Fan::new(&cam, 1).unwrap();
-        let grid: Vec<Rgb> = (0..fan.lines() * fan.rows())
-            .map(|i| {
-                Rgb::new(
-                    (i * 37 % 256) as u8,
-                    (i * 101 % 256) as u8,
-                    (i * 13 % 256) as u8,
-                )
-            })
-            .collect();
+        let grid = distinct_grid(&fan);
         // (on a fan row, straddling two) × (answered, declined)
         let mut seen = [[0; 2]; 2];
-        let mut rng = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: i64| {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            (rng % m as u64) as i64
-        };
+        let mut next = crate::testing::uniform(0x2545_f491_4f6c_dd1d);
         for i in 0..20_000 {
             let u = next(fan.rows() as i64 * ONE + 2 * ONE) - ONE;
             // Every other box on a fan row (as without roll), where the upper row has no share.

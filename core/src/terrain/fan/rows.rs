@@ -211,17 +211,9 @@ impl Fan {
 
 #[cfg(test)]
 mod tests {
+    use super::super::tests::{camera, distinct_grid, slopes};
     use super::*;
-    use crate::terrain::camera::{Camera, CameraParams};
     use std::vec;
-    use std::vec::Vec;
-
-    /// Eq. 2's slopes at the fan's row edges, as `Frame::new` builds them (unclamped).
-    fn slopes(cam: &Camera, fan: &Fan) -> Vec<Coord> {
-        (0..=fan.rows())
-            .map(|i| Coord::from_num(cam.slope_at(fan.row_y(i)).clamp(-1e6, 1e6)))
-            .collect()
-    }
 
     #[test]
     fn rows_equal_the_per_pixel_path_bit_for_bit() {
@@ -240,31 +232,11 @@ mod tests {
             (85.0, 20.0, 24, 64, 2),
             (89.0, 90.0, 50, 20, 1),
         ] {
-            let cam = Camera::new(CameraParams {
-                x_m: 0.0,
-                y_m: 0.0,
-                eye_m: 100.0,
-                heading_deg: 17.0,
-                pitch_deg: pitch,
-                roll_deg: 0.0,
-                fov_deg: fov,
-                width: w,
-                height: h,
-                far_m: 1000.0,
-            })
-            .unwrap();
+            let cam = camera(pitch, 0.0, fov, w, h);
             let fan = Fan::new(&cam, k).unwrap();
             assert!(fan.rows_apply());
             let s = slopes(&cam, &fan);
-            let grid: Vec<Rgb> = (0..fan.lines() * fan.rows())
-                .map(|i| {
-                    Rgb::new(
-                        (i * 37 % 256) as u8,
-                        (i * 101 % 256) as u8,
-                        (i * 13 % 256) as u8,
-                    )
-                })
-                .collect();
+            let grid = distinct_grid(&fan);
             let sky = Rgb::new(1, 2, 3);
             let n = (w * h) as usize;
             for filter in [Filter::Box, Filter::Nearest] {
