@@ -440,9 +440,13 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
         let (x, y) = voxel.cell_unmirrored();
         let (w, hgt) = (level.width(), level.height());
         let heights = level.heights(Axis::X);
+        let strips = level.strips();
+        let col = |x: usize| strips.x(u32::try_from(x).unwrap_or(0));
+        let row = |y: usize| strips.y(u32::try_from(y).unwrap_or(0));
         let (x0, x1, x2) = fold3(x, w);
         let (y0, y1, y2) = fold3(y, hgt);
-        let (r0, r1, r2) = (y0 * w as usize, y1 * w as usize, y2 * w as usize);
+        let (x0, x1, x2) = (col(x0), col(x1), col(x2));
+        let (r0, r1, r2) = (row(y0), row(y1), row(y2));
         let h = |at: usize| i64::from(heights.get(at).copied().unwrap_or(0));
         let (left, right) = (h(r1 + x0), h(r1 + x2));
         let (up, down, here) = (h(r0 + x1), h(r2 + x1), h(r1 + x1));

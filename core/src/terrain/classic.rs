@@ -85,7 +85,7 @@ pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
             Axis::X => (u, v),
             Axis::Y => (v, u),
         };
-        let at = mirror_side(y, rows) as usize * w as usize + mirror_side(x, w) as usize;
+        let at = map.index(mirror_side(x, w), mirror_side(y, rows));
         let top = height(heights.get(at).copied().unwrap_or(0));
         if top > ray.at(n) {
             let color = map.colors().get(at).copied().unwrap_or_default();

@@ -13,6 +13,7 @@
 use crate::color::Rgb;
 use crate::error::{check, Error};
 use crate::num::{height, Height};
+use crate::terrain::strips::Strips;
 
 /// Which horizontal axis a column's rays step along (the paper's "x-major" ray).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -30,7 +31,8 @@ pub const MAX_SIDE: u32 = 65_536;
 /// The most pyramid levels a terrain holds: enough to reduce a 65,536-wide map to one voxel.
 pub const MAX_LEVELS: usize = 17;
 
-/// One level of the pyramid: `width × height` voxels, row-major (`heights[y·width + x]`).
+/// One level of the pyramid: `width × height` voxels, row-major (`heights[y·width + x]`) or in
+/// vertical strips ([`Strips`], [`Level::striped`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Level<'a> {
     /// The heights that rays stepping along x see ([`Axis::X`]).
@@ -43,6 +45,8 @@ pub struct Level<'a> {
     max: Option<&'a [u16]>,
     width: u32,
     height: u32,
+    /// Where cell `(x, y)` lies in the slices.
+    strips: Strips,
 }
 
 /// Folds an infinite index into `0..len` by mirroring about the edges; any `len` (0 folds as
@@ -150,6 +154,7 @@ impl<'a> Level<'a> {
             max: Some(heights),
             width,
             height,
+            strips: Strips::row_major(width, height)?,
         })
     }
 
@@ -166,7 +171,42 @@ impl<'a> Level<'a> {
         along_y: &'a [u16],
         colors: &'a [Rgb],
     ) -> Result<Self, Error> {
-        let cells = cells(width, height)?;
+        Self::striped(
+            Strips::row_major(width, height)?,
+            width,
+            height,
+            along_x,
+            along_y,
+            colors,
+        )
+    }
+
+    /// [`Level::directional`] over slices in `strips` order (made by [`Strips::new`] for this
+    /// level's size; [`Strips::stripe`] writes them): what a baked file of a large map holds.
+    ///
+    /// Errors: a side of 0 or over [`MAX_SIDE`], `strips` made for another size, or a slice of
+    /// the wrong length.
+    pub fn striped(
+        strips: Strips,
+        width: u32,
+        height: u32,
+        along_x: &'a [u16],
+        along_y: &'a [u16],
+        colors: &'a [Rgb],
+    ) -> Result<Self, Error> {
+        let plain = Strips::row_major(width, height)?;
+        let expected = match strips.shift() {
+            Some(shift) => Strips::new(width, height, shift)?,
+            None => plain,
+        };
+        if strips != expected {
+            return Err(Error::SliceLength {
+                what: "strips",
+                expected: expected.len(),
+                actual: strips.len(),
+            });
+        }
+        let cells = strips.len();
         check_len("heights along x", cells, along_x.len())?;
         check_len("heights along y", cells, along_y.len())?;
         check_len("colors", cells, colors.len())?;
@@ -177,16 +217,17 @@ impl<'a> Level<'a> {
             max: None,
             width,
             height,
+            strips,
         })
     }
 
-    /// This level with its conservative maximum grid `max` (row-major, built by
+    /// This level with its conservative maximum grid `max` (in the level's order, built by
     /// [`Level::build_next_max`]): every value at least the highest level-0 height under the
     /// voxel. A walk skips empty air only through levels that have one.
     ///
     /// Errors: a slice of the wrong length.
     pub fn with_max(self, max: &'a [u16]) -> Result<Self, Error> {
-        check_len("max heights", self.cells(), max.len())?;
+        check_len("max heights", self.strips.len(), max.len())?;
         Ok(Self {
             max: Some(max),
             ..self
@@ -204,6 +245,12 @@ impl<'a> Level<'a> {
         self.width as usize * self.height as usize
     }
 
+    /// Where the level's cells lie in its slices.
+    #[inline(always)]
+    pub fn strips(&self) -> Strips {
+        self.strips
+    }
+
     /// Width in voxels.
     pub fn width(&self) -> u32 {
         self.width
@@ -214,7 +261,7 @@ impl<'a> Level<'a> {
         self.height
     }
 
-    /// The heights that rays stepping along `axis` see, row-major.
+    /// The heights that rays stepping along `axis` see, in the level's order ([`Level::strips`]).
     #[inline(always)]
     pub fn heights(&self, axis: Axis) -> &'a [u16] {
         match axis {
@@ -223,7 +270,7 @@ impl<'a> Level<'a> {
         }
     }
 
-    /// The colours, row-major.
+    /// The colours, in the level's order ([`Level::strips`]).
     pub fn colors(&self) -> &'a [Rgb] {
         self.colors
     }
@@ -249,9 +296,10 @@ impl<'a> Level<'a> {
         top(self.along_x).max(top(self.along_y))
     }
 
+    /// The index of voxel `(x, y)` (`x < width`, `y < height`) in the level's slices.
     #[inline(always)]
-    pub(crate) fn index(&self, x: u32, y: u32) -> usize {
-        y as usize * self.width as usize + x as usize
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        self.strips.index(x, y)
     }
 }
 

@@ -43,6 +43,7 @@ use crate::terrain::frame::Frame;
 use crate::terrain::map::Axis;
 use crate::terrain::map::{fold, mirror, period, Level, Terrain};
 use crate::terrain::ray::Ray;
+use crate::terrain::strips::Strips;
 
 /// A cursor on the voxel sequence of one column.
 #[derive(Clone, Debug)]
@@ -85,20 +86,27 @@ pub struct March<'a, 't> {
     /// Positions in the mirrored periods of the major and cross axes.
     pu: u32,
     pv: u32,
-    /// Level-`l` side lengths along the major and cross axes, and strides in the arrays.
+    /// Level-`l` side lengths along the major and cross axes, and strides in the arrays
+    /// (within a strip, [`Strips`]).
     len_u: u32,
     len_v: u32,
     stride_u: usize,
     stride_v: usize,
+    /// Where the level's cells lie in its arrays.
+    strips: Strips,
     /// `len_v − 1`: the most cells a ray can have behind it across, in one mirrored stretch
     /// (Eq. 4's neighbour behind, [`Voxel::sample_linear`]).
     last_v: u32,
     /// The array offset of the current cross-axis cell, `fold(pv)·stride_v`.
     off_v: usize,
     /// What crossing into the next cell across the ray adds to `idx` (`±stride_v`, or 0 on a
-    /// one-cell-wide axis), and how many such crossings remain before a mirror edge across.
+    /// one-cell-wide axis), and how many such crossings remain before an edge across: a
+    /// mirror edge, or a strip's edge ([`Strips`]) where the index jumps. `gap` more remain
+    /// before the mirror edge (0 in a row-major level): the cells a sampler reads across go by
+    /// the mirror, `cross_left + gap`.
     dcross: isize,
     cross_left: u32,
+    gap: u32,
     /// Steps taken so far; identifies the voxel for the distinct-sample count `M`.
     k: u32,
     /// The current voxel's index in the level's arrays, `fold(pu)·stride_u + off_v`.
@@ -161,9 +169,11 @@ impl<'a, 't> March<'a, 't> {
             last_v: 0,
             stride_u: 0,
             stride_v: 0,
+            strips: level.strips(),
             off_v: 0,
             dcross: 0,
             cross_left: 0,
+            gap: 0,
             k: 0,
             idx: 0,
             du: 0,
@@ -182,9 +192,11 @@ impl<'a, 't> March<'a, 't> {
         self.heights = self.level.heights(self.axis);
         self.colors = self.level.colors();
         let (w, h) = (self.level.width(), self.level.height());
+        self.strips = self.level.strips();
+        let row = self.strips.row();
         let (len_u, len_v, stride_u, stride_v) = match self.axis {
-            Axis::X => (w, h, 1, w as usize),
-            Axis::Y => (h, w, w as usize, 1),
+            Axis::X => (w, h, 1, row),
+            Axis::Y => (h, w, row, 1),
         };
         self.len_u = len_u;
         self.len_v = len_v;
@@ -216,7 +228,11 @@ impl<'a, 't> March<'a, 't> {
         let (len, pu, stride) = (self.len_u, self.pu, self.stride_u as isize);
         // Along the major axis the fold moves by ±1 until the step that crosses an edge of
         // the map (where the mirrored index repeats).
-        let (du, to_edge) = fold_run(self.forward, pu, len, stride);
+        let (du, mut to_edge) = fold_run(self.forward, pu, len, stride);
+        if self.axis == Axis::X && du != 0 {
+            // Along x a run also ends at its strip's edge, where the index jumps.
+            to_edge = to_edge.min(self.strips.left_in_strip(fold(pu, len), du > 0));
+        }
         self.du = du;
         let mut run = i64::from(to_edge);
         if self.climb_at != i64::MAX {
@@ -279,7 +295,16 @@ impl<'a, 't> March<'a, 't> {
     /// one way (the ray moves across in the direction of `dv`).
     fn plan_cross(&mut self) {
         let (len, pv, stride) = (self.len_v, self.pv, self.stride_v as isize);
-        (self.dcross, self.cross_left) = fold_run(self.dv_step > 0, pv, len, stride);
+        let (dcross, to_mirror) = fold_run(self.dv_step > 0, pv, len, stride);
+        let to_edge = match self.axis {
+            // Across y the stride is a row everywhere.
+            Axis::X => to_mirror,
+            Axis::Y if dcross != 0 => {
+                to_mirror.min(self.strips.left_in_strip(fold(pv, len), dcross > 0))
+            }
+            Axis::Y => to_mirror,
+        };
+        (self.dcross, self.cross_left, self.gap) = (dcross, to_edge, to_mirror - to_edge);
     }
 
     /// The cell index across after `crossed` more crossings in the direction the ray moves
@@ -389,7 +414,7 @@ impl<'a, 't> March<'a, 't> {
             let start = self.run.min(limit);
             let (mut left, mut idx) = (start, self.idx);
             let mut frac = self.frac() ^ flip;
-            let (dcross, mut cross_left) = (self.dcross, self.cross_left);
+            let (dcross, mut cross_left, gap) = (self.dcross, self.cross_left, self.gap);
             let mut mark = start;
             // The tight loop: one voxel per iteration, until a hit that returns, the run's
             // end, or a mirror edge across the ray.
@@ -404,15 +429,16 @@ impl<'a, 't> March<'a, 't> {
                         1 => (idx.wrapping_add_signed(d), idx.wrapping_add_signed(d)),
                         _ => (idx.wrapping_add_signed(d), idx.wrapping_add_signed(2 * d)),
                     };
-                    let (a1, a2) = near(cross_left, dcross);
-                    let (b1, b2) = near(last_v.saturating_sub(cross_left), -dcross);
+                    let to_mirror = cross_left + gap;
+                    let (a1, a2) = near(to_mirror, dcross);
+                    let (b1, b2) = near(last_v.saturating_sub(to_mirror), -dcross);
                     at(idx).max(at(a1)).max(at(a2)).max(at(b1)).max(at(b2))
                 } else {
                     at(idx)
                 };
                 let top = i64::from(top) << 24;
                 if top > h {
-                    let voxel = self.voxel_at(idx, frac, cross_left, start - left);
+                    let voxel = self.voxel_at(idx, frac, cross_left + gap, start - left);
                     ray.h = Height::from_bits(h);
                     let steps = unreported + (mark - left);
                     (unreported, mark) = (0, left);
@@ -438,6 +464,7 @@ impl<'a, 't> March<'a, 't> {
                 (frac, crossing) = frac.overflowing_add(d_frac);
                 if crossing {
                     if cross_left == 0 {
+                        // A mirror edge, or a strip's.
                         break Stop::Edge;
                     }
                     // Into the next cell across the ray: one row over (the cell index across
@@ -454,7 +481,7 @@ impl<'a, 't> March<'a, 't> {
             let v = self.v + dv_step * i64::from(start - left);
             match found {
                 Stop::Edge => {
-                    // A mirror edge across the ray: the general crossing, then the same run.
+                    // An edge across the ray: the general crossing, then the same run.
                     self.cross_to(v);
                     continue;
                 }
@@ -555,11 +582,7 @@ impl<'a, 't> March<'a, 't> {
             Axis::X => (bu, bv),
             Axis::Y => (bv, bu),
         };
-        let block = |x: u32, y: u32| {
-            max.get(y as usize * level.width() as usize + x as usize)
-                .copied()
-                .unwrap_or(u16::MAX)
-        };
+        let block = |x: u32, y: u32| max.get(level.index(x, y)).copied().unwrap_or(u16::MAX);
         let mut top = block(x, y);
         if margin > 0 {
             // The neighbours across (beyond the map's edge the mirror repeats this side's
@@ -739,13 +762,21 @@ impl<'a, 't> March<'a, 't> {
     /// The array offset of the current voxel's major-axis coordinate.
     #[inline(always)]
     fn offset_u(&self) -> usize {
-        fold(self.pu_now(), self.len_u) as usize * self.stride_u
+        let u = fold(self.pu_now(), self.len_u);
+        match self.axis {
+            Axis::X => self.strips.x(u),
+            Axis::Y => self.strips.y(u),
+        }
     }
 
     /// The array offset of cross-axis period position `pv`.
     #[inline(always)]
     fn offset_v(&self, pv: u32) -> usize {
-        fold(pv, self.len_v) as usize * self.stride_v
+        let v = fold(pv, self.len_v);
+        match self.axis {
+            Axis::X => self.strips.y(v),
+            Axis::Y => self.strips.x(v),
+        }
     }
 
     /// The height of the current voxel (the stick containing the ray's point).
@@ -805,11 +836,16 @@ impl<'a, 't> March<'a, 't> {
     /// The current voxel as a sampler sees it.
     #[inline(always)]
     pub fn voxel(&self) -> Voxel<'_> {
-        self.voxel_at(self.idx, self.frac() ^ self.flip, self.cross_left, 0)
+        self.voxel_at(
+            self.idx,
+            self.frac() ^ self.flip,
+            self.cross_left + self.gap,
+            0,
+        )
     }
 
     /// The voxel at array index `idx` and cross fraction `toward` (XOR `flip`), with
-    /// `cross_left` crossings left before a mirror edge across the ray (which also gives its
+    /// `cross_left` crossings left before a mirror edge across the ray (not a strip's) (which also gives its
     /// cell across, [`March::cv_after`]), `taken` steps into the current run beyond what the
     /// cursor's fields record (a ride's locals, not yet written back). Only these four words
     /// are written per hit: everything else a sampler may ask is read from the cursor when
@@ -914,8 +950,8 @@ impl Voxel<'_> {
         let j = m.j + i64::from(m.taken() + self.taken);
         let u = if m.forward { j } else { -j - 1 };
         match m.axis {
-            Axis::X => (u, m.cv_after(m.cross_left - self.cross_left)),
-            Axis::Y => (m.cv_after(m.cross_left - self.cross_left), u),
+            Axis::X => (u, m.cv_after(m.cross_left + m.gap - self.cross_left)),
+            Axis::Y => (m.cv_after(m.cross_left + m.gap - self.cross_left), u),
         }
     }
 
@@ -969,7 +1005,10 @@ impl Voxel<'_> {
     /// The voxel's index and the index step to the next cell across (in the direction the
     /// ray moves across), when at least `reach` cells lie on either side of it before a mirror
     /// edge: then cell `k` across, `|k| ≤ reach`, is at `idx + k·step` ([`Voxel::across`]
-    /// without its folds). `None` near an edge.
+    /// without its folds). `None` near an edge. (`reach` is at most [`HALO`] cells in a level
+    /// in strips: a strip stores that many of its neighbours' columns.)
+    ///
+    /// [`HALO`]: crate::terrain::strips::HALO
     #[inline(always)]
     pub fn row_around(&self, reach: u32) -> Option<(usize, isize)> {
         let m = self.march;
@@ -1119,10 +1158,10 @@ impl Finer<'_> {
     /// Where child row `along` (0 or 1) starts in the level's arrays, mirrored as the walk
     /// mirrors: add [`Finer::across`] for a cell.
     pub fn along(&self, along: i64) -> usize {
-        let u = self.u + along;
+        let (u, strips) = (self.u + along, self.level.strips());
         match self.axis {
-            Axis::X => mirror(u, self.level.width()) as usize,
-            Axis::Y => mirror(u, self.level.height()) as usize * self.level.width() as usize,
+            Axis::X => strips.x(mirror(u, self.level.width())),
+            Axis::Y => strips.y(mirror(u, self.level.height())),
         }
     }
 
@@ -1130,9 +1169,10 @@ impl Finer<'_> {
     /// the direction the ray moves across), mirrored: added to a row's [`Finer::along`].
     pub fn across(&self, k: i64) -> usize {
         let v = if self.ahead { self.v + k } else { self.v - k };
+        let strips = self.level.strips();
         match self.axis {
-            Axis::X => mirror(v, self.level.height()) as usize * self.level.width() as usize,
-            Axis::Y => mirror(v, self.level.width()) as usize,
+            Axis::X => strips.y(mirror(v, self.level.height())),
+            Axis::Y => strips.x(mirror(v, self.level.width())),
         }
     }
 

@@ -28,9 +28,11 @@ pub mod march;
 pub mod pyramid;
 pub mod ray;
 pub mod sampler;
+pub mod strips;
 pub mod surface;
 pub mod visibility;
 pub mod wedge;
 
 pub use map::{mirror, next_size, Axis, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
 pub use march::Voxel;
+pub use strips::Strips;

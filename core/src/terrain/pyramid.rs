@@ -78,6 +78,7 @@ impl<'a> Level<'a> {
         along_y: &'b mut [u16],
         colors: &'b mut [Rgb],
     ) -> Result<Level<'b>, Error> {
+        self.check_row_major()?;
         let (w, h) = next_size(self.width(), self.height()).ok_or(Error::TooManyLevels)?;
         let cells = w as usize * h as usize;
         check_len("heights along x", cells, along_x.len())?;
@@ -110,6 +111,19 @@ impl<'a> Level<'a> {
 }
 
 impl Level<'_> {
+    /// The builder reads rows: errors for a level in strips ([`Level::striped`]), whose
+    /// pyramid is built before it is striped.
+    fn check_row_major(&self) -> Result<(), Error> {
+        if self.strips().is_row_major() {
+            return Ok(());
+        }
+        Err(Error::SliceLength {
+            what: "row-major level",
+            expected: self.cells(),
+            actual: self.strips().len(),
+        })
+    }
+
     /// Builds the next level's conservative maximum grid into `max` (exactly the cells of
     /// [`next_size`]): the largest of each 2×2 block of this level's maximum grid, the missing
     /// neighbour of an odd side being the edge voxel itself, as for the heights.
@@ -117,6 +131,7 @@ impl Level<'_> {
     /// Errors: `max` of the wrong length, this level without a maximum grid
     /// ([`Level::with_max`]), or this level already 1×1.
     pub fn build_next_max(&self, max: &mut [u16]) -> Result<(), Error> {
+        self.check_row_major()?;
         let (w, h) = next_size(self.width(), self.height()).ok_or(Error::TooManyLevels)?;
         check_len("max heights", w as usize * h as usize, max.len())?;
         let below = self.max_heights().ok_or(Error::SliceLength {

@@ -409,11 +409,12 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         let f = weight(d, self.climb, voxel.level());
         if let Some(finer) = voxel.finer().filter(|_| f > 0) {
             // The interval in the children's cells, from the first child's edge behind, and
-            // the cells it reaches across (their offsets, shared by both rows).
+            // the cells it reaches across (their offsets, shared by both rows), with the one
+            // past its end: Eq. 4's last segment weighs it too.
             let (lo2, hi2) = (lo << 1, hi << 1);
             let (k_lo, k_hi) = ((lo2 >> 32).max(-4), ((hi2 - 1) >> 32).min(5));
-            let mut offsets = [0usize; 10];
-            for (k, slot) in (k_lo..k_hi + 1).zip(offsets.iter_mut()) {
+            let mut offsets = [0usize; 11];
+            for (k, slot) in (k_lo..k_hi + 2).zip(offsets.iter_mut()) {
                 *slot = finer.across(k);
             }
             let mut mean2 = i64::MIN;
