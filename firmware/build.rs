@@ -168,8 +168,8 @@ fn main() {
         write!(s, " Rgb::new({}, {}, {}),", c.r, c.g, c.b).unwrap();
     }
     s.push_str("\n];\n");
-    // The same map baked as `footprint map bake` bakes it (`footprint_scenes::baked::write`):
-    // the firmware lends the file's bytes, in flash, to a terrain and checks that it renders
+    // The same map baked as `footprint map bake` bakes it (`footprint_scenes::baked::write`, in
+    // strips of 64 columns): the firmware lends the file's bytes, in flash, to a terrain and checks that it renders
     // the frame of the pyramid it builds on the chip.
     let pyramid = footprint_scenes::Pyramid::build(
         map.clone(),
@@ -177,7 +177,9 @@ fn main() {
     )
     .expect("the scene's pyramid");
     let mut baked = Vec::new();
-    footprint_scenes::baked::write(&pyramid, &map.source, &mut baked).expect("bake the scene");
+    let strips = Some(footprint_scenes::baked::BAKE_SHIFT);
+    footprint_scenes::baked::write(&pyramid, &map.source, strips, &mut baked)
+        .expect("bake the scene");
     fs::write(out.join("scene.fpmap"), &baked).expect("write scene.fpmap");
     writeln!(
         s,

@@ -78,6 +78,66 @@ fn a_baked_map_renders_what_the_built_in_terrain_renders() {
     }
 }
 
+/// `--layout rows` and `--layout strips` (the default, of 64 columns, and of 16) bake files
+/// of the same map that render the same PNG; `map info --json` names the layout; a strip width
+/// that is not a power of two from 4 to 65536 is one line naming the option.
+#[test]
+fn both_layouts_render_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut pngs = Vec::new();
+    for (name, layout) in [
+        ("rows", vec!["--layout", "rows"]),
+        ("strips", vec![]),
+        ("strips16", vec!["--strip-width", "16"]),
+    ] {
+        let fpmap = s(&dir.path().join(format!("{name}.fpmap")));
+        let mut bake = vec!["map", "bake", "--terrain-size", "200", "--out", &fpmap];
+        bake.extend(&layout);
+        ok(&bake);
+        let info: serde_json::Value =
+            serde_json::from_slice(&ok(&["map", "info", &fpmap, "--json"])).unwrap();
+        let want = match name {
+            "rows" => ("rows", None),
+            "strips" => ("strips", Some(64)),
+            _ => ("strips", Some(16)),
+        };
+        assert_eq!(
+            (
+                info["layout"].as_str().unwrap(),
+                info["strip_width"].as_u64()
+            ),
+            want
+        );
+        let png = s(&dir.path().join(format!("{name}.png")));
+        ok(&[
+            "render",
+            "--dem",
+            &fpmap,
+            "--size",
+            "80x60",
+            "--pitch",
+            "20",
+            "--heading",
+            "70",
+            "--mode",
+            "as2",
+            "--out",
+            &png,
+        ]);
+        pngs.push(std::fs::read(&png).unwrap());
+    }
+    assert!(
+        pngs[0] == pngs[1] && pngs[1] == pngs[2],
+        "the layouts' images differ"
+    );
+    for width in ["3", "48", "131072", "wide"] {
+        let out = dir.path().join("bad.fpmap");
+        let args = ["map", "bake", "--strip-width", width, "--out", &s(&out)];
+        assert_one_line_error(&footprint(&args), &args, "--strip-width");
+        assert!(!out.exists());
+    }
+}
+
 #[test]
 fn bad_baked_maps_are_one_line_errors() {
     let dir = tempfile::tempdir().unwrap();

@@ -670,6 +670,7 @@ mod tests {
             base_m: -0.5,
             source: String::new(),
             known_range: None,
+            strips: None,
         };
         let mut out = Vec::new();
         write(&map, &mut out, "o").unwrap();

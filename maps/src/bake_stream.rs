@@ -7,9 +7,11 @@
 //! south of it, so the colours lag one row behind) and written into its place in the file.
 //! Every level's row `y` is reduced from rows `2y` and `2y + 1` of the level below as soon as
 //! both are there ([`pyramid::reduce_row`], the core's own arithmetic), so each level holds
-//! at most one row waiting for its pair. Each section is written through a buffer of
-//! [`BUFFER`] bytes at its offset, and its CRC-32 is kept as it goes; a level's checksum
-//! joins its sections' in file order ([`crc32fast::Hasher::combine`]). The header is written
+//! at most one row waiting for its pair. Each grid of a level (heights along x, along y, the
+//! maximum, the colours) is written through a buffer of [`BUFFER`] bytes at its offset in the
+//! file's order ([`Grid`]: row-major rows as they come; in strips, a block of rows at a time,
+//! each strip's part at its place), and its CRC-32 is kept as it goes, one per strip; a level's
+//! checksum joins them in file order ([`crc32fast::Hasher::combine`]). The header is written
 //! last.
 
 use std::fs::File;
@@ -17,7 +19,7 @@ use std::io::{self, Seek, SeekFrom, Write};
 
 use footprint_core::terrain::baked::{Header, Layout};
 use footprint_core::terrain::pyramid::{self, HeightFilter, LevelRow, LevelRowMut};
-use footprint_core::terrain::{Scale, MAX_LEVELS};
+use footprint_core::terrain::{mirror, Scale, Strips, MAX_LEVELS};
 use footprint_core::Rgb;
 use footprint_scenes::tint::TintScale;
 
@@ -47,11 +49,13 @@ pub struct Plan {
     pub filter: HeightFilter,
     /// Where the map came from, for the header.
     pub source: String,
+    /// The levels' order: strips of `2^shift` columns, `None` row-major ([`Strips::of`]).
+    pub strips: Option<u32>,
 }
 
 impl Plan {
-    /// The plan of a surveyed mosaic.
-    pub fn of_mosaic(m: &Mosaic, filter: HeightFilter) -> Self {
+    /// The plan of a surveyed mosaic, its levels in `strips`.
+    pub fn of_mosaic(m: &Mosaic, filter: HeightFilter, strips: Option<u32>) -> Self {
         Self {
             width: m.width,
             height: m.height,
@@ -61,43 +65,119 @@ impl Plan {
             range: m.unit_range(),
             filter,
             source: m.source.clone(),
+            strips,
         }
     }
 }
 
-/// A section of the file being written in order: its next offset, a buffer and its CRC.
-struct Section {
-    at: u64,
-    buf: Vec<u8>,
-    crc: crc32fast::Hasher,
+/// Rows of a row-major grid gathered before they are written, and rows of a grid in strips
+/// gathered before each strip's part of them is written (a block of the strip's rows, one
+/// write each).
+const STRIP_ROWS: u32 = 64;
+
+/// One grid of a level (a `width × height` grid of `ELEM`-byte cells) written row by row at its
+/// place in the file, in the file's order ([`Strips`]), with its CRC-32 kept as it goes: one
+/// per strip, since a strip's rows lie together and the strips one after the other.
+struct Grid<const ELEM: usize> {
+    /// The grid's first byte in the file.
+    start: u64,
+    order: Strips,
+    width: u32,
+    /// Rows gathered (little-endian bytes, row-major), from row `y0` on.
+    rows: Vec<u8>,
+    y0: u32,
+    /// Rows gathered before a write.
+    block: u32,
+    crcs: Vec<crc32fast::Hasher>,
+    /// A strip's part of the block, as the file holds it.
+    part: Vec<u8>,
 }
 
-impl Section {
-    fn new(at: usize) -> Self {
-        Self {
-            at: at as u64,
-            buf: Vec::new(),
-            crc: crc32fast::Hasher::new(),
-        }
+impl<const ELEM: usize> Grid<ELEM> {
+    fn new(start: usize, width: u32, height: u32, strips: Option<u32>) -> io::Result<Self> {
+        let order = Strips::of(width, height, strips).map_err(io::Error::other)?;
+        let row_bytes = width as usize * ELEM;
+        let block = if order.is_row_major() {
+            u32::try_from((BUFFER / row_bytes.max(1)).max(1)).unwrap_or(1)
+        } else {
+            STRIP_ROWS
+        };
+        let strips = order.count();
+        Ok(Self {
+            start: start as u64,
+            order,
+            width,
+            rows: Vec::new(),
+            y0: 0,
+            block,
+            crcs: vec![crc32fast::Hasher::new(); strips.max(1)],
+            part: Vec::new(),
+        })
     }
 
-    fn push(&mut self, bytes: &[u8], file: &mut File) -> io::Result<()> {
-        self.crc.update(bytes);
-        self.buf.extend_from_slice(bytes);
-        if self.buf.len() >= BUFFER {
+    /// Takes the next row (`width` cells, little-endian bytes).
+    fn push(&mut self, row: &[u8], file: &mut File) -> io::Result<()> {
+        self.rows.extend_from_slice(row);
+        if self.rows.len() >= self.block as usize * self.width as usize * ELEM {
             self.flush(file)?;
         }
         Ok(())
     }
 
+    /// Writes the rows gathered.
     fn flush(&mut self, file: &mut File) -> io::Result<()> {
-        if !self.buf.is_empty() {
-            file.seek(SeekFrom::Start(self.at))?;
-            file.write_all(&self.buf)?;
-            self.at += self.buf.len() as u64;
-            self.buf.clear();
+        let row_bytes = self.width as usize * ELEM;
+        if self.rows.is_empty() || row_bytes == 0 {
+            return Ok(());
         }
+        let n = u32::try_from(self.rows.len() / row_bytes).unwrap_or(u32::MAX);
+        if self.order.is_row_major() {
+            file.seek(SeekFrom::Start(
+                self.start + (self.order.y(self.y0) * ELEM) as u64,
+            ))?;
+            file.write_all(&self.rows)?;
+            self.crcs[0].update(&self.rows);
+        } else {
+            let (width, row) = (self.width as usize, self.order.row());
+            for (s, crc) in self.crcs.iter_mut().enumerate() {
+                let x0 = self.order.first_column(s);
+                self.part.clear();
+                for r in self.rows.chunks_exact(row_bytes) {
+                    // Inside the map, the strip's stored columns are a run of the row; at its
+                    // edges, each through the mirror.
+                    let run = usize::try_from(x0)
+                        .ok()
+                        .filter(|&a| a + row <= width)
+                        .and_then(|a| r.get(a * ELEM..(a + row) * ELEM));
+                    match run {
+                        Some(run) => self.part.extend_from_slice(run),
+                        None => {
+                            for c in (0i64..).take(row) {
+                                let x = mirror(x0 + c, self.width) as usize * ELEM;
+                                self.part
+                                    .extend_from_slice(r.get(x..x + ELEM).unwrap_or_default());
+                            }
+                        }
+                    }
+                }
+                let at = self.order.band() * s + self.order.y(self.y0);
+                file.seek(SeekFrom::Start(self.start + (at * ELEM) as u64))?;
+                file.write_all(&self.part)?;
+                crc.update(&self.part);
+            }
+        }
+        self.y0 += n;
+        self.rows.clear();
         Ok(())
+    }
+
+    /// The grid's CRC-32 state (every row written), its strips' joined in file order.
+    fn crc(&self) -> crc32fast::Hasher {
+        let mut all = crc32fast::Hasher::new();
+        for c in &self.crcs {
+            all.combine(c);
+        }
+        all
     }
 }
 
@@ -107,8 +187,9 @@ struct LevelState {
     height: u32,
     /// Rows written so far.
     rows: u32,
-    /// Along x, along y, max, colours.
-    sections: [Section; 4],
+    /// Along x, along y, max; colours.
+    heights: [Grid<2>; 3],
+    colors: Grid<3>,
     /// A row waiting for its pair (along x, along y, max, colours), if `waiting`.
     waiting: bool,
     wx: Vec<u16>,
@@ -190,11 +271,11 @@ impl Levels {
         .map_err(io::Error::other)?;
         pyramid::reduce_max_row([first_max, max], &mut this.om).map_err(io::Error::other)?;
         this.waiting = false;
-        let [sx, sy, sm, sc] = &mut this.sections;
+        let [sx, sy, sm] = &mut this.heights;
         sx.push(le_bytes(&this.ox, &mut self.scratch), file)?;
         sy.push(le_bytes(&this.oy, &mut self.scratch), file)?;
         sm.push(le_bytes(&this.om, &mut self.scratch), file)?;
-        sc.push(bytemuck::cast_slice(&this.oc), file)?;
+        this.colors.push(bytemuck::cast_slice(&this.oc), file)?;
         let ry = this.rows;
         this.rows += 1;
         let height = this.height;
@@ -255,7 +336,8 @@ pub fn bake(
             "baking on a big-endian host is not supported (the file is little-endian)".to_owned(),
         ));
     }
-    let layout = Layout::new(plan.width, plan.height).map_err(|e| invalid(e.to_string()))?;
+    let layout = Layout::in_strips(plan.width, plan.height, plan.strips)
+        .map_err(|e| invalid(e.to_string()))?;
     Scale::new(plan.spacing_m, plan.height_scale_m).map_err(|e| invalid(e.to_string()))?;
     if layout.levels() > MAX_LEVELS {
         return Err(invalid("too many pyramid levels".to_owned()));
@@ -264,29 +346,36 @@ pub fn bake(
     file.set_len(layout.len() as u64).map_err(write_err)?;
     let (w, h) = (plan.width as usize, plan.height);
     let [h0, c0] = layout.level0();
-    let mut level0 = [Section::new(h0.start), Section::new(c0.start)];
+    let strips = plan.strips;
+    let mut level0_heights =
+        Grid::<2>::new(h0.start, plan.width, plan.height, strips).map_err(write_err)?;
+    let mut level0_colors =
+        Grid::<3>::new(c0.start, plan.width, plan.height, strips).map_err(write_err)?;
     let mut levels = Vec::new();
     for k in 1..layout.levels() {
         let Some([hs, cs]) = layout.level(k) else {
             break;
         };
+        // Each of the three height grids holds a third of the level's heights.
         let n = (hs.end - hs.start) / 6;
         let (mut lw, mut lh) = (plan.width, plan.height);
         for _ in 0..k {
             (lw, lh) = footprint_core::terrain::next_size(lw, lh).unwrap_or((1, 1));
         }
+        let grid = |at: usize| Grid::<2>::new(at, lw, lh, strips).map_err(write_err);
+        let heights = [
+            grid(hs.start)?,
+            grid(hs.start + 2 * n)?,
+            grid(hs.start + 4 * n)?,
+        ];
+        let colors = Grid::<3>::new(cs.start, lw, lh, strips).map_err(write_err)?;
         let lw = lw as usize;
-        debug_assert_eq!(lw * lh as usize, n);
         levels.push(LevelState {
             width: lw,
             height: lh,
             rows: 0,
-            sections: [
-                Section::new(hs.start),
-                Section::new(hs.start + 2 * n),
-                Section::new(hs.start + 4 * n),
-                Section::new(cs.start),
-            ],
+            heights,
+            colors,
             waiting: false,
             wx: Vec::with_capacity(2 * lw),
             wy: Vec::with_capacity(2 * lw),
@@ -328,10 +417,11 @@ pub fn bake(
         let dy_run = (y + 1).min(h - 1) - y.saturating_sub(1);
         colors.clear();
         tint.row([&north, &row, &south], dy_run, &mut colors);
-        let [sh, sc] = &mut level0;
-        sh.push(le_bytes(&row, &mut scratch), file)
+        level0_heights
+            .push(le_bytes(&row, &mut scratch), file)
             .map_err(write_err)?;
-        sc.push(bytemuck::cast_slice(&colors), file)
+        level0_colors
+            .push(bytemuck::cast_slice(&colors), file)
             .map_err(write_err)?;
         levels
             .push(
@@ -359,11 +449,10 @@ pub fn bake(
         )));
     }
     let mut checksums = [0u32; MAX_LEVELS];
-    let [mut sh, mut sc] = level0;
-    sh.flush(file).map_err(write_err)?;
-    sc.flush(file).map_err(write_err)?;
-    let mut crc = sh.crc;
-    crc.combine(&sc.crc);
+    level0_heights.flush(file).map_err(write_err)?;
+    level0_colors.flush(file).map_err(write_err)?;
+    let mut crc = level0_heights.crc();
+    crc.combine(&level0_colors.crc());
     checksums[0] = crc.finalize();
     for (k, level) in levels.levels.iter_mut().enumerate() {
         if level.rows != level.height {
@@ -375,14 +464,15 @@ pub fn bake(
             )));
         }
         let _ = level.width;
-        for s in &mut level.sections {
-            s.flush(file).map_err(write_err)?;
+        for grid in &mut level.heights {
+            grid.flush(file).map_err(write_err)?;
         }
-        let [a, b, c, d] = &level.sections;
-        let mut crc = a.crc.clone();
-        crc.combine(&b.crc);
-        crc.combine(&c.crc);
-        crc.combine(&d.crc);
+        level.colors.flush(file).map_err(write_err)?;
+        let [a, b, c] = &level.heights;
+        let mut crc = a.crc();
+        crc.combine(&b.crc());
+        crc.combine(&c.crc());
+        crc.combine(&level.colors.crc());
         checksums[k + 1] = crc.finalize();
     }
     let header = Header {
@@ -395,6 +485,7 @@ pub fn bake(
         min_height: lo,
         max_height: hi,
         checksums,
+        strips,
     };
     let head = footprint_scenes::baked::sealed(&header, &plan.source);
     file.seek(SeekFrom::Start(0)).map_err(write_err)?;
@@ -403,14 +494,16 @@ pub fn bake(
     Ok(layout.len() as u64)
 }
 
-/// Bakes a surveyed mosaic into `file` ([`bake`] over [`Mosaic::rows`]).
+/// Bakes a surveyed mosaic into `file` ([`bake`] over [`Mosaic::rows`]), its levels in
+/// `strips` ([`Plan::strips`]).
 pub fn bake_mosaic(
     mosaic: &Mosaic,
     filter: HeightFilter,
+    strips: Option<u32>,
     file: &mut File,
     what: &str,
 ) -> Result<u64, MapError> {
-    let plan = Plan::of_mosaic(mosaic, filter);
+    let plan = Plan::of_mosaic(mosaic, filter, strips);
     let mut rows = mosaic.rows();
     bake(&plan, |row| rows.next_row(row), file, what)
 }

@@ -249,6 +249,7 @@ fn lend(
             format!("{}, baked in {}", opened.source, path.display())
         },
         known_range: Some((header.min_height, header.max_height)),
+        strips: header.strips,
     };
     Pyramid::from_levels(map, header.filter, pyramid_heights, pyramid_colors)
         .map_err(|e| malformed(e.to_string()))
@@ -381,13 +382,17 @@ mod tests {
     use super::*;
     use footprint_core::terrain::pyramid::HeightFilter;
 
-    /// A small map and its pyramid, baked into a temporary folder.
-    fn baked(dir: &Path, filter: HeightFilter) -> (Pyramid, std::path::PathBuf) {
+    /// A small map and its pyramid, baked into a temporary folder, its levels in `strips`.
+    fn baked(
+        dir: &Path,
+        filter: HeightFilter,
+        strips: Option<u32>,
+    ) -> (Pyramid, std::path::PathBuf) {
         let map = crate::procedural(3, 67);
         let pyramid = Pyramid::build(map, filter).unwrap();
         let path = dir.join("m.fpmap");
         let mut out = Vec::new();
-        let n = write(&pyramid, "built-in", &mut out).unwrap();
+        let n = write(&pyramid, "built-in", strips, &mut out).unwrap();
         assert_eq!(n, out.len() as u64);
         std::fs::write(&path, out).unwrap();
         (pyramid, path)
@@ -398,7 +403,7 @@ mod tests {
     fn a_baked_map_reads_back_as_its_pyramid() {
         let dir = tempfile::tempdir().unwrap();
         for filter in [HeightFilter::Silhouette, HeightFilter::Mean] {
-            let (pyramid, path) = baked(dir.path(), filter);
+            let (pyramid, path) = baked(dir.path(), filter, None);
             assert!(is_baked(&path));
             let (back, opened) = open(&path, None, None).unwrap();
             assert_eq!(opened.source, "built-in");
@@ -419,13 +424,29 @@ mod tests {
     #[test]
     fn corrupt_and_truncated_files_are_refused() {
         let dir = tempfile::tempdir().unwrap();
-        let (_, path) = baked(dir.path(), HeightFilter::Silhouette);
+        for strips in [None, Some(4)] {
+            corrupt_files_are_refused(dir.path(), strips);
+        }
+    }
+
+    fn corrupt_files_are_refused(dir: &Path, strips: Option<u32>) {
+        let (_, path) = baked(dir, HeightFilter::Silhouette, strips);
         let good = std::fs::read(&path).unwrap();
-        let layout = footprint_core::terrain::baked::Layout::new(67, 67).unwrap();
-        let bad = dir.path().join("bad.fpmap");
+        let layout = footprint_core::terrain::baked::Layout::in_strips(67, 67, strips).unwrap();
+        let bad = dir.join("bad.fpmap");
         let cases: Vec<(Vec<u8>, &str)> = vec![
             (flip(&good, 8), "version"),
             (flip(&good, 100), "header's checksum"),
+            // The strips' shift: 4 becomes 20 (no such strips), 0 becomes 16 (strips wider
+            // than the map, which the header's checksum then refuses).
+            (
+                flip(&good, 29),
+                if strips.is_some() {
+                    "strips"
+                } else {
+                    "header's checksum"
+                },
+            ),
             (
                 flip(&good, layout.level0()[0].start + 5),
                 "level 0's checksum",

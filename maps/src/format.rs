@@ -709,6 +709,7 @@ fn from_grid(
             base_m: h.base_m,
             source,
             known_range: None,
+            strips: None,
         },
         format,
         detail,
@@ -731,6 +732,11 @@ fn from_grid(
 /// metres (1201² or 3601² maps only), PNG as 16-bit grey height units (render it with
 /// `--spacing` and `--height-scale` set to the map's). `what` names the output in errors.
 pub fn write(map: &Map, format: Format, out: &mut dyn Write, what: &str) -> Result<(), MapError> {
+    // A baked map in strips is read row by row into a copy first.
+    let map = &*map.row_major().map_err(|e| MapError::Invalid {
+        what: what.to_owned(),
+        detail: e.to_string(),
+    })?;
     match format {
         Format::Asc => asc::write(map, out, what),
         Format::Hgt => hgt::write(map, out, what),

@@ -399,6 +399,7 @@ mod tests {
             base_m: 0.0,
             source: String::new(),
             known_range: None,
+            strips: None,
         };
         for format in [Format::Asc, Format::Png, Format::Tiff] {
             let e = format::write(&map, format, &mut Closed, "output \"-\"").unwrap_err();

@@ -105,6 +105,7 @@ pub fn load_pair(
             base_m: 0.0,
             source,
             known_range: None,
+            strips: None,
         },
         bit_depth,
     ))

@@ -15,7 +15,7 @@ use tiff::tags::Tag;
 
 /// Tile sides (odd, so the pyramid's odd edges are crossed).
 const TW: u32 = 37;
-const TH: u32 = 29;
+const TH: u32 = 35;
 /// Metres per cell, and the corner of the whole terrain.
 const CELL: f64 = 10.0;
 const WEST: f64 = 500_000.0;
@@ -83,16 +83,21 @@ fn same_map(a: &Map, b: &Map) {
     assert!(a.colors[..] == b.colors[..], "colours differ");
 }
 
-/// The baked bytes of `map` built in memory, with `source` in the header.
-fn baked_in_memory(map: Map, filter: HeightFilter, source: &str) -> Vec<u8> {
+/// The baked bytes of `map` built in memory, with `source` in the header, in `strips`.
+fn baked_in_memory(map: Map, filter: HeightFilter, source: &str, strips: Option<u32>) -> Vec<u8> {
     let pyramid = Pyramid::build(map, filter).unwrap();
     let mut out = Vec::new();
-    footprint_maps::baked::write(&pyramid, source, &mut out).unwrap();
+    footprint_maps::baked::write(&pyramid, source, strips, &mut out).unwrap();
     out
 }
 
-/// The baked bytes of the mosaic `paths`, streamed.
-fn baked_streamed(paths: &[PathBuf], filter: HeightFilter, out: &Path) -> Vec<u8> {
+/// The baked bytes of the mosaic `paths`, streamed, in `strips`.
+fn baked_streamed(
+    paths: &[PathBuf],
+    filter: HeightFilter,
+    strips: Option<u32>,
+    out: &Path,
+) -> Vec<u8> {
     let m = Mosaic::survey(paths, &opts()).unwrap();
     let mut file = std::fs::OpenOptions::new()
         .read(true)
@@ -101,7 +106,7 @@ fn baked_streamed(paths: &[PathBuf], filter: HeightFilter, out: &Path) -> Vec<u8
         .truncate(true)
         .open(out)
         .unwrap();
-    let n = bake_stream::bake_mosaic(&m, filter, &mut file, "output").unwrap();
+    let n = bake_stream::bake_mosaic(&m, filter, strips, &mut file, "output").unwrap();
     drop(file);
     let bytes = std::fs::read(out).unwrap();
     assert_eq!(bytes.len() as u64, n);
@@ -155,13 +160,24 @@ fn a_2x2_mosaic_equals_the_same_terrain_in_one_file() {
     let from_vrt = load_mosaic(std::slice::from_ref(&vrt), &opts()).unwrap();
     same_map(&whole.map, &from_vrt.map);
 
-    // The streamed bake is the in-memory bake of the same map, byte for byte.
-    for filter in [HeightFilter::Silhouette, HeightFilter::Mean] {
+    // The streamed bake is the in-memory bake of the same map, byte for byte, row-major and
+    // in strips (of 4, 16 and 64 columns: 19, 5 and 2 strips of the 74 columns, in blocks of
+    // 64 rows and the 6 left).
+    for (filter, strips) in [
+        (HeightFilter::Silhouette, None),
+        (HeightFilter::Mean, None),
+        (HeightFilter::Silhouette, Some(2)),
+        (HeightFilter::Mean, Some(4)),
+        (HeightFilter::Silhouette, Some(6)),
+    ] {
         let source = Mosaic::survey(&paths, &opts()).unwrap().source;
-        let streamed = baked_streamed(&paths, filter, &dir.path().join("s.fpmap"));
-        let in_memory = baked_in_memory(mosaic.map.clone(), filter, &source);
+        let streamed = baked_streamed(&paths, filter, strips, &dir.path().join("s.fpmap"));
+        let in_memory = baked_in_memory(mosaic.map.clone(), filter, &source, strips);
         assert_eq!(streamed.len(), in_memory.len());
-        assert!(streamed == in_memory, "{filter:?}: the bytes differ");
+        assert!(
+            streamed == in_memory,
+            "{filter:?}, {strips:?}: the bytes differ"
+        );
         // And the baked file opens, every level checked.
         let p = dir.path().join("s.fpmap");
         footprint_maps::baked::verify(&p).unwrap();
@@ -190,9 +206,15 @@ fn a_gap_is_filled_with_the_lowest_height() {
     let streamed = baked_streamed(
         &paths,
         HeightFilter::Silhouette,
+        Some(6),
         &dir.path().join("g.fpmap"),
     );
-    let in_memory = baked_in_memory(loaded.map.clone(), HeightFilter::Silhouette, &m.source);
+    let in_memory = baked_in_memory(
+        loaded.map.clone(),
+        HeightFilter::Silhouette,
+        &m.source,
+        Some(6),
+    );
     assert!(streamed == in_memory, "the bytes differ");
 }
 

@@ -2,7 +2,8 @@
 
 use std::fmt;
 
-use footprint_core::Rgb;
+use footprint_core::terrain::{Level, Strips};
+use footprint_core::{Error, Rgb};
 
 use crate::cells::Cells;
 
@@ -13,9 +14,10 @@ pub struct Map {
     pub width: u32,
     /// Height in voxels (north to south).
     pub height: u32,
-    /// Row-major, `heights[y * width + x]`, in height units (owned, or lent from a baked file).
+    /// `heights[y * width + x]` (row-major) in height units, owned or lent from a baked file;
+    /// in strips (a baked file's, [`Map::strips`]) at [`Map::order`]'s index.
     pub heights: Cells<u16>,
-    /// Row-major, same layout and length as `heights`.
+    /// The colours, in the same order and of the same length as `heights`.
     pub colors: Cells<Rgb>,
     /// Metres per voxel (horizontal).
     pub spacing_m: f64,
@@ -29,6 +31,10 @@ pub struct Map {
     /// The lowest and highest height when known without reading every cell (a baked file's
     /// header keeps them); `None` to scan ([`Map::height_range`]).
     pub known_range: Option<(u16, u16)>,
+    /// The order of `heights` and `colors`: `None` row-major (every map read or made in
+    /// memory), or vertical strips of `2^shift` columns (a baked file's, lent in place:
+    /// `footprint_core::terrain::Strips`). Read a cell through [`Map::order`].
+    pub strips: Option<u32>,
 }
 
 impl Map {
@@ -40,6 +46,63 @@ impl Map {
     /// True if the map has no voxels (never the case for maps built by this module).
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// Where cell `(x, y)` of `heights` and `colors` lies ([`Map::strips`]).
+    ///
+    /// Errors: a size or shift out of range (a map made by this project never has one).
+    pub fn order(&self) -> Result<Strips, Error> {
+        Strips::of(self.width, self.height, self.strips)
+    }
+
+    /// The index of cell `(x, y)` (`x < width`, `y < height`) in `heights` and `colors`, in
+    /// the map's order; `usize::MAX` (no cell) for a map whose size or strips are out of range.
+    /// In a loop over cells, take [`Map::order`] once instead.
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        self.order().map_or(usize::MAX, |o| o.index(x, y))
+    }
+
+    /// Level 0 of the map's terrain, in its order.
+    ///
+    /// Errors: a size out of range, or cells of the wrong number.
+    pub fn level(&self) -> Result<Level<'_>, Error> {
+        let order = self.order()?;
+        Level::striped(
+            order,
+            self.width,
+            self.height,
+            &self.heights,
+            &self.heights,
+            &self.colors,
+        )?
+        .with_max(&self.heights)
+    }
+
+    /// This map with its cells row-major: itself if they are, else a copy (a map in strips
+    /// read row by row, for the writers of other formats).
+    ///
+    /// Errors: as [`Map::order`].
+    pub fn row_major(&self) -> Result<std::borrow::Cow<'_, Map>, Error> {
+        let order = self.order()?;
+        if order.is_row_major() {
+            return Ok(std::borrow::Cow::Borrowed(self));
+        }
+        let (w, h) = (self.width, self.height);
+        let n = self.len();
+        let (mut heights, mut colors) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for y in 0..h {
+            for x in 0..w {
+                let at = order.index(x, y);
+                heights.push(self.heights.get(at).copied().unwrap_or(0));
+                colors.push(self.colors.get(at).copied().unwrap_or_default());
+            }
+        }
+        Ok(std::borrow::Cow::Owned(Map {
+            heights: heights.into(),
+            colors: colors.into(),
+            strips: None,
+            ..self.clone()
+        }))
     }
 
     /// Lowest and highest height in the map, in height units (`(0, 0)` for an empty map):

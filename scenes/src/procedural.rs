@@ -90,6 +90,7 @@ pub fn procedural(seed: u64, size: u32) -> Map {
         base_m: 0.0,
         source: format!("built-in (seed {seed})"),
         known_range: None,
+        strips: None,
     }
 }
 

@@ -2,7 +2,7 @@
 //! built by the core's one pyramid builder (`footprint_core::terrain::pyramid::build`).
 
 use footprint_core::terrain::pyramid::{self, HeightFilter};
-use footprint_core::terrain::{Level, Scale, Terrain};
+use footprint_core::terrain::{Scale, Terrain};
 use footprint_core::{Error, Rgb};
 
 use crate::cells::Cells;
@@ -25,7 +25,7 @@ impl Pyramid {
     /// ([`Pyramid::map`]).
     pub fn build(map: Map, filter: HeightFilter) -> Result<Self, Error> {
         let scale = Scale::new(map.spacing_m, map.height_scale_m)?;
-        let level0 = Level::new(map.width, map.height, &map.heights, &map.colors)?;
+        let level0 = map.level()?;
         let cells = pyramid::cells(map.width, map.height);
         let mut heights = vec![0; 3 * cells];
         let mut colors = vec![Rgb::default(); cells];
@@ -40,7 +40,8 @@ impl Pyramid {
     }
 
     /// A pyramid whose levels above 0 were built before with `filter` (a baked map file's,
-    /// lent in place): `heights` and `colors` are [`pyramid::build`]'s buffers for `map`.
+    /// lent in place): `heights` and `colors` are [`pyramid::build`]'s buffers for `map`, in
+    /// the map's order ([`Map::strips`], [`pyramid::assemble`]).
     ///
     /// Errors: the map's scale out of range, or buffers of the wrong length.
     pub fn from_levels(
@@ -50,8 +51,7 @@ impl Pyramid {
         colors: Cells<Rgb>,
     ) -> Result<Self, Error> {
         let scale = Scale::new(map.spacing_m, map.height_scale_m)?;
-        let level0 = Level::new(map.width, map.height, &map.heights, &map.colors)?;
-        pyramid::assemble(level0, scale, &heights, &colors, true)?;
+        pyramid::assemble(map.level()?, scale, &heights, &colors, true)?;
         Ok(Self {
             map,
             heights,
@@ -66,7 +66,7 @@ impl Pyramid {
         self.filter
     }
 
-    /// The levels above 0: [`pyramid::build`]'s height and colour buffers.
+    /// The levels above 0: [`pyramid::build`]'s height and colour buffers (in the map's order).
     pub fn levels(&self) -> (&[u16], &[Rgb]) {
         (&self.heights, &self.colors)
     }
@@ -88,8 +88,7 @@ impl Pyramid {
 
     /// The terrain over all levels, or over level 0 alone when `lod` is false.
     pub fn terrain(&self, lod: bool) -> Result<Terrain<'_>, Error> {
-        let m = &self.map;
-        let level0 = Level::new(m.width, m.height, &m.heights, &m.colors)?;
+        let level0 = self.map.level()?;
         pyramid::assemble(level0, self.scale, &self.heights, &self.colors, lod)
     }
 }

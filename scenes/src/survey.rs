@@ -94,6 +94,7 @@ pub fn survey(kind: Kind, seed: u64, size: u32) -> Map {
         base_m: 0.0,
         source: format!("built-in {name} (seed {seed})"),
         known_range: None,
+        strips: None,
     }
 }
 

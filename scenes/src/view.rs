@@ -123,8 +123,12 @@ fn line_of_sight(map: &Map, lowest: u16, reach_m: f64) -> f64 {
     let (w, h) = (map.width as usize, map.height as usize);
     let step = (w.max(h) / 256).max(1);
     let (ex, ey) = (w as f64 * map.spacing_m / 2.0, h as f64 * map.spacing_m);
+    let order = map.order().ok();
     let rise = |x: usize, y: usize| {
-        f64::from(map.heights[y * w + x].saturating_sub(lowest)) * map.height_scale_m
+        // x < w, y < h: within u32.
+        let at = order.map_or(usize::MAX, |o| o.index(x as u32, y as u32));
+        let z = map.heights.get(at).copied().unwrap_or(lowest);
+        f64::from(z.saturating_sub(lowest)) * map.height_scale_m
     };
     let cell = |m: f64, n: usize| ((m / map.spacing_m) as usize).min(n.saturating_sub(1));
     let target = rise(cell(ex, w), cell((ey - reach_m).max(0.0), h));
@@ -741,8 +745,8 @@ impl fmt::Display for Degenerate {
 pub fn degenerate(map: &Map, camera: &Camera, options: Options) -> Vec<Degenerate> {
     let p = camera.params();
     let mut out = Vec::new();
-    let cell = |m: f64, n: u32| mirror((m / map.spacing_m).floor() as i64, n) as usize;
-    let at = cell(p.y_m, map.height) * map.width as usize + cell(p.x_m, map.width);
+    let cell = |m: f64, n: u32| mirror((m / map.spacing_m).floor() as i64, n);
+    let at = map.index(cell(p.x_m, map.width), cell(p.y_m, map.height));
     if let Some(&h) = map.heights.get(at) {
         let ground_m = f64::from(h) * map.height_scale_m;
         if p.eye_m < ground_m {
@@ -804,6 +808,7 @@ mod tests {
             base_m: 0.0,
             source: "wall".into(),
             known_range: None,
+            strips: None,
         };
         let p = overview_params(&map, 64, 64);
         let wall_m = 1000.0;

@@ -1,6 +1,7 @@
 //! A baked map (`footprint map bake`, `.fpmap`) renders the images of the map it was baked
 //! from, byte for byte: every mode, both projections, both height filters, with and without
-//! the pyramid, through the memory-mapped file that `--dem FILE.fpmap` opens.
+//! the pyramid, its levels row-major or in strips, through the memory-mapped file that `--dem
+//! FILE.fpmap` opens.
 
 use footprint_core::prelude::*;
 use footprint_host::experiment::paper::paper_camera;
@@ -32,15 +33,22 @@ fn a_baked_map_renders_the_in_memory_images() {
         width: 48,
         height: 36,
     };
-    for filter in [HeightFilter::Silhouette, HeightFilter::Mean] {
+    // Row-major, and in strips of 8 columns (26 strips, the last one padded) and of 64.
+    for (filter, strips) in [
+        (HeightFilter::Silhouette, None),
+        (HeightFilter::Mean, None),
+        (HeightFilter::Silhouette, Some(3)),
+        (HeightFilter::Mean, Some(6)),
+    ] {
         let in_ram = Pyramid::build(map.clone(), filter).unwrap();
         let path = dir.path().join("m.fpmap");
         let mut bytes = Vec::new();
-        baked::write(&in_ram, "test", &mut bytes).unwrap();
+        baked::write(&in_ram, "test", strips, &mut bytes).unwrap();
         std::fs::write(&path, &bytes).unwrap();
         let (from_file, opened) = baked::open(&path, None, None).unwrap();
         assert_eq!(opened.levels_verified, opened.levels);
         assert!(from_file.map().heights.is_shared());
+        assert_eq!(from_file.map().strips, strips);
         for lod in [true, false] {
             let (a, b) = (
                 in_ram.terrain(lod).unwrap(),
@@ -60,7 +68,7 @@ fn a_baked_map_renders_the_in_memory_images() {
                     let got = render_with(&frame_b, &b, mode, &mut NoCost).unwrap();
                     assert!(
                         want.image == got.image,
-                        "{mode}, {projection:?}, lod {lod}, {filter:?}"
+                        "{mode}, {projection:?}, lod {lod}, {filter:?}, strips {strips:?}"
                     );
                 }
             }

@@ -473,14 +473,17 @@ mod tests {
         let map = procedural::procedural(2, 64);
         let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
         let mut bytes = Vec::new();
-        footprint_maps::baked::write(&pyramid, "test", &mut bytes).unwrap();
+        // In strips of 16 columns, as `map bake` writes a file by default (of 64).
+        footprint_maps::baked::write(&pyramid, "test", Some(4), &mut bytes).unwrap();
         let mut app = App::new().unwrap();
         app.load_files("m.fpmap", &bytes, None).unwrap();
         assert_eq!((app.map().width, app.map().height), (64, 64));
-        assert_eq!(app.map().heights, map.heights);
+        assert_eq!(app.map().strips, Some(4));
+        assert_eq!(app.map().row_major().unwrap().heights, map.heights);
+        app.render(0).unwrap();
         let before = app.map().source.clone();
         // The last byte of the coarsest level's colour (the padding after it is no level's).
-        let layout = footprint_core::terrain::baked::Layout::new(64, 64).unwrap();
+        let layout = footprint_core::terrain::baked::Layout::in_strips(64, 64, Some(4)).unwrap();
         bytes[layout.pyramid()[1].end - 1] ^= 1;
         let e = app.load_files("m.fpmap", &bytes, None).unwrap_err();
         assert!(e.contains("m.fpmap") && e.contains("checksum"), "{e}");

@@ -5,15 +5,18 @@
 //! A file is a [`HEADER_LEN`]-byte header and four sections, each starting on a
 //! [`SECTION_ALIGN`]-byte boundary (a page: a memory-mapped section starts on its own page):
 //!
-//! 1. level 0's heights, `width × height` `u16`, row-major (the map, [`Level::new`]);
-//! 2. level 0's colours, one [`Rgb`] (3 bytes) per voxel;
+//! 1. level 0's heights, `u16` (the map, [`Level::new`]);
+//! 2. level 0's colours, one [`Rgb`] (3 bytes) per cell;
 //! 3. the pyramid's heights, as [`pyramid::build`] writes them: per level above 0, the
 //!    heights along x, along y, and the conservative maximum;
-//! 4. the pyramid's colours, one [`Rgb`] per voxel of every level above 0.
+//! 4. the pyramid's colours, one [`Rgb`] per cell of every level above 0.
 //!
-//! Every number is little-endian, and the height sections are lent as `&[u16]` as they are, so
-//! [`Baked::parse`] refuses on a big-endian target. Row-major is the layout the core addresses;
-//! its locality along a column's walk is measured in docs/measurements.md ("Baked maps").
+//! Each level's cells are in one order ([`Strips`]): row-major (`width × height` cells), or,
+//! from version 2 on, in vertical strips of `2^shift` columns with their halos (the header's
+//! `strips`; a level no wider than a strip is row-major), so that a column's walk reads a page
+//! per block of a strip instead of a page per row of a wide map (docs/measurements.md, "Baked
+//! maps"). Every number is little-endian, and the height sections are lent as `&[u16]` as they
+//! are, so [`Baked::parse`] refuses on a big-endian target.
 //!
 //! The header ([`Header`]) holds the sizes, the scale, the height filter the pyramid was built
 //! with, the lowest and highest height, where the map came from, a CRC-32 of every level and one
@@ -26,13 +29,15 @@ use crate::color::Rgb;
 use crate::error::Error;
 use crate::terrain::map::{cells, next_size, Level, Scale, Terrain, MAX_LEVELS};
 use crate::terrain::pyramid::{self, HeightFilter};
+use crate::terrain::strips::Strips;
 
 /// The first 8 bytes of every baked map: a name and the bytes that text-mode transfers and
 /// truncating tools change (CR LF, the DOS end-of-file byte), as PNG's signature has.
 pub const MAGIC: [u8; 8] = *b"FPMAP\r\n\x1a";
 
-/// The layout version this core reads and writes.
-pub const VERSION: u32 = 1;
+/// The layout version this core writes. It reads version 1 too (row-major levels only, as
+/// version 2 without strips).
+pub const VERSION: u32 = 2;
 
 /// The header's size in bytes (one page; the first section starts right after it).
 pub const HEADER_LEN: usize = 4096;
@@ -51,6 +56,8 @@ mod at {
     pub const HEIGHT: usize = 20;
     pub const LEVELS: usize = 24;
     pub const FILTER: usize = 28;
+    /// One byte: the strips' shift, 0 for row-major (version 2).
+    pub const STRIPS: usize = 29;
     pub const SPACING: usize = 32;
     pub const HEIGHT_SCALE: usize = 40;
     pub const BASE: usize = 48;
@@ -63,11 +70,15 @@ mod at {
     pub const HEADER_CHECKSUM: usize = super::HEADER_LEN - 4;
 }
 
-/// Where a map file's sections lie, from its size alone: the one layout of a baked file.
+/// Where a map file's sections lie, from its size and its levels' order alone.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Layout {
     width: u32,
     height: u32,
+    /// The strips' shift, `None` for row-major levels.
+    strips: Option<u32>,
+    /// Each level's cells in the file's order ([`Strips::len`]), level 0 first.
+    cells: [usize; MAX_LEVELS],
     level0_heights: usize,
     level0_colors: usize,
     pyramid_heights: usize,
@@ -101,12 +112,30 @@ fn small(n: usize) -> u32 {
 }
 
 impl Layout {
-    /// The layout of a `width × height` map and its pyramid.
+    /// The layout of a `width × height` map and its pyramid, every level row-major.
     ///
     /// Errors: a side of 0 or over [`MAX_SIDE`](crate::terrain::MAX_SIDE), or a file too large for the address space
     /// (65,536² on a 32-bit target).
     pub fn new(width: u32, height: u32) -> Result<Self, Error> {
-        let n = cells(width, height)?;
+        Self::in_strips(width, height, None)
+    }
+
+    /// The layout of a `width × height` map and its pyramid, every level in strips of
+    /// `2^shift` columns ([`Strips::of`]; `None`: row-major).
+    ///
+    /// Errors: as [`Layout::new`], or a shift out of range ([`Strips::new`]).
+    pub fn in_strips(width: u32, height: u32, strips: Option<u32>) -> Result<Self, Error> {
+        cells(width, height)?;
+        let mut level_cells = [0; MAX_LEVELS];
+        let (mut w, mut h) = (width, height);
+        for (k, slot) in level_cells.iter_mut().enumerate() {
+            if k > 0 {
+                let Some(next) = next_size(w, h) else { break };
+                (w, h) = next;
+            }
+            *slot = Strips::of(w, h, strips)?.len();
+        }
+        let n = level_cells[0];
         // Each section starts where the one before it ends, aligned.
         let sum = |sizes: [usize; 4]| -> Option<[usize; 5]> {
             let mut at = [HEADER_LEN; 5];
@@ -117,7 +146,12 @@ impl Layout {
             }
             Some(at)
         };
-        let p = pyramid::cells(width, height);
+        let too_large = Error::Baked {
+            what: "the map is too large for this target's address space",
+        };
+        let p = (level_cells.iter().skip(1))
+            .try_fold(0usize, |sum, &n| sum.checked_add(n))
+            .ok_or(too_large)?;
         let at = (|| {
             sum([
                 n.checked_mul(2)?,
@@ -126,12 +160,12 @@ impl Layout {
                 p.checked_mul(3)?,
             ])
         })()
-        .ok_or(Error::Baked {
-            what: "the map is too large for this target's address space",
-        })?;
+        .ok_or(too_large)?;
         Ok(Self {
             width,
             height,
+            strips,
+            cells: level_cells,
             level0_heights: at[0],
             level0_colors: at[1],
             pyramid_heights: at[2],
@@ -155,9 +189,14 @@ impl Layout {
         pyramid::levels(self.width, self.height)
     }
 
+    /// The strips' shift of every level, `None` for row-major levels.
+    pub fn strips(&self) -> Option<u32> {
+        self.strips
+    }
+
     /// Level 0's heights (`u16`, little-endian) and colours ([`Rgb`]): byte ranges of the file.
     pub fn level0(&self) -> [Range<usize>; 2] {
-        let n = self.width as usize * self.height as usize;
+        let n = self.cells[0];
         [
             self.level0_heights..self.level0_heights + 2 * n,
             self.level0_colors..self.level0_colors + 3 * n,
@@ -167,7 +206,7 @@ impl Layout {
     /// The pyramid's heights and colours above level 0 ([`pyramid::build`]'s buffers): byte
     /// ranges of the file.
     pub fn pyramid(&self) -> [Range<usize>; 2] {
-        let p = pyramid::cells(self.width, self.height);
+        let p: usize = self.cells.iter().skip(1).sum();
         [
             self.pyramid_heights..self.pyramid_heights + 6 * p,
             self.pyramid_colors..self.pyramid_colors + 3 * p,
@@ -180,11 +219,11 @@ impl Layout {
         if k == 0 {
             return Some(self.level0());
         }
+        if k >= self.levels() {
+            return None;
+        }
         let [mut heights, mut colors] = [self.pyramid_heights, self.pyramid_colors];
-        let (mut w, mut h) = (self.width, self.height);
-        for level in 1..=k {
-            (w, h) = next_size(w, h)?;
-            let n = w as usize * h as usize;
+        for (level, &n) in self.cells.iter().enumerate().skip(1) {
             if level == k {
                 return Some([heights..heights + 6 * n, colors..colors + 3 * n]);
             }
@@ -217,6 +256,8 @@ pub struct Header {
     /// The CRC-32 of every level's bytes ([`Layout::level`]), level 0 first; 0 past the
     /// coarsest level.
     pub checksums: [u32; MAX_LEVELS],
+    /// The levels' order: strips of `2^shift` columns, `None` for row-major ([`Strips`]).
+    pub strips: Option<u32>,
 }
 
 impl Header {
@@ -224,7 +265,7 @@ impl Header {
     ///
     /// Errors: as [`Layout::new`].
     pub fn layout(&self) -> Result<Layout, Error> {
-        Layout::new(self.width, self.height)
+        Layout::in_strips(self.width, self.height, self.strips)
     }
 
     /// The scale ([`Scale::new`]).
@@ -247,6 +288,11 @@ impl Header {
         let levels = small(pyramid::levels(self.width, self.height));
         put(out, at::LEVELS, &levels.to_le_bytes());
         put(out, at::FILTER, &[filter_code(self.filter)]);
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "a shift is at most 16 (`Strips::new`); a header holding more is refused"
+        )]
+        put(out, at::STRIPS, &[self.strips.unwrap_or(0).min(255) as u8]);
         put(out, at::SPACING, &self.spacing_m.to_le_bytes());
         put(out, at::HEIGHT_SCALE, &self.height_scale_m.to_le_bytes());
         put(out, at::BASE, &self.base_m.to_le_bytes());
@@ -283,11 +329,17 @@ impl Header {
         let u32_at = |at: usize| u32::from_le_bytes(field(bytes, at));
         let u16_at = |at: usize| u16::from_le_bytes(field(bytes, at));
         let f64_at = |at: usize| f64::from_le_bytes(field(bytes, at));
-        if u32_at(at::VERSION) != VERSION {
+        let version = u32_at(at::VERSION);
+        if version != 1 && version != VERSION {
             return Err(bad(
-                "its layout version is not 1 (bake the map again with this footprint)",
+                "its layout version is not 1 or 2 (bake the map again with this footprint)",
             ));
         }
+        let strips = match field::<1>(bytes, at::STRIPS) {
+            [0] => None,
+            [shift] if version >= 2 && (2..=16).contains(&shift) => Some(u32::from(shift)),
+            _ => return Err(bad("its strips' width is not one this footprint reads")),
+        };
         if u32_at(at::HEADER_LEN) != small(HEADER_LEN) {
             return Err(bad("its header length is not 4096"));
         }
@@ -297,7 +349,7 @@ impl Header {
             _ => return Err(bad("unknown height filter")),
         };
         let (width, height) = (u32_at(at::WIDTH), u32_at(at::HEIGHT));
-        Layout::new(width, height)?;
+        Layout::in_strips(width, height, strips)?;
         if u32_at(at::LEVELS) != small(pyramid::levels(width, height)) {
             return Err(bad("its level count does not match the map's size"));
         }
@@ -315,6 +367,7 @@ impl Header {
             min_height: u16_at(at::MIN_HEIGHT),
             max_height: u16_at(at::MAX_HEIGHT),
             checksums,
+            strips,
         })
     }
 
@@ -410,17 +463,15 @@ impl<'a> Baked<'a> {
         &self.header
     }
 
-    /// Level 0 (the map).
+    /// Level 0 (the map), in the file's order.
     pub fn level0(&self) -> Result<Level<'a>, Error> {
-        Level::new(
-            self.header.width,
-            self.header.height,
-            self.heights,
-            self.colors,
-        )
+        let (w, h) = (self.header.width, self.header.height);
+        let order = Strips::of(w, h, self.header.strips)?;
+        Level::striped(order, w, h, self.heights, self.heights, self.colors)?.with_max(self.heights)
     }
 
-    /// The pyramid's heights and colours above level 0, as [`pyramid::build`] wrote them.
+    /// The pyramid's heights and colours above level 0, as [`pyramid::build`] wrote them (in
+    /// strips, each level's striped).
     pub fn pyramid(&self) -> (&'a [u16], &'a [Rgb]) {
         (self.pyramid_heights, self.pyramid_colors)
     }
@@ -487,6 +538,7 @@ mod tests {
             min_height: 2,
             max_height: 900,
             checksums: [7; MAX_LEVELS],
+            strips: None,
         };
         let mut bytes = [0u8; HEADER_LEN];
         header.encode("héllo", &mut bytes);
@@ -503,8 +555,10 @@ mod tests {
         };
         for (at, value) in [
             (0, b'X'),
-            (at::VERSION, 2),
+            (at::VERSION, 3),
             (at::LEVELS, 9),
+            (at::STRIPS, 1),
+            (at::STRIPS, 17),
             (at::FILTER, 2),
         ] {
             assert!(
@@ -533,6 +587,7 @@ mod tests {
             min_height: 0,
             max_height: 3,
             checksums: [0; MAX_LEVELS],
+            strips: None,
         };
         let layout = header.layout().unwrap();
         // u16 storage keeps the bytes 2-byte aligned.

@@ -53,6 +53,29 @@ pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
     cost: &mut C,
     out: &mut O,
 ) {
+    // Row-major (a map in memory): the product and the sum alone (the strips' arithmetic
+    // costs the baseline 3 % more instructions), each its own copy of the loop.
+    let order = terrain.base().strips();
+    if order.is_row_major() {
+        let w = terrain.base().width() as usize;
+        walk_indexed(frame, terrain, col, cost, out, |x, y| {
+            y as usize * w + x as usize
+        });
+    } else {
+        walk_indexed(frame, terrain, col, cost, out, |x, y| order.index(x, y));
+    }
+}
+
+/// [`walk_into`] with the map's cell `(x, y)` at `index(x, y)` in its slices.
+#[inline(always)]
+fn walk_indexed<C: Cost, O: ColumnOut + ?Sized>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    cost: &mut C,
+    out: &mut O,
+    index: impl Fn(u32, u32) -> usize,
+) {
     let h = frame.height().min(out.rows());
     let Some(column) = frame.columns().get(col) else {
         return;
@@ -85,7 +108,7 @@ pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
             Axis::X => (u, v),
             Axis::Y => (v, u),
         };
-        let at = map.index(mirror_side(x, w), mirror_side(y, rows));
+        let at = index(mirror_side(x, w), mirror_side(y, rows));
         let top = height(heights.get(at).copied().unwrap_or(0));
         if top > ray.at(n) {
             let color = map.colors().get(at).copied().unwrap_or_default();

@@ -29,6 +29,7 @@ use crate::color::Rgb;
 use crate::error::Error;
 use crate::terrain::map::Axis;
 use crate::terrain::map::{check_len, next_size, Level, Scale, Terrain, MAX_LEVELS};
+use crate::terrain::strips::Strips;
 
 /// How a coarse voxel's height is made from the 2×2 voxels below it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -283,6 +284,24 @@ pub const fn cells(width: u32, height: u32) -> usize {
     total
 }
 
+/// [`cells`] in strips of `2^shift` columns ([`Strips::of`]): the cells every level above 0
+/// holds with its halos and padding (`None`: row-major, [`cells`]).
+///
+/// Errors: as [`Strips::new`].
+pub fn cells_in(width: u32, height: u32, shift: Option<u32>) -> Result<usize, Error> {
+    let (mut w, mut h, mut total) = (width, height, 0usize);
+    while let Some((nw, nh)) = next_size(w, h) {
+        let n = Strips::of(nw, nh, shift)?.len();
+        total = total.checked_add(n).ok_or(Error::MapSize {
+            width,
+            height,
+            max: crate::terrain::MAX_SIDE,
+        })?;
+        (w, h) = (nw, nh);
+    }
+    Ok(total)
+}
+
 /// The number of levels of the whole pyramid of a `width × height` map, level 0 included.
 /// A `const fn`, like [`cells`].
 pub const fn levels(width: u32, height: u32) -> usize {
@@ -330,7 +349,9 @@ pub fn build(
 }
 
 /// The terrain over `level0` and the levels [`build`] made in `heights` and `colors`; only
-/// level 0 when `lod` is false (the walk then steps voxel by voxel).
+/// level 0 when `lod` is false (the walk then steps voxel by voxel). With `level0` in strips
+/// ([`Level::striped`]) the buffers hold every level in strips of the same width, each level's
+/// [`cells_in`] (a baked file's, [`crate::terrain::baked`]), in the same order.
 ///
 /// Errors: buffers of the wrong length.
 pub fn assemble<'a>(
@@ -341,7 +362,9 @@ pub fn assemble<'a>(
     lod: bool,
 ) -> Result<Terrain<'a>, Error> {
     let (w, h) = (level0.width(), level0.height());
-    let total = cells(w, h);
+    // Level 0 in strips: so is every level above it (those no wider than a strip row-major).
+    let shift = level0.strips().shift();
+    let total = cells_in(w, h, shift)?;
     check_len("pyramid heights", 3 * total, heights.len())?;
     check_len("pyramid colors", total, colors.len())?;
     // The coarsest level's maximum grid (1×1) is level 0's largest height, read without
@@ -357,13 +380,14 @@ pub fn assemble<'a>(
     let (mut heights, mut colors) = (heights, colors);
     let (mut lw, mut lh) = (w, h);
     while let Some((nw, nh)) = next_size(lw, lh) {
-        let n = nw as usize * nh as usize;
+        let order = Strips::of(nw, nh, shift)?;
+        let n = order.len();
         let (level, rest) = heights.split_at(3 * n);
         let (cs, rest_c) = colors.split_at(n);
         (heights, colors) = (rest, rest_c);
         let (hx, level) = level.split_at(n);
         let (hy, mx) = level.split_at(n);
-        terrain.push_built_level(Level::directional(nw, nh, hx, hy, cs)?.with_max(mx)?)?;
+        terrain.push_built_level(Level::striped(order, nw, nh, hx, hy, cs)?.with_max(mx)?)?;
         (lw, lh) = (nw, nh);
     }
     Ok(terrain)

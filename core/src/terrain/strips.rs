@@ -96,6 +96,18 @@ impl Strips {
         })
     }
 
+    /// [`Strips::new`] for `Some(shift)`, [`Strips::row_major`] for `None`: the order of a
+    /// level of a file whose levels are all in strips of `2^shift` columns (those no wider
+    /// than a strip row-major), or all row-major.
+    ///
+    /// Errors: as [`Strips::new`].
+    pub fn of(width: u32, height: u32, shift: Option<u32>) -> Result<Self, Error> {
+        match shift {
+            Some(shift) => Self::new(width, height, shift),
+            None => Self::row_major(width, height),
+        }
+    }
+
     /// Whether the order is row-major.
     pub fn is_row_major(&self) -> bool {
         self.shift == ROW_MAJOR
@@ -120,6 +132,10 @@ impl Strips {
     /// The offset of column `x` (`0..width`) in the slices: add [`Strips::y`] of the row.
     #[inline(always)]
     pub fn x(&self, x: u32) -> usize {
+        if self.halo == 0 {
+            // Row-major (a test cheaper than the strip's arithmetic, which would give `x`).
+            return x as usize;
+        }
         (x >> self.shift) as usize * self.band + (x & self.mask) as usize + self.halo as usize
     }
 
@@ -133,6 +149,27 @@ impl Strips {
     #[inline(always)]
     pub fn index(&self, x: u32, y: u32) -> usize {
         self.x(x) + self.y(y)
+    }
+
+    /// How many strips (1 row-major).
+    pub fn count(&self) -> usize {
+        self.len / self.band.max(1)
+    }
+
+    /// Cells from one strip to the next in the slices (`row × height`).
+    pub fn band(&self) -> usize {
+        self.band
+    }
+
+    /// The level's column (before mirroring) that stored column 0 of strip `s` holds: the
+    /// strip's first column less the halo. Stored column `c` holds this plus `c`.
+    pub fn first_column(&self, s: usize) -> i64 {
+        #[allow(
+            clippy::cast_possible_wrap,
+            reason = "s < strips ≤ 2^16 and shift ≤ 17: within 2^33"
+        )]
+        let first = (s as i64) << self.shift;
+        first - i64::from(self.halo)
     }
 
     /// Cells from one row to the next in the slices (a step along y).
@@ -210,10 +247,9 @@ impl Strips {
             let Some(dst) = band.get_mut(start..start + self.row) else {
                 continue;
             };
-            // Stored column c of strip s holds column s·2^shift + c − halo, mirrored.
-            let first = (s as i64) << self.shift;
-            for (c, cell) in dst.iter_mut().enumerate() {
-                let x = mirror(first + c as i64 - i64::from(self.halo), width);
+            let first = self.first_column(s);
+            for (c, cell) in (0i64..).zip(dst.iter_mut()) {
+                let x = mirror(first + c, width);
                 if let Some(&v) = row.get(x as usize) {
                     *cell = v;
                 }

@@ -173,9 +173,14 @@ pub fn map_facts(map: &Map) -> MapFacts {
     let (w, h) = (map.width as usize, map.height as usize);
     let rise = map.height_scale_m / map.spacing_m;
     let (mut sum, mut n) = (0.0, 0u64);
+    let order = map.order().ok();
     for y in 0..h {
         for x in 0..w {
-            let at = |x: usize, y: usize| f64::from(map.heights[y * w + x]);
+            // x < w and y < h: within u32.
+            let at = |x: usize, y: usize| {
+                let i = order.map_or(usize::MAX, |o| o.index(x as u32, y as u32));
+                f64::from(map.heights.get(i).copied().unwrap_or(0))
+            };
             let here = at(x, y);
             let dx = if x + 1 < w { at(x + 1, y) - here } else { 0.0 };
             let dy = if y + 1 < h { at(x, y + 1) - here } else { 0.0 };
@@ -362,6 +367,7 @@ mod tests {
             base_m: 7.0,
             source: "test".into(),
             known_range: None,
+            strips: None,
         }
     }
 

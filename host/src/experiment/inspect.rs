@@ -572,9 +572,11 @@ pub fn wedge(
     // Where a ray at azimuth `xc` through row edge `y` first passes below the level-0 terrain,
     // horizontal voxels from the eye (`None` within the far distance).
     let (mw, mh) = (i64::from(map.width), i64::from(map.height));
+    let order = map.order()?;
     let height_m = |x: f64, y: f64| {
-        let at = fold(y.floor() as i64, mh) * map.width as usize + fold(x.floor() as i64, mw);
-        f64::from(map.heights[at]) * map.height_scale_m
+        // Folded into the map: within u32.
+        let (x, y) = (fold(x.floor() as i64, mw), fold(y.floor() as i64, mh));
+        f64::from(map.heights[order.index(x as u32, y as u32)]) * map.height_scale_m
     };
     let ground = |xc: f64, y: f64| -> Option<f64> {
         let s = camera.slope_at(y) / (1.0 + xc * xc).sqrt();
@@ -687,8 +689,8 @@ pub fn wedge(
     for py in 0..ph {
         for px in 0..pw {
             let (x, y) = plan(px, py);
-            let at = fold(y.floor() as i64, mh) * map.width as usize + fold(x.floor() as i64, mw);
-            let mut c = lighten(map.colors[at], 0.6);
+            let (cx, cy) = (fold(x.floor() as i64, mw), fold(y.floor() as i64, mh));
+            let mut c = lighten(map.colors[order.index(cx as u32, cy as u32)], 0.6);
             let edge = |v: f64| (v - v.round()).abs() * scale < 0.5;
             if scale >= 6.0 && (edge(x) || edge(y)) {
                 c = mix(c, Rgb::new(0, 0, 0), 0.12);

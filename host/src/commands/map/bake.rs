@@ -45,9 +45,60 @@ pub struct BakeArgs {
     /// Side of the built-in terrain, voxels.
     #[arg(long = "terrain-size", default_value_t = map::DEFAULT_SIZE, conflicts_with = "input")]
     pub terrain_size: u32,
+    /// How each level's cells lie in the file: in vertical strips of --strip-width columns (a
+    /// column's walk then reads a page per block of a strip instead of a page per row of a wide
+    /// map), or row-major. The images are the same either way.
+    #[arg(long, value_enum, default_value_t = LayoutArg::Strips)]
+    pub layout: LayoutArg,
+    /// Columns per strip with --layout strips: a power of two from 4 to 65536 (levels no wider
+    /// than a strip are row-major).
+    #[arg(
+        long = "strip-width",
+        value_name = "COLUMNS",
+        default_value_t = 1 << footprint_scenes::baked::BAKE_SHIFT,
+        value_parser = strip_width
+    )]
+    pub strip_width: u32,
     #[command(flatten)]
     /// `--json`.
     pub format: OutputFormat,
+}
+
+/// `map bake --layout`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum LayoutArg {
+    /// Vertical strips of --strip-width columns, each row-major, with 4 columns of their
+    /// neighbours on either side.
+    Strips,
+    /// Row-major: a row after another.
+    Rows,
+}
+
+/// `--strip-width`: a power of two from 4 to 65,536.
+fn strip_width(s: &str) -> Result<u32, String> {
+    let w: u32 = s
+        .parse()
+        .map_err(|_| format!("{s:?} is not a whole number of columns"))?;
+    if !(4..=65_536).contains(&w) || !w.is_power_of_two() {
+        return Err(format!("{w} is not a power of two from 4 to 65536"));
+    }
+    Ok(w)
+}
+
+impl BakeArgs {
+    /// The strips' shift for the file's header, `None` for row-major.
+    fn strips(&self) -> Option<u32> {
+        (self.layout == LayoutArg::Strips).then(|| self.strip_width.trailing_zeros())
+    }
+}
+
+/// The layout of a file with levels in `strips` (its shift), as `map bake --layout` names it.
+fn layout_name(strips: Option<u32>) -> &'static str {
+    if strips.is_some() {
+        "strips"
+    } else {
+        "rows"
+    }
 }
 
 /// `footprint map verify`.
@@ -71,6 +122,11 @@ struct BakedJson {
     levels: usize,
     levels_verified: usize,
     height_filter: &'static str,
+    /// `strips` or `rows` (`map bake --layout`).
+    layout: &'static str,
+    /// Columns per strip, with the layout `strips`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    strip_width: Option<u32>,
     bytes: u64,
     #[serde(skip_serializing_if = "Option::is_none")]
     bake_ms: Option<f64>,
@@ -92,6 +148,8 @@ impl BakedJson {
             levels: opened.levels,
             levels_verified: opened.levels_verified,
             height_filter: HeightFilterArg::from_core(h.filter).name(),
+            layout: layout_name(h.strips),
+            strip_width: h.strips.map(|s| 1 << s),
             bytes,
             bake_ms: None,
             cells_per_s: None,
@@ -128,7 +186,8 @@ pub(super) fn bake(args: &BakeArgs) -> Result<()> {
     let pyramid_ms = start.elapsed().as_secs_f64() * 1e3;
     let mut bytes = 0;
     write_atomic(&args.out, |w| {
-        bytes = map::baked::write(&pyramid, &source, &mut std::io::BufWriter::new(w))?;
+        let mut out = std::io::BufWriter::new(w);
+        bytes = map::baked::write(&pyramid, &source, args.strips(), &mut out)?;
         Ok(())
     })?;
     let seconds = start.elapsed().as_secs_f64();
@@ -151,6 +210,8 @@ pub(super) fn bake(args: &BakeArgs) -> Result<()> {
             levels: pyramid.len(),
             levels_verified: 0,
             height_filter: args.height_filter.name(),
+            layout: layout_name(args.strips()),
+            strip_width: args.strips().map(|s| 1 << s),
             bytes,
             bake_ms: None,
             cells_per_s: None,
@@ -218,8 +279,13 @@ fn bake_mosaic(args: &BakeArgs) -> Result<()> {
              a stream or a device"
         );
     }
-    let bytes =
-        map::bake_stream::bake_mosaic(&mosaic, args.height_filter.into(), sink.file(), &out_what)?;
+    let bytes = map::bake_stream::bake_mosaic(
+        &mosaic,
+        args.height_filter.into(),
+        args.strips(),
+        sink.file(),
+        &out_what,
+    )?;
     sink.finish()?;
     let seconds = start.elapsed().as_secs_f64();
     let cells = mosaic.cells() as f64;
@@ -263,8 +329,11 @@ pub(super) fn info(args: &InfoArgs) -> Result<()> {
     let metres = |u: u16| m.base_m + f64::from(u) * m.height_scale_m;
     crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
     crate::outln!(
-        "format    baked map (.fpmap, layout {})",
-        footprint_core::terrain::baked::VERSION
+        "format    baked map (.fpmap), {}",
+        match opened.header.strips {
+            Some(s) => format!("levels in strips of {} columns", 1u32 << s),
+            None => "levels row-major".to_owned(),
+        }
     )?;
     crate::outln!("source    {}", crate::output::escape_controls(&json.source))?;
     crate::outln!(

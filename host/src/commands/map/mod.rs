@@ -298,6 +298,7 @@ mod tests {
                 base_m: 0.0,
                 source: String::new(),
                 known_range: None,
+                strips: None,
             };
             let p = crate::pyramid::Pyramid::build(map, Default::default()).unwrap();
             assert_eq!(pyramid_levels(w, h), p.len(), "{w}×{h}");
