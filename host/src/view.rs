@@ -11,7 +11,7 @@ use crate::camera::{place, Eye};
 use crate::map::{self, Map};
 use crate::pyramid::Pyramid;
 use footprint_scenes::survey::{survey, Kind};
-use footprint_scenes::view::{overview_params, PAPER_FOV_DEG};
+use footprint_scenes::view::{overview_params, overview_place, PAPER_FOV_DEG};
 
 /// An image size `WxH`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -478,7 +478,14 @@ impl View {
     pub fn overview(map_args: &MapArgs, cam: &CameraArgs) -> Result<Self> {
         let (w, h) = (cam.size.width, cam.size.height);
         Self::with_camera(map_args, cam, |pyramid, options| {
-            let o = overview_params(pyramid.map(), w, h);
+            // With the eye and the pitch given, the overview's own (which read the relief
+            // along the line of sight) are not needed.
+            let given = cam.pitch.is_some() && (cam.height.is_some() || cam.fit_first_hit);
+            let o = if given {
+                overview_place(pyramid.map(), w, h)
+            } else {
+                overview_params(pyramid.map(), w, h)
+            };
             // Each option changes what it names; the rest is the overview's.
             let params = CameraParams {
                 x_m: cam.x.unwrap_or(o.x_m),

@@ -179,11 +179,22 @@ pub fn overview_params(map: &Map, width: u32, height: u32) -> CameraParams {
         .to_degrees()
         .min(OVERVIEW_MAX_TOP_RAY_DEG);
     CameraParams {
-        x_m: f64::from(map.width) * map.spacing_m / 2.0,
-        y_m: depth_m,
         eye_m: f64::from(lowest) * map.height_scale_m + above,
-        heading_deg: 0.0,
         pitch_deg: top_ray + OVERVIEW_FOV_DEG / 2.0,
+        ..overview_place(map, width, height)
+    }
+}
+
+/// [`overview_params`] but its eye height and pitch, which read the map's relief along the
+/// line of sight (every 256th of the map across and along: on a large baked map, thousands of
+/// pages): for a caller that sets both. The eye height is the lowest ground's, the pitch 0.
+pub fn overview_place(map: &Map, width: u32, height: u32) -> CameraParams {
+    CameraParams {
+        x_m: f64::from(map.width) * map.spacing_m / 2.0,
+        y_m: f64::from(map.height) * map.spacing_m,
+        eye_m: f64::from(map.height_range().0) * map.height_scale_m,
+        heading_deg: 0.0,
+        pitch_deg: 0.0,
         roll_deg: 0.0,
         fov_deg: OVERVIEW_FOV_DEG,
         width,
