@@ -525,6 +525,33 @@ mod tests {
         ));
     }
 
+    /// In strips, each level takes its striped cells ([`Strips::len`]), the levels no wider
+    /// than a strip row-major, and the levels still tile the pyramid's sections.
+    #[test]
+    fn a_layout_in_strips_sizes_each_level_by_its_strips() {
+        let l = Layout::in_strips(300, 7, Some(6)).unwrap();
+        // 300×7 → 150×4 → 75×2 → 38×1 → 19×1 → … → 1×1: strips of 64 columns, 72 stored.
+        assert_eq!(l.level0()[0].len(), 2 * 5 * 72 * 7);
+        let [a, b] = l.level(1).unwrap();
+        assert_eq!((a.len(), b.len()), (6 * 3 * 72 * 4, 3 * 3 * 72 * 4));
+        let [a, _] = l.level(2).unwrap();
+        assert_eq!(a.len(), 6 * 2 * 72 * 2);
+        let [a, _] = l.level(3).unwrap();
+        assert_eq!(a.len(), 6 * 38, "no wider than a strip: row-major");
+        let [ph, pc] = l.pyramid();
+        let last = l.level(l.levels() - 1).unwrap();
+        assert_eq!(
+            (l.level(1).unwrap()[0].start, last[0].end),
+            (ph.start, ph.end)
+        );
+        assert_eq!(
+            (l.level(1).unwrap()[1].start, last[1].end),
+            (pc.start, pc.end)
+        );
+        assert_eq!(Layout::in_strips(300, 7, None), Layout::new(300, 7));
+        assert!(Layout::in_strips(300, 7, Some(1)).is_err());
+    }
+
     /// A header reads back as written; a wrong magic, version or level count is refused.
     #[test]
     fn a_header_round_trips_and_refuses() {
@@ -570,7 +597,29 @@ mod tests {
             refused(at::WIDTH + 3, 1),
             Err(Error::MapSize { .. })
         ));
+        // Version 1 (row-major) is still read; it has no strips.
+        assert_eq!(
+            Header::decode(&with_byte(&bytes, at::VERSION, 1)),
+            Ok(header)
+        );
+        let mut v1_strips = with_byte(&bytes, at::VERSION, 1);
+        v1_strips[at::STRIPS] = 6;
+        assert!(Header::decode(&v1_strips).is_err());
+        // Strips round-trip in version 2.
+        let striped = Header {
+            strips: Some(6),
+            ..header
+        };
+        striped.encode("", &mut bytes);
+        assert_eq!(Header::decode(&bytes), Ok(striped));
         assert!(Header::decode(&bytes[..100]).is_err());
+    }
+
+    /// `bytes` with byte `at` set to `value`.
+    fn with_byte(bytes: &[u8; HEADER_LEN], at: usize, value: u8) -> [u8; HEADER_LEN] {
+        let mut b = *bytes;
+        b[at] = value;
+        b
     }
 
     /// A file lends its sections as the terrain's levels; a file one byte short, or one byte

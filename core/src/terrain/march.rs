@@ -22,13 +22,15 @@
 //! so the inner loop has no division.
 //!
 //! **Runs.** Between two events — a climb to the next level, a mirror edge along the major
-//! axis (where the mirrored index repeats), or the far distance — every step moves the array
-//! index by the same `±stride` and raises the ray by the same amount. The cursor computes, once
+//! axis (where the mirrored index repeats), the edge of a strip along x in a level stored in
+//! strips ([`Strips`]: the index jumps to the next strip there), or the far distance — every
+//! step moves the array index by the same `±stride` and raises the ray by the same amount. The cursor computes, once
 //! per run, how many such steps remain ([`March::new`] and every step that ends a run plan the
 //! next one), so a step inside a run is an add to the index, the ray and the cross coordinate,
 //! one load and one compare ([`March::ride`]); the climb test, the mirror folds and the far test
 //! are paid once per run. Crossing a cell boundary across the ray (at most once per step,
-//! because `|dv| ≤ ½`) moves the index by one row. The cursor's `j`, `n`, period position and
+//! because `|dv| ≤ ½`) moves the index by one row, or one column within a strip (crossing into
+//! the next strip is an edge across, as a mirror edge is). The cursor's `j`, `n`, period position and
 //! step index are kept as of the run's start and derived from the steps taken when asked.
 //!
 //! **Empty air.** Before a column's first hit, [`March::skip`] crosses in one step every voxel
@@ -97,7 +99,8 @@ pub struct March<'a, 't> {
     /// `len_v − 1`: the most cells a ray can have behind it across, in one mirrored stretch
     /// (Eq. 4's neighbour behind, [`Voxel::sample_linear`]).
     last_v: u32,
-    /// The array offset of the current cross-axis cell, `fold(pv)·stride_v`.
+    /// The array offset of the current cross-axis cell ([`Strips::x`] or [`Strips::y`] of
+    /// `fold(pv)`).
     off_v: usize,
     /// What crossing into the next cell across the ray adds to `idx` (`±stride_v`, or 0 on a
     /// one-cell-wide axis), and how many such crossings remain before an edge across: a
@@ -109,7 +112,7 @@ pub struct March<'a, 't> {
     gap: u32,
     /// Steps taken so far; identifies the voxel for the distinct-sample count `M`.
     k: u32,
-    /// The current voxel's index in the level's arrays, `fold(pu)·stride_u + off_v`.
+    /// The current voxel's index in the level's arrays, the offset of `fold(pu)` plus `off_v`.
     idx: usize,
     /// What a step inside the current run adds to `idx` (`±stride_u`, or 0 on a one-cell-wide
     /// axis).
@@ -417,7 +420,7 @@ impl<'a, 't> March<'a, 't> {
             let (dcross, mut cross_left, gap) = (self.dcross, self.cross_left, self.gap);
             let mut mark = start;
             // The tight loop: one voxel per iteration, until a hit that returns, the run's
-            // end, or a mirror edge across the ray.
+            // end, or an edge across the ray (a mirror's or a strip's).
             let found = loop {
                 let at = |i: usize| heights.get(i).copied().unwrap_or(0);
                 let top = if H::WIDE {
@@ -845,8 +848,8 @@ impl<'a, 't> March<'a, 't> {
     }
 
     /// The voxel at array index `idx` and cross fraction `toward` (XOR `flip`), with
-    /// `cross_left` crossings left before a mirror edge across the ray (not a strip's) (which also gives its
-    /// cell across, [`March::cv_after`]), `taken` steps into the current run beyond what the
+    /// `cross_left` crossings left before a mirror edge across the ray, not a strip's (which
+    /// also gives its cell across, [`March::cv_after`]), `taken` steps into the current run beyond what the
     /// cursor's fields record (a ride's locals, not yet written back). Only these four words
     /// are written per hit: everything else a sampler may ask is read from the cursor when
     /// asked.

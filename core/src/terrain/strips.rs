@@ -17,7 +17,7 @@
 //! Index `(x, y)` of either order is `X(x) + Y(y)`: [`Strips::x`] and [`Strips::y`].
 
 use crate::error::Error;
-use crate::terrain::map::{cells, mirror, MAX_SIDE};
+use crate::terrain::map::{cells, check_len, mirror, MAX_SIDE};
 
 /// Columns of the neighbouring strips stored on either side of a strip's own.
 pub const HALO: u32 = 4;
@@ -190,17 +190,6 @@ impl Strips {
         }
     }
 
-    /// How many cells across from a cell are one stride from it in the slices, to either side
-    /// (the halo; any number row-major).
-    #[inline(always)]
-    pub fn reach(&self) -> u32 {
-        if self.is_row_major() {
-            u32::MAX
-        } else {
-            self.halo
-        }
-    }
-
     /// Writes the row-major `src` of a `width × height` level into `out` in this order
     /// (`out.len() == self.len()`), halo and padding columns from the mirrored cells.
     ///
@@ -212,8 +201,8 @@ impl Strips {
         src: &[T],
         out: &mut [T],
     ) -> Result<(), Error> {
-        crate::terrain::map::check_len("row-major cells", cells(width, height)?, src.len())?;
-        crate::terrain::map::check_len("striped cells", self.len, out.len())?;
+        check_len("row-major cells", cells(width, height)?, src.len())?;
+        check_len("striped cells", self.len, out.len())?;
         if self.is_row_major() {
             out.copy_from_slice(src);
             return Ok(());
@@ -230,7 +219,7 @@ impl Strips {
     }
 
     /// Writes row `y` (`row`: `width` cells, row-major) of a `width × height` level into `out`
-    /// in this order: what a streaming writer calls row by row.
+    /// in this order: one row of [`Strips::stripe`].
     ///
     /// Errors: slices of the wrong length.
     pub fn stripe_row<T: Copy>(
@@ -240,8 +229,8 @@ impl Strips {
         row: &[T],
         out: &mut [T],
     ) -> Result<(), Error> {
-        crate::terrain::map::check_len("row", width as usize, row.len())?;
-        crate::terrain::map::check_len("striped cells", self.len, out.len())?;
+        check_len("row", width as usize, row.len())?;
+        check_len("striped cells", self.len, out.len())?;
         let start = self.y(y);
         for (s, band) in out.chunks_exact_mut(self.band).enumerate() {
             let Some(dst) = band.get_mut(start..start + self.row) else {
@@ -291,7 +280,7 @@ mod tests {
                     );
                     assert!(!seen[at]);
                     seen[at] = true;
-                    for k in 1..=s.reach().min(HALO) {
+                    for k in 1..=HALO {
                         if x + k < w {
                             assert_eq!(out[at + k as usize], y * w + x + k);
                         }
