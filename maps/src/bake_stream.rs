@@ -323,7 +323,7 @@ impl Levels {
 ///
 /// The file equals, byte for byte, [`crate::baked::write`] of the pyramid
 /// (`footprint_scenes::Pyramid::build`) of the same map coloured by [`crate::tint()`], with the
-/// same source.
+/// same source and the same strips ([`Plan::strips`]).
 ///
 /// Errors: `next_row`'s, the file's (as [`MapError::Write`] naming `what`), a plan out of
 /// range, rows outside `plan.range`.

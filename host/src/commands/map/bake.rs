@@ -101,6 +101,14 @@ fn layout_name(strips: Option<u32>) -> &'static str {
     }
 }
 
+/// The layout in words, for the text output: `in strips of 64 columns` or `row-major`.
+fn layout_said(strips: Option<u32>) -> String {
+    match strips {
+        Some(s) => format!("in strips of {} columns", 1u32 << s),
+        None => "row-major".to_owned(),
+    }
+}
+
 /// `footprint map verify`.
 #[derive(Args, Debug)]
 pub struct VerifyArgs {
@@ -226,11 +234,13 @@ pub(super) fn bake(args: &BakeArgs) -> Result<()> {
         return Ok(());
     }
     crate::outln!(
-        "wrote {shown}: {}×{}, {} levels ({} filter), {}, baked in {:.0} ms ({:.0} M cells/s){}",
+        "wrote {shown}: {}×{}, {} levels ({} filter, {}), {}, baked in {:.0} ms ({:.0} M \
+         cells/s){}",
         m.width,
         m.height,
         json.levels,
         json.height_filter,
+        layout_said(args.strips()),
         map::memory::show(bytes),
         seconds * 1e3,
         cells / seconds.max(1e-9) / 1e6,
@@ -298,14 +308,15 @@ fn bake_mosaic(args: &BakeArgs) -> Result<()> {
         return Ok(());
     }
     crate::outln!(
-        "wrote {}: {}×{} from {} tiles, {} levels ({} filter), {}, baked in {:.0} ms ({:.0} ms \
-         surveying; {:.0} M cells/s), every level verified",
+        "wrote {}: {}×{} from {} tiles, {} levels ({} filter, {}), {}, baked in {:.0} ms ({:.0} \
+         ms surveying; {:.0} M cells/s), every level verified",
         crate::output::shown(&args.out),
         mosaic.width,
         mosaic.height,
         mosaic.tiles.len(),
         json.levels,
         json.height_filter,
+        layout_said(args.strips()),
         map::memory::show(bytes),
         seconds * 1e3,
         surveyed * 1e3,
@@ -330,10 +341,7 @@ pub(super) fn info(args: &InfoArgs) -> Result<()> {
     crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
     crate::outln!(
         "format    baked map (.fpmap), {}",
-        match opened.header.strips {
-            Some(s) => format!("levels in strips of {} columns", 1u32 << s),
-            None => "levels row-major".to_owned(),
-        }
+        format!("levels {}", layout_said(opened.header.strips))
     )?;
     crate::outln!("source    {}", crate::output::escape_controls(&json.source))?;
     crate::outln!(
