@@ -420,6 +420,34 @@ mod tests {
         }
     }
 
+    /// A map opened in strips: written again in its own strips, the same bytes (lent as they
+    /// are); in other strips, refused; converted to another format, the row-major map's file.
+    #[test]
+    fn a_map_in_strips_is_written_as_it_is_or_converted_by_rows() {
+        let dir = tempfile::tempdir().unwrap();
+        let (pyramid, path) = baked(dir.path(), HeightFilter::Silhouette, Some(4));
+        let (back, _) = open(&path, None, None).unwrap();
+        assert_eq!(back.map().strips, Some(4));
+        let mut again = Vec::new();
+        write(&back, "built-in", Some(4), &mut again).unwrap();
+        assert!(
+            again == std::fs::read(&path).unwrap(),
+            "rewritten bytes differ"
+        );
+        let e = write(&back, "built-in", Some(6), &mut Vec::new()).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::InvalidInput);
+        assert!(e.to_string().contains("strips of another width"), "{e}");
+        let asc = |m: &Map| {
+            let mut out = Vec::new();
+            crate::format::write(m, crate::format::Format::Asc, &mut out, "out").unwrap();
+            out
+        };
+        assert!(
+            asc(back.map()) == asc(pyramid.map()),
+            "the .asc of the map in strips differs"
+        );
+    }
+
     /// A flipped byte anywhere, a cut or an extra byte: a one-line error naming the file.
     #[test]
     fn corrupt_and_truncated_files_are_refused() {

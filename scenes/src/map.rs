@@ -98,10 +98,16 @@ impl Map {
             }
         }
         Ok(std::borrow::Cow::Owned(Map {
+            width: w,
+            height: h,
             heights: heights.into(),
             colors: colors.into(),
+            spacing_m: self.spacing_m,
+            height_scale_m: self.height_scale_m,
+            base_m: self.base_m,
+            source: self.source.clone(),
+            known_range: self.known_range,
             strips: None,
-            ..self.clone()
         }))
     }
 

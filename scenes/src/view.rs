@@ -838,6 +838,21 @@ mod tests {
         );
     }
 
+    /// Without the line of sight, the overview's place is the overview's, its eye and pitch
+    /// aside (which `render` takes from `--height` and `--pitch` then).
+    #[test]
+    fn the_overview_place_is_the_overview_but_its_eye_and_pitch() {
+        let map = procedural(3, 300);
+        let (full, place) = (overview_params(&map, 64, 48), overview_place(&map, 64, 48));
+        assert_ne!((full.eye_m, full.pitch_deg), (place.eye_m, place.pitch_deg));
+        let aside = |p: CameraParams| CameraParams {
+            eye_m: 0.0,
+            pitch_deg: 0.0,
+            ..p
+        };
+        assert_eq!(aside(full), aside(place));
+    }
+
     #[test]
     fn the_diagonal_eye_looks_from_the_north_west_corner() {
         // A square map: heading 135°, the first hit `s0 = d·tan(half)` along the diagonal.

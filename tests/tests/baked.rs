@@ -11,17 +11,10 @@ use footprint_host::render::SS_RATES;
 use footprint_host::render::{render_with, Tables};
 use footprint_host::view::Size;
 
+/// Every named mode and two supersampling rates.
 fn modes() -> Vec<Mode> {
-    let mut modes = vec![
-        Mode::Ps,
-        Mode::Li,
-        Mode::As,
-        Mode::AsExact,
-        Mode::As2,
-        Mode::Classic,
-    ];
-    modes.extend([SS_RATES[0], SS_RATES[3]].map(Mode::Ss));
-    modes
+    let ss = [SS_RATES[0], SS_RATES[3]].map(Mode::Ss);
+    Mode::NAMED.into_iter().chain(ss).collect()
 }
 
 #[test]

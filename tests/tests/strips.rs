@@ -12,17 +12,10 @@ use footprint_host::pyramid::Pyramid;
 use footprint_host::render::SS_RATES;
 use footprint_host::render::{count, render_lit_once, Tables};
 
+/// Every named mode and two supersampling rates.
 fn modes() -> Vec<Mode> {
-    let mut modes = vec![
-        Mode::Ps,
-        Mode::Li,
-        Mode::As,
-        Mode::AsExact,
-        Mode::As2,
-        Mode::Classic,
-    ];
-    modes.extend([SS_RATES[0], SS_RATES[3]].map(Mode::Ss));
-    modes
+    let ss = [SS_RATES[0], SS_RATES[3]].map(Mode::Ss);
+    Mode::NAMED.into_iter().chain(ss).collect()
 }
 
 /// One level of a terrain in strips: its order and size, and its cells (heights along x and

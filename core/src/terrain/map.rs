@@ -194,11 +194,7 @@ impl<'a> Level<'a> {
         along_y: &'a [u16],
         colors: &'a [Rgb],
     ) -> Result<Self, Error> {
-        let plain = Strips::row_major(width, height)?;
-        let expected = match strips.shift() {
-            Some(shift) => Strips::new(width, height, shift)?,
-            None => plain,
-        };
+        let expected = Strips::of(width, height, strips.shift())?;
         if strips != expected {
             return Err(Error::SliceLength {
                 what: "strips",

@@ -213,24 +213,15 @@ impl Strips {
                 clippy::cast_possible_truncation,
                 reason = "y < height ≤ MAX_SIDE (checked by `cells`)"
             )]
-            self.stripe_row(width, y as u32, row, out)?;
+            self.stripe_row(width, y as u32, row, out);
         }
         Ok(())
     }
 
     /// Writes row `y` (`row`: `width` cells, row-major) of a `width × height` level into `out`
-    /// in this order: one row of [`Strips::stripe`].
-    ///
-    /// Errors: slices of the wrong length.
-    pub fn stripe_row<T: Copy>(
-        &self,
-        width: u32,
-        y: u32,
-        row: &[T],
-        out: &mut [T],
-    ) -> Result<(), Error> {
-        check_len("row", width as usize, row.len())?;
-        check_len("striped cells", self.len, out.len())?;
+    /// (`self.len()` cells) in this order: one row of [`Strips::stripe`], which checks the
+    /// lengths.
+    fn stripe_row<T: Copy>(&self, width: u32, y: u32, row: &[T], out: &mut [T]) {
         let start = self.y(y);
         for (s, band) in out.chunks_exact_mut(self.band).enumerate() {
             let Some(dst) = band.get_mut(start..start + self.row) else {
@@ -244,7 +235,6 @@ impl Strips {
                 }
             }
         }
-        Ok(())
     }
 }
 
