@@ -101,6 +101,46 @@ pub fn render_lit_once<C: footprint_core::terrain::cost::Cost>(
     Ok((rendered, t.elapsed().as_secs_f64() * 1e3))
 }
 
+/// The wall times of a frame rendered again and again in one process, ms: the first, which
+/// for a memory-mapped (baked) map also maps the pages it reads into the process, and the
+/// steady state of the ones after it, which a flight or `serve` sees.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Repeated {
+    /// The first frame's wall time, ms.
+    pub first_ms: f64,
+    /// The wall times of the frames after the first, ms, fastest first.
+    pub after_ms: Vec<f64>,
+}
+
+impl Repeated {
+    /// The fastest frame after the first, ms (`None` for one frame).
+    pub fn min_ms(&self) -> Option<f64> {
+        self.after_ms.first().copied()
+    }
+
+    /// The median frame after the first, ms (`None` for one frame).
+    pub fn median_ms(&self) -> Option<f64> {
+        self.after_ms.get(self.after_ms.len() / 2).copied()
+    }
+}
+
+/// Runs `once` (a timed render: the image and its wall time, ms) `frames` times, at least
+/// once: the last image and the [`Repeated`] wall times.
+pub fn repeat(
+    frames: usize,
+    mut once: impl FnMut() -> Result<(Rendered, f64)>,
+) -> Result<(Rendered, Repeated)> {
+    let (mut rendered, first_ms) = once()?;
+    let mut after_ms = Vec::with_capacity(frames.saturating_sub(1));
+    for _ in 1..frames {
+        let (again, ms) = once()?;
+        rendered = again;
+        after_ms.push(ms);
+    }
+    after_ms.sort_by(f64::total_cmp);
+    Ok((rendered, Repeated { first_ms, after_ms }))
+}
+
 /// The last of `repeats` renders (at least one) and the fastest one's wall time, ms.
 fn best_of(
     repeats: usize,

@@ -97,6 +97,48 @@ fn render_counts_json_has_the_documented_fields() {
     assert!(v["counts"]["V"].as_u64().unwrap() > 0);
 }
 
+/// `render --repeats N` times the frame N times: the first in `ms`, the other N − 1 in
+/// `repeated`; one frame has no `repeated`, and 0 is refused in one line naming the option.
+#[test]
+fn render_repeats_times_the_frames_after_the_first() {
+    let run = |repeats: &str| {
+        footprint(&[
+            "render",
+            "--terrain-size",
+            "64",
+            "--size",
+            "32x24",
+            "--pitch",
+            "20",
+            "--repeats",
+            repeats,
+            "--json",
+        ])
+    };
+    let o = run("5");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+    let r = &v["repeated"];
+    assert_eq!(r["frames"], 4, "{v}");
+    let (min, median) = (
+        r["min_ms"].as_f64().unwrap(),
+        r["median_ms"].as_f64().unwrap(),
+    );
+    assert!(0.0 < min && min <= median, "{v}");
+    assert!(v["ms"].as_f64().unwrap() > 0.0);
+
+    let o = run("1");
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+    assert!(v.get("repeated").is_none(), "{v}");
+
+    let o = run("0");
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--repeats"), "{err}");
+    assert!(o.stdout.is_empty());
+}
+
 /// `--json` alone prints the counters' JSON (it implies `--counts`; it used to be ignored).
 #[test]
 fn render_json_alone_prints_the_counters() {

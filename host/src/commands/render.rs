@@ -7,7 +7,7 @@ use clap::Args;
 
 use crate::args::OutputFormat;
 use crate::lighting::{LightArgs, LoadedMaterials};
-use crate::render::{count, render_lit_once, render_timed_parallel, Mode, Tables};
+use crate::render::{count, render_lit_once, render_timed_parallel, repeat, Mode, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, ViewArg};
@@ -48,6 +48,11 @@ pub struct RenderArgs {
     /// With --counts --json, add every column's counters (`columns`).
     #[arg(long)]
     pub per_column: bool,
+    /// Render the frame N times in this process and report the first frame's time and the
+    /// fastest and median of the others (`repeated` in --json): the first frame also maps a
+    /// baked map's pages into the process, the others are what a flight sees
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub repeats: u32,
 }
 
 /// Runs `footprint render`.
@@ -71,18 +76,22 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let sun = args
         .light
         .sun_with(&terrain, args.light.specular.0, &materials)?;
-    // One walk for the image, timed; the counters (--counts) are a second, counting walk.
-    // Repeated and compared timings are `footprint bench`'s.
-    let (rendered, ms, threads) = match &sun {
+    // One walk for the image, timed (--repeats: that many); the counters (--counts) are a
+    // second, counting walk. Compared timings of every mode are `footprint bench`'s.
+    let frames = args.repeats as usize;
+    let (rendered, repeated, threads) = match &sun {
         None => {
-            let (rendered, ms) = render_timed_parallel(&frame, &terrain, args.mode, 1)?;
-            (rendered, ms, rayon::current_num_threads())
+            let (rendered, repeated) = repeat(frames, || {
+                render_timed_parallel(&frame, &terrain, args.mode, 1)
+            })?;
+            (rendered, repeated, rayon::current_num_threads())
         }
         Some(sun) => {
             // The lit frame is timed (one thread: the shader writes the whole lit image), not
             // the colour map's.
-            let (rendered, ms) =
-                render_lit_once(&frame, &terrain, &view.camera, args.mode, sun, &mut NoCost)?;
+            let (rendered, repeated) = repeat(frames, || {
+                render_lit_once(&frame, &terrain, &view.camera, args.mode, sun, &mut NoCost)
+            })?;
             if args.counts || args.format.json {
                 // Its shading counters, from a second, counting walk, go to stderr.
                 let mut counts = Counts::new(&mut []);
@@ -95,9 +104,10 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                     counts.total.shading as f64 / pixels
                 );
             }
-            (rendered, ms, 1)
+            (rendered, repeated, 1)
         }
     };
+    let ms = repeated.first_ms;
     if let Some(out) = &args.out {
         let (w, h) = rendered.size;
         phase.set_message("writing the PNG");
@@ -133,6 +143,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             measured: &measured,
             per_column: args.per_column,
             ms,
+            repeated: &repeated,
             threads,
             map: &view.map().source,
         };
@@ -142,7 +153,16 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             crate::out!("{}", counts::text(&summary))?;
         }
     } else if args.out.is_none() {
-        crate::note!("rendered in {ms:.2} ms; nothing written (give --out FILE.png or --counts)");
+        let more = match (repeated.min_ms(), repeated.median_ms()) {
+            (Some(min), Some(median)) => format!(
+                ", then {} more: fastest {min:.2} ms, median {median:.2} ms",
+                repeated.after_ms.len()
+            ),
+            _ => String::new(),
+        };
+        crate::note!(
+            "rendered in {ms:.2} ms{more}; nothing written (give --out FILE.png or --counts)"
+        );
     }
     if overview {
         // The overview is placed over the map itself (moved by --x, --y or --heading, what it

@@ -8,7 +8,7 @@ use footprint_core::terrain::camera::CameraParams;
 use footprint_core::terrain::cost::Tally;
 use serde::Serialize;
 
-use crate::render::{Measured, Mode};
+use crate::render::{Measured, Mode, Repeated};
 use crate::report::number::thousands;
 
 /// One measured frame: what `render --counts` prints.
@@ -31,8 +31,10 @@ pub struct RenderSummary<'a> {
     pub measured: &'a Measured,
     /// Include every column's counters in the JSON.
     pub per_column: bool,
-    /// The wall time of the one render of the image (no counting) on `threads` threads, ms.
+    /// The wall time of the first render of the image (no counting) on `threads` threads, ms.
     pub ms: f64,
+    /// The wall times of every render of the image (`--repeats`).
+    pub repeated: &'a Repeated,
     /// Threads of that render.
     pub threads: usize,
     /// The map's source.
@@ -114,6 +116,9 @@ struct RenderJson {
     /// thread, `ms` the best of three on one).
     ms_threads: f64,
     threads: usize,
+    /// With `--repeats N` above 1: the frames after the first.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    repeated: Option<RepeatedJson>,
     lod: bool,
     projection: &'static str,
     grid: GridJson,
@@ -121,6 +126,27 @@ struct RenderJson {
     map: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     columns: Option<Vec<CountsJson>>,
+}
+
+/// The frames after the first (`render --repeats`), ms.
+#[derive(Serialize)]
+struct RepeatedJson {
+    /// How many: `--repeats` less one.
+    frames: usize,
+    /// The fastest.
+    min_ms: f64,
+    /// The median.
+    median_ms: f64,
+}
+
+impl RepeatedJson {
+    fn of(r: &Repeated) -> Option<Self> {
+        Some(Self {
+            frames: r.after_ms.len(),
+            min_ms: r.min_ms()?,
+            median_ms: r.median_ms()?,
+        })
+    }
 }
 
 /// Per-column averages, the unit of the paper's Tables 1–4.
@@ -155,6 +181,7 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
         ms: s.ms,
         ms_threads: s.ms,
         threads: s.threads,
+        repeated: RepeatedJson::of(s.repeated),
         lod: s.lod,
         projection: s.projection,
         grid: GridJson {
@@ -222,13 +249,24 @@ pub fn text(s: &RenderSummary<'_>) -> String {
         thousands(t.divisions),
         thousands(t.e)
     );
-    let _ = writeln!(
-        out,
-        "render {:.2} ms on {} thread{} (one run, no counting; `footprint bench` repeats and \
-         compares)",
-        s.ms,
+    let threads = format!(
+        "{} thread{}",
         s.threads,
         if s.threads == 1 { "" } else { "s" }
     );
+    let _ = match RepeatedJson::of(s.repeated) {
+        None => writeln!(
+            out,
+            "render {:.2} ms on {threads} (one run, no counting; --repeats N repeats it, \
+             `footprint bench` compares modes)",
+            s.ms
+        ),
+        Some(r) => writeln!(
+            out,
+            "render {:.2} ms on {threads} the first time (no counting), then {} more: \
+             fastest {:.2} ms, median {:.2} ms",
+            s.ms, r.frames, r.min_ms, r.median_ms
+        ),
+    };
     out
 }
