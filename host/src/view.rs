@@ -230,6 +230,30 @@ pub struct MapArgs {
     pub height_filter: Option<HeightFilterArg>,
 }
 
+/// Refuses, for the baked map `dem`, the options that apply only when a map is read from its
+/// source (`--format`, `--nodata`, `--vertical-unit`, each given or not): its format, voids
+/// and vertical unit were settled when it was baked.
+pub fn refuse_for_baked(
+    dem: &std::path::Path,
+    format: bool,
+    nodata: bool,
+    vertical_unit: bool,
+) -> Result<()> {
+    for (option, given) in [
+        ("--format", format),
+        ("--nodata", nodata),
+        ("--vertical-unit", vertical_unit),
+    ] {
+        if given {
+            bail!(
+                "{option}: {} is a baked map (.fpmap): it applies when a map is baked",
+                dem.display()
+            );
+        }
+    }
+    Ok(())
+}
+
 impl MapArgs {
     /// Loads the map (or generates the built-in one) and builds its pyramid with
     /// `--height-filter`; the pyramid keeps the map ([`Pyramid::map`]). A baked map
@@ -265,18 +289,12 @@ impl MapArgs {
                 dem.display()
             );
         }
-        for (option, given) in [
-            ("--format", self.format.is_some()),
-            ("--nodata", self.nodata.is_some()),
-            ("--vertical-unit", self.vertical_unit.is_some()),
-        ] {
-            if given {
-                bail!(
-                    "{option}: {} is a baked map (.fpmap): it applies when a map is baked",
-                    dem.display()
-                );
-            }
-        }
+        refuse_for_baked(
+            dem,
+            self.format.is_some(),
+            self.nodata.is_some(),
+            self.vertical_unit.is_some(),
+        )?;
         let (pyramid, _) = map::baked::open(dem, self.spacing, self.height_scale)?;
         if let Some(asked) = self.height_filter {
             if HeightFilter::from(asked) != pyramid.filter() {

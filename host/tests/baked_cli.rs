@@ -191,3 +191,52 @@ fn bad_baked_maps_are_one_line_errors() {
     let args = ["map", "bake", "--out", "/nonexistent-folder/x.fpmap"];
     assert_one_line_error(&footprint(&args), &args, "/nonexistent-folder/x.fpmap");
 }
+
+/// `map convert FILE.fpmap OUT` writes the baked map's level 0: the same bytes as converting
+/// the map it was baked from, in either layout; the options that apply only when a map is read
+/// from its source are refused in one line.
+#[test]
+fn a_baked_map_converts_to_what_its_source_converts_to() {
+    let dir = tempfile::tempdir().unwrap();
+    let (w, h) = (150, 90);
+    let mut asc = format!(
+        "ncols {w}\nnrows {h}\nxllcorner 0\nyllcorner 0\ncellsize 10\nNODATA_value -9999\n"
+    );
+    for y in 0..h {
+        let row: Vec<String> = (0..w)
+            .map(|x| {
+                format!(
+                    "{:.2}",
+                    200.0 + 3.0 * x as f64 + 0.01 * ((x * y) % 97) as f64 * 50.0
+                )
+            })
+            .collect();
+        asc.push_str(&row.join(" "));
+        asc.push('\n');
+    }
+    let src = s(&dir.path().join("src.asc"));
+    std::fs::write(&src, asc).unwrap();
+    let want = s(&dir.path().join("want.asc"));
+    ok(&["map", "convert", &src, &want]);
+    let want = std::fs::read(&want).unwrap();
+    for (name, layout) in [
+        ("rows", vec!["--layout", "rows"]),
+        ("strips16", vec!["--strip-width", "16"]),
+    ] {
+        let fpmap = s(&dir.path().join(format!("{name}.fpmap")));
+        let mut bake = vec!["map", "bake", &src, "--out", &fpmap];
+        bake.extend(&layout);
+        ok(&bake);
+        let got = s(&dir.path().join(format!("{name}.asc")));
+        ok(&["map", "convert", &fpmap, &got]);
+        assert!(
+            std::fs::read(&got).unwrap() == want,
+            "{name}: the .asc differs"
+        );
+
+        let out = dir.path().join("refused.asc");
+        let args = ["map", "convert", &fpmap, &s(&out), "--nodata", "-1"];
+        assert_one_line_error(&footprint(&args), &args, "--nodata");
+        assert!(!out.exists());
+    }
+}

@@ -246,8 +246,26 @@ fn convert(args: &ConvertArgs) -> Result<()> {
             crate::output::escape_controls(&ext)
         );
     };
-    let loaded = args.read.load(&args.input)?;
-    let m = &loaded.map;
+    // A baked map is written from its level 0 (its heights as baked, in its own height
+    // units); any other map is read as `map info` reads it.
+    let (loaded, baked);
+    let (m, range_m, voids_filled) = if map::baked::is_baked(&args.input) {
+        let r = &args.read;
+        crate::view::refuse_for_baked(
+            &args.input,
+            r.format.is_some(),
+            r.nodata.is_some(),
+            r.vertical_unit.is_some(),
+        )?;
+        baked = map::baked::open(&args.input, args.read.spacing, args.read.height_scale)?.0;
+        let m = baked.map();
+        let (lo, hi) = m.height_range();
+        let metres = |u: u16| m.base_m + f64::from(u) * m.height_scale_m;
+        (m, (metres(lo), metres(hi)), 0)
+    } else {
+        loaded = args.read.load(&args.input)?;
+        (&loaded.map, loaded.range_m, loaded.voids_filled)
+    };
     map::format::check_writable(m, to, &out_what)?;
     write_atomic(&args.output, |w| {
         map::format::write(m, to, w, &out_what)?;
@@ -258,10 +276,10 @@ fn convert(args: &ConvertArgs) -> Result<()> {
         crate::output::shown(&args.output),
         m.width,
         m.height,
-        loaded.range_m.0,
-        loaded.range_m.1,
+        range_m.0,
+        range_m.1,
         m.spacing_m,
-        loaded.voids_filled
+        voids_filled
     );
     match to {
         Format::Png => summary.push_str(&format!(
