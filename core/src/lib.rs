@@ -115,6 +115,7 @@ mod testing;
 
 // The shared floor, below both rooms.
 pub mod color;
+mod divide;
 pub mod error;
 pub mod num;
 pub mod trig;

@@ -24,6 +24,8 @@
 
 use fixed::types::{I32F32, I40F24};
 
+use crate::divide::div_rem_signed;
+
 /// A height in height units with 24 fractional bits (terrain heights are whole units).
 pub type Height = I40F24;
 
@@ -179,8 +181,9 @@ impl Eye {
             return Slope::from_bits(if rise >= 0 { limit } else { -limit });
         }
         // ⌊rise·2^24/run⌋ = q·2^24 + ⌊r·2^24/run⌋ with q = ⌊rise/run⌋, r = rise mod run:
-        // two 64-bit divisions instead of a 128-bit one while r·2^24 fits in 63 bits.
-        let (mut q, mut r) = (rise / run, rise % run);
+        // two 64-bit divisions instead of a 128-bit one while r·2^24 fits in 63 bits (each
+        // without the bit-by-bit loop on a 32-bit core: `divide`).
+        let (mut q, mut r) = div_rem_signed(rise, run);
         if r < 0 {
             q -= 1;
             r += run;
@@ -193,7 +196,7 @@ impl Eye {
             reason = "0 ≤ r < run (the remainder fixed just above), so the quotient is below 2^24"
         )]
         let frac = if run < 1 << 39 {
-            (r << 24) / run
+            div_rem_signed(r << 24, run).0
         } else {
             ((i128::from(r) << 24) / i128::from(run)) as i64
         };

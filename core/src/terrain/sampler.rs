@@ -12,6 +12,7 @@
 
 use crate::color::Rgb;
 use crate::color::{to_color16, to_rgb, Color16};
+use crate::divide::div_rem_signed;
 use crate::num::{Coord, Eye, Height, Line, Weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
@@ -377,10 +378,11 @@ impl Area {
             return to_rgb(fallback);
         }
         cost.divisions(3);
-        // (Σc / Σw) in 8.8, rounded to 8 bits in the same division.
+        // (Σc / Σw) in 8.8, rounded to 8 bits in the same division (without the bit-by-bit
+        // loop on a 32-bit core: `divide`).
         let den = self.wsum.saturating_mul(256);
         let half = self.wsum.saturating_mul(128);
-        let ch = |s: i64| (s.saturating_add(half) / den).clamp(0, 255) as u8;
+        let ch = |s: i64| div_rem_signed(s.saturating_add(half), den).0.clamp(0, 255) as u8;
         Rgb::new(ch(self.sum[0]), ch(self.sum[1]), ch(self.sum[2]))
     }
 }

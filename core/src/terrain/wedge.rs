@@ -46,7 +46,10 @@
 //! ([`Sampler::WIDE`]); a candidate hit reads the interval's cells (term `e`,
 //! [`Cost::wedge`]) and costs a division for the mean, and a hit one more for the colour.
 
+use core::num::NonZeroU64;
+
 use crate::color::{Color16, Rgb};
+use crate::divide::{div_rem, div_rem_signed};
 use crate::num::Height;
 use crate::terrain::blend::{distance, mix, weight};
 use crate::terrain::camera::Switch;
@@ -210,10 +213,7 @@ impl Lanes {
     /// most 255 times the total).
     #[inline(always)]
     fn mean(self) -> Option<Color16> {
-        if self.total == 0 {
-            return None;
-        }
-        let reciprocal = (1u64 << 40) / self.total;
+        let reciprocal = div_rem(1 << 40, NonZeroU64::new(self.total)?).0;
         #[allow(
             clippy::cast_possible_truncation,
             reason = "a weighted mean of 8-bit values times 256, clamped: within 0..=65280"
@@ -396,7 +396,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         if total <= 0 || (smooth == 0 && i64::from(highest) << 24 <= ray.h.to_bits()) {
             return Hit::Rejected;
         }
-        let mut mean = (sum << 24) / total;
+        let mut mean = div_rem_signed(sum << 24, total).0;
         if SMOOTH && smooth > 0 && voxel.level() == 0 {
             let line = voxel.height_linear().to_bits();
             mean += ((line - mean) * smooth) >> 16;
@@ -428,7 +428,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
                     total2 += cover;
                 }
                 if total2 > 0 {
-                    mean2 = mean2.max((sum2 << 24) / total2);
+                    mean2 = mean2.max(div_rem_signed(sum2 << 24, total2).0);
                 }
                 // Eq. 4 across the row, over the same interval (shifted by a cell so that its
                 // cells lie in `integrated_color`'s reach).
