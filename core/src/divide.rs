@@ -5,7 +5,7 @@
 //! instructions a bit. `as-exact` and `as2` divide 64-bit numbers where the paper's Fig. 12
 //! does (the ray through a voxel's top, [`crate::num::Eye::slope_through`], and each pixel's
 //! `Σc/Σw`), and `as2` where it takes its means across, with quotients of up to 24 bits.
-//! [`long_div_rem`] is long division whose digits (about 15 bits each) are estimated by one
+//! [`long_div`] is long division whose digits (about 15 bits each) are estimated by one
 //! 32-bit division by the divisor's top 16 bits, rounded up, so that an estimate never
 //! overshoots and the next digit absorbs what it missed: a few rounds instead of one per bit.
 //! The result is the quotient and remainder of `/` and `%`, bit for bit ([`div_rem`] for
@@ -13,28 +13,30 @@
 //! in hardware both are the native division ([`LONG`]).
 //!
 //! On the Cortex-M4 (the firmware's 160×120 frame, QEMU `-icount`, the same images):
-//! `as-exact` 2,308.9 → 1,848.9 instructions per pixel, `as2` 5,544.9 → 4,725.8; `as`, whose
+//! `as-exact` 2,308.9 → 1,724.3 instructions per pixel, `as2` 5,544.9 → 4,425.6; `as`, whose
 //! one division per pixel is already 32-bit, is unchanged.
 
 use core::num::NonZeroU64;
 
-/// Whether [`div_rem`] and [`div_rem_signed`] take [`long_div_rem`]: on 32-bit ARM, whose
+/// Whether [`div_rem`] and [`div_rem_signed`] take [`long_div`]: on 32-bit ARM, whose
 /// compiler divides 64 bits in the bit-by-bit loop (measured on the Cortex-M4), and in the
 /// core's unit tests, so that the callers' tests check it on the host too. Elsewhere (x86,
 /// 64-bit ARM, WebAssembly, which divides 64 bits in one instruction) the native division.
 const LONG: bool = cfg!(any(target_arch = "arm", test));
 
-/// `(n / d, n % d)`: [`long_div_rem`] where [`LONG`] says, else the native division.
+/// `(n / d, n % d)`: [`long_div`] where [`LONG`] says, else the native division.
 #[inline(always)]
 pub(crate) fn div_rem(n: u64, d: NonZeroU64) -> (u64, u64) {
     if LONG {
-        long_div_rem(n, d)
+        let q = long_div(n, d);
+        // q·d ≤ n: no wrap.
+        (q, n - q * d.get())
     } else {
         (n / d, n % d)
     }
 }
 
-/// `(n / d, n % d)`, rounded toward zero as `/` and `%` round, for `d > 0`: [`long_div_rem`]
+/// `(n / d, n % d)`, rounded toward zero as `/` and `%` round, for `d > 0`: [`long_div`]
 /// of the magnitudes where [`LONG`] says, else the native division. `d ≤ 0`, which no caller
 /// passes, gives `(0, 0)` on the long path.
 #[inline(always)]
@@ -45,7 +47,7 @@ pub(crate) fn div_rem_signed(n: i64, d: i64) -> (i64, i64) {
         let Some(den) = NonZeroU64::new(u64::try_from(d).unwrap_or(0)) else {
             return (0, 0);
         };
-        let (q, r) = long_div_rem(n.unsigned_abs(), den);
+        let (q, r) = div_rem(n.unsigned_abs(), den);
         // |q| ≤ |n| and r < d: both fit an i64 with n's sign (n = i64::MIN with d = 1 wraps
         // to itself, as it should).
         #[allow(clippy::cast_possible_wrap, reason = "see above")]
@@ -58,7 +60,8 @@ pub(crate) fn div_rem_signed(n: i64, d: i64) -> (i64, i64) {
     }
 }
 
-/// `(n / d, n % d)` by long division with 32-bit divisions (see the module docs).
+/// `n / d` by long division with 32-bit divisions (see the module docs); [`div_rem`] takes
+/// the remainder as `n − q·d`, so that this one function returns in registers.
 ///
 /// A divisor below 2^16 divides four 16-bit digits, each remainder and digit below 2^32. A
 /// larger one is `d = top·2^k + low` with `top` its 16 highest bits (`2^15 ≤ top < 2^16`):
@@ -70,7 +73,7 @@ pub(crate) fn div_rem_signed(n: i64, d: i64) -> (i64, i64) {
 /// Not inlined: one copy in flash for every caller (inlined at each, it cost the firmware
 /// 8–10 KB).
 #[inline(never)]
-pub(crate) fn long_div_rem(n: u64, d: NonZeroU64) -> (u64, u64) {
+pub(crate) fn long_div(n: u64, d: NonZeroU64) -> u64 {
     let d = d.get();
     if d < 1 << 16 {
         // Schoolbook in base 2^16: each step divides `r·2^16 + digit < d·2^16 ≤ 2^32`.
@@ -85,30 +88,36 @@ pub(crate) fn long_div_rem(n: u64, d: NonZeroU64) -> (u64, u64) {
             q |= u64::from(part / d32) << shift;
             r = part % d32;
         }
-        return (q, u64::from(r));
+        return q;
     }
     let k = 48 - d.leading_zeros();
-    #[allow(
-        clippy::cast_possible_truncation,
-        reason = "d ≥ 2^16 has at most 64 bits, so d >> k has 16 bits"
-    )]
-    let top = (d >> k) as u32 + 1;
+    // d >> k has 16 bits (d ≥ 2^16 has at most 64): the mask changes nothing, and tells the
+    // compiler that `top` is neither 0 nor past 2^16 (no division by zero to check).
+    #[allow(clippy::cast_possible_truncation, reason = "masked to 16 bits")]
+    let top = ((d >> k) as u32 & 0xffff) + 1;
     let (mut q, mut r) = (0u64, n);
     while r >= d {
-        let s = r >> k;
-        // The bits of `s` above 32, dropped for the 32-bit division and shifted back after.
-        let e = 32u32.saturating_sub(s.leading_zeros());
-        #[allow(
-            clippy::cast_possible_truncation,
-            reason = "s >> e has at most 32 bits"
-        )]
-        let digit = u64::from((s >> e) as u32 / top) << e;
-        // t·d ≤ r (see above); a digit of 0 (r within one top + 1 of d) is one d.
-        let t = digit.max(1);
-        q += t;
-        r -= t * d;
+        let high = 32u32.saturating_sub(r.leading_zeros());
+        if high <= k {
+            // r >> k has at most 32 bits: a digit below 2^17, in 32-bit arithmetic; t·d ≤ r
+            // (see above), and a digit of 0 (r within one top + 1 of d) is one d.
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "r >> k has at most 32 bits"
+            )]
+            let t = u64::from(((r >> k) as u32 / top).max(1));
+            q += t;
+            r -= t * d;
+        } else {
+            // r >> k to its 32 highest bits (r >> high, whose top bit is set), the digit
+            // shifted back by the `high − k` bits dropped: at least 2^15, and t·d ≤ r.
+            #[allow(clippy::cast_possible_truncation, reason = "r >> high has 32 bits")]
+            let t = u64::from((r >> high) as u32 / top) << (high - k);
+            q += t;
+            r -= t * d;
+        }
     }
-    (q, r)
+    q
 }
 
 #[cfg(test)]
@@ -117,7 +126,7 @@ mod tests {
 
     fn check(n: u64, d: u64) {
         let nz = NonZeroU64::new(d).unwrap();
-        assert_eq!(long_div_rem(n, nz), (n / d, n % d), "{n} / {d}");
+        assert_eq!(long_div(n, nz), n / d, "{n} / {d}");
         assert_eq!(div_rem(n, nz), (n / d, n % d), "{n} / {d}");
     }
 
