@@ -50,7 +50,7 @@ pub struct RenderArgs {
     pub per_column: bool,
     /// Render the frame N times in this process and report the first frame's time and the
     /// fastest and median of the others (`repeated` in --json): the first frame also maps a
-    /// baked map's pages into the process, the others are what a flight sees
+    /// baked map's pages into the process, the others are what a flight sees.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub repeats: u32,
 }
@@ -142,7 +142,6 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             grid: (frame.width(), frame.height()),
             measured: &measured,
             per_column: args.per_column,
-            ms,
             repeated: &repeated,
             threads,
             map: &view.map().source,

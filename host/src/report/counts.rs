@@ -31,9 +31,8 @@ pub struct RenderSummary<'a> {
     pub measured: &'a Measured,
     /// Include every column's counters in the JSON.
     pub per_column: bool,
-    /// The wall time of the first render of the image (no counting) on `threads` threads, ms.
-    pub ms: f64,
-    /// The wall times of every render of the image (`--repeats`).
+    /// The wall times of the renders of the image (no counting) on `threads` threads, ms:
+    /// the first, and the others of `--repeats`.
     pub repeated: &'a Repeated,
     /// Threads of that render.
     pub threads: usize,
@@ -110,7 +109,7 @@ struct RenderJson {
     counts: CountsJson,
     column_average: ColumnAverage,
     coverage: f64,
-    /// The wall time of the one render of the image, ms.
+    /// The wall time of the first render of the image, ms.
     ms: f64,
     /// The same: kept for scripts that read it (it was the best of three renders on every
     /// thread, `ms` the best of three on one).
@@ -178,8 +177,8 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
             hits: t.hits as f64 / cols,
         },
         coverage: t.coverage(),
-        ms: s.ms,
-        ms_threads: s.ms,
+        ms: s.repeated.first_ms,
+        ms_threads: s.repeated.first_ms,
         threads: s.threads,
         repeated: RepeatedJson::of(s.repeated),
         lod: s.lod,
@@ -259,13 +258,13 @@ pub fn text(s: &RenderSummary<'_>) -> String {
             out,
             "render {:.2} ms on {threads} (one run, no counting; --repeats N repeats it, \
              `footprint bench` compares modes)",
-            s.ms
+            s.repeated.first_ms
         ),
         Some(r) => writeln!(
             out,
             "render {:.2} ms on {threads} the first time (no counting), then {} more: \
              fastest {:.2} ms, median {:.2} ms",
-            s.ms, r.frames, r.min_ms, r.median_ms
+            s.repeated.first_ms, r.frames, r.min_ms, r.median_ms
         ),
     };
     out
