@@ -21,7 +21,9 @@ use core::num::NonZeroU64;
 /// Whether [`div_rem`] and [`div_rem_signed`] take [`long_div`]: on 32-bit ARM, whose
 /// compiler divides 64 bits in the bit-by-bit loop (measured on the Cortex-M4), and in the
 /// core's unit tests, so that the callers' tests check it on the host too. Elsewhere (x86,
-/// 64-bit ARM, WebAssembly, which divides 64 bits in one instruction) the native division.
+/// 64-bit ARM, WebAssembly, which divides 64 bits in one instruction) the native division. A
+/// Cortex-M0 (`thumbv6m`) has no 32-bit divide either, and takes the long division too: not
+/// measured there.
 const LONG: bool = cfg!(any(target_arch = "arm", test));
 
 /// `(n / d, n % d)`: [`long_div`] where [`LONG`] says, else the native division.
