@@ -5,9 +5,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use anyhow::Result;
+use footprint_core::terrain::camera::Switch;
 use footprint_core::terrain::cost::NoCost;
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::image::Sampling;
+use footprint_core::terrain::visibility::visible_voxels;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 
@@ -155,6 +157,18 @@ fn best_of(
         out = Some(r);
     }
     Ok((out.expect("at least one run"), best))
+}
+
+/// The visible voxels of every column of `frame` (its columns, or the exact projection's fan
+/// lines, as [`count`] walks them), climbing at `switch`, summed; the columns in parallel.
+/// With [`Switch::Late`], the area modes' walk: the one coverage denominator `V` of `table`
+/// and `render --counts` (docs/cli.md, "One `V` per case").
+pub fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 {
+    use rayon::prelude::*;
+    (0..frame.width())
+        .into_par_iter()
+        .map(|x| visible_voxels(frame, terrain, x, switch))
+        .sum()
 }
 
 /// Renders with every counter on and the exact visibility pass

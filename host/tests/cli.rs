@@ -97,6 +97,45 @@ fn render_counts_json_has_the_documented_fields() {
     assert!(v["counts"]["V"].as_u64().unwrap() > 0);
 }
 
+/// `render --counts` divides every mode's coverage by one `V`, the area modes' walk's (as
+/// `table` does): PS, which climbs the pyramid earlier, reports its own walk's `V` beside it.
+#[test]
+fn render_counts_divide_by_the_area_modes_visible_voxels() {
+    let run = |mode: &str| {
+        let o = footprint(&[
+            "render",
+            "--terrain-size",
+            "128",
+            "--size",
+            "64x48",
+            "--pitch",
+            "20",
+            "--mode",
+            mode,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).expect("one JSON object")
+    };
+    let (ps, area) = (run("ps"), run("as-exact"));
+    let v_case = area["V_case"].as_u64().unwrap();
+    assert_eq!(v_case, area["counts"]["V"].as_u64().unwrap());
+    assert!(area["column_average"].get("V_walk").is_none(), "{area}");
+    assert_eq!(ps["V_case"].as_u64().unwrap(), v_case, "one V for the view");
+    let ps_walk = ps["counts"]["V"].as_u64().unwrap();
+    assert_ne!(
+        ps_walk, v_case,
+        "PS climbs at √2: its walk sees other voxels"
+    );
+    let m = ps["counts"]["M"].as_u64().unwrap() as f64;
+    assert_eq!(ps["coverage"].as_f64().unwrap(), m / v_case as f64);
+    let columns = ps["grid"]["columns"].as_f64().unwrap();
+    assert_eq!(
+        ps["column_average"]["V_walk"].as_f64().unwrap(),
+        ps_walk as f64 / columns
+    );
+}
+
 /// `render --repeats N` times the frame N times: the first in `ms`, the other N − 1 in
 /// `repeated`; one frame has no `repeated`, and 0 is refused in one line naming the option.
 #[test]

@@ -7,11 +7,11 @@ use clap::Args;
 
 use crate::args::OutputFormat;
 use crate::lighting::{LightArgs, LoadedMaterials};
-use crate::render::{count, render_lit_once, render_timed_parallel, repeat, Mode, Tables};
+use crate::render::{count, render_lit_once, render_timed_parallel, repeat, visible, Mode, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, ViewArg};
-use footprint_core::terrain::camera::Projection;
+use footprint_core::terrain::camera::{Projection, Switch};
 use footprint_core::terrain::cost::{Counts, NoCost};
 
 /// `footprint render`.
@@ -130,6 +130,13 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     if args.counts || args.format.json {
         // The paper's counters (Sect. 6): a counting walk of the colour render.
         let (_, measured) = count(&frame, &terrain, args.mode)?;
+        // One denominator for coverage, as `table` has: the area modes' walk's visible voxels
+        // (the counting walk's own where the mode climbs as they do).
+        let v_case = if args.mode.switch() == Switch::Late {
+            measured.total.v
+        } else {
+            visible(&frame, &terrain, Switch::Late)
+        };
         let summary = RenderSummary {
             mode: args.mode,
             camera: *view.camera.params(),
@@ -141,6 +148,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             },
             grid: (frame.width(), frame.height()),
             measured: &measured,
+            v_case,
             per_column: args.per_column,
             repeated: &repeated,
             threads,

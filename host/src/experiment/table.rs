@@ -16,7 +16,6 @@
 use anyhow::Result;
 use footprint_core::terrain::camera::{Options, Switch};
 use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::visibility::visible_voxels;
 use footprint_core::terrain::Terrain;
 use serde::Serialize;
 
@@ -24,7 +23,7 @@ use super::paper::{paper_view_placed, ViewPlacement};
 use super::reference::{psnr, reference, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{count, render_timed, Mode, Tables, SS_RATES};
+use crate::render::{count, render_timed, visible, Mode, Tables, SS_RATES};
 use crate::view::{Size, SurfaceArg};
 use footprint_scenes::view::Placement;
 
@@ -346,16 +345,6 @@ pub fn run(
         cases,
         table5,
     })
-}
-
-/// The visible voxels of every column of `frame` (its columns, or the exact projection's fan
-/// lines, as [`count`] walks them), climbing at `switch`, summed; the columns in parallel.
-fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 {
-    use rayon::prelude::*;
-    (0..frame.width())
-        .into_par_iter()
-        .map(|x| visible_voxels(frame, terrain, x, switch))
-        .sum()
 }
 
 /// Where the visible voxels of `frame` (climbing at `switch`) lie, in pixel footprints: the

@@ -29,6 +29,10 @@ pub struct RenderSummary<'a> {
     pub grid: (usize, usize),
     /// The counters, per frame and per column.
     pub measured: &'a Measured,
+    /// The visible voxels of the area modes' walk (`render::visible` at
+    /// [`Switch::Late`](footprint_core::terrain::camera::Switch::Late)): the one denominator of
+    /// `coverage`, as `table` divides; the counters' own `V` is this mode's walk's.
+    pub v_case: u64,
     /// Include every column's counters in the JSON.
     pub per_column: bool,
     /// The wall times of the renders of the image (no counting) on `threads` threads, ms:
@@ -109,6 +113,9 @@ struct RenderJson {
     counts: CountsJson,
     column_average: ColumnAverage,
     coverage: f64,
+    /// The denominator of `coverage`: the area modes' walk's visible voxels in the frame.
+    #[serde(rename = "V_case")]
+    v_case: u64,
     /// The wall time of the first render of the image, ms.
     ms: f64,
     /// The same: kept for scripts that read it (it was the best of three renders on every
@@ -155,8 +162,21 @@ struct ColumnAverage {
     L: f64,
     P: f64,
     M: f64,
+    /// The area modes' walk's (the case's, as `table`'s `V`).
     V: f64,
+    /// This mode's walk's (`counts.V` per column), when it differs.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    V_walk: Option<f64>,
     hits: f64,
+}
+
+/// `M / V`, 1 where nothing is visible (as [`Tally::coverage`]).
+fn coverage(m: u64, v: u64) -> f64 {
+    if v == 0 {
+        1.0
+    } else {
+        m as f64 / v as f64
+    }
 }
 
 /// The summary as one JSON object.
@@ -173,10 +193,12 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
             L: t.l as f64 / cols,
             P: t.p as f64 / cols,
             M: t.m as f64 / cols,
-            V: t.v as f64 / cols,
+            V: s.v_case as f64 / cols,
+            V_walk: (t.v != s.v_case).then(|| t.v as f64 / cols),
             hits: t.hits as f64 / cols,
         },
-        coverage: t.coverage(),
+        coverage: coverage(t.m, s.v_case),
+        v_case: s.v_case,
         ms: s.repeated.first_ms,
         ms_threads: s.repeated.first_ms,
         threads: s.threads,
@@ -225,15 +247,23 @@ pub fn text(s: &RenderSummary<'_>) -> String {
         s.grid.0,
         s.grid.1
     );
+    let walk = if t.v == s.v_case {
+        String::new()
+    } else {
+        format!(
+            "  (V of the area modes' walk; this mode's walk's V {:.1})",
+            t.v as f64 / cols
+        )
+    };
     let _ = writeln!(
         out,
-        "per column: L {:.1}  P {:.1}  M {:.1}  V {:.1}  hits {:.1}  coverage M/V {:.3}",
+        "per column: L {:.1}  P {:.1}  M {:.1}  V {:.1}  hits {:.1}  coverage M/V {:.3}{walk}",
         t.l as f64 / cols,
         t.p as f64 / cols,
         t.m as f64 / cols,
-        t.v as f64 / cols,
+        s.v_case as f64 / cols,
         t.hits as f64 / cols,
-        t.coverage()
+        coverage(t.m, s.v_case)
     );
     let _ = writeln!(
         out,
