@@ -214,3 +214,56 @@ fn rays_at_the_height_of_a_flat_map_end_at_once() {
     assert_eq!((t.a, t.hits, t.v), (0, 0, 0), "{t:?}");
     assert!(image.iter().all(|&p| p == SKY));
 }
+
+/// The fuzzer's finding of 2026-11-27 (`core_render`): a field of view of 7·10⁻⁹ degrees over
+/// voxels 262 km wide and 2,048 km per height unit, so narrow that the rows' rays, floored to
+/// the walk's fixed point, coincide: six of the seven pixels of each column have zero height.
+/// Every mode renders it. Area sampling still samples every visible voxel (`M ≥ V`); what it
+/// samples beyond them is the voxel that fills a zero-height pixel (weight 0), which the
+/// visibility pass, measuring the frame's rays, does not count. `M = V` holds wherever pixels
+/// have height (the fuzz target asserts it there).
+#[test]
+fn pixels_of_zero_height_still_sample_every_visible_voxel() {
+    let (w, h) = (13u32, 14u32);
+    let pattern = [0u16, 58_112, 17, 65_535, 25_443, 25_443, 25_443, 25_443];
+    let heights: Vec<u16> = (0..w * h).map(|i| pattern[i as usize % 8]).collect();
+    let colors = vec![Rgb::new(0, 0, 0); (w * h) as usize];
+    let level0 = Level::new(w, h, &heights, &colors).unwrap();
+    let cells = footprint_core::terrain::pyramid::cells(w, h);
+    let (mut grid, mut palette) = (vec![0u16; 3 * cells], vec![Rgb::default(); cells]);
+    let filter = footprint_core::terrain::pyramid::HeightFilter::Mean;
+    footprint_core::terrain::pyramid::build(&level0, filter, &mut grid, &mut palette).unwrap();
+    let scale = Scale::new(262_144.0, 2_048_321.25).unwrap();
+    let terrain =
+        footprint_core::terrain::pyramid::assemble(level0, scale, &grid, &palette, true).unwrap();
+    let camera = Camera::new(CameraParams {
+        x_m: 0.0,
+        y_m: 7e-9,
+        eye_m: 5e-9,
+        heading_deg: 7e-9,
+        pitch_deg: 7e-9,
+        roll_deg: 0.0,
+        fov_deg: 7e-9,
+        width: 2,
+        height: 7,
+        far_m: 2_261_632.5,
+    })
+    .unwrap();
+    // The rays coincide: the frame is degenerate in fixed point.
+    let (mut rows, mut cols) = (vec![Coord::ZERO; 8], vec![Column::default(); 2]);
+    let frame = Frame::new(&camera, &terrain, Options::default(), &mut rows, &mut cols).unwrap();
+    let column = frame.column(0).unwrap();
+    let flat = (0..7)
+        .filter(|&i| frame.ray(column, i).slope >= frame.ray(column, i + 1).slope)
+        .count();
+    assert_eq!(flat, 6, "six pixels of zero height");
+    draw(&terrain, &camera, &Point);
+    draw(&terrain, &camera, &Linear);
+    draw(&terrain, &camera, &Super::<256>::new());
+    let (_, t) = draw(&terrain, &camera, &Area::new());
+    assert!(t.v > 0 && t.m >= t.v, "every visible voxel sampled: {t:?}");
+    assert!(
+        t.m > t.v,
+        "the finding: a voxel filling zero-height pixels: {t:?}"
+    );
+}
