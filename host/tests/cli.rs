@@ -134,6 +134,33 @@ fn render_counts_divide_by_the_area_modes_visible_voxels() {
         ps["column_average"]["V_walk"].as_f64().unwrap(),
         ps_walk as f64 / columns
     );
+    // The text says the same: the case's V, and PS's own beside it.
+    let text = |mode: &str| {
+        let args = [
+            "render",
+            "--terrain-size",
+            "128",
+            "--size",
+            "64x48",
+            "--pitch",
+            "20",
+            "--mode",
+            mode,
+            "--counts",
+        ];
+        String::from_utf8(footprint(&args).stdout).unwrap()
+    };
+    let v = v_case as f64 / columns;
+    let (ps_text, area_text) = (text("ps"), text("as-exact"));
+    assert!(ps_text.contains(&format!("V {v:.1} ")), "{ps_text}");
+    assert!(
+        ps_text.contains(&format!(
+            "this mode's walk's V {:.1}",
+            ps_walk as f64 / columns
+        )),
+        "{ps_text}"
+    );
+    assert!(!area_text.contains("this mode's walk's V"), "{area_text}");
 }
 
 /// `render --repeats N` times the frame N times: the first in `ms`, the other N − 1 in
@@ -165,6 +192,24 @@ fn render_repeats_times_the_frames_after_the_first() {
     );
     assert!(0.0 < min && min <= median, "{v}");
     assert!(v["ms"].as_f64().unwrap() > 0.0);
+
+    let text = footprint(&[
+        "render",
+        "--terrain-size",
+        "64",
+        "--size",
+        "32x24",
+        "--pitch",
+        "20",
+        "--repeats",
+        "3",
+        "--counts",
+    ]);
+    let text = String::from_utf8(text.stdout).unwrap();
+    assert!(
+        text.contains("the first time (no counting), then 2 more"),
+        "{text}"
+    );
 
     let o = run("1");
     assert!(o.status.success());

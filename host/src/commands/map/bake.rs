@@ -340,8 +340,8 @@ pub(super) fn info(args: &InfoArgs) -> Result<()> {
     let metres = |u: u16| m.base_m + f64::from(u) * m.height_scale_m;
     crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
     crate::outln!(
-        "format    baked map (.fpmap), {}",
-        format!("levels {}", layout_said(opened.header.strips))
+        "format    baked map (.fpmap), levels {}",
+        layout_said(opened.header.strips)
     )?;
     crate::outln!("source    {}", crate::output::escape_controls(&json.source))?;
     crate::outln!(
