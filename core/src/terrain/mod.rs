@@ -18,6 +18,7 @@ pub mod column;
 pub mod cost;
 pub mod fan;
 pub mod frame;
+pub mod horizons;
 pub mod image;
 pub mod map;
 // The voxel sequence under a column: the walk's internals. Public for the tests and the

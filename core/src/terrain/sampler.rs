@@ -363,7 +363,7 @@ impl Area {
     /// ±2^39 (raw), so a pixel's weights sum to at most `s_{i+1} − s_i ≤ 2^40`, and a colour is
     /// below 2^16, so every sum stays below 2^56.
     #[inline(always)]
-    fn accumulate<C: Cost>(&mut self, w: Weight, c: Color16, cost: &mut C) {
+    pub(crate) fn accumulate<C: Cost>(&mut self, w: Weight, c: Color16, cost: &mut C) {
         cost.as_hit();
         let w = w.to_bits().max(0);
         for (s, c) in self.sum.iter_mut().zip(c) {
@@ -372,8 +372,42 @@ impl Area {
         self.wsum += w;
     }
 
+    /// Adds sums already weighed (`Σ w·c`, `Σ w`; `as2`'s carried lanes, [`crate::terrain::horizons`]).
     #[inline(always)]
-    fn finish<C: Cost>(&mut self, fallback: Color16, cost: &mut C) -> Rgb {
+    pub(crate) fn add_sums(&mut self, sum: [i64; 3], w: i64) {
+        for (s, c) in self.sum.iter_mut().zip(sum) {
+            *s += c;
+        }
+        self.wsum += w;
+    }
+
+    /// Terrain was seen in the pixel.
+    #[inline(always)]
+    pub(crate) fn see(&mut self) {
+        self.seen = true;
+    }
+
+    /// Whether terrain was seen in the pixel.
+    #[inline(always)]
+    pub(crate) fn seen(&self) -> bool {
+        self.seen
+    }
+
+    /// The eye.
+    #[inline(always)]
+    pub(crate) fn eye(&self) -> Eye {
+        self.eye
+    }
+
+    /// The pixel's upper ray, `R_{i+1}`.
+    #[inline(always)]
+    pub(crate) fn upper(&self) -> Line {
+        self.upper
+    }
+
+    /// `Σc/Σw`, or `fallback` with no weight.
+    #[inline(always)]
+    pub(crate) fn finish<C: Cost>(&mut self, fallback: Color16, cost: &mut C) -> Rgb {
         if self.wsum <= 0 {
             return to_rgb(fallback);
         }

@@ -6,21 +6,24 @@
 //! planes lies a wedge from the eye, whose cross-section with the row of voxels at `n` is the
 //! interval `v(n) ± |n − n_eye|·wedge` across (the column's [`Pixel::wedge`]).
 //!
-//! At every step where the highest of the voxel under the centre line and the two cells to
-//! either side of it across is above the ray, the sampler reads the cells of the current
-//! level that the interval touches (at most four: the walk climbs levels at 2.4 footprints,
+//! The wedge is split across into [`LANES`] lanes of equal width, each with its own ray
+//! ([`Horizons`]). At every step where the highest of the voxel under the centre line and the
+//! two cells to either side of it across is above the walk's ray (the lowest lane's), the
+//! sampler takes each lane's part of the cross-section and reads the cells of the current
+//! level that it touches (at most four: the walk climbs levels at 2.4 footprints,
 //! [`Switch::Late`], so the interval is at most 2.4 cells wide):
 //!
-//! - **the height** of the step is the exact mean of the cells' heights over the interval,
-//!   each weighted by the length it covers (the heights are constant per cell);
-//! - **the colour** is the exact integral over the interval of Eq. 4's colour (linear between
-//!   the cells' centres), divided by its length;
-//! - **the hit** is the mean above the ray; a step whose highest cell is at or below the ray is
-//!   no hit, without computing the mean.
+//! - **the height** of the step in the lane is the exact mean of the cells' heights over the
+//!   lane's part, each weighted by the length it covers (the heights are constant per cell);
+//! - **the colour** is the exact integral over the lane's part of Eq. 4's colour (linear
+//!   between the cells' centres), divided by its length;
+//! - **the hit** is the mean above the lane's own ray; a step whose highest cell is at or below
+//!   it is no hit, without computing the mean.
 //!
-//! Along the column the hit is weighed as `as-exact` weighs it ([`Area`]: the visible angle
-//! from the eye, the next ray through the mean top). Where the interval is a point (at the eye)
-//! the step is exactly `as-exact`'s.
+//! Along the column each lane weighs its hit as `as-exact` weighs one ([`crate::terrain::sampler::Area`]: the
+//! visible angle from the eye, the lane's next ray through the mean top), and the pixel is the
+//! mean of its lanes. Where the interval is a point (at the eye) every lane's step is exactly
+//! `as-exact`'s.
 //!
 //! **Levels blend** (`terrain/blend.rs`). Over the first third of each pyramid level's
 //! range (footprints from 1.2 to 1.6 of its voxels) the step's height and colour are blended,
@@ -37,14 +40,18 @@
 //! wedge is narrower than a voxel, the step's height is the surface's at the wedge's centre
 //! line, blended into the cells' mean as the surface blends into the flat tops.
 //!
-//! **What is exact and what is not.** Exact: the integrals across the wedge (height and
-//! colour) and the weights along it. Approximated: what is visible inside the wedge is decided
-//! on the cross-section's mean height, not plane by plane, so a voxel that rises above the
-//! ray on one side of the wedge only is seen at its mean over the wedge.
+//! **What is exact and what is not.** Exact: the integrals across each lane (height and
+//! colour) and the weights along it. Approximated: what is visible inside a lane is decided on
+//! its cross-section's mean height, not plane by plane, so a voxel that rises above the lane's
+//! ray on one side of the lane only is seen at its mean over the lane (a thin ridge that fills
+//! part of a lane hides the lane's ground behind it at part of its height); and what a lane
+//! sees above the pixel before the others is carried into the pixels above as
+//! [`Horizons`] describes (exact for one hit, shared out in proportion for more).
 //!
 //! **Cost.** The walk's step reads the four cells across as well as the voxel
-//! ([`Sampler::WIDE`]); a candidate hit reads the interval's cells (term `e`,
-//! [`Cost::wedge`]) and costs a division for the mean, and a hit one more for the colour.
+//! ([`Sampler::WIDE`]); a candidate hit reads each lane's cells (term `e`, [`Cost::wedge`])
+//! and costs a division for each lane's mean, and each lane's hit one more for its colour
+//! and one for its ray.
 
 use core::num::NonZeroU64;
 
@@ -54,9 +61,10 @@ use crate::num::Height;
 use crate::terrain::blend::{distance, mix, weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
-use crate::terrain::march::Voxel;
+use crate::terrain::horizons::Horizons;
+use crate::terrain::march::{Finer, Voxel};
 use crate::terrain::ray::Ray;
-use crate::terrain::sampler::{Area, Hit, Pixel, Sampler};
+use crate::terrain::sampler::{Hit, Pixel, Sampler};
 use crate::terrain::surface;
 
 /// The largest half-width across a step reads, in cells of its level (32 fractional bits):
@@ -67,16 +75,24 @@ use crate::terrain::surface;
 /// mean is over the three or four cells nearest the centre line.
 const MAX_HALF: i64 = 3 << 31;
 
+/// The lanes across the wedge, each with a ray of its own ([`Horizons`]). Two: with one (the
+/// mean over the whole wedge) a thin ridge is seen at a fraction of its height over all of the
+/// wedge (docs/measurements.md, "as2's lanes"); four cost more and were no closer on the ridge.
+pub const LANES: usize = 2;
+
 /// One in the cross section's fixed point (cells, 32 fractional bits).
 const ONE: i64 = 1 << 32;
 
-/// `as2`: [`Area`] over the wedge between the column's two planes (see the module docs), on
+/// `as2`: `as-exact`'s weights over each lane of the wedge between the column's two planes (see
+/// the module docs), on
 /// the flat tops ([`Wedge`]) or, with `SMOOTH`, on the continuous surface where voxels are
 /// magnified (`--surface bilinear`; its code is compiled only into that sampler, so that flat
 /// tops pay nothing for it).
 #[derive(Clone, Copy, Debug)]
 pub struct WedgeOn<const SMOOTH: bool> {
-    area: Area,
+    lanes: Horizons<LANES>,
+    /// The voxel the lanes last saw (its `n`).
+    seen_at: i64,
     /// The column's half-width across per half-voxel along the ray (level-0 cells, raw
     /// I32F32).
     wedge: i64,
@@ -102,7 +118,8 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
     /// A fresh sampler.
     pub const fn new() -> Self {
         Self {
-            area: Area::new(),
+            lanes: Horizons::new(),
+            seen_at: i64::MIN,
             wedge: 0,
             n_eye: 0,
             climb: 0,
@@ -308,7 +325,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
 
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
-        self.area.begin_pixel(pixel, cost);
+        self.lanes.begin_pixel(pixel, cost);
         self.wedge = pixel.wedge.to_bits().max(0);
         self.n_eye = pixel.eye.n.to_bits() >> 24;
         self.climb = pixel.climb;
@@ -316,7 +333,8 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
     }
 
     /// A step where the highest of the five cells around the centre line (the walk's `top`,
-    /// which the sampler does not need: it reads the cells it weighs) is above the ray.
+    /// which the sampler does not need: it reads the cells it weighs) is above the walk's ray:
+    /// each lane still open that the step rises above in its part of the wedge sees it.
     #[inline(always)]
     fn hit<C: Cost>(
         &mut self,
@@ -325,33 +343,79 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         ray: &mut Ray,
         cost: &mut C,
     ) -> Hit {
+        let n = voxel.n();
+        if self.lanes.complete() {
+            // Every lane carried past the pixel: it is finished before this step.
+            return Hit::Done(self.lanes.finish(cost));
+        }
+        if n == self.seen_at {
+            // A voxel that finished the pixel below, handed again to this one: its lanes have
+            // seen it.
+            self.lanes.walk_ray(n, ray);
+            return Hit::Rejected;
+        }
+        self.seen_at = n;
         // The step's distance from the eye, once for the section, the surface and the blend.
         let d = distance(voxel, self.n_eye);
         let (lo, hi) = self.section(voxel, d);
+        let mut seen = false;
+        for k in 0..LANES {
+            let part = lane(lo, hi, k);
+            let ray_h = self.lanes.ray_at(k, n);
+            if let Some((top, color)) = self.step(voxel, d, part, ray_h, cost) {
+                seen |= self.lanes.sample(k, voxel, top, color, cost);
+            }
+        }
+        if self.lanes.complete() {
+            return Hit::Done(self.lanes.finish(cost));
+        }
+        self.lanes.walk_ray(n, ray);
+        if seen {
+            Hit::Next
+        } else {
+            Hit::Rejected
+        }
+    }
+
+    fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+        self.lanes.sky(sky, cost)
+    }
+}
+
+impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
+    /// The step at `voxel`, `d` half-voxels from the eye, over the interval `[lo, hi)` across
+    /// (cells of its level from its cell's edge behind, 32 fractional bits): its height (the
+    /// cells' exact mean, blended with the finer level's) and its colour ([`WedgeOn::color`]);
+    /// `None` if it does not rise above `ray_h`, without the colour.
+    #[inline(always)]
+    fn step<C: Cost>(
+        &self,
+        voxel: &Voxel<'_>,
+        d: i64,
+        (lo, hi): (i64, i64),
+        ray_h: Height,
+        cost: &mut C,
+    ) -> Option<(Height, Color16)> {
         let (first, last) = (lo >> 32, (hi - 1) >> 32);
         if first >= last {
-            // The wedge lies inside the voxel's cell: its height, and Eq. 4's colour integrated
-            // over the interval (which may straddle the cell's centre, where Eq. 4 bends); at
-            // the eye, where the interval is a point, `as-exact`'s hit.
+            // The wedge lies inside the voxel's cell: its height (on the continuous surface
+            // where voxels are magnified, the surface's at the centre line).
             cost.wedge(1);
-            // On the continuous surface where voxels are magnified, its height at the centre.
             let f = if SMOOTH && self.surface > 0 {
                 surface::weight(d, self.surface)
             } else {
                 0
             };
             let own = surface::height(voxel, f);
-            if own <= ray.h {
-                return Hit::Rejected;
+            if own <= ray_h {
+                return None;
             }
-            let color = |v: &Voxel<'_>| {
-                if hi - lo >= ONE >> 8 {
-                    row_color(v, lo, hi)
-                } else {
-                    v.sample_linear()
-                }
+            let color = if hi - lo >= ONE >> 8 {
+                row_color(voxel, lo, hi)
+            } else {
+                voxel.sample_linear()
             };
-            return self.area.sample_at(voxel, own, color, ray, cost);
+            return Some((own, color));
         }
         // The mean over the interval: each cell (at most five, -2..=2) by the length it
         // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
@@ -393,82 +457,130 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         } else {
             0
         };
-        if total <= 0 || (smooth == 0 && i64::from(highest) << 24 <= ray.h.to_bits()) {
-            return Hit::Rejected;
+        if total <= 0 || (smooth == 0 && i64::from(highest) << 24 <= ray_h.to_bits()) {
+            return None;
         }
         let mut mean = div_rem_signed(sum << 24, total).0;
         if SMOOTH && smooth > 0 && voxel.level() == 0 {
             let line = voxel.height_linear().to_bits();
             mean += ((line - mean) * smooth) >> 16;
         }
-        let mut color = row_color(voxel, lo, hi);
         // Just past the walk's climb into this level, the same wedge over the finer level's
         // cells (the two child rows along, the silhouette's maximum of their means, as the
         // pyramid makes a height), blended out as the step moves into the level: at the climb
         // the step is the finer level's, as the step before it was, so no pixel pops there.
         let f = weight(d, self.climb, voxel.level());
-        if let Some(finer) = voxel.finer().filter(|_| f > 0) {
-            // The interval in the children's cells, from the first child's edge behind, and
-            // the cells it reaches across (their offsets, shared by both rows), with the one
-            // past its end: Eq. 4's last segment weighs it too.
-            let (lo2, hi2) = (lo << 1, hi << 1);
-            let (k_lo, k_hi) = ((lo2 >> 32).max(-4), ((hi2 - 1) >> 32).min(5));
-            let mut offsets = [0usize; 11];
-            for (k, slot) in (k_lo..k_hi + 2).zip(offsets.iter_mut()) {
-                *slot = finer.across(k);
-            }
+        let finer = voxel.finer().filter(|_| f > 0);
+        let span = finer.as_ref().map(|finer| FinerSpan::new(finer, lo, hi));
+        let mut blend = false;
+        if let (Some(finer), Some(span)) = (&finer, &span) {
             let mut mean2 = i64::MIN;
-            let mut colors = [[0u16; 3]; 2];
-            for (along, row_color) in (0..2).zip(colors.iter_mut()) {
+            for along in 0..2 {
                 let row = finer.along(along);
                 let (mut sum2, mut total2) = (0i64, 0i64);
-                for (k, &offset) in (k_lo..k_hi + 1).zip(offsets.iter()) {
-                    let cover = (hi2.min((k + 1) << 32) - lo2.max(k << 32)) >> 16;
+                for (k, &offset) in (span.k_lo..span.k_hi + 1).zip(span.offsets.iter()) {
+                    let cover = span.cover(k);
                     sum2 += i64::from(finer.cell(row + offset).0) * cover;
                     total2 += cover;
                 }
                 if total2 > 0 {
                     mean2 = mean2.max(div_rem_signed(sum2 << 24, total2).0);
                 }
-                // Eq. 4 across the row, over the same interval (shifted by a cell so that its
-                // cells lie in `integrated_color`'s reach).
-                #[allow(
-                    clippy::cast_possible_truncation,
-                    reason = "-4 ≤ k ≤ 4 (integrated_color's cells)"
-                )]
-                let c = integrated_color(lo2 - ONE, hi2 - ONE, |k| {
-                    let k = k as i64 + 1;
-                    let offset = usize::try_from(k - k_lo)
-                        .ok()
-                        .and_then(|i| offsets.get(i))
-                        .copied()
-                        .unwrap_or_else(|| finer.across(k));
-                    finer.cell(row + offset).1
-                });
-                *row_color = c.unwrap_or(color);
             }
             cost.wedge(4);
             if mean2 > i64::MIN {
                 mean += ((mean2 - mean) * f) >> 16;
-                let [a2, b2] = colors;
-                let mut finer = [0u16; 3];
-                for ((c, a2), b2) in finer.iter_mut().zip(a2).zip(b2) {
-                    // The mean of two 8.8 colours: within 0..=65280.
-                    *c = u16::try_from((u32::from(a2) + u32::from(b2)) / 2).unwrap_or(*c);
-                }
-                color = mix(color, finer, f);
+                blend = true;
             }
         }
         let mean = Height::from_bits(mean);
-        if mean <= ray.h {
-            return Hit::Rejected;
+        if mean <= ray_h {
+            return None;
         }
-        self.area.sample_at(voxel, mean, |_| color, ray, cost)
+        let color = row_color(voxel, lo, hi);
+        let color = match (finer, span) {
+            (Some(finer), Some(span)) if blend => Self::blend_color(color, &finer, &span, f),
+            _ => color,
+        };
+        Some((mean, color))
     }
 
-    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
-        self.area.sky(ray, sky, cost)
+    /// `color`, Eq. 4's colour integrated over the step's interval, blended by `f` with the
+    /// finer level's over the same interval (`span`): the mean of its two child rows'.
+    #[inline(always)]
+    fn blend_color(color: Color16, finer: &Finer<'_>, span: &FinerSpan, f: i64) -> Color16 {
+        let mut colors = [[0u16; 3]; 2];
+        for (along, row_color) in (0..2).zip(colors.iter_mut()) {
+            let row = finer.along(along);
+            // Eq. 4 across the row, over the same interval (shifted by a cell so that its
+            // cells lie in `integrated_color`'s reach).
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "-4 ≤ k ≤ 4 (integrated_color's cells)"
+            )]
+            let c = integrated_color(span.lo - ONE, span.hi - ONE, |k| {
+                let k = k as i64 + 1;
+                let offset = usize::try_from(k - span.k_lo)
+                    .ok()
+                    .and_then(|i| span.offsets.get(i))
+                    .copied()
+                    .unwrap_or_else(|| finer.across(k));
+                finer.cell(row + offset).1
+            });
+            *row_color = c.unwrap_or(color);
+        }
+        let [a2, b2] = colors;
+        let mut blended = [0u16; 3];
+        for ((c, a2), b2) in blended.iter_mut().zip(a2).zip(b2) {
+            // The mean of two 8.8 colours: within 0..=65280.
+            *c = u16::try_from((u32::from(a2) + u32::from(b2)) / 2).unwrap_or(*c);
+        }
+        mix(color, blended, f)
     }
+}
+
+/// The wedge's interval in the finer level's cells ([`Voxel::finer`]), from the first child's
+/// edge behind, and the cells it reaches across (their offsets, shared by both child rows),
+/// with the one past its end: Eq. 4's last segment weighs it too.
+struct FinerSpan {
+    lo: i64,
+    hi: i64,
+    k_lo: i64,
+    k_hi: i64,
+    offsets: [usize; 11],
+}
+
+impl FinerSpan {
+    #[inline(always)]
+    fn new(finer: &Finer<'_>, lo: i64, hi: i64) -> Self {
+        let (lo, hi) = (lo << 1, hi << 1);
+        let (k_lo, k_hi) = ((lo >> 32).max(-4), ((hi - 1) >> 32).min(5));
+        let mut offsets = [0usize; 11];
+        for (k, slot) in (k_lo..k_hi + 2).zip(offsets.iter_mut()) {
+            *slot = finer.across(k);
+        }
+        Self {
+            lo,
+            hi,
+            k_lo,
+            k_hi,
+            offsets,
+        }
+    }
+
+    /// The length child cell `k` covers (16 fractional bits).
+    #[inline(always)]
+    fn cover(&self, k: i64) -> i64 {
+        (self.hi.min((k + 1) << 32) - self.lo.max(k << 32)) >> 16
+    }
+}
+
+/// Lane `k` of [`LANES`] across `[lo, hi)`: equal parts, the last to `hi`.
+#[inline(always)]
+fn lane(lo: i64, hi: i64, k: usize) -> (i64, i64) {
+    let width = (hi - lo) / LANES as i64;
+    let start = lo + width * k as i64;
+    (start, if k + 1 == LANES { hi } else { start + width })
 }
 
 #[cfg(test)]
