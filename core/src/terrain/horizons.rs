@@ -25,7 +25,7 @@
 
 use crate::color::{to_color16, Color16, Rgb};
 use crate::divide::div_rem_signed;
-use crate::num::{Height, Slope, Weight};
+use crate::num::{Eye, Height, Line, Slope, Weight};
 use crate::terrain::cost::Cost;
 use crate::terrain::march::Voxel;
 use crate::terrain::ray::Ray;
@@ -66,6 +66,45 @@ impl Lane {
         merged: None,
     };
 
+    /// Whether `top` above the voxel centred at `n`, above the lane's rounded ray (the caller
+    /// has tested), is above its exact ray: the rounded-down ray lies at most `n − n_top`
+    /// units in the last place below the exact one through the last top, and inside that band
+    /// the exact question is asked ([`Area`]'s re-check).
+    #[inline(always)]
+    fn passes(&self, eye: &Eye, n: i64, top: Height) -> bool {
+        let margin = top.saturating_sub(self.at(n)).to_bits();
+        !self.top || margin > n - self.n || eye.above_ray_through(self.n, self.h, n, top)
+    }
+
+    /// The lane, open, sees `top` (coloured `color`) above the voxel centred at `n`, past its
+    /// ray: its weight in the pixel below `upper` (the visible angle from the eye, as [`Area`]
+    /// weighs a hit), and its ray raised through the top. A top at or above `upper` fills the
+    /// lane's part of the pixel (H′ = H(R_{i+1})) and the lane carries what lies above it.
+    #[inline(always)]
+    fn see<C: Cost>(
+        &mut self,
+        eye: &Eye,
+        upper: &Line,
+        (n, top): (i64, Height),
+        color: Color16,
+        cost: &mut C,
+    ) -> Weight {
+        cost.top_division();
+        let through = eye.slope_through(n, top);
+        let reached = top >= upper.at(n);
+        let edge = if reached {
+            upper.slope
+        } else {
+            through.min(upper.slope)
+        };
+        let w = edge.saturating_sub(self.slope);
+        self.slope = if reached { through } else { edge }.max(self.slope);
+        self.through = through;
+        self.color = color;
+        (self.n, self.h, self.top, self.reached) = (n, top, true, reached);
+        w
+    }
+
     /// Its ray's height above the voxel centred at `n` (wrapping, as the walk steps it).
     #[inline(always)]
     fn at(&self, n: i64) -> Height {
@@ -82,8 +121,6 @@ impl Lane {
 pub struct Horizons<const K: usize> {
     /// The pixel's sums, rays and eye ([`Area`]'s accumulator).
     area: Area,
-    /// The pixel's lower ray's slope.
-    lower: Slope,
     lanes: [Lane; K],
     /// Whether a pixel of the column has begun (the first one starts every lane at `R_0`).
     started: bool,
@@ -102,7 +139,6 @@ impl<const K: usize> Horizons<K> {
     pub const fn new() -> Self {
         Self {
             area: Area::new(),
-            lower: Slope::ZERO,
             lanes: [Lane::NEW; K],
             started: false,
             last: [0; 3],
@@ -114,7 +150,6 @@ impl<const K: usize> Horizons<K> {
     #[inline(always)]
     pub fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
         self.area.begin_pixel(pixel, cost);
-        self.lower = pixel.lower.slope;
         if !self.started {
             self.started = true;
             let (n, h) = pixel.start;
@@ -178,12 +213,6 @@ impl<const K: usize> Horizons<K> {
         self.lanes.iter().all(|lane| lane.reached)
     }
 
-    /// Whether lane `k` has reached the pixel's upper ray.
-    #[inline(always)]
-    pub fn reached(&self, k: usize) -> bool {
-        self.lanes.get(k).is_none_or(|lane| lane.reached)
-    }
-
     /// Lane `k`'s ray above the voxel centred at `n`: the height a step must pass in the lane
     /// to be seen there.
     #[inline(always)]
@@ -221,13 +250,8 @@ impl<const K: usize> Horizons<K> {
         let Some(lane) = self.lanes.get_mut(k) else {
             return false;
         };
-        if lane.top {
-            // The rounded-down ray lies at most (n − n_top) units in the last place below the
-            // exact one: inside that band, ask the exact question.
-            let margin = top.saturating_sub(lane.at(n)).to_bits();
-            if margin <= n - lane.n && !eye.above_ray_through(lane.n, lane.h, n, top) {
-                return false;
-            }
+        if !lane.passes(&eye, n, top) {
+            return false;
         }
         self.area.see();
         self.last = color;
@@ -252,27 +276,9 @@ impl<const K: usize> Horizons<K> {
             (lane.n, lane.h) = (n, top);
             return true;
         }
-        if top >= upper.at(n) {
-            // The lane reaches R_{i+1}: its part of the pixel is full, and what lies above is
-            // carried (H′ = H(R_{i+1})).
-            let w = upper.slope.saturating_sub(lane.slope);
-            cost.sample(voxel, color, w);
-            self.area.accumulate(w, color, cost);
-            cost.top_division();
-            lane.through = eye.slope_through(n, top);
-            lane.slope = lane.through.max(lane.slope);
-            lane.color = color;
-            (lane.n, lane.h, lane.top, lane.reached) = (n, top, true, true);
-            lane.merged = None;
-            return true;
-        }
-        cost.top_division();
-        let through_top = eye.slope_through(n, top).min(upper.slope);
-        let w = through_top.saturating_sub(lane.slope);
+        let w = lane.see(&eye, &upper, (n, top), color, cost);
         cost.sample(voxel, color, w);
         self.area.accumulate(w, color, cost);
-        lane.slope = through_top.max(lane.slope);
-        (lane.n, lane.h, lane.top) = (n, top, true);
         true
     }
 
