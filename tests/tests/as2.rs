@@ -32,8 +32,8 @@ use footprint_core::terrain::Voxel;
 /// The largest RMS difference, in 8-bit levels over the three channels, allowed between `as2`
 /// and the float integral over each pixel's footprint. Measured 2026-11-26: `as2` 2.05 (2.06
 /// with its two lanes, 2026-11-27), `as-exact` 12.15 on the stripes below (the pixels'
-/// footprints are 0.5 to 2.3 voxels wide across, one-voxel stripes). The rest of `as2`'s difference is the fixed point and the walk's
-/// far cut.
+/// footprints are 0.5 to 2.3 voxels wide across, one-voxel stripes). The rest of `as2`'s
+/// difference is the fixed point and the walk's far cut.
 const AS2_RMSE: f64 = 3.0;
 
 /// Eye height, metres, over the plane at 5 m.

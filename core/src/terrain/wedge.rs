@@ -20,10 +20,10 @@
 //! - **the hit** is the mean above the lane's own ray; a step whose highest cell is at or below
 //!   it is no hit, without computing the mean.
 //!
-//! Along the column each lane weighs its hit as `as-exact` weighs one ([`crate::terrain::sampler::Area`]: the
-//! visible angle from the eye, the lane's next ray through the mean top), and the pixel is the
-//! mean of its lanes. Where the interval is a point (at the eye) every lane's step is exactly
-//! `as-exact`'s.
+//! Along the column each lane weighs its hit as `as-exact` weighs one
+//! ([`crate::terrain::sampler::Area`]: the visible angle from the eye, the lane's next ray
+//! through the mean top), and the pixel is the mean of its lanes. Where the interval is a point
+//! (at the eye) every lane's step is exactly `as-exact`'s.
 //!
 //! **Levels blend** (`terrain/blend.rs`). Over the first third of each pyramid level's
 //! range (footprints from 1.2 to 1.6 of its voxels) the step's height and colour are blended,
@@ -83,11 +83,10 @@ pub const LANES: usize = 2;
 /// One in the cross section's fixed point (cells, 32 fractional bits).
 const ONE: i64 = 1 << 32;
 
-/// `as2`: `as-exact`'s weights over each lane of the wedge between the column's two planes (see
-/// the module docs), on
-/// the flat tops ([`Wedge`]) or, with `SMOOTH`, on the continuous surface where voxels are
-/// magnified (`--surface bilinear`; its code is compiled only into that sampler, so that flat
-/// tops pay nothing for it).
+/// `as2`: `as-exact`'s weights in each lane of the wedge between the column's two planes (see
+/// the module docs), on the flat tops ([`Wedge`]) or, with `SMOOTH`, on the continuous surface
+/// where voxels are magnified (`--surface bilinear`; its code is compiled only into that
+/// sampler, so that flat tops pay nothing for it).
 #[derive(Clone, Copy, Debug)]
 pub struct WedgeOn<const SMOOTH: bool> {
     lanes: Horizons<LANES>,
@@ -334,7 +333,8 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
 
     /// A step where the highest of the five cells around the centre line (the walk's `top`,
     /// which the sampler does not need: it reads the cells it weighs) is above the walk's ray:
-    /// each lane still open that the step rises above in its part of the wedge sees it.
+    /// each lane that the step rises above in its part of the wedge sees it (a lane already
+    /// past the pixel carries what it sees into the pixels above).
     #[inline(always)]
     fn hit<C: Cost>(
         &mut self,
@@ -385,8 +385,9 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
 impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
     /// The step at `voxel`, `d` half-voxels from the eye, over the interval `[lo, hi)` across
     /// (cells of its level from its cell's edge behind, 32 fractional bits): its height (the
-    /// cells' exact mean, blended with the finer level's) and its colour ([`WedgeOn::color`]);
-    /// `None` if it does not rise above `ray_h`, without the colour.
+    /// cells' exact mean, blended with the finer level's) and its colour (Eq. 4's integral over
+    /// the interval, blended alike); `None`, without the colour, if it does not rise above
+    /// `ray_h`.
     #[inline(always)]
     fn step<C: Cost>(
         &self,
