@@ -45,9 +45,9 @@ pub enum Mode {
     /// Perspective-exact area sampling: weights in visible angle, the next ray through each
     /// voxel's top from the eye (a division per hit); samples exactly the visible voxels.
     AsExact,
-    /// Area sampling exact in both axes: `as-exact` over the wedge between the column's two
-    /// planes, each step's height and colour averaged exactly across it ([`Wedge`]; Sect. 8's
-    /// naive horizontal sampling made exact).
+    /// Area sampling in both axes: `as-exact` over the wedge between the column's two planes,
+    /// in two lanes with a ray each, each step's height and colour averaged exactly across each
+    /// lane ([`Wedge`]; Sect. 8's naive horizontal sampling integrated).
     As2,
     /// The classic voxel-space renderer (y-buffer, growing steps, level 0, no coherence): the
     /// baseline, not a mode of the paper ([`classic`]).

@@ -29,8 +29,8 @@ pub struct RenderArgs {
     /// Sampling mode: ps, li, ss2, ss4, …, ss256, as (area sampling as the paper's Fig. 12
     /// writes it: parallel rays within a pixel, one division per pixel), or as-exact (area
     /// sampling with the exact ray through each voxel's top: every visible voxel, only those),
-    /// or as2 (as-exact over the wedge between each column's two planes: exact across the
-    /// column too, docs/how-it-works.md). The default is `as`: on the paper's three views it has the same error against the ground
+    /// or as2 (as-exact over the wedge between each column's two planes, in two lanes with a
+    /// ray each: integrated across the column too, docs/how-it-works.md). The default is `as`: on the paper's three views it has the same error against the ground
     /// truth as as-exact and is about a quarter faster (docs/cli.md, "The modes").
     #[arg(long, default_value = "as")]
     pub mode: Mode,
