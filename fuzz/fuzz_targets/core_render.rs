@@ -16,6 +16,7 @@ use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
 use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use footprint_core::terrain::visibility::count_visible;
+use footprint_core::terrain::wedge::Wedge;
 use footprint_core::terrain::{Level, Scale};
 use footprint_core::Rgb;
 
@@ -108,7 +109,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     let mut tallies = vec![Tally::default(); cw];
     let mut counts = Counts::new(&mut tallies);
     let mut image = vec![Rgb::default(); cw * ch];
-    let done = match input.mode % 8 {
+    let done = match input.mode % 9 {
         0 => frame.render(&terrain, &Point, &mut counts, &mut [], &mut image),
         1 => frame.render(&terrain, &Linear, &mut counts, &mut [], &mut image),
         2 => frame.render(
@@ -140,11 +141,12 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             &mut [],
             &mut image,
         ),
+        7 => frame.render(&terrain, &Wedge::new(), &mut counts, &mut [], &mut image),
         _ => frame.render(&terrain, &Mode::Classic, &mut counts, &mut [], &mut image),
     };
     assert!(done.is_ok(), "buffers were sized from the camera");
     // The sequence the rendered mode walked (classic walks level 0).
-    let switch = match input.mode % 8 {
+    let switch = match input.mode % 9 {
         0 => Point::SWITCH,
         1 => Linear::SWITCH,
         2 => Super::<2>::SWITCH,
@@ -152,10 +154,11 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         4 => Super::<256>::SWITCH,
         5 => Area::SWITCH,
         6 => ParallelArea::SWITCH,
+        7 => Wedge::SWITCH,
         _ => Switch::Nearest,
     };
     count_visible(&frame, &terrain, switch, &mut counts);
-    if input.mode % 8 == 5 {
+    if input.mode % 9 == 5 {
         // Pixels of zero height (rays that coincide in the walk's fixed point, on a field of
         // view far narrower than the map's scale resolves) may take, with weight 0, a voxel
         // the visibility pass does not count (tests/tests/limits.rs,
