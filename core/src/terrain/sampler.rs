@@ -361,7 +361,8 @@ impl Area {
 
     /// Adds `w·c`. No overflow is possible: every weight is a difference of slopes clamped to
     /// ±2^39 (raw), so a pixel's weights sum to at most `s_{i+1} − s_i ≤ 2^40`, and a colour is
-    /// below 2^16, so every sum stays below 2^56.
+    /// below 2^16, so every sum stays below 2^56 (`as2`'s `K` lanes each add that much at
+    /// most, [`crate::terrain::horizons`]: below `K·2^56`).
     #[inline(always)]
     pub(crate) fn accumulate<C: Cost>(&mut self, w: Weight, c: Color16, cost: &mut C) {
         cost.as_hit();
@@ -372,7 +373,8 @@ impl Area {
         self.wsum += w;
     }
 
-    /// Adds sums already weighed (`Σ w·c`, `Σ w`; `as2`'s carried lanes, [`crate::terrain::horizons`]).
+    /// Adds sums already weighed (`Σ w·c`, `Σ w`): what `as2`'s lanes carried
+    /// ([`crate::terrain::horizons`]).
     #[inline(always)]
     pub(crate) fn add_sums(&mut self, sum: [i64; 3], w: i64) {
         for (s, c) in self.sum.iter_mut().zip(sum) {

@@ -30,8 +30,9 @@ pub struct RenderArgs {
     /// writes it: parallel rays within a pixel, one division per pixel), or as-exact (area
     /// sampling with the exact ray through each voxel's top: every visible voxel, only those),
     /// or as2 (as-exact over the wedge between each column's two planes, in two lanes with a
-    /// ray each: integrated across the column too, docs/how-it-works.md). The default is `as`: on the paper's three views it has the same error against the ground
-    /// truth as as-exact and is about a quarter faster (docs/cli.md, "The modes").
+    /// ray each: integrated across the column too, docs/how-it-works.md). The default is
+    /// `as`: on the paper's three views it has the same error against the ground truth as
+    /// as-exact and is about a quarter faster (docs/cli.md, "The modes").
     #[arg(long, default_value = "as")]
     pub mode: Mode,
     /// Output PNG; `-` is standard output (everything else printed then goes to standard
