@@ -77,7 +77,8 @@ const MAX_HALF: i64 = 3 << 31;
 
 /// The lanes across the wedge, each with a ray of its own ([`Horizons`]). Two: with one (the
 /// mean over the whole wedge) a thin ridge is seen at a fraction of its height over all of the
-/// wedge (docs/measurements.md, "as2's lanes"); four cost more and were no closer on the ridge.
+/// wedge (docs/measurements.md, "as2's lanes"); four cost 1.5× as much and were no closer on
+/// the ridge.
 pub const LANES: usize = 2;
 
 /// One in the cross section's fixed point (cells, 32 fractional bits).
