@@ -170,6 +170,23 @@ impl Eye {
         rise * run_top > rise_top * run
     }
 
+    /// Whether `(n, h)`, above `rounded` (the height at `n` of the rounded-down ray through
+    /// the top `(n_top, h_top)`, stepped from there), is above the exact ray through that top.
+    /// The rounded ray lies at most `n − n_top` units in the last place below the exact one, so
+    /// outside that band the answer is yes, and inside it [`Eye::above_ray_through`] is asked
+    /// (area sampling's re-check of a hit that rounding alone let through).
+    #[inline(always)]
+    pub fn above_rounded_ray(
+        &self,
+        (n_top, h_top): (i64, Height),
+        rounded: Height,
+        n: i64,
+        h: Height,
+    ) -> bool {
+        let margin = h.saturating_sub(rounded).to_bits();
+        margin > n - n_top || self.above_ray_through(n_top, h_top, n, h)
+    }
+
     #[inline]
     /// The slope of the ray from the eye through `(n, h)`, rounded down (so the ray it
     /// describes never lies above the exact one), clamped to ±[`MAX_SLOPE`].

@@ -101,8 +101,9 @@ fn render_counts_json_has_the_documented_fields() {
 /// `table` does): PS, which climbs the pyramid earlier, reports its own walk's `V` beside it.
 #[test]
 fn render_counts_divide_by_the_area_modes_visible_voxels() {
-    let run = |mode: &str| {
-        let o = footprint(&[
+    // The view, with `mode`, printed as `output` (`--json` or `--counts`).
+    let render = |mode: &str, output: &str| {
+        footprint(&[
             "render",
             "--terrain-size",
             "128",
@@ -112,8 +113,11 @@ fn render_counts_divide_by_the_area_modes_visible_voxels() {
             "20",
             "--mode",
             mode,
-            "--json",
-        ]);
+            output,
+        ])
+    };
+    let run = |mode: &str| {
+        let o = render(mode, "--json");
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         serde_json::from_slice::<serde_json::Value>(&o.stdout).expect("one JSON object")
     };
@@ -135,21 +139,7 @@ fn render_counts_divide_by_the_area_modes_visible_voxels() {
         ps_walk as f64 / columns
     );
     // The text says the same: the case's V, and PS's own beside it.
-    let text = |mode: &str| {
-        let args = [
-            "render",
-            "--terrain-size",
-            "128",
-            "--size",
-            "64x48",
-            "--pitch",
-            "20",
-            "--mode",
-            mode,
-            "--counts",
-        ];
-        String::from_utf8(footprint(&args).stdout).unwrap()
-    };
+    let text = |mode: &str| String::from_utf8(render(mode, "--counts").stdout).unwrap();
     let v = v_case as f64 / columns;
     let (ps_text, area_text) = (text("ps"), text("as-exact"));
     assert!(ps_text.contains(&format!("V {v:.1} ")), "{ps_text}");
@@ -167,7 +157,8 @@ fn render_counts_divide_by_the_area_modes_visible_voxels() {
 /// `repeated`; one frame has no `repeated`, and 0 is refused in one line naming the option.
 #[test]
 fn render_repeats_times_the_frames_after_the_first() {
-    let run = |repeats: &str| {
+    // The view rendered `repeats` times, printed as `output` (`--json` or `--counts`).
+    let render = |repeats: &str, output: &str| {
         footprint(&[
             "render",
             "--terrain-size",
@@ -178,9 +169,10 @@ fn render_repeats_times_the_frames_after_the_first() {
             "20",
             "--repeats",
             repeats,
-            "--json",
+            output,
         ])
     };
+    let run = |repeats: &str| render(repeats, "--json");
     let o = run("5");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
@@ -193,19 +185,7 @@ fn render_repeats_times_the_frames_after_the_first() {
     assert!(0.0 < min && min <= median, "{v}");
     assert!(v["ms"].as_f64().unwrap() > 0.0);
 
-    let text = footprint(&[
-        "render",
-        "--terrain-size",
-        "64",
-        "--size",
-        "32x24",
-        "--pitch",
-        "20",
-        "--repeats",
-        "3",
-        "--counts",
-    ]);
-    let text = String::from_utf8(text.stdout).unwrap();
+    let text = String::from_utf8(render("3", "--counts").stdout).unwrap();
     assert!(
         text.contains("the first time (no counting), then 2 more"),
         "{text}"

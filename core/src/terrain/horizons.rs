@@ -67,13 +67,10 @@ impl Lane {
     };
 
     /// Whether `top` above the voxel centred at `n`, above the lane's rounded ray (the caller
-    /// has tested), is above its exact ray: the rounded-down ray lies at most `n − n_top`
-    /// units in the last place below the exact one through the last top, and inside that band
-    /// the exact question is asked ([`Area`]'s re-check).
+    /// has tested), is above its exact ray ([`Eye::above_rounded_ray`], [`Area`]'s re-check).
     #[inline(always)]
     fn passes(&self, eye: &Eye, n: i64, top: Height) -> bool {
-        let margin = top.saturating_sub(self.at(n)).to_bits();
-        !self.top || margin > n - self.n || eye.above_ray_through(self.n, self.h, n, top)
+        !self.top || eye.above_rounded_ray((self.n, self.h), self.at(n), n, top)
     }
 
     /// The lane, open, sees `top` (coloured `color`) above the voxel centred at `n`, past its

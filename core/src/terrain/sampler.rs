@@ -463,11 +463,8 @@ impl Area {
         cost: &mut C,
     ) -> Hit {
         let n = voxel.n();
-        if let Some((n_top, h_top)) = self.top {
-            // The rounded-down ray lies at most (n − n_top) units in the last place below the
-            // exact one: inside that band, ask the exact question.
-            let margin = top.saturating_sub(ray.h).to_bits();
-            if margin <= n - n_top && !self.eye.above_ray_through(n_top, h_top, n, top) {
+        if let Some(last) = self.top {
+            if !self.eye.above_rounded_ray(last, ray.h, n, top) {
                 return Hit::Rejected;
             }
         }

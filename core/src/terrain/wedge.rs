@@ -477,10 +477,11 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         // pyramid makes a height), blended out as the step moves into the level: at the climb
         // the step is the finer level's, as the step before it was, so no pixel pops there.
         let f = weight(d, self.climb, voxel.level());
-        let finer = voxel.finer().filter(|_| f > 0);
-        let span = finer.as_ref().map(|finer| FinerSpan::new(finer, lo, hi));
-        let mut blend = false;
-        if let (Some(finer), Some(span)) = (&finer, &span) {
+        // The finer level and the wedge's span in it, kept for the colour when the blend
+        // applies.
+        let mut blend = None;
+        if let Some(finer) = voxel.finer().filter(|_| f > 0) {
+            let span = FinerSpan::new(&finer, lo, hi);
             let mut mean2 = i64::MIN;
             for along in 0..2 {
                 let row = finer.along(along);
@@ -497,7 +498,7 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             cost.wedge(4);
             if mean2 > i64::MIN {
                 mean += ((mean2 - mean) * f) >> 16;
-                blend = true;
+                blend = Some((finer, span));
             }
         }
         let mean = Height::from_bits(mean);
@@ -505,9 +506,9 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             return None;
         }
         let color = row_color(voxel, lo, hi);
-        let color = match (finer, span) {
-            (Some(finer), Some(span)) if blend => Self::blend_color(color, &finer, &span, f),
-            _ => color,
+        let color = match blend {
+            Some((finer, span)) => Self::blend_color(color, &finer, &span, f),
+            None => color,
         };
         Some((mean, color))
     }
