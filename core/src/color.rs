@@ -1,5 +1,6 @@
-//! Colours: the 8-bit RGB voxel colour and the 8.8 fixed-point sample colour ([`Color16`],
-//! [`to_color16`], [`to_rgb`]), shared by both rooms.
+//! Colours: the 8-bit RGB voxel colour, the 8.8 fixed-point sample colour ([`Color16`],
+//! [`to_color16`], [`to_rgb`]) and a pixel's colour before it is rounded ([`Color32`]), shared
+//! by both rooms.
 
 /// An 8-bit-per-channel RGB colour, as stored in a terrain colour map and in the output image.
 ///
@@ -40,4 +41,31 @@ pub fn to_color16(c: Rgb) -> Color16 {
 pub fn to_rgb(c: Color16) -> Rgb {
     let r = |x: u16| ((u32::from(x) + 128) >> 8).min(255) as u8;
     Rgb::new(r(c[0]), r(c[1]), r(c[2]))
+}
+
+/// A pixel's colour before it is rounded to 8 bits: 8-bit levels with 16 fractional bits per
+/// channel (`255 << 16` is full), truncated. What an area sampler's sums give
+/// ([`crate::terrain::sampler::Sampler::exact`]), so that the ground truth, which averages many
+/// columns per pixel, rounds once and not once per column.
+pub type Color32 = [u32; 3];
+
+/// An 8-bit colour as a [`Color32`] (exact).
+#[inline]
+pub fn to_color32(c: Rgb) -> Color32 {
+    [c.r, c.g, c.b].map(|x| u32::from(x) << 16)
+}
+
+/// The mean of `count` [`Color32`] colours whose channels sum to `sum`, rounded to 8 bits half
+/// up, as [`to_rgb`] and the samplers round: for one colour, the 8-bit colour its sampler gives
+/// (truncating to 16 fractional bits first does not change where `x + ½` falls). Black for
+/// `count` 0.
+#[inline]
+pub fn mean_to_rgb(sum: [u64; 3], count: u64) -> Rgb {
+    let unit = count << 16;
+    let r = |s: u64| {
+        s.saturating_add(unit / 2)
+            .checked_div(unit)
+            .map_or(0, |x| x.min(255) as u8)
+    };
+    Rgb::new(r(sum[0]), r(sum[1]), r(sum[2]))
 }

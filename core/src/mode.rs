@@ -13,6 +13,7 @@
 use core::fmt;
 use core::str::FromStr;
 
+use crate::color::{Color32, Rgb};
 use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::camera::{Surface, Switch};
@@ -25,7 +26,6 @@ use crate::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super}
 use crate::terrain::surface::Smooth;
 use crate::terrain::wedge::{Wedge, WedgeOn};
 use crate::terrain::Terrain;
-use crate::Rgb;
 
 /// A sampling mode: PS, LI, SS_N (N = 2, 4, …, 256), AS as the paper costs it (Fig. 12), the
 /// perspective-exact AS, AS exact across the column too (`as2`), or the classic renderer. Its
@@ -246,6 +246,25 @@ impl Sampling for Mode {
         } else {
             with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
                 classic => classic::walk(frame, terrain, x, cost, out));
+        }
+    }
+
+    fn walk_column_exact<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [Color32],
+    ) {
+        if frame.surface() == Surface::Bilinear && *self == Mode::As2 {
+            WedgeOn::<true>::new().walk_column_exact(frame, terrain, x, cost, out);
+        } else if frame.surface() == Surface::Bilinear {
+            with_sampler!(*self, s => Smooth::new(s).walk_column_exact(frame, terrain, x, cost, out),
+                classic => classic::walk_into(frame, terrain, x, cost, out));
+        } else {
+            with_sampler!(*self, s => s.walk_column_exact(frame, terrain, x, cost, out),
+                classic => classic::walk_into(frame, terrain, x, cost, out));
         }
     }
 

@@ -5,6 +5,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use anyhow::Result;
+use footprint_core::color::Color32;
 use footprint_core::terrain::camera::Switch;
 use footprint_core::terrain::cost::NoCost;
 use footprint_core::terrain::frame::Frame;
@@ -52,6 +53,27 @@ pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> 
             frame.render_columns(terrain, &mode, &mut NoCost, x..x + 1, column)
         })?;
     Ok(image_from_grid(frame, &grid, mode)?)
+}
+
+/// [`render_parallel`]'s grid at full precision ([`Frame::render_columns_exact`]): each cell its
+/// pixel's colour before rounding where the mode keeps it (the area modes), else its 8-bit
+/// colour; column by column, each from the bottom row up. For the ground truth, which averages
+/// many columns per pixel and rounds once.
+pub fn render_exact_parallel(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+) -> Result<Vec<Color32>> {
+    use rayon::prelude::*;
+    walked();
+    let rows = frame.height();
+    let mut grid = vec![Color32::default(); frame.width() * rows];
+    grid.par_chunks_mut(rows.max(1))
+        .enumerate()
+        .try_for_each(|(x, column)| {
+            frame.render_columns_exact(terrain, &mode, &mut NoCost, x..x + 1, column)
+        })?;
+    Ok(grid)
 }
 
 /// Walks one column of the grid (rows from the bottom) without counting: column `x` of

@@ -5,8 +5,12 @@
 //!   bit for bit, in every mode;
 //! - the same image in the other pixel formats (`[u8; 3]`, a PNG's bytes; `[u8; 4]`, a canvas's
 //!   RGBA) is the `Rgb` image converted;
-//! - ranges beyond the frame, grids of the wrong length and a short scratch are refused.
+//! - ranges beyond the frame, grids of the wrong length and a short scratch are refused;
+//! - the full-precision grid (`Frame::render_columns_exact`, the ground truth's) rounds to the
+//!   8-bit grid bit for bit, in every mode and on both surfaces, and the area modes' cells keep
+//!   their fractions.
 
+use footprint_core::color::mean_to_rgb;
 use footprint_core::prelude::*;
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::procedural;
@@ -132,6 +136,66 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
                         ..
                     })
                 ),
+                "{refused:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_full_precision_grid_rounds_to_the_8_bit_grid() {
+    let map = procedural(4, 256);
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+    let terrain = pyramid.terrain(true).unwrap();
+    let size = Size {
+        width: 40,
+        height: 30,
+    };
+    let camera = paper_camera(&map, &pyramid, 20.0, size, true).unwrap();
+    let mut all = modes();
+    all.push(Mode::As2);
+    for surface in [Surface::Flat, Surface::Bilinear] {
+        let options = Options {
+            surface,
+            ..Options::default()
+        };
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options).unwrap();
+        let (columns, rows) = (frame.width(), frame.height());
+        for &mode in &all {
+            let mut grid = vec![Rgb::new(1, 2, 3); columns * rows];
+            frame
+                .render_columns(&terrain, &mode, &mut NoCost, 0..columns, &mut grid)
+                .unwrap();
+            let mut exact = vec![[7u32; 3]; columns * rows];
+            frame
+                .render_columns_exact(&terrain, &mode, &mut NoCost, 0..columns, &mut exact)
+                .unwrap();
+            let mut fractions = 0;
+            for (i, (c, e)) in grid.iter().zip(&exact).enumerate() {
+                assert_eq!(
+                    mean_to_rgb(e.map(u64::from), 1),
+                    *c,
+                    "{mode} {surface:?}: cell {i} rounds to another colour"
+                );
+                fractions += usize::from(e.iter().any(|v| v & 0xffff != 0));
+            }
+            let keeps_sums = matches!(mode, Mode::AsExact | Mode::As2);
+            assert_eq!(
+                fractions > columns * rows / 4,
+                keeps_sums,
+                "{mode} {surface:?}: {fractions} of {} cells with a fraction",
+                columns * rows
+            );
+            let refused = frame.render_columns_exact(
+                &terrain,
+                &mode,
+                &mut NoCost,
+                0..columns,
+                &mut exact[1..],
+            );
+            assert!(
+                matches!(refused, Err(Error::SliceLength { what: "grid", .. })),
                 "{refused:?}"
             );
         }

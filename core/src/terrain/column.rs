@@ -12,7 +12,7 @@
 
 use core::ops::Range;
 
-use crate::color::Rgb;
+use crate::color::{to_color32, Color32, Rgb};
 use crate::error::Error;
 use crate::num::{Eye, Height, Line};
 use crate::sink::PixelSink;
@@ -26,10 +26,40 @@ use crate::terrain::Terrain;
 /// Where a column walk writes its pixels: pixel `k` of the walked rows, counted from the first
 /// (the lowest).
 pub(crate) trait ColumnOut {
+    /// Whether it keeps each pixel's colour before rounding as well ([`Sampler::exact`]):
+    /// then the walk hands it over after [`ColumnOut::set`]. A matter of what is compiled: the
+    /// image's outputs do not ask, and their walks never call it.
+    const EXACT: bool = false;
     /// How many pixels it holds.
     fn rows(&self) -> usize;
     /// Writes pixel `k`; beyond [`ColumnOut::rows`], nothing.
     fn set(&mut self, k: usize, color: Rgb);
+    /// Writes pixel `k`'s colour before rounding, which replaces the one [`ColumnOut::set`]
+    /// wrote (only where [`ColumnOut::EXACT`]).
+    #[inline(always)]
+    fn set_exact(&mut self, k: usize, color: Color32) {
+        let _ = (k, color);
+    }
+}
+
+/// Full-precision cells ([`crate::terrain::frame::Frame::render_columns_exact`]): each pixel's
+/// colour before rounding where the sampler keeps it, else its 8-bit colour.
+impl ColumnOut for [Color32] {
+    const EXACT: bool = true;
+    #[inline(always)]
+    fn rows(&self) -> usize {
+        self.len()
+    }
+    #[inline(always)]
+    fn set(&mut self, k: usize, color: Rgb) {
+        self.set_exact(k, to_color32(color));
+    }
+    #[inline(always)]
+    fn set_exact(&mut self, k: usize, color: Color32) {
+        if let Some(px) = self.get_mut(k) {
+            *px = color;
+        }
+    }
 }
 
 impl ColumnOut for [Rgb] {
@@ -165,6 +195,11 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
     #[inline(always)]
     fn next_pixel(&mut self, color: Rgb, voxel: &Voxel<'_>, ray: &mut Ray) -> bool {
         self.out.set(self.i - self.first, color);
+        if O::EXACT {
+            if let Some(exact) = self.sampler.exact() {
+                self.out.set_exact(self.i - self.first, exact);
+            }
+        }
         self.i += 1;
         if self.i == self.end {
             self.finished = true;
@@ -365,14 +400,16 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
         ..
     } = px;
     let sky = frame.sky();
-    let last = match sampler.sky(&ray, sky, cost) {
-        Some(color) => {
-            cost.terrain_pixel();
-            color
+    let finished = sampler.sky(&ray, sky, cost);
+    if finished.is_some() {
+        cost.terrain_pixel();
+    }
+    out.set(i - first, finished.unwrap_or(sky));
+    if O::EXACT && finished.is_some() {
+        if let Some(exact) = sampler.exact() {
+            out.set_exact(i - first, exact);
         }
-        None => sky,
-    };
-    out.set(i - first, last);
+    }
     for k in i - first + 1..end - first {
         out.set(k, sky);
     }

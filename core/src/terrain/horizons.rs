@@ -23,7 +23,7 @@
 //! With `K = 1` the one lane is [`Area`] itself, hit for hit (the same weights, so the same
 //! image: tested).
 
-use crate::color::{to_color16, Color16, Rgb};
+use crate::color::{to_color16, Color16, Color32, Rgb};
 use crate::divide::div_rem_signed;
 use crate::num::{Eye, Height, Line, Slope, Weight};
 use crate::terrain::cost::Cost;
@@ -283,6 +283,12 @@ impl<const K: usize> Horizons<K> {
     #[inline(always)]
     pub fn finish<C: Cost>(&mut self, cost: &mut C) -> Rgb {
         self.area.finish(self.last, cost)
+    }
+
+    /// The finished pixel's colour before it was rounded ([`Sampler::exact`]).
+    #[inline(always)]
+    pub fn exact(&self) -> Option<Color32> {
+        self.area.exact_color()
     }
 
     /// The walk ended inside the pixel: the sky fills every lane still open, from its ray up.

@@ -16,7 +16,7 @@
 
 use core::ops::Range;
 
-use crate::color::Rgb;
+use crate::color::{Color32, Rgb};
 use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::column::{self, walk_into};
@@ -43,6 +43,18 @@ pub trait Sampling {
         x: usize,
         cost: &mut C,
         out: &mut [Rgb],
+    );
+
+    /// [`Sampling::walk_column`] into full-precision cells: each pixel's colour before it is
+    /// rounded to 8 bits where the sampler keeps it ([`Sampler::exact`]), else its 8-bit
+    /// colour.
+    fn walk_column_exact<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [Color32],
     );
 
     /// Walks every column of a frame of the paper's projection straight into its image `W × H`
@@ -72,6 +84,20 @@ impl<S: Sampler + Clone> Sampling for S {
         x: usize,
         cost: &mut C,
         out: &mut [Rgb],
+    ) {
+        let rows = frame.column(x).map_or(0..0, |c| c.rows());
+        let rest = out.get_mut(rows.start.min(out.len())..).unwrap_or_default();
+        walk_into(frame, terrain, x, rows, &mut self.clone(), cost, rest);
+    }
+
+    #[inline]
+    fn walk_column_exact<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [Color32],
     ) {
         let rows = frame.column(x).map_or(0..0, |c| c.rows());
         let rest = out.get_mut(rows.start.min(out.len())..).unwrap_or_default();
@@ -152,7 +178,38 @@ impl Frame<'_> {
         columns: Range<usize>,
         grid: &mut [Rgb],
     ) -> Result<(), Error> {
-        let rows = self.height();
+        self.check_columns(&columns, grid.len())?;
+        for (x, out) in columns.zip(grid.chunks_exact_mut(self.height())) {
+            sampling.walk_column(self, terrain, x, cost, out);
+        }
+        Ok(())
+    }
+
+    /// [`Frame::render_columns`] into full-precision cells: each pixel's colour before it is
+    /// rounded to 8 bits ([`Sampler::exact`]: `Σc/Σw` for the area samplers; the 8-bit colour
+    /// for the others and for the sky). For a ground truth that averages many columns per
+    /// pixel: rounding each column to 8 bits first would leave it up to half a level off,
+    /// always on the side its own columns round to. The image's layout, not its pixels: with
+    /// the exact projection the caller resamples the fan.
+    ///
+    /// Errors: as [`Frame::render_columns`].
+    pub fn render_columns_exact<S: Sampling, C: Cost>(
+        &self,
+        terrain: &Terrain<'_>,
+        sampling: &S,
+        cost: &mut C,
+        columns: Range<usize>,
+        grid: &mut [Color32],
+    ) -> Result<(), Error> {
+        self.check_columns(&columns, grid.len())?;
+        for (x, out) in columns.zip(grid.chunks_exact_mut(self.height())) {
+            sampling.walk_column_exact(self, terrain, x, cost, out);
+        }
+        Ok(())
+    }
+
+    /// Errors unless `columns` lies within the frame's and a grid of `len` cells holds them.
+    fn check_columns(&self, columns: &Range<usize>, len: usize) -> Result<(), Error> {
         if columns.start > columns.end || columns.end > self.width() {
             return Err(Error::SliceLength {
                 what: "columns",
@@ -160,15 +217,13 @@ impl Frame<'_> {
                 actual: columns.end,
             });
         }
-        if grid.len() != columns.len() * rows {
+        let cells = columns.len() * self.height();
+        if len != cells {
             return Err(Error::SliceLength {
                 what: "grid",
-                expected: columns.len() * rows,
-                actual: grid.len(),
+                expected: cells,
+                actual: len,
             });
-        }
-        for (x, out) in columns.zip(grid.chunks_exact_mut(rows)) {
-            sampling.walk_column(self, terrain, x, cost, out);
         }
         Ok(())
     }

@@ -11,7 +11,7 @@
 //! integrates the whole span.
 
 use crate::color::Rgb;
-use crate::color::{to_color16, to_rgb, Color16};
+use crate::color::{to_color16, to_rgb, Color16, Color32};
 use crate::divide::div_rem_signed;
 use crate::num::{Coord, Eye, Height, Line, Weight};
 use crate::terrain::camera::Switch;
@@ -110,6 +110,15 @@ pub trait Sampler {
     /// The walk ended (far distance, or nothing left to hit) inside this pixel. Returns the
     /// pixel's colour if terrain was seen in it, `None` if it is all sky.
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
+    /// The colour of the pixel that the last [`Hit::Done`] or [`Sampler::sky`] finished, before
+    /// it was rounded to 8 bits (`Σc/Σw` of Fig. 12's weights, [`Color32`]): what the ground
+    /// truth averages over its many columns per pixel, so that it rounds once. `None`, the
+    /// default, for a sampler that keeps no sums; its 8-bit colour then stands. Only a walk
+    /// into full-precision cells asks ([`crate::terrain::frame::Frame::render_columns_exact`]).
+    #[inline(always)]
+    fn exact(&self) -> Option<Color32> {
+        None
+    }
 }
 
 /// PS: one voxel per pixel, `C(x, ⌊y⌋)` (Fig. 4, Sect. 4.1).
@@ -407,6 +416,26 @@ impl Area {
         self.upper
     }
 
+    /// `Σc/Σw` of the pixel [`Area::finish`] finished, unrounded ([`Sampler::exact`]); `None`
+    /// with no weight (the pixel took its fallback colour).
+    #[inline(always)]
+    pub(crate) fn exact_color(&self) -> Option<Color32> {
+        if self.wsum <= 0 {
+            return None;
+        }
+        // The 8.8 quotient, then 8 more fractional bits from its remainder (below Σw, whose
+        // angles sum to at most a pixel's, far below 2^55): 16 in all, truncated.
+        let mut out = [0u32; 3];
+        for (o, &s) in out.iter_mut().zip(&self.sum) {
+            let (q, r) = div_rem_signed(s.max(0), self.wsum);
+            let f = div_rem_signed(r << 8, self.wsum).0;
+            *o = u32::try_from((q << 8) | f)
+                .unwrap_or(255 << 16)
+                .min(255 << 16);
+        }
+        Some(out)
+    }
+
     /// `Σc/Σw`, or `fallback` with no weight.
     #[inline(always)]
     pub(crate) fn finish<C: Cost>(&mut self, fallback: Color16, cost: &mut C) -> Rgb {
@@ -446,6 +475,11 @@ impl Sampler for Area {
         cost.sky_sample(sky16, w);
         self.accumulate(w, sky16, cost);
         Some(self.finish(sky16, cost))
+    }
+
+    #[inline(always)]
+    fn exact(&self) -> Option<Color32> {
+        self.exact_color()
     }
 }
 

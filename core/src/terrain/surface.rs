@@ -34,7 +34,7 @@
 //! height there ([`Hit::Rejected`] when the ray passes above it). `as2` reads the surface itself
 //! where its wedge lies inside one cell ([`crate::terrain::wedge`]).
 
-use crate::color::Rgb;
+use crate::color::{Color32, Rgb};
 use crate::num::Height;
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
@@ -139,6 +139,11 @@ impl<S: Sampler> Sampler for Smooth<S> {
 
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         self.inner.sky(ray, sky, cost)
+    }
+
+    #[inline(always)]
+    fn exact(&self) -> Option<Color32> {
+        self.inner.exact()
     }
 }
 

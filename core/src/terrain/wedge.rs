@@ -55,7 +55,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::color::{Color16, Rgb};
+use crate::color::{Color16, Color32, Rgb};
 use crate::divide::{div_rem, div_rem_signed};
 use crate::num::Height;
 use crate::terrain::blend::{distance, mix, weight};
@@ -380,6 +380,11 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
 
     fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         self.lanes.sky(sky, cost)
+    }
+
+    #[inline(always)]
+    fn exact(&self) -> Option<Color32> {
+        self.lanes.exact()
     }
 }
 
