@@ -84,6 +84,18 @@ pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: us
     out
 }
 
+/// [`render_column`] at full precision ([`render_exact_parallel`]'s cells).
+pub fn render_column_exact(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+    x: usize,
+) -> Vec<Color32> {
+    let mut out = vec![Color32::default(); frame.height()];
+    mode.walk_column_exact(frame, terrain, x, &mut NoCost, &mut out);
+    out
+}
+
 /// Renders without counting and returns the image and the wall time of the render alone, in
 /// milliseconds: the best of `repeats` runs (at least one), on one thread.
 pub fn render_timed(

@@ -9,6 +9,7 @@
 //! mode's *excess* is its count less the reference's, in the column and over the frame.
 
 use anyhow::{bail, Result};
+use footprint_core::color::Color32;
 use footprint_core::terrain::camera::{Camera, Options, Projection};
 use footprint_core::Rgb;
 use rayon::prelude::*;
@@ -25,10 +26,10 @@ pub use mode::{FlyMode, ParseFlyModeError};
 use crate::experiment::causes::{classify, ClassFlicker, CLASSES};
 use crate::experiment::paper::paper_camera_placed;
 use crate::experiment::path::FlightPath;
-use crate::experiment::reference::{box_columns, rmse, supersampled, REFERENCE_COLUMNS};
+use crate::experiment::reference::{box_exact, rmse, supersampled, REFERENCE_COLUMNS};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{render_column, Mode, Rate, Tables};
+use crate::render::{render_column_exact, Mode, Rate, Tables};
 use crate::view::{Size, SurfaceArg};
 use footprint_scenes::view::Placement;
 
@@ -266,15 +267,16 @@ fn shoot(
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
     let k = setting.columns.max(1) as usize;
-    let walked: Vec<Vec<Rgb>> = (column * k..(column + 1) * k)
-        .map(|x| render_column(&frame, &terrain, setting.mode, x))
+    // The `k` walked columns at full precision, box-filtered to one and rounded once, as the
+    // whole image is ([`supersampled`]); the box gives rows from the top, the shot from the
+    // bottom.
+    let walked: Vec<Color32> = (column * k..(column + 1) * k)
+        .flat_map(|x| render_column_exact(&frame, &terrain, setting.mode, x))
         .collect();
-    // The `k` walked columns as `h` rows of `k` pixels, box-filtered to one per row.
-    let wide: Vec<Rgb> = (0..h)
-        .flat_map(|i| walked.iter().map(move |c| c[i]))
-        .collect();
+    let mut column = box_exact(&walked, 1, h, k);
+    column.reverse();
     Ok(Shot {
-        column: box_columns(&wide, 1, h, k),
+        column,
         image: None,
     })
 }
@@ -631,4 +633,44 @@ pub fn run_with_frames(
         modes,
         reference: reference_flight,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::procedural;
+    use footprint_core::terrain::pyramid::HeightFilter;
+
+    /// A shot of one column (the column's `k` walked columns, boxed and rounded once) is that
+    /// column of the whole image, for the reference's settings and a mode without sums, on
+    /// both surfaces.
+    #[test]
+    fn a_columns_shot_is_that_column_of_the_whole_image() {
+        let map = procedural(2, 128);
+        let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+        let size = Size {
+            width: 24,
+            height: 18,
+        };
+        let camera = paper_camera_placed(&map, &pyramid, 20.0, size, true, None).unwrap();
+        for (mode, lod, columns) in [(Mode::AsExact, false, 16), (Mode::Ps, true, 4)] {
+            for surface in [SurfaceArg::Flat, SurfaceArg::Bilinear] {
+                let setting = Setting {
+                    mode,
+                    lod,
+                    surface,
+                    columns,
+                };
+                for column in [0, 11, 23] {
+                    let shot = |whole| {
+                        shoot(&camera, &pyramid, Projection::Paper, setting, column, whole)
+                            .unwrap()
+                    };
+                    let (one, all) = (shot(false), shot(true));
+                    assert!(one.image.is_none() && all.image.is_some());
+                    assert_eq!(one.column, all.column, "{mode} {surface:?} column {column}");
+                }
+            }
+        }
+    }
 }
