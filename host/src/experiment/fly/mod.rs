@@ -663,8 +663,7 @@ mod tests {
                 };
                 for column in [0, 11, 23] {
                     let shot = |whole| {
-                        shoot(&camera, &pyramid, Projection::Paper, setting, column, whole)
-                            .unwrap()
+                        shoot(&camera, &pyramid, Projection::Paper, setting, column, whole).unwrap()
                     };
                     let (one, all) = (shot(false), shot(true));
                     assert!(one.image.is_none() && all.image.is_some());
