@@ -1,22 +1,27 @@
 //! The core on arbitrary input: a small terrain (any size up to 24×24, any heights and
-//! colours, with its pyramid), a camera from arbitrary numbers (finite or not), a mode, and a
-//! frame of up to 12×12 rendered with every counter and the visibility pass. Constructors may
-//! refuse; nothing may panic, overflow (overflow checks are on) or hang.
+//! colours, with its pyramid), a camera from arbitrary numbers (finite or not, any roll), a
+//! mode, either projection and either surface, and a frame of up to 12×12 rendered with every
+//! counter and the visibility pass, then again into full-precision cells, which must round to
+//! the frame's 8-bit cells. Constructors may refuse; nothing may panic, overflow (overflow
+//! checks are on) or hang.
 #![no_main]
 
 use arbitrary::Arbitrary;
 use footprint_core::lit::{Materials, Specular, Sun, SunShader};
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Power};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
+use footprint_core::color::mean_to_rgb;
+use footprint_core::mode::Rate;
+use footprint_core::terrain::camera::{
+    Camera, CameraParams, Column, Options, Projection, Surface,
+};
 use footprint_core::Mode;
 
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
-use footprint_core::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use footprint_core::terrain::sampler::{Area, Point};
 use footprint_core::terrain::visibility::count_visible;
-use footprint_core::terrain::wedge::Wedge;
 use footprint_core::terrain::{Level, Scale};
 use footprint_core::Rgb;
 
@@ -33,11 +38,16 @@ struct Input {
     eye: f64,
     heading: f64,
     pitch: f64,
+    roll: f64,
     fov: f64,
     far: f64,
     image: (u8, u8),
     mode: u8,
     lod: bool,
+    /// The exact projection (the CLI's default), else the paper's.
+    exact: bool,
+    /// The continuous surface where voxels are magnified, else flat tops.
+    bilinear: bool,
     mean_heights: bool,
     /// A sun (azimuth, elevation, specular method) to light the frame with.
     sun: Option<(f64, f64, u8)>,
@@ -88,7 +98,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         eye_m: input.eye,
         heading_deg: input.heading,
         pitch_deg: input.pitch,
-        roll_deg: 0.0,
+        roll_deg: input.roll,
         fov_deg: input.fov,
         width: u32::from(input.image.0 % 13),
         height: u32::from(input.image.1 % 13),
@@ -97,68 +107,50 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         return;
     };
     let (cw, ch) = (camera.width(), camera.height());
-    let mut rows = vec![Coord::ZERO; ch + 1];
-    let mut cols = vec![Column::default(); cw];
     let options = Options {
         lod: input.lod,
+        projection: if input.exact {
+            Projection::Exact
+        } else {
+            Projection::Paper
+        },
+        surface: if input.bilinear {
+            Surface::Bilinear
+        } else {
+            Surface::Flat
+        },
         ..Options::default()
     };
+    // The grid the projection walks: the image's with the paper's, the fan's with the exact.
+    let Ok((grid_columns, grid_rows)) = Frame::grid_size(&camera, options) else {
+        return;
+    };
+    let mut rows = vec![Coord::ZERO; grid_rows + 1];
+    let mut cols = vec![Column::default(); grid_columns];
     let Ok(frame) = Frame::new(&camera, &terrain, options, &mut rows, &mut cols) else {
         return;
     };
-    let mut tallies = vec![Tally::default(); cw];
+    let modes = [
+        Mode::Ps,
+        Mode::Li,
+        Mode::Ss(Rate::N2),
+        Mode::Ss(Rate::N16),
+        Mode::Ss(Rate::N256),
+        Mode::AsExact,
+        Mode::As,
+        Mode::As2,
+        Mode::Classic,
+    ];
+    let mode = modes[usize::from(input.mode) % modes.len()];
+    let mut tallies = vec![Tally::default(); frame.width()];
     let mut counts = Counts::new(&mut tallies);
     let mut image = vec![Rgb::default(); cw * ch];
-    let done = match input.mode % 9 {
-        0 => frame.render(&terrain, &Point, &mut counts, &mut [], &mut image),
-        1 => frame.render(&terrain, &Linear, &mut counts, &mut [], &mut image),
-        2 => frame.render(
-            &terrain,
-            &Super::<2>::new(),
-            &mut counts,
-            &mut [],
-            &mut image,
-        ),
-        3 => frame.render(
-            &terrain,
-            &Super::<16>::new(),
-            &mut counts,
-            &mut [],
-            &mut image,
-        ),
-        4 => frame.render(
-            &terrain,
-            &Super::<256>::new(),
-            &mut counts,
-            &mut [],
-            &mut image,
-        ),
-        5 => frame.render(&terrain, &Area::new(), &mut counts, &mut [], &mut image),
-        6 => frame.render(
-            &terrain,
-            &ParallelArea::new(),
-            &mut counts,
-            &mut [],
-            &mut image,
-        ),
-        7 => frame.render(&terrain, &Wedge::new(), &mut counts, &mut [], &mut image),
-        _ => frame.render(&terrain, &Mode::Classic, &mut counts, &mut [], &mut image),
-    };
-    assert!(done.is_ok(), "buffers were sized from the camera");
+    let mut scratch = vec![Rgb::default(); frame.scratch_len()];
+    let done = frame.render(&terrain, &mode, &mut counts, &mut scratch, &mut image);
+    assert!(done.is_ok(), "buffers were sized from the frame");
     // The sequence the rendered mode walked (classic walks level 0).
-    let switch = match input.mode % 9 {
-        0 => Point::SWITCH,
-        1 => Linear::SWITCH,
-        2 => Super::<2>::SWITCH,
-        3 => Super::<16>::SWITCH,
-        4 => Super::<256>::SWITCH,
-        5 => Area::SWITCH,
-        6 => ParallelArea::SWITCH,
-        7 => Wedge::SWITCH,
-        _ => Switch::Nearest,
-    };
-    count_visible(&frame, &terrain, switch, &mut counts);
-    if input.mode % 9 == 5 {
+    count_visible(&frame, &terrain, mode.switch(), &mut counts);
+    if mode == Mode::AsExact && !input.exact && !input.bilinear {
         // Pixels of zero height (rays that coincide in the walk's fixed point, on a field of
         // view far narrower than the map's scale resolves) may take, with weight 0, a voxel
         // the visibility pass does not count (tests/tests/limits.rs,
@@ -173,6 +165,17 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         } else {
             assert_eq!(m, v, "area sampling covers every visible voxel");
         }
+    }
+    // The ground truth's full-precision cells round to the 8-bit cells.
+    let (gw, gh) = (frame.width(), frame.height());
+    let mut grid = vec![Rgb::default(); gw * gh];
+    let mut exact = vec![[0u32; 3]; gw * gh];
+    let walked = frame.render_columns(&terrain, &mode, &mut NoCost, 0..gw, &mut grid);
+    let walked_exact =
+        frame.render_columns_exact(&terrain, &mode, &mut NoCost, 0..gw, &mut exact);
+    assert!(walked.is_ok() && walked_exact.is_ok(), "grids sized from the frame");
+    for (c, e) in grid.iter().zip(&exact) {
+        assert_eq!(mean_to_rgb(e.map(u64::from), 1), *c, "{mode}");
     }
     // Lit by a sun: the shader over the exact and the point sampler must not panic, and the
     // pixels it writes are the frame's.
@@ -204,10 +207,10 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             return;
         };
         let done = if input.mode % 2 == 0 {
-            frame.render(&terrain, &Area::new(), &mut shader, &mut [], &mut image)
+            frame.render(&terrain, &Area::new(), &mut shader, &mut scratch, &mut image)
         } else {
-            frame.render(&terrain, &Point, &mut shader, &mut [], &mut image)
+            frame.render(&terrain, &Point, &mut shader, &mut scratch, &mut image)
         };
-        assert!(done.is_ok(), "buffers were sized from the camera");
+        assert!(done.is_ok(), "buffers were sized from the frame");
     }
 });
