@@ -7,14 +7,12 @@
 #![no_main]
 
 use arbitrary::Arbitrary;
+use footprint_core::color::mean_to_rgb;
 use footprint_core::lit::{Materials, Specular, Sun, SunShader};
+use footprint_core::mode::Rate;
 use footprint_core::num::Coord;
 use footprint_core::specular::{Clamp, Power};
-use footprint_core::color::mean_to_rgb;
-use footprint_core::mode::Rate;
-use footprint_core::terrain::camera::{
-    Camera, CameraParams, Column, Options, Projection, Surface,
-};
+use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Projection, Surface};
 use footprint_core::Mode;
 
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
@@ -171,9 +169,11 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
     let mut grid = vec![Rgb::default(); gw * gh];
     let mut exact = vec![[0u32; 3]; gw * gh];
     let walked = frame.render_columns(&terrain, &mode, &mut NoCost, 0..gw, &mut grid);
-    let walked_exact =
-        frame.render_columns_exact(&terrain, &mode, &mut NoCost, 0..gw, &mut exact);
-    assert!(walked.is_ok() && walked_exact.is_ok(), "grids sized from the frame");
+    let walked_exact = frame.render_columns_exact(&terrain, &mode, &mut NoCost, 0..gw, &mut exact);
+    assert!(
+        walked.is_ok() && walked_exact.is_ok(),
+        "grids sized from the frame"
+    );
     for (c, e) in grid.iter().zip(&exact) {
         assert_eq!(mean_to_rgb(e.map(u64::from), 1), *c, "{mode}");
     }
@@ -207,7 +207,13 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             return;
         };
         let done = if input.mode % 2 == 0 {
-            frame.render(&terrain, &Area::new(), &mut shader, &mut scratch, &mut image)
+            frame.render(
+                &terrain,
+                &Area::new(),
+                &mut shader,
+                &mut scratch,
+                &mut image,
+            )
         } else {
             frame.render(&terrain, &Point, &mut shader, &mut scratch, &mut image)
         };
