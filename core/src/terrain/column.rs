@@ -209,6 +209,37 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
         true
     }
 
+    /// The walk ended inside pixel `i` (with the ray `ray`, at the voxel centred at `n`): what
+    /// is left of it is sky, and so is every pixel above, but for what the sampler still
+    /// carries into them ([`Sampler::carries`]).
+    fn end_in_sky(&mut self, mut ray: Ray, n: i64) {
+        let sky = self.frame.sky();
+        loop {
+            let finished = self.sampler.sky(&ray, sky, self.cost);
+            let k = self.i - self.first;
+            match finished {
+                Some(color) => {
+                    self.cost.terrain_pixel();
+                    self.out.set(k, color);
+                    if O::EXACT {
+                        if let Some(exact) = self.sampler.exact() {
+                            self.out.set_exact(k, exact);
+                        }
+                    }
+                }
+                None => self.out.set(k, sky),
+            }
+            self.i += 1;
+            if finished.is_none() || self.i >= self.end || !self.sampler.carries() {
+                break;
+            }
+            ray = self.begin(self.upper, n);
+        }
+        for k in self.i.saturating_sub(self.first)..self.end.saturating_sub(self.first) {
+            self.out.set(k, sky);
+        }
+    }
+
     /// [`Pixels::next_pixel`] out of the ride's loop, for the modes that hit several voxels
     /// per pixel: inlined, the next pixel's rays (Eqs. 2–3) take registers from their
     /// per-hit work (PS, whose every hit finishes a pixel, keeps it inline; the measurements
@@ -391,29 +422,8 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
         }
     }
 
-    // The walk ended inside pixel i: what is left of it, and every pixel above, is sky.
-    let Pixels {
-        sampler,
-        cost,
-        out,
-        i,
-        ..
-    } = px;
-    let sky = frame.sky();
-    let finished = sampler.sky(&ray, sky, cost);
-    if finished.is_some() {
-        cost.terrain_pixel();
-    }
-    out.set(i - first, finished.unwrap_or(sky));
-    if O::EXACT && finished.is_some() {
-        if let Some(exact) = sampler.exact() {
-            out.set_exact(i - first, exact);
-        }
-    }
-    for k in i - first + 1..end - first {
-        out.set(k, sky);
-    }
-    cost.end_column();
+    px.end_in_sky(ray, march.n());
+    px.cost.end_column();
 }
 
 /// Renders the whole frame of the paper's projection with a fresh copy of `sampler` per

@@ -17,8 +17,9 @@
 //! are kept, and the next pixel weighs it as [`Area`] weighs a voxel that goes on into the next
 //! pixel. Two or more hits above `R_{i+1}` are carried as their weighted sum, and shared out
 //! among the pixels above in proportion to the angle each takes: that is the approximation.
-//! What a lane carries past the far distance (where the walk ends) is lost: the pixels above
-//! are sky.
+//! Where the walk ends (the far distance, or nothing left to hit), the sky fills each open
+//! lane from its ray up, and what the others carry goes on into the pixels above, each filled
+//! with the sky above what it holds ([`Horizons::sky`], [`Horizons::carries`]).
 //!
 //! With `K = 1` the one lane is [`Area`] itself, hit for hit (the same weights, so the same
 //! image: tested).
@@ -291,18 +292,28 @@ impl<const K: usize> Horizons<K> {
         self.area.exact_color()
     }
 
-    /// The walk ended inside the pixel: the sky fills every lane still open, from its ray up.
-    /// `None` if no lane saw terrain in it.
+    /// Whether a lane carries terrain above the pixel it finished: what the pixels above take
+    /// once the walk has ended ([`Sampler::carries`]).
+    #[inline(always)]
+    pub fn carries(&self) -> bool {
+        self.lanes.iter().any(|lane| lane.reached)
+    }
+
+    /// The walk ended inside the pixel, or below it with a lane that carries terrain into it:
+    /// the sky fills every lane still open, from its ray up to the pixel's upper ray, where
+    /// its ray then stands (so that in a pixel above it fills that pixel alone). `None` if no
+    /// lane saw terrain in it.
     pub fn sky<C: Cost>(&mut self, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         if !self.area.seen() {
             return None;
         }
         let sky16 = to_color16(sky);
         let upper = self.area.upper();
-        for lane in self.lanes.iter().filter(|lane| !lane.reached) {
+        for lane in self.lanes.iter_mut().filter(|lane| !lane.reached) {
             let w = upper.slope.saturating_sub(lane.slope);
             cost.sky_sample(sky16, w);
             self.area.accumulate(w, sky16, cost);
+            lane.slope = upper.slope.max(lane.slope);
         }
         Some(self.area.finish(sky16, cost))
     }

@@ -110,6 +110,14 @@ pub trait Sampler {
     /// The walk ended (far distance, or nothing left to hit) inside this pixel. Returns the
     /// pixel's colour if terrain was seen in it, `None` if it is all sky.
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
+    /// Whether, after [`Sampler::sky`] finished a pixel, the sampler still holds terrain it saw
+    /// above that pixel (`as2`'s lanes, [`crate::terrain::horizons`]): then the walk begins the
+    /// pixels above and asks [`Sampler::sky`] for each, until this is `false`. The default,
+    /// for the samplers whose pixel ends at its upper ray, is `false`.
+    #[inline(always)]
+    fn carries(&self) -> bool {
+        false
+    }
     /// The colour of the pixel that the last [`Hit::Done`] or [`Sampler::sky`] finished, before
     /// it was rounded to 8 bits (`Σc/Σw` of Fig. 12's weights, [`Color32`]): what the ground
     /// truth averages over its many columns per pixel, so that it rounds once. `None`, the

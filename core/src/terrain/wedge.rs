@@ -383,6 +383,11 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
     }
 
     #[inline(always)]
+    fn carries(&self) -> bool {
+        self.lanes.carries()
+    }
+
+    #[inline(always)]
     fn exact(&self) -> Option<Color32> {
         self.lanes.exact()
     }
