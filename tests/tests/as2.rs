@@ -662,9 +662,10 @@ fn traced_to(map: &Map, camera: &Camera, c: usize, i: usize, far_m: f64) -> [f64
 
 /// The largest RMS difference, in 8-bit levels, allowed between `as2` and the traced truth
 /// (with the sky) on the ridge with the far distance just behind it. Measured 2026-11-27: 10.37
-/// over 1,024 pixels; 11.96 when the lanes' carries were lost where the walk ends (`as-exact`
-/// 9.34: at the cut line itself, which the walk draws voxel by voxel and the trace at the exact
-/// distance, `as2` is further off; not yet explained, docs/measurements.md).
+/// over 1,024 pixels; 11.96 when the lanes' carries were lost where the walk ends. `as-exact`
+/// is 9.34 here: in the ridge's top row a lane decides on its mean height across, which misses
+/// the top of a one-voxel ridge, and here the sky (near black) shows behind it instead of the
+/// grey ground of the test above, which left out every pixel with sky.
 const FAR_CUT_RMSE: f64 = 10.8;
 
 /// The ridge with the walk's far distance just behind it, where it is the last terrain in

@@ -12,7 +12,9 @@
 //! their own stretch of the grid, which is stored column by column (column `x`'s cells from
 //! the bottom row up at `x·rows ..`), so that ranges split between threads write disjoint
 //! slices; [`Frame::resample`] then makes the image from the whole grid. The two steps give
-//! the image of [`Frame::render`], bit for bit.
+//! the image of [`Frame::render`], bit for bit. [`Frame::render_columns_exact`] walks the same
+//! grid into full-precision cells, each pixel's colour before it is rounded to 8 bits, for a
+//! ground truth that averages many columns per pixel and rounds once.
 
 use core::ops::Range;
 

@@ -4,12 +4,13 @@
 //! pixel, box-filtered horizontally: area sampling is exact along each column, and 16
 //! columns per pixel make the naive horizontal sampling the paper leaves (Sect. 8) negligible.
 //! The box filter averages the columns' colours before they are rounded
-//! ([`footprint_core::terrain::frame::Frame::render_columns_exact`]) and rounds once: rounded column by column, the truth
-//! was up to half a level off wherever a pixel's colour changes by less than a level across it
-//! (most of a magnified view), always on the side that `as-exact`'s one column rounds to
-//! (docs/measurements.md, "A ground truth rounded once"). With the exact projection the 16
-//! columns per pixel are fan lines, and the fan's own resampling is the box filter, of
-//! 8-bit cells. On the continuous surface (`--surface bilinear`) the reference
+//! ([`footprint_core::terrain::frame::Frame::render_columns_exact`]) and rounds once: rounded
+//! column by column, the truth was up to half a level off wherever a pixel's colour changes by
+//! less than a level across it (most of a magnified view), always on the side that
+//! `as-exact`'s one column rounds to (docs/measurements.md, "A ground truth rounded once").
+//! With the exact projection the 16 columns per pixel are fan lines, and the fan's own
+//! resampling is the box filter, of 8-bit cells. On the continuous surface
+//! (`--surface bilinear`) the reference
 //! meets the same surface as the modes: the surface's extent is measured per pixel, all its
 //! columns together.
 
