@@ -69,3 +69,27 @@ pub fn mean_to_rgb(sum: [u64; 3], count: u64) -> Rgb {
     };
     Rgb::new(r(sum[0]), r(sum[1]), r(sum[2]))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One colour's mean rounds as [`to_rgb`] rounds the same colour in 8.8, for every 8.8
+    /// value and every 8 lower fractional bits (what [`Color32`] keeps more); no colours give
+    /// black.
+    #[test]
+    fn the_mean_of_one_colour_rounds_as_to_rgb() {
+        for v in 0..=(255u32 << 8) {
+            let c16 = u16::try_from(v).unwrap_or(u16::MAX);
+            for low in [0u64, 1, 127, 128, 255] {
+                let wide = (u64::from(v) << 8) | low;
+                assert_eq!(
+                    mean_to_rgb([wide; 3], 1),
+                    to_rgb([c16; 3]),
+                    "{v} + {low}/65536"
+                );
+            }
+        }
+        assert_eq!(mean_to_rgb([u64::MAX; 3], 0), Rgb::BLACK);
+    }
+}

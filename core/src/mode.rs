@@ -18,10 +18,11 @@ use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::camera::{Surface, Switch};
 use crate::terrain::classic;
+use crate::terrain::column::ColumnOut;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
-use crate::terrain::image::Sampling;
+use crate::terrain::image::{walk_rows, Sampling};
 use crate::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
 use crate::terrain::surface::Smooth;
 use crate::terrain::wedge::{Wedge, WedgeOn};
@@ -238,15 +239,7 @@ impl Sampling for Mode {
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        if frame.surface() == Surface::Bilinear && *self == Mode::As2 {
-            WedgeOn::<true>::new().walk_column(frame, terrain, x, cost, out);
-        } else if frame.surface() == Surface::Bilinear {
-            with_sampler!(*self, s => Smooth::new(s).walk_column(frame, terrain, x, cost, out),
-                classic => classic::walk(frame, terrain, x, cost, out));
-        } else {
-            with_sampler!(*self, s => s.walk_column(frame, terrain, x, cost, out),
-                classic => classic::walk(frame, terrain, x, cost, out));
-        }
+        self.walk_rows(frame, terrain, x, cost, out);
     }
 
     fn walk_column_exact<C: Cost>(
@@ -257,15 +250,7 @@ impl Sampling for Mode {
         cost: &mut C,
         out: &mut [Color32],
     ) {
-        if frame.surface() == Surface::Bilinear && *self == Mode::As2 {
-            WedgeOn::<true>::new().walk_column_exact(frame, terrain, x, cost, out);
-        } else if frame.surface() == Surface::Bilinear {
-            with_sampler!(*self, s => Smooth::new(s).walk_column_exact(frame, terrain, x, cost, out),
-                classic => classic::walk_into(frame, terrain, x, cost, out));
-        } else {
-            with_sampler!(*self, s => s.walk_column_exact(frame, terrain, x, cost, out),
-                classic => classic::walk_into(frame, terrain, x, cost, out));
-        }
+        self.walk_rows(frame, terrain, x, cost, out);
     }
 
     fn walk_image<C: Cost, P: PixelSink>(
@@ -283,6 +268,31 @@ impl Sampling for Mode {
         } else {
             with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
                 classic => classic::render(frame, terrain, cost, image))
+        }
+    }
+}
+
+impl Mode {
+    /// Column `x` into 8-bit or full-precision cells ([`Sampling::walk_column`],
+    /// [`Sampling::walk_column_exact`]): the sampler chosen as the impl above says.
+    fn walk_rows<C: Cost, T>(
+        self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [T],
+    ) where
+        [T]: ColumnOut,
+    {
+        if frame.surface() == Surface::Bilinear && self == Mode::As2 {
+            walk_rows(&WedgeOn::<true>::new(), frame, terrain, x, cost, out);
+        } else if frame.surface() == Surface::Bilinear {
+            with_sampler!(self, s => walk_rows(&Smooth::new(s), frame, terrain, x, cost, out),
+                classic => classic::walk_into(frame, terrain, x, cost, out));
+        } else {
+            with_sampler!(self, s => walk_rows(&s, frame, terrain, x, cost, out),
+                classic => classic::walk_into(frame, terrain, x, cost, out));
         }
     }
 }

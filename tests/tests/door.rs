@@ -39,21 +39,29 @@ fn split(n: usize, seed: u64) -> Vec<std::ops::Range<usize>> {
     ranges
 }
 
-#[test]
-fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
+/// The built-in terrain both tests draw, with its pyramid.
+fn scene() -> (footprint_host::map::Map, Pyramid) {
     let map = procedural(4, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+    (map, pyramid)
+}
+
+/// The frames' size.
+const SIZE: Size = Size {
+    width: 40,
+    height: 30,
+};
+
+#[test]
+fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
+    let (map, pyramid) = scene();
     let terrain = pyramid.terrain(true).unwrap();
-    let size = Size {
-        width: 40,
-        height: 30,
-    };
     for (pitch, roll, projection) in [
         (20.0, 0.0, Projection::Paper),
         (40.0, 0.0, Projection::Exact),
         (40.0, 25.0, Projection::Exact),
     ] {
-        let mut camera = paper_camera(&map, &pyramid, pitch, size, true).unwrap();
+        let mut camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
         camera = Camera::new(CameraParams {
             roll_deg: roll,
             ..*camera.params()
@@ -144,14 +152,9 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
 
 #[test]
 fn the_full_precision_grid_rounds_to_the_8_bit_grid() {
-    let map = procedural(4, 256);
-    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+    let (map, pyramid) = scene();
     let terrain = pyramid.terrain(true).unwrap();
-    let size = Size {
-        width: 40,
-        height: 30,
-    };
-    let camera = paper_camera(&map, &pyramid, 20.0, size, true).unwrap();
+    let camera = paper_camera(&map, &pyramid, 20.0, SIZE, true).unwrap();
     let mut all = modes();
     all.push(Mode::As2);
     for surface in [Surface::Flat, Surface::Bilinear] {

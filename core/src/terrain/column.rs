@@ -194,12 +194,7 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
     /// resumes at `voxel` (into `ray`); `false` if it was the last.
     #[inline(always)]
     fn next_pixel(&mut self, color: Rgb, voxel: &Voxel<'_>, ray: &mut Ray) -> bool {
-        self.out.set(self.i - self.first, color);
-        if O::EXACT {
-            if let Some(exact) = self.sampler.exact() {
-                self.out.set_exact(self.i - self.first, exact);
-            }
-        }
+        self.finish_pixel(color);
         self.i += 1;
         if self.i == self.end {
             self.finished = true;
@@ -209,6 +204,19 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
         true
     }
 
+    /// Writes pixel `i`, which the sampler finished with `color`, and, into full-precision
+    /// cells, its colour before rounding ([`Sampler::exact`]).
+    #[inline(always)]
+    fn finish_pixel(&mut self, color: Rgb) {
+        let k = self.i - self.first;
+        self.out.set(k, color);
+        if O::EXACT {
+            if let Some(exact) = self.sampler.exact() {
+                self.out.set_exact(k, exact);
+            }
+        }
+    }
+
     /// The walk ended inside pixel `i` (with the ray `ray`, at the voxel centred at `n`): what
     /// is left of it is sky, and so is every pixel above, but for what the sampler still
     /// carries into them ([`Sampler::carries`]).
@@ -216,18 +224,12 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
         let sky = self.frame.sky();
         loop {
             let finished = self.sampler.sky(&ray, sky, self.cost);
-            let k = self.i - self.first;
             match finished {
                 Some(color) => {
                     self.cost.terrain_pixel();
-                    self.out.set(k, color);
-                    if O::EXACT {
-                        if let Some(exact) = self.sampler.exact() {
-                            self.out.set_exact(k, exact);
-                        }
-                    }
+                    self.finish_pixel(color);
                 }
-                None => self.out.set(k, sky),
+                None => self.out.set(self.i - self.first, sky),
             }
             self.i += 1;
             if finished.is_none() || self.i >= self.end || !self.sampler.carries() {

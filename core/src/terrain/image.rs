@@ -21,7 +21,7 @@ use core::ops::Range;
 use crate::color::{Color32, Rgb};
 use crate::error::Error;
 use crate::sink::PixelSink;
-use crate::terrain::column::{self, walk_into};
+use crate::terrain::column::{self, walk_into, ColumnOut};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
@@ -72,6 +72,25 @@ pub trait Sampling {
     ) -> Result<(), Error>;
 }
 
+/// Walks column `x` of `frame` with a fresh copy of `sampler` into `out` (rows from the
+/// bottom, the column's walked rows at their own index): [`Sampling::walk_column`] and
+/// [`Sampling::walk_column_exact`], for 8-bit or full-precision cells.
+#[inline]
+pub(crate) fn walk_rows<S: Sampler + Clone, C: Cost, T>(
+    sampler: &S,
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    x: usize,
+    cost: &mut C,
+    out: &mut [T],
+) where
+    [T]: ColumnOut,
+{
+    let rows = frame.column(x).map_or(0..0, |c| c.rows());
+    let rest = out.get_mut(rows.start.min(out.len())..).unwrap_or_default();
+    walk_into(frame, terrain, x, rows, &mut sampler.clone(), cost, rest);
+}
+
 impl<S: Sampler + Clone> Sampling for S {
     #[inline]
     fn filter(&self) -> Filter {
@@ -87,9 +106,7 @@ impl<S: Sampler + Clone> Sampling for S {
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        let rows = frame.column(x).map_or(0..0, |c| c.rows());
-        let rest = out.get_mut(rows.start.min(out.len())..).unwrap_or_default();
-        walk_into(frame, terrain, x, rows, &mut self.clone(), cost, rest);
+        walk_rows(self, frame, terrain, x, cost, out);
     }
 
     #[inline]
@@ -101,9 +118,7 @@ impl<S: Sampler + Clone> Sampling for S {
         cost: &mut C,
         out: &mut [Color32],
     ) {
-        let rows = frame.column(x).map_or(0..0, |c| c.rows());
-        let rest = out.get_mut(rows.start.min(out.len())..).unwrap_or_default();
-        walk_into(frame, terrain, x, rows, &mut self.clone(), cost, rest);
+        walk_rows(self, frame, terrain, x, cost, out);
     }
 
     #[inline]
