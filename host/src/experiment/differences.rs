@@ -10,7 +10,7 @@ use footprint_core::terrain::camera::{Camera, Options};
 use serde::Serialize;
 
 use super::fly::Fly;
-use super::heights::Variant;
+use super::heights::{Changed, Variant};
 use super::paper::paper_camera_placed;
 use super::table::Tables15;
 use crate::map::Map;
@@ -77,6 +77,9 @@ pub struct ViewFacts {
     /// What placing the view on this map changed from the paper's, and why (`None`: the
     /// paper's view).
     pub placement_note: Option<String>,
+    /// The share of mirrored terrain pixels in the paper's own view from the map's centre,
+    /// when it was tried and could be fitted (`--geometry on-map`).
+    pub paper_mirrored_fraction: Option<f64>,
 }
 
 /// The pitch-5° footprint beside the paper's (Tables 1 and 4).
@@ -85,9 +88,12 @@ pub struct ViewFacts {
 pub struct Footprint5 {
     /// Visible voxels per column.
     pub V: f64,
-    /// Steps per column after the first hit.
+    /// Steps per column after the first hit, of PS's walk.
     pub L: f64,
-    /// `V / L` here.
+    /// Visible voxels per column of PS's own walk, the walk that `L` counts (`V` when PS was
+    /// not run).
+    pub V_walk: f64,
+    /// `V_walk / L` here.
     pub visible_per_step: f64,
     /// `V / L` in the paper.
     pub paper_visible_per_step: f64,
@@ -130,7 +136,14 @@ pub struct Time5 {
     /// Whether both modes' times repeated within `table::STABLE_SPREAD`: only then is their
     /// ratio stated.
     pub stable: bool,
+    /// The largest AS/PS time ratio the report calls the paper's "marginal increase"
+    /// ([`MARGINAL_RATIO`]).
+    pub marginal: f64,
 }
+
+/// The largest AS/PS time ratio the report calls the paper's "marginal increase" of AS's
+/// time over PS's (the paper gives no number).
+pub const MARGINAL_RATIO: f64 = 1.25;
 
 /// Everything the section says.
 #[derive(Clone, Debug, Serialize)]
@@ -147,6 +160,9 @@ pub struct Differences {
     pub target_m: f64,
     /// The views, in the tables' order.
     pub views: Vec<ViewFacts>,
+    /// The most of a view's terrain that may be mirrored before the view is placed on the map
+    /// (`--geometry on-map`, [`footprint_scenes::view::ON_MAP_GOAL`]).
+    pub on_map_goal: f64,
     /// The pitch-5° footprint (when the tables have that case).
     pub footprint5: Option<Footprint5>,
     /// The flight.
@@ -155,6 +171,10 @@ pub struct Differences {
     pub time5: Option<Time5>,
     /// Each mode's RMSE against the ground truth at pitch 5°.
     pub rmse5: Vec<(String, f64)>,
+    /// The pixels of the pitch-5° view that the report's pyramid changes: its exact area
+    /// sampling's image against the same view walked through level 0 alone (the pyramid
+    /// study's first variant, [`Variant::changed_from_level0`]); `None` without the study.
+    pub pyramid_changed5: Option<Changed>,
     /// With `lod`: each mode's RMSE on the same pitch-5° view walked through level 0 alone
     /// (the pyramid study's `level 0`), so the pyramid's share shows; empty without `lod`
     /// (the views already walk level 0).
@@ -261,6 +281,7 @@ pub fn differences(
             first_hit_on_map: c.view.first_hit_on_map,
             mirrored_fraction: c.view.mirrored_fraction,
             placement_note: c.view.note.clone(),
+            paper_mirrored_fraction: c.view.paper_mirrored_fraction,
         });
     }
     if t.cases.is_empty() {
@@ -269,20 +290,24 @@ pub fn differences(
     }
     let five = t.cases.iter().find(|c| c.pitch == 5.0);
     let row = |m: Mode| five.and_then(|c| c.modes.iter().find(|r| r.mode == m));
-    let footprint5 = five.map(|c| Footprint5 {
-        V: c.V,
-        L: c.L,
-        visible_per_step: if c.L > 0.0 { c.V / c.L } else { 0.0 },
-        paper_visible_per_step: PAPER_V_L_5.0 / PAPER_V_L_5.1,
-        ss_coverage: PAPER_SS_COVERAGE_5
-            .iter()
-            .filter_map(|&(rate, paper)| {
-                c.coverage_by_rate
-                    .iter()
-                    .find(|(n, _)| *n == rate.n())
-                    .map(|&(n, ours)| (n, ours, paper))
-            })
-            .collect(),
+    let footprint5 = five.map(|c| {
+        let v_walk = row(Mode::Ps).map_or(c.V, |r| r.V_walk);
+        Footprint5 {
+            V: c.V,
+            L: c.L,
+            V_walk: v_walk,
+            visible_per_step: if c.L > 0.0 { v_walk / c.L } else { 0.0 },
+            paper_visible_per_step: PAPER_V_L_5.0 / PAPER_V_L_5.1,
+            ss_coverage: PAPER_SS_COVERAGE_5
+                .iter()
+                .filter_map(|&(rate, paper)| {
+                    c.coverage_by_rate
+                        .iter()
+                        .find(|(n, _)| *n == rate.n())
+                        .map(|&(n, ours)| (n, ours, paper))
+                })
+                .collect(),
+        }
     });
     let count = |m: Mode| f.mode(m).map(|x| x.histogram.get("6-60"));
     let table6: Vec<(String, u64, u64)> = PAPER_TABLE6
@@ -302,6 +327,7 @@ pub fn differences(
             ps_median_ms: p.ms_median,
             repeats: a.repeats.min(p.repeats),
             stable: crate::experiment::table::stable(a) && crate::experiment::table::stable(p),
+            marginal: MARGINAL_RATIO,
         }),
         _ => None,
     };
@@ -311,6 +337,7 @@ pub fn differences(
         target_voxels: 1.0 / pixel_angle_rad,
         target_m: map.spacing_m / pixel_angle_rad,
         views,
+        on_map_goal: footprint_scenes::view::ON_MAP_GOAL,
         footprint5,
         flight: FlightFacts {
             step_m: f.step,
@@ -334,6 +361,7 @@ pub fn differences(
                     .collect()
             })
             .unwrap_or_default(),
+        pyramid_changed5: study.first().map(|v| v.changed_from_level0),
         level0_rmse5: if t.lod {
             study
                 .iter()

@@ -28,6 +28,70 @@ pub const SHIFTS_PX: [f64; 9] = [
     -0.25, -0.1875, -0.125, -0.0625, 0.0, 0.0625, 0.125, 0.1875, 0.25,
 ];
 
+/// The mode whose pitch shift is searched and whose image is compared with level 0's: exact
+/// area sampling, whose only error along the column is the terrain it walks.
+pub const SHIFT_MODE: Mode = Mode::AsExact;
+
+/// How many pixels of one image differ from another's (any of R, G, B), in the upper and the
+/// lower half of the image (rows from the top; the middle row, if any, in the lower half).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Changed {
+    /// Pixels of the upper half that differ.
+    pub upper: u64,
+    /// Pixels in the upper half.
+    pub upper_pixels: u64,
+    /// `upper / upper_pixels` (0 for an empty half).
+    pub upper_share: f64,
+    /// Pixels of the lower half that differ.
+    pub lower: u64,
+    /// Pixels in the lower half.
+    pub lower_pixels: u64,
+    /// `lower / lower_pixels` (0 for an empty half).
+    pub lower_share: f64,
+}
+
+impl Changed {
+    /// `upper` of `upper_pixels` and `lower` of `lower_pixels` differ.
+    pub fn new(upper: u64, upper_pixels: u64, lower: u64, lower_pixels: u64) -> Self {
+        Changed {
+            upper,
+            upper_pixels,
+            upper_share: share(upper, upper_pixels),
+            lower,
+            lower_pixels,
+            lower_share: share(lower, lower_pixels),
+        }
+    }
+
+    /// The pixels of `a` and `b` (`width` wide, row-major from the top) that differ.
+    pub fn between(a: &[Rgb], b: &[Rgb], width: usize, height: usize) -> Self {
+        let differ = |range: std::ops::Range<usize>| {
+            a[range.clone()]
+                .iter()
+                .zip(&b[range])
+                .filter(|(x, y)| x != y)
+                .count() as u64
+        };
+        let all = a.len().min(b.len());
+        let upper = (width * (height / 2)).min(all);
+        Changed::new(
+            differ(0..upper),
+            upper as u64,
+            differ(upper..all),
+            (all - upper) as u64,
+        )
+    }
+}
+
+/// `n / of`, 0 for none of none.
+fn share(n: u64, of: u64) -> f64 {
+    if of == 0 {
+        0.0
+    } else {
+        n as f64 / of as f64
+    }
+}
+
 /// One way of walking the terrain.
 #[derive(Clone, Debug, Serialize)]
 pub struct Variant {
@@ -35,10 +99,15 @@ pub struct Variant {
     pub pyramid: String,
     /// RMSE of each mode against the ground truth, 8-bit levels.
     pub rmse: Vec<(String, f64)>,
-    /// The pitch shift, pixels, that brings AS closest to the truth in the upper half.
+    /// The pitch shift, pixels, that brings [`SHIFT_MODE`] closest to the truth in the upper
+    /// half.
     pub best_shift_px: f64,
-    /// AS's RMSE in the upper half at no shift and at the best shift.
+    /// [`SHIFT_MODE`]'s RMSE in the upper half at no shift and at the best shift.
     pub upper_rmse: (f64, f64),
+    /// The pixels of [`SHIFT_MODE`]'s unshifted image that differ from the same view walked
+    /// through level 0 alone (the `level 0` variant): what the pyramid changes in the image.
+    /// All 0 for `level 0` itself.
+    pub changed_from_level0: Changed,
 }
 
 /// Renders `modes` at the paper's view at `pitch` over each height filter and over level 0
@@ -66,14 +135,26 @@ pub fn compare(
         HeightFilter::Mean => HeightFilter::Silhouette,
     };
     let other_pyramid = Pyramid::build(map.clone(), other)?;
-    [
+    let variants = [
         (name(filter), &main, true),
         (name(other), &other_pyramid, true),
         ("level 0", &main, false),
     ]
     .into_iter()
     .map(|(label, pyramid, lod)| variant(label, &camera, pyramid, lod, &truth, modes))
-    .collect()
+    .collect::<Result<Vec<_>>>()?;
+    let (w, h) = (camera.width(), camera.height());
+    let level0 = variants
+        .last()
+        .map(|(_, image)| image.clone())
+        .unwrap_or_default();
+    Ok(variants
+        .into_iter()
+        .map(|(v, image)| Variant {
+            changed_from_level0: Changed::between(&image, &level0, w, h),
+            ..v
+        })
+        .collect())
 }
 
 /// The name of a height filter, as `--height-filter` spells it.
@@ -91,7 +172,7 @@ fn variant(
     lod: bool,
     truth: &[Rgb],
     modes: &[Mode],
-) -> Result<Variant> {
+) -> Result<(Variant, Vec<Rgb>)> {
     let terrain = pyramid.terrain(lod)?;
     let options = Options {
         lod,
@@ -109,11 +190,15 @@ fn variant(
     let upper = camera.width() * (camera.height() / 2);
     let pixel_deg = camera.pixel_angle().to_degrees();
     let mut upper_rmse = Vec::new();
+    let mut unshifted = Vec::new();
     for shift in SHIFTS_PX {
         let mut p = *camera.params();
         p.pitch_deg += shift * pixel_deg;
-        let image = render(&Camera::new(p)?, Mode::AsExact)?;
+        let image = render(&Camera::new(p)?, SHIFT_MODE)?;
         upper_rmse.push((shift, rmse(&image[..upper], &truth[..upper])));
+        if shift == 0.0 {
+            unshifted = image;
+        }
     }
     let at_zero = upper_rmse
         .iter()
@@ -124,10 +209,35 @@ fn variant(
         .copied()
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap_or((0.0, at_zero));
-    Ok(Variant {
-        pyramid: label.to_string(),
-        rmse: rmse_by_mode,
-        best_shift_px,
-        upper_rmse: (at_zero, best),
-    })
+    Ok((
+        Variant {
+            pyramid: label.to_string(),
+            rmse: rmse_by_mode,
+            best_shift_px,
+            upper_rmse: (at_zero, best),
+            changed_from_level0: Changed::default(),
+        },
+        unshifted,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Pixels that differ are counted in the half they lie in; an odd middle row is the
+    /// lower half's.
+    #[test]
+    fn changed_pixels_are_counted_by_half() {
+        let (w, h) = (2, 3);
+        let a = vec![Rgb::new(0, 0, 0); w * h];
+        let mut b = a.clone();
+        b[1] = Rgb::new(0, 0, 1);
+        b[3] = Rgb::new(1, 0, 0);
+        b[5] = Rgb::new(0, 1, 0);
+        let c = Changed::between(&a, &b, w, h);
+        assert_eq!(c, Changed::new(1, 2, 2, 4));
+        assert_eq!((c.upper_share, c.lower_share), (0.5, 0.5));
+        assert_eq!(Changed::between(&a, &a, w, h).upper, 0);
+    }
 }
