@@ -171,8 +171,10 @@ fn every_mode_is_divided_by_the_one_v_of_its_case_where_the_walks_differ() {
     assert!(!md.contains("(magnified)"), "{md}");
 }
 
-/// Before: Table 6's claim "held" in one column where AS had a single change. A comparison of
-/// counts is judged only with at least `MIN_EVENTS` events on the side the claim puts low.
+/// Before: Table 6's claim "held" in one column where AS had a single change and PS 50. A
+/// comparison of counts is judged held only when the count the claim puts high has at least
+/// `factor · MIN_EVENTS` events (`claims::events_to_hold`), failed only when the count it puts
+/// low has at least `MIN_EVENTS`.
 #[test]
 fn a_claim_on_too_few_events_says_so() {
     assert_eq!(MIN_EVENTS, 10);

@@ -7,7 +7,8 @@
 //!   guesses a cause;
 //! - **too few events to judge**: a claim that compares counts of events (Table 6's changes
 //!   between frames, the visible voxels a mode missed) is judged only when the counts are
-//!   large enough to tell the comparison from noise ([`MIN_EVENTS`], [`compare`]);
+//!   large enough to tell the comparison from noise ([`MIN_EVENTS`], [`compare`], in words
+//!   [`count_rule`]), and its evidence ends with `not judged: …`, the count that fell short;
 //! - **not the paper's geometry**: the paper's coverage trends (PS coverage falling with the
 //!   pitch, SS32 below 1 at 5°) are about minification, a pixel's footprint wider than a voxel;
 //!   where a case is magnified ([`Case::magnified`]) they are not judged, and the evidence
@@ -23,9 +24,10 @@ use super::table::{Case, Tables15};
 use crate::render::{Mode, Rate};
 use crate::report::tables::coverage as cov;
 
-/// The fewest events a comparison of counts rests on before it is judged: a count below 10 is
-/// within about a third of itself of noise (its square root), too little to order two counts
-/// or to check a factor of 10 between them.
+/// The fewest events a count claim is judged on: a count below 10 is within about a third of
+/// itself of noise (its square root), too little to order two counts or to check a factor of
+/// 10 between them. The one constant of the rule, used by [`compare`] and by the words the
+/// report prints ([`count_rule`]).
 pub const MIN_EVENTS: u64 = 10;
 
 /// What the numbers say about a claim.
@@ -36,7 +38,8 @@ pub enum Verdict {
     Holds,
     /// The numbers contradict it; the evidence ends with `why: …`.
     Fails,
-    /// It compares counts of events too small to judge ([`MIN_EVENTS`]).
+    /// It compares counts of events too small to judge ([`MIN_EVENTS`]); the evidence ends
+    /// with `not judged: …`.
     TooFewEvents,
     /// A minification trend, tested where a case is magnified.
     NotThePapersGeometry,
@@ -75,21 +78,143 @@ impl Claim {
     }
 }
 
+/// The events the higher count needs for a claim that the lower one is `factor`× below it
+/// (`factor` 1: below it) to be judged held: `factor ·` [`MIN_EVENTS`], so that the claim
+/// allows the lower count at least [`MIN_EVENTS`] events, and the ratio rests on enough of
+/// them. (PS with 100 changes judges "AS at least 10× fewer", whatever AS's count; PS with 50
+/// allows AS 5, too few to tell 10× from 2×.)
+pub fn events_to_hold(factor: i64) -> i64 {
+    factor * MIN_EVENTS as i64
+}
+
+/// The events the lower count needs for a claim that it is `factor`× below the other to be
+/// judged failed: [`MIN_EVENTS`], so that a failure rests on enough events too.
+pub fn events_to_fail() -> i64 {
+    MIN_EVENTS as i64
+}
+
 /// A comparison of two counts of events: that `low · factor ≤ high` (`factor` 1: `low <
 /// high`). `Some(holds)` when it can be judged, `None` when too few events bear on it: it is
-/// judged when the larger of `low · factor` and `high` is at least `factor ·` [`MIN_EVENTS`],
-/// that is when the count `low` is held to (`high / factor`), or the one it shows, is at least
-/// [`MIN_EVENTS`] events. (AS with 1 change in a column against PS's 50 is not judged: the
-/// claim allows AS 5, too few to tell 10× from 2×.) Negative counts (an excess below the
-/// reference's own) count as 0 events.
+/// judged held only when `high` has at least [`events_to_hold`]`(factor)` events, and judged
+/// failed only when `low` has at least [`events_to_fail`]. Negative counts (an excess below
+/// the reference's own) count as 0 events.
 pub fn compare(low: i64, high: i64, factor: i64) -> Option<bool> {
     let (low, high) = (low.max(0), high.max(0));
-    let holds = if factor == 1 {
+    let holds = below(low, high, factor);
+    let judged = if holds {
+        high >= events_to_hold(factor)
+    } else {
+        low >= events_to_fail()
+    };
+    judged.then_some(holds)
+}
+
+/// Whether `low` is `factor`× below `high` (`factor` 1: below it), judged or not.
+fn below(low: i64, high: i64, factor: i64) -> bool {
+    let (low, high) = (low.max(0), high.max(0));
+    if factor == 1 {
         low < high
     } else {
         low * factor <= high
+    }
+}
+
+/// The rule of [`compare`] (and of SS32's "below 1"), in words made from the same constants:
+/// the report prints it above the claims.
+pub fn count_rule() -> String {
+    let k = FEWER;
+    format!(
+        "A claim that one count of events (changes between frames, visible voxels left \
+         unsampled) is below another, or k× below it, is judged to hold only when the higher \
+         count has at least k × {MIN_EVENTS} events, so that the claim allows the lower one at \
+         least {MIN_EVENTS} and the ratio rests on enough events (a claim of {k}× fewer needs \
+         at least {} on the higher side, whatever the lower count, 0 or 1 included); it is \
+         judged to fail only when the lower count has at least {} events. SS32's coverage below \
+         1 at 5° holds only with at least {MIN_EVENTS} visible voxels left unsampled over the \
+         frame. Otherwise the claim is *too few events to judge*, and its evidence names the \
+         count that fell short.",
+        events_to_hold(k),
+        events_to_fail()
+    )
+}
+
+/// One comparison of a count claim, with the names of its two counts: that `low` is
+/// `factor`× below `high` (`factor` 1: below it).
+#[derive(Clone, Copy, Debug)]
+struct Comparison<'a> {
+    /// The count the claim puts low: its name and its events.
+    low: (&'a str, i64),
+    /// The count the claim puts high.
+    high: (&'a str, i64),
+    /// How many times below.
+    factor: i64,
+}
+
+impl Comparison<'_> {
+    /// [`compare`] of the two counts.
+    fn judged(&self) -> Option<bool> {
+        compare(self.low.1, self.high.1, self.factor)
+    }
+
+    /// What the claim says of the two, in words: `fewer than` or `at least 10× fewer than`.
+    fn relation(&self) -> String {
+        if self.factor == 1 {
+            "fewer than".into()
+        } else {
+            format!("at least {}× fewer than", self.factor)
+        }
+    }
+
+    /// Why the comparison failed or was not judged, in its own numbers; `None` when it holds.
+    fn words(&self) -> Option<String> {
+        let ((ln, l), (hn, h), k) = (self.low, self.high, self.factor);
+        match self.judged() {
+            Some(true) => None,
+            Some(false) if k == 1 => Some(format!("{ln} has {l} to {hn}'s {h}, not fewer")),
+            Some(false) => Some(format!(
+                "{hn} has {h}, {} {ln}'s {l}, short of {k}×",
+                if l > 0 {
+                    format!("{:.1}×", h.max(0) as f64 / l as f64)
+                } else {
+                    "above".into()
+                }
+            )),
+            None if below(l, h, k) => Some(format!(
+                "{hn} has {h}, short of the {} events that judging {ln}'s {l} {} it needs",
+                events_to_hold(k),
+                self.relation()
+            )),
+            None => Some(format!(
+                "{ln} has {l} to {hn}'s {h}, not {}, but fewer than the {} events a failure \
+                 needs",
+                self.relation(),
+                events_to_fail()
+            )),
+        }
+    }
+}
+
+/// The verdict of a count claim's comparisons ([`verdict_of`]) and what its evidence adds:
+/// `why: …` (the failed comparisons) when it fails, `not judged: …` (the counts that fell
+/// short) when too few events bear on it.
+fn judge_counts(comparisons: &[Comparison<'_>]) -> (Verdict, String) {
+    let judged: Vec<Option<bool>> = comparisons.iter().map(Comparison::judged).collect();
+    let verdict = verdict_of(&judged);
+    let words = |keep: fn(Option<bool>) -> bool| {
+        comparisons
+            .iter()
+            .zip(&judged)
+            .filter(|(_, j)| keep(**j))
+            .filter_map(|(c, _)| c.words())
+            .collect::<Vec<_>>()
+            .join("; ")
     };
-    ((low * factor).max(high) >= factor * MIN_EVENTS as i64).then_some(holds)
+    let added = match verdict {
+        Verdict::Fails => format!("; why: {}", words(|j| j == Some(false))),
+        Verdict::TooFewEvents => format!("; not judged: {}", words(|j| j.is_none())),
+        _ => String::new(),
+    };
+    (verdict, added)
 }
 
 /// The verdict of comparisons of counts: fails if any judged one fails, else too few events if
@@ -142,7 +267,8 @@ fn minification(cases: &[&Case], holds: bool) -> Verdict {
 }
 
 /// The paper's claims, checked on these results, in the report's order. The evidence of a
-/// claim that fails ends with `why: …`.
+/// claim that fails ends with `why: …`, of one with too few events with `not judged: …`; both
+/// from the same numbers.
 pub fn claims(t: &Tables15, f: &Fly) -> Vec<Claim> {
     let mut out: Vec<Claim> = Vec::new();
     let why = |out: &mut Vec<Claim>, reason: String| {
@@ -321,7 +447,7 @@ pub fn claims(t: &Tables15, f: &Fly) -> Vec<Claim> {
         scope: format!("whole frame, N = 1 … 256 at each pitch; N = 32 at {at5}"),
         verdict: ss_verdict,
         evidence: format!(
-            "non-decreasing: {mono}; SS32 at 5°: {}",
+            "non-decreasing: {mono}; SS32 at 5°: {}{}",
             match (&ss32, short) {
                 (Some((c, r)), Some(n)) => format!(
                     "{} (M {:.2} of V {:.2} per column; {n} visible voxels unsampled over the \
@@ -332,6 +458,13 @@ pub fn claims(t: &Tables15, f: &Fly) -> Vec<Claim> {
                     c.columns
                 ),
                 _ => "missing".into(),
+            },
+            match short {
+                Some(n) if ss_verdict == Verdict::TooFewEvents => format!(
+                    "; not judged: SS32 left {n} visible voxels unsampled, fewer than the \
+                     {MIN_EVENTS} events \"below 1\" needs"
+                ),
+                _ => String::new(),
             }
         ),
     });
@@ -386,17 +519,20 @@ pub fn claims(t: &Tables15, f: &Fly) -> Vec<Claim> {
     let (a, s, p) = (bin(Mode::As), bin(Mode::Ss(Rate::N16)), bin(Mode::Ps));
     let flight = format!("{} frames from the pitch-5° view", f.frames);
     let (column_verdict, column_numbers) = match (a, s, p) {
-        (Some(a), Some(s), Some(p)) => (
-            verdict_of(&[compare(a, s, 1), compare(a, p, 10)]),
-            format!("AS {a}, SS16 {s}, PS {p}"),
+        (Some(a), Some(s), Some(p)) => {
+            let (v, added) = judge_counts(&as_ss16_ps(a, s, p));
+            (v, format!("AS {a}, SS16 {s}, PS {p}{added}"))
+        }
+        _ => (
+            Verdict::Fails,
+            "a mode is missing from the flight; why: the claim needs AS, SS16 and PS flown".into(),
         ),
-        _ => (Verdict::Fails, "a mode is missing from the flight".into()),
     };
     out.push(Claim {
-        claim:
-            "In Table 6 (one column), AS has fewer 6–60 changes than SS16, and at least 10× fewer \
-                than PS"
-                .into(),
+        claim: format!(
+            "In Table 6 (one column), AS has fewer 6–60 changes than SS16, and at least \
+             {FEWER}× fewer than PS"
+        ),
         scope: format!(
             "one column (column {}), changes of 6–60, {flight}",
             f.column
@@ -404,16 +540,8 @@ pub fn claims(t: &Tables15, f: &Fly) -> Vec<Claim> {
         verdict: column_verdict,
         evidence: format!("column {}: {column_numbers}", f.column),
     });
-    why(
-        &mut out,
-        match (a, s, p) {
-            (Some(a), Some(s), Some(p)) => fails_why(a, s, p),
-            _ => "a mode is missing from the flight".into(),
-        },
-    );
     if let Some(frame) = frame_flicker(f, &flight) {
         out.push(frame);
-        why(&mut out, frame_why(f));
     }
     if let Some(both) = both_axes(f, &flight) {
         out.push(both);
@@ -455,26 +583,31 @@ pub fn claims(t: &Tables15, f: &Fly) -> Vec<Claim> {
             _ => "no AS mode was run".into(),
         },
     );
+    debug_assert!(
+        out.iter()
+            .all(|c| (c.verdict == Verdict::Fails) == c.evidence.contains("; why: ")),
+        "a claim that fails says why, and only one that fails: {out:?}"
+    );
     out
 }
 
-/// Why a count claim `a < s, 10·a ≤ p` fails, in its own numbers.
-fn fails_why(a: i64, s: i64, p: i64) -> String {
-    let mut parts = Vec::new();
-    if compare(a, s, 1) == Some(false) {
-        parts.push(format!("AS has {a} to SS16's {s}, not fewer"));
-    }
-    if compare(a, p, 10) == Some(false) {
-        parts.push(format!(
-            "PS has {p}, {} AS's {a}, short of 10×",
-            if a > 0 {
-                format!("{:.1}×", p.max(0) as f64 / a as f64)
-            } else {
-                "above".into()
-            }
-        ));
-    }
-    parts.join("; ")
+/// The paper's Table 6 factor: AS has at least this many times fewer changes than PS.
+pub const FEWER: i64 = 10;
+
+/// Table 6's comparisons: AS below SS16, and [`FEWER`]× below PS.
+fn as_ss16_ps(a: i64, s: i64, p: i64) -> [Comparison<'static>; 2] {
+    [
+        Comparison {
+            low: ("AS", a),
+            high: ("SS16", s),
+            factor: 1,
+        },
+        Comparison {
+            low: ("AS", a),
+            high: ("PS", p),
+            factor: FEWER,
+        },
+    ]
 }
 
 /// A mode's flicker over the whole frame, as the frame's claim counts it: large changes (6
@@ -502,8 +635,8 @@ fn frame_scope(f: &Fly, flight: &str) -> String {
 }
 
 /// Table 6's claim over the whole frame (`None` when every column was not counted): AS's
-/// large changes, in excess of the reference's own, fewer than SS16's and at least 10× fewer
-/// than PS's.
+/// large changes, in excess of the reference's own, fewer than SS16's and at least [`FEWER`]×
+/// fewer than PS's.
 fn frame_flicker(f: &Fly, flight: &str) -> Option<Claim> {
     let (a, s, p) = (
         frame_count(f, Mode::As)?,
@@ -521,15 +654,19 @@ fn frame_flicker(f: &Fly, flight: &str) -> Option<Claim> {
         .and_then(|r| r.large_changes)
         .map(|c| format!("; the reference's own {c}"))
         .unwrap_or_default();
+    let (verdict, mut added) = judge_counts(&as_ss16_ps(a, s, p));
+    if verdict == Verdict::Fails {
+        added += &frame_why(f);
+    }
     Some(Claim {
-        claim:
-            "Over the whole frame, AS flickers less than SS16, and at least 10× less than PS (6+ \
-                changes, every column)"
-                .into(),
+        claim: format!(
+            "Over the whole frame, AS flickers less than SS16, and at least {FEWER}× less than \
+             PS (6+ changes, every column)"
+        ),
         scope: frame_scope(f, flight),
-        verdict: verdict_of(&[compare(a, s, 1), compare(a, p, 10)]),
+        verdict,
         evidence: format!(
-            "{over}, {} columns × {} frames: AS {a}, SS16 {s}, PS {p} (PS/AS {}){truth}",
+            "{over}, {} columns × {} frames: AS {a}, SS16 {s}, PS {p} (PS/AS {}){truth}{added}",
             f.size.0,
             f.frames,
             if a > 0 {
@@ -543,7 +680,7 @@ fn frame_flicker(f: &Fly, flight: &str) -> Option<Claim> {
 
 /// `as2`'s claim over the whole frame (issue 36's targets; `None` when every column was not
 /// counted or `as2` was not flown): its large changes, in excess of the reference's own, at
-/// most a tenth of PS's and fewer than `as`'s and SS16's.
+/// most a [`FEWER`]th of PS's and fewer than `as`'s and SS16's.
 fn both_axes(f: &Fly, flight: &str) -> Option<Claim> {
     let (w, a, s, p) = (
         frame_count(f, Mode::As2)?,
@@ -551,31 +688,205 @@ fn both_axes(f: &Fly, flight: &str) -> Option<Claim> {
         frame_count(f, Mode::Ss(Rate::N16))?,
         frame_count(f, Mode::Ps)?,
     );
+    let (verdict, added) = judge_counts(&[
+        Comparison {
+            low: ("as2", w),
+            high: ("PS", p),
+            factor: FEWER,
+        },
+        Comparison {
+            low: ("as2", w),
+            high: ("AS", a),
+            factor: 1,
+        },
+        Comparison {
+            low: ("as2", w),
+            high: ("SS16", s),
+            factor: 1,
+        },
+    ]);
     Some(Claim {
-        claim: "Over the whole frame, as2 (exact in both axes) flickers at most 1/10 as much as PS, and \
-                less than AS and SS16 (6+ changes, every column)"
-            .into(),
+        claim: format!(
+            "Over the whole frame, as2 (exact in both axes) flickers at most 1/{FEWER} as much \
+             as PS, and less than AS and SS16 (6+ changes, every column)"
+        ),
         scope: frame_scope(f, flight),
-        verdict: verdict_of(&[compare(w, p, 10), compare(w, a, 1), compare(w, s, 1)]),
-        evidence: format!("as2 {w}, AS {a}, SS16 {s}, PS {p}"),
+        verdict,
+        evidence: format!("as2 {w}, AS {a}, SS16 {s}, PS {p}{added}"),
     })
 }
 
-/// Why the frame's claim fails, from the same flight: its own comparison, and what the one
-/// column of Table 6 counted beside it.
+/// What the frame's claim adds to its why from the same flight: what the one column of Table
+/// 6 counted beside it, and where the frame's changes are split by cause.
 fn frame_why(f: &Fly) -> String {
-    let (a, s, p) = (
-        frame_count(f, Mode::As).unwrap_or(0),
-        frame_count(f, Mode::Ss(Rate::N16)).unwrap_or(0),
-        frame_count(f, Mode::Ps).unwrap_or(0),
-    );
     let column = |m: Mode| f.mode(m).map_or(0, |x| x.column_large_changes);
     format!(
-        "{}; in the one column of Table 6 AS has {} and PS {} large changes; \
+        "; in the one column of Table 6 AS has {} and PS {} large changes; \
          docs/measurements.md, \"Whole-frame flicker\", splits the frame's changes by cause \
          (`fly --causes`, `--columns-per-pixel 16`)",
-        fails_why(a, s, p),
         column(Mode::As),
         column(Mode::Ps)
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::fixture;
+
+    /// The rule is one: the words the report prints are made from the constants `compare`
+    /// uses, and say what it does. Before: the report said "at least 10 events on the side
+    /// the claim puts low", while the code judged AS's 1 change against PS's 100 and more.
+    #[test]
+    fn the_rule_in_words_is_the_rule_in_code() {
+        let hold = events_to_hold(FEWER);
+        // AS with 1 (or 0) change is judged 10× below PS once PS has `hold`, not before.
+        assert_eq!(compare(1, hold, FEWER), Some(true));
+        assert_eq!(compare(0, hold, FEWER), Some(true));
+        assert_eq!(compare(1, hold - 1, FEWER), None);
+        // A failure needs `events_to_fail` on the low side.
+        assert_eq!(
+            compare(events_to_fail(), events_to_fail() + 1, FEWER),
+            Some(false)
+        );
+        assert_eq!(compare(events_to_fail() - 1, 0, 1), None);
+        assert_eq!(compare(events_to_fail(), 0, 1), Some(false));
+        let words = count_rule();
+        assert!(!words.contains("on the side the claim puts low"), "{words}");
+        assert!(
+            words.contains(&format!("at least {hold} on the higher side")),
+            "{words}"
+        );
+        assert!(
+            words.contains(&format!(
+                "to fail only when the lower count has at least {} events",
+                events_to_fail()
+            )),
+            "{words}"
+        );
+    }
+
+    /// The three cases at the paper's geometry (a pixel one voxel wide) with every mode's
+    /// coverage 0.5 and RMSE 5.
+    fn tables() -> Tables15 {
+        fixture::paper_tables(true, [1.0, 1.0, 1.0])
+    }
+
+    fn find<'a>(all: &'a [Claim], start: &str) -> &'a Claim {
+        all.iter()
+            .find(|c| c.claim.starts_with(start))
+            .unwrap_or_else(|| panic!("no claim starts with {start:?}: {all:?}"))
+    }
+
+    /// Table 6's claim holds with AS at 1 change when PS has the events the rule asks of the
+    /// high side, and is not judged, saying which count fell short, when PS has fewer.
+    #[test]
+    fn table_6_holds_on_the_high_sides_events_and_says_when_it_cannot() {
+        let hold = events_to_hold(FEWER) as u64;
+        let f = fixture::flight(
+            400,
+            &[
+                (Mode::As, 1, 1),
+                (Mode::Ss(Rate::N16), 30, 30),
+                (Mode::Ps, hold, hold as i64),
+            ],
+        );
+        let all = claims(&tables(), &f);
+        let column = find(&all, "In Table 6");
+        assert_eq!(column.verdict, Verdict::Holds, "{}", column.evidence);
+        let frame = find(&all, "Over the whole frame, AS");
+        assert_eq!(frame.verdict, Verdict::Holds, "{}", frame.evidence);
+
+        let short = hold - 1;
+        let f = fixture::flight(
+            400,
+            &[
+                (Mode::As, 1, 1),
+                (Mode::Ss(Rate::N16), 30, 30),
+                (Mode::Ps, short, short as i64),
+            ],
+        );
+        let all = claims(&tables(), &f);
+        for start in ["In Table 6", "Over the whole frame, AS"] {
+            let c = find(&all, start);
+            assert_eq!(c.verdict, Verdict::TooFewEvents, "{}", c.evidence);
+            assert!(
+                c.evidence.contains(&format!(
+                    "not judged: PS has {short}, short of the {hold} events that judging AS's 1 \
+                     at least {FEWER}× fewer than it needs"
+                )),
+                "{}",
+                c.evidence
+            );
+        }
+    }
+
+    /// Before: as2's claim failed with no reason. Its why comes from its own counts.
+    #[test]
+    fn the_as2_claim_says_why_it_fails() {
+        let f = fixture::flight(
+            400,
+            &[
+                (Mode::As, 0, 40),
+                (Mode::As2, 0, 50),
+                (Mode::Ss(Rate::N16), 0, 45),
+                (Mode::Ps, 0, 300),
+            ],
+        );
+        let all = claims(&tables(), &f);
+        let c = find(&all, "Over the whole frame, as2");
+        assert_eq!(c.verdict, Verdict::Fails);
+        for said in [
+            "why: ",
+            "PS has 300, 6.0× as2's 50, short of 10×",
+            "as2 has 50 to AS's 40, not fewer",
+            "as2 has 50 to SS16's 45, not fewer",
+        ] {
+            assert!(
+                c.evidence.contains(said),
+                "{said:?} missing: {}",
+                c.evidence
+            );
+        }
+    }
+
+    /// Every claim fails on these numbers, and every one says why.
+    #[test]
+    fn every_failing_claim_says_why() {
+        let mut t = tables();
+        for c in &mut t.cases {
+            // SS coverage falls with N; PS's coverage rises as the pitch falls.
+            c.coverage_by_rate = vec![(1, 0.5), (2, 0.4)];
+            for r in &mut c.modes {
+                if r.mode == Mode::Ps {
+                    r.coverage = 1.0 - c.pitch / 100.0;
+                    r.rmse = 1.0;
+                }
+                if r.mode == Mode::As {
+                    r.hits = 1000.0;
+                }
+            }
+        }
+        let f = fixture::flight(
+            400,
+            &[
+                (Mode::As, 50, 50),
+                (Mode::As2, 60, 60),
+                (Mode::Ss(Rate::N16), 20, 20),
+                (Mode::Ps, 100, 100),
+            ],
+        );
+        let all = claims(&t, &f);
+        assert!(all.len() >= 8, "{all:?}");
+        for c in &all {
+            assert_eq!(c.verdict, Verdict::Fails, "{}: {}", c.claim, c.evidence);
+            let why = c.evidence.split("; why: ").nth(1).unwrap_or("");
+            assert!(
+                why.chars().any(|ch| ch.is_ascii_digit()),
+                "{}: no why from numbers: {}",
+                c.claim,
+                c.evidence
+            );
+        }
+    }
 }

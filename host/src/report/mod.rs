@@ -5,6 +5,8 @@
 pub mod apng;
 pub mod counts;
 pub mod document;
+#[cfg(test)]
+pub(crate) mod fixture;
 pub mod flight;
 pub mod glint;
 pub mod html;
