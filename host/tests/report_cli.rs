@@ -12,6 +12,7 @@ use std::sync::OnceLock;
 
 use common::{assert_one_line_error, footprint};
 use footprint_host::experiment::claims::compare;
+use footprint_host::report::number::thousands;
 use serde_json::Value;
 
 /// The verdict the claims' rule gives comparisons of counts, as report.json spells it.
@@ -282,7 +283,7 @@ fn the_differences_are_the_maps_own() {
         &format!("a relief of {relief:.1} m"),
         "over this map's 12.5 m voxels",
         "(29 km) away",
-        "so they are placed on the map",
+        "views are placed on the map",
         "the first hit brought to",
         "Every view's first hit is on the map itself",
         "mirrored copies of the map",
@@ -386,6 +387,87 @@ fn the_fig13_pixel_is_chosen_and_explained() {
     assert!(r.md.contains("the pixel where SS4 and AS differ most"));
     // The picture shows the chosen pixel: its colours are the ones compared.
     assert_eq!(r.json["pixel"][1]["color"], p["colors"][1]);
+}
+
+/// Issue 50, item 5: the sentences that state results are made from the numbers beside them.
+/// Before: the report said "the eye at the fit-first-hit height" of views moved onto the map,
+/// "at least 10 events on the side the claim puts low" of a rule that asks the high side, that
+/// "the upper half of the image is drawn from coarse pyramid voxels" and that "a filter that
+/// lowers distant ridges shows terrain from too far away" whatever its own table said.
+#[test]
+fn the_sentences_come_from_the_numbers() {
+    let r = run();
+    let intro = r.md.lines().find(|l| l.starts_with("Cohen-Or's")).unwrap();
+    let cases = r.json["tables"]["cases"].as_array().unwrap();
+    assert!(
+        !intro.contains("the eye at the fit-first-hit height"),
+        "{intro}"
+    );
+    assert!(
+        intro.contains("placed on the map (`--geometry on-map`)"),
+        "{intro}"
+    );
+    for c in cases {
+        let px = format!("{:.2}", c["pixel_voxels"].as_f64().unwrap());
+        let pitch = c["pitch"].as_f64().unwrap();
+        assert!(
+            intro.contains(&format!("{px} at {pitch}°"))
+                || intro.contains(&format!("{px} voxel wide at the first hit at {pitch}°")),
+            "{px} at {pitch}°: {intro}"
+        );
+    }
+    let rule = &r.json["claims_rule"];
+    assert!(
+        r.md.contains(&format!(
+            "at least {} on the higher side",
+            rule["events_to_hold_fewer"]
+        )),
+        "{rule}"
+    );
+    assert!(!r.md.contains("on the side the claim puts low"));
+    for c in r.json["claims"].as_array().unwrap() {
+        assert_eq!(
+            c["verdict"] == "fails",
+            c["evidence"].as_str().unwrap().contains("; why: "),
+            "{c}"
+        );
+    }
+    let section = &r.md[r.md.find("## Pyramid heights").unwrap()..];
+    let section = &section[..section.find("\n## ").unwrap_or(section.len())];
+    let study = r.json["pyramid_heights_pitch5"].as_array().unwrap();
+    let changed = &study[0]["changed_from_level0"];
+    assert!(
+        section.contains(&format!(
+            "{} of the {} pixels of the upper half",
+            thousands(changed["upper"].as_u64().unwrap()),
+            thousands(changed["upper_pixels"].as_u64().unwrap())
+        )),
+        "{changed}: {section}"
+    );
+    assert!(!section.contains("drawn from coarse pyramid voxels, and"));
+    assert!(!section.contains("shows terrain from too far away"));
+    // The filter named as having the lower AS error is the one with the lower AS error.
+    let as_rmse = |v: &Value| {
+        v["rmse"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e[0] == "as")
+            .unwrap()[1]
+            .as_f64()
+            .unwrap()
+    };
+    let (a, b) = (&study[0], &study[1]);
+    let lower = if as_rmse(a) < as_rmse(b) { a } else { b };
+    if as_rmse(a) != as_rmse(b) {
+        assert!(
+            section.contains(&format!(
+                "`{}` has the lower RMSE in",
+                lower["pyramid"].as_str().unwrap()
+            )),
+            "{section}"
+        );
+    }
 }
 
 #[test]

@@ -326,6 +326,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         differences: &diffs,
         glint: &glint,
         glint_note: &glint_note,
+        size,
     });
     write_text(&file("REPORT.md")?, &md)?;
     write_text(&file("index.html")?, &html::page("footprint report", &md))?;
@@ -340,7 +341,8 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         "lod": value_name(&args.lod), "tables": tables, "fly": flight, "claims": claims,
         "fig13_pixel": choice, "pixel": pixel_json, "footprint": fp_json,
         "pyramid_heights_pitch5": study, "differences": diffs, "glint": glint,
-        "paper": document::paper_numbers()});
+        "paper": document::paper_numbers(), "claims_rule": claims_rule(),
+        "pyramid_shifts_px": heights::SHIFTS_PX});
     write_text(&file("report.json")?, &serde_json::to_string_pretty(&data)?)?;
     folder.finish()?;
     bar.finish_and_clear();
@@ -349,6 +351,14 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         crate::output::shown(&args.out.join("REPORT.md"))
     )?;
     Ok(())
+}
+
+/// The constants of the claims' rule for counts of events, for report.json: the numbers the
+/// rule's words in REPORT.md are made from ([`crate::experiment::claims::count_rule`]).
+fn claims_rule() -> serde_json::Value {
+    use crate::experiment::claims::{events_to_fail, events_to_hold, FEWER, MIN_EVENTS};
+    json!({"min_events": MIN_EVENTS, "fewer": FEWER, "events_to_hold_fewer": events_to_hold(FEWER),
+        "events_to_fail": events_to_fail()})
 }
 
 /// The glint flight of the report, over the report's own map (with `--material wet` every map

@@ -2,12 +2,13 @@
 //! paper's claims, the three views, Tables 1–6, the diagnostic pictures, the pyramid's height
 //! filters and where our numbers differ from the paper's.
 
-use crate::experiment::claims::{claims, compare, MIN_EVENTS};
+use crate::experiment::claims::{claims, compare, count_rule, MIN_EVENTS};
 use crate::experiment::differences::{Differences, PAPER_SS_COVERAGE_5, PAPER_TABLE6, PAPER_V_L_5};
 use crate::experiment::fly;
 use crate::experiment::glint::Glint;
-use crate::experiment::heights::Variant;
+use crate::experiment::heights::{Changed, Variant, SHIFT_MODE};
 use crate::experiment::inspect::PixelChoice;
+use crate::experiment::reference::REFERENCE_COLUMNS;
 use crate::experiment::table::Tables15;
 use crate::report::number::thousands;
 
@@ -83,22 +84,160 @@ fn list(v: &[(String, f64)]) -> String {
         .join(", ")
 }
 
+/// What the report says its ground truth is: the one place that words it, for the truth's
+/// module to update when the truth changes (TODO(truth): take the words from the new host
+/// `truth` module when it replaces `experiment::reference`).
+pub fn truth_words() -> String {
+    reference_words(REFERENCE_COLUMNS)
+}
+
+/// The ground truth's settings with `columns` columns per pixel (the reference flight's may
+/// differ from the tables' [`REFERENCE_COLUMNS`]), in words: [`truth_words`]'s one source.
+pub fn reference_words(columns: u32) -> String {
+    format!("`as-exact` at level 0, {columns} columns per pixel")
+}
+
+/// A share as a percentage: `1.2 %`, `0.04 %`, `37 %`.
+fn percent(share: f64) -> String {
+    let p = 100.0 * share;
+    if p == 0.0 || p >= 10.0 {
+        format!("{p:.0} %")
+    } else if p >= 0.1 {
+        format!("{p:.1} %")
+    } else {
+        format!("{p:.2} %")
+    }
+}
+
+/// How many pixels of the pitch-5° view a pyramid changes against level 0, in words:
+/// `978 of the 80,000 pixels of the upper half (1.2 %) and 12 of the lower half's 80,000
+/// (0.02 %)`.
+fn changed_words(c: &Changed) -> String {
+    format!(
+        "{} of the {} pixels of the upper half ({}) and {} of the lower half's {} ({})",
+        thousands(c.upper),
+        thousands(c.upper_pixels),
+        percent(c.upper_share),
+        thousands(c.lower),
+        thousands(c.lower_pixels),
+        percent(c.lower_share)
+    )
+}
+
+/// The largest pitch shift the study tries, pixels.
+fn largest_shift() -> f64 {
+    crate::experiment::heights::SHIFTS_PX
+        .iter()
+        .fold(0.0f64, |m, s| m.max(s.abs()))
+}
+
+/// Where a pyramid's distant terrain stands, from its best shift: a positive shift (the camera
+/// looking further down matches the truth best) means its terrain stands lower in the image
+/// than the truth's.
+fn shift_words(v: &Variant) -> String {
+    let s = v.best_shift_px;
+    if s == 0.0 {
+        format!(
+            "`{}`'s best shift is 0: no pitch shift tried (±{} px) brings its upper half nearer \
+             the ground truth",
+            v.pyramid,
+            largest_shift()
+        )
+    } else {
+        format!(
+            "`{}`'s best shift is {s:+.4} px: its distant terrain stands {} px {} in the image \
+             than the ground truth's (the upper half's RMSE {:.2} → {:.2})",
+            v.pyramid,
+            s.abs(),
+            if s > 0.0 { "lower" } else { "higher" },
+            v.upper_rmse.0,
+            v.upper_rmse.1
+        )
+    }
+}
+
+/// Which of the two height filters (the study's first two rows) has the lower error, mode by
+/// mode, and where each puts the distant terrain: the sentence follows the table.
+fn filters_words(study: &[Variant]) -> String {
+    let [a, b, ..] = study else {
+        return String::new();
+    };
+    let (mut a_lower, mut b_lower, mut equal) = (Vec::new(), Vec::new(), Vec::new());
+    for ((m, ea), (_, eb)) in a.rmse.iter().zip(&b.rmse) {
+        let name = m.to_uppercase();
+        match ea.total_cmp(eb) {
+            std::cmp::Ordering::Less => a_lower.push(name),
+            std::cmp::Ordering::Greater => b_lower.push(name),
+            std::cmp::Ordering::Equal => equal.push(name),
+        }
+    }
+    let all = a.rmse.len();
+    let lower = |v: &Variant, modes: &[String]| match modes.len() {
+        0 => None,
+        n if n == all => Some(format!("`{}` has the lower RMSE in every mode", v.pyramid)),
+        _ => Some(format!(
+            "`{}` has the lower RMSE in {}",
+            v.pyramid,
+            and_list(modes)
+        )),
+    };
+    let mut parts: Vec<String> = [lower(a, &a_lower), lower(b, &b_lower)]
+        .into_iter()
+        .flatten()
+        .collect();
+    if !equal.is_empty() {
+        parts.push(format!("the two are equal in {}", and_list(&equal)));
+    }
+    let quote = a
+        .rmse
+        .iter()
+        .zip(&b.rmse)
+        .find(|((m, _), _)| m == "as")
+        .or_else(|| a.rmse.iter().zip(&b.rmse).next())
+        .map(|((m, ea), (_, eb))| {
+            format!(
+                " ({} {ea:.2} with `{}`, {eb:.2} with `{}`)",
+                m.to_uppercase(),
+                a.pyramid,
+                b.pyramid
+            )
+        })
+        .unwrap_or_default();
+    let shifts = if a.best_shift_px == 0.0 && b.best_shift_px == 0.0 {
+        format!(
+            "both best shifts are 0: no pitch shift tried (±{} px) brings the upper half nearer \
+             the ground truth",
+            largest_shift()
+        )
+    } else {
+        format!("{}; {}", shift_words(a), shift_words(b))
+    };
+    format!("Here {}{quote}; {shifts}.", and_list(&parts))
+}
+
 /// The pyramid height filters compared at pitch 5° (`experiment::heights::compare`).
 fn pyramid_section(study: &[Variant]) -> String {
     let Some(first) = study.first() else {
         return String::new();
     };
-    let mut s = String::from(
-        "## Pyramid heights\n\nAt pitch 5° the upper half of the image is drawn from coarse \
-         pyramid voxels, and how their heights are made decides how far the rays see: a \
-         filter that lowers distant ridges shows terrain from too far away. *Shift* is the \
-         pitch change (pixels, positive = looking further down) that brings AS closest to the \
-         ground truth in the upper half; 0 means the distant terrain stands where it should. \
-         `silhouette` keeps the 2×2 block's maximum along the ray's major axis and the mean \
-         across it; `mean` is the 2×2 box average; `level 0` walks the map voxel by voxel \
-         (`--lod off`). Choose the filter with `--height-filter`.\n\n",
+    let shift = SHIFT_MODE.to_string().to_uppercase();
+    let mut s = String::from("## Pyramid heights\n\n");
+    s += &format!(
+        "At pitch 5°, {shift}'s image through the report's pyramid (`{}`) differs from the same \
+         view walked through level 0 alone in {}: those are the pixels the pyramid's coarse \
+         voxels change. ",
+        first.pyramid,
+        changed_words(&first.changed_from_level0)
     );
-    s += "| Pyramid | Shift (px) | AS upper half, unshifted → shifted |";
+    s += &filters_words(study);
+    s += &format!(
+        " *Shift* is the pitch change (pixels, positive = looking further down) that brings \
+         {shift} closest to the ground truth in the upper half; 0 means no shift tried does \
+         better than none. `silhouette` keeps the 2×2 block's maximum along the ray's major \
+         axis and the mean across it; `mean` is the 2×2 box average; `level 0` walks the map \
+         voxel by voxel (`--lod off`). Choose the filter with `--height-filter`.\n\n"
+    );
+    s += &format!("| Pyramid | Shift (px) | {shift} upper half, unshifted → shifted |");
     for (m, _) in &first.rmse {
         s += &format!(" {} |", m.to_uppercase());
     }
@@ -115,7 +254,11 @@ fn pyramid_section(study: &[Variant]) -> String {
         }
         s += "\n";
     }
-    s += "\nRMSE against the ground truth in 8-bit levels (the whole image unless stated).\n\n";
+    s += &format!(
+        "\nRMSE against the ground truth ({}) in 8-bit levels (the whole image unless \
+         stated).\n\n",
+        truth_words()
+    );
     s
 }
 
@@ -145,6 +288,8 @@ pub struct Document<'a> {
     pub study: &'a [Variant],
     /// The numbers of "where our numbers differ".
     pub differences: &'a Differences,
+    /// The size of the views, pixels.
+    pub size: crate::view::Size,
 }
 
 /// A distance or height in metres, in km from 1 km up.
@@ -247,14 +392,30 @@ pub fn differences_section(d: &Differences, t: &Tables15) -> String {
                 and_list(&eyes)
             );
         } else {
+            let paper: Vec<String> = d
+                .views
+                .iter()
+                .filter(|v| v.placement_note.is_some())
+                .map(|v| match v.paper_mirrored_fraction {
+                    Some(f) => format!("{:.0} % ({}°)", 100.0 * f, v.pitch),
+                    None => format!("none ({}°: it cannot be fitted)", v.pitch),
+                })
+                .collect();
             s += &format!(
                 "- **Eye heights** are in metres over this map's {} m voxels: the paper's \
-                 fit-first-hit rule puts the first hit 1/pixel-angle ≈ {:.0} voxels ({}) away. On \
-                 this map the paper's views would show mostly its mirrored copies, so they are \
-                 placed on the map: {}. The eyes of the views measured are at {}.",
+                 fit-first-hit rule puts the first hit 1/pixel-angle ≈ {:.0} voxels ({}) away. \
+                 From the map's centre heading north the paper's views show {} mirrored copies \
+                 of the map; a view is placed on the map (`--geometry on-map`) when its first \
+                 hit is off the map or more than {:.0} % of the terrain it shows is mirrored, \
+                 so {} of the {} views are placed on the map: {}. The eyes of the views measured \
+                 are at {}.",
                 num(m.spacing_m),
                 d.target_voxels,
                 dist(d.target_m),
+                and_list(&paper),
+                100.0 * d.on_map_goal,
+                notes.len(),
+                d.views.len(),
                 notes.join("; "),
                 and_list(&eyes)
             );
@@ -351,11 +512,17 @@ pub fn differences_section(d: &Differences, t: &Tables15) -> String {
         } else {
             "less of each footprint is hidden here than in the paper's"
         };
+        let also = if f.V_walk == f.V {
+            String::new()
+        } else {
+            format!(" (the area modes' walk, Table 1's V, sees {:.0})", f.V)
+        };
         s += &format!(
-            "- **Footprint length.** At 5° our columns see V = {:.0} visible voxels of L = {:.0} \
-             steps (V/L = {:.2}), against the paper's {:.0} of {:.0} ({:.2}): {hidden} (this map's \
-             relief is {:.2} % of its extent, its mean slope {:.1}°), and {walk}.",
-            f.V,
+            "- **Footprint length.** At 5° PS's columns see {:.0} visible voxels of their L = \
+             {:.0} steps, V/L = {:.2}{also}, against the paper's V = {:.0} of L = {:.0} ({:.2}): \
+             {hidden} (this map's relief is {:.2} % of its extent, its mean slope {:.1}°), and \
+             {walk}.",
+            f.V_walk,
             f.L,
             f.visible_per_step,
             PAPER_V_L_5.0,
@@ -432,10 +599,18 @@ pub fn differences_section(d: &Differences, t: &Tables15) -> String {
         );
         if t.stable {
             let ratio = t.as_ms / t.ps_ms;
-            let verdict = if ratio > 1.25 {
-                "more than the paper's \"marginal increase\" over PS"
+            let verdict = if ratio > t.marginal {
+                format!(
+                    "above {}×, the most this report takes for the paper's \"marginal \
+                     increase\" over PS",
+                    t.marginal
+                )
             } else {
-                "the paper's \"marginal increase\" over PS"
+                format!(
+                    "at most {}×, what this report takes for the paper's \"marginal \
+                     increase\" over PS",
+                    t.marginal
+                )
             };
             s += &format!("- **Time.** At 5°, {times}: {ratio:.1}×, {verdict}.\n");
         } else {
@@ -449,11 +624,13 @@ pub fn differences_section(d: &Differences, t: &Tables15) -> String {
     }
     if !d.rmse5.is_empty() {
         let why = if !d.lod {
-            "These views walk level 0 (`--lod off`), as the ground truth does, so what is left is \
-             each sampler's own error: along the column, and across it (one column per pixel \
-             against the truth's 16); run the same command with `--lod on` for the pyramid's \
-             share."
-                .to_owned()
+            format!(
+                "These views walk level 0 (`--lod off`), as the ground truth ({}) does, so what \
+                 is left is each sampler's own error: along the column, and across it (one \
+                 column per pixel against the truth's {REFERENCE_COLUMNS}); run the same command \
+                 with `--lod on` for the pyramid's share.",
+                truth_words()
+            )
         } else {
             let of = |v: &[(String, f64)], m: &str| v.iter().find(|(n, _)| n == m).map(|e| e.1);
             let pyramid = match (of(&d.rmse5, "as"), of(&d.level0_rmse5, "as")) {
@@ -465,10 +642,22 @@ pub fn differences_section(d: &Differences, t: &Tables15) -> String {
                 ),
                 _ => String::new(),
             };
+            let changed = d
+                .pyramid_changed5
+                .map(|c| {
+                    format!(
+                        " At 5°, {}'s image through the pyramid differs from level 0's in {} \
+                         (*Pyramid heights*).",
+                        SHIFT_MODE.to_string().to_uppercase(),
+                        changed_words(&c)
+                    )
+                })
+                .unwrap_or_default();
             format!(
-                "Every LOD mode samples coarse pyramid voxels at a distance while the ground \
-                 truth walks level 0.{pyramid} Run the same command with `--lod off` for every \
-                 table without the pyramid."
+                "These views walk the pyramid (`--lod on`) while the ground truth is {}.\
+                 {changed}{pyramid} Run the same command with `--lod off` for every table \
+                 without the pyramid.",
+                truth_words()
             )
         };
         s += &format!(
@@ -500,32 +689,48 @@ fn order_words(fl: &crate::experiment::differences::FlightFacts, order: &str) ->
     }
 }
 
-/// The whole report as Markdown.
-pub fn markdown(doc: &Document<'_>) -> String {
-    let (t, f) = (doc.tables, doc.flight);
+/// The report's first paragraph: the map, the image `size`, how the views of `t` were placed
+/// and how wide a pixel is at each first hit ([`crate::report::tables::views_words`]), the
+/// walk, and the `command` that regenerates the report.
+fn intro(source: &str, command: &str, t: &Tables15, size: crate::view::Size) -> String {
     let walk = if t.lod {
         "the multiresolution pyramid (`--lod on`)"
     } else {
         "pyramid level 0 alone (`--lod off`)"
     };
-    let mut s = String::from("# footprint: exact antialiasing of textured terrain, reproduced\n\n");
-    s += &format!(
-        "Cohen-Or's experiments (Sects. 4–7) on {}, 400×400, FOV 10°, the eye at the \
-         fit-first-hit height; the views walk {walk}. Regenerate this report with:\n\n\
-         ```sh\n{}\n```\n\n",
-        doc.source, doc.command
-    );
-    s += &format!(
+    let views = crate::report::tables::views_words(t);
+    format!(
+        "Cohen-Or's experiments (Sects. 4–7) on {source}, {}×{} pixels, FOV {}°.{} The views \
+         walk {walk}. Regenerate this report with:\n\n```sh\n{command}\n```\n\n",
+        size.width,
+        size.height,
+        footprint_scenes::view::PAPER_FOV_DEG,
+        if views.is_empty() {
+            String::new()
+        } else {
+            format!(" {views}")
+        },
+    )
+}
+
+/// The claims' preamble: what a verdict rests on ([`count_rule`]) and the table's header.
+fn claims_preamble() -> String {
+    format!(
         "## The paper's claims\n\nEach claim names its scope and quotes the numbers it rests \
-         on. A claim comparing counts of events (changes between frames, visible voxels left \
-         unsampled) is judged only when they are enough to tell the comparison from noise: at \
-         least {MIN_EVENTS} events on the side the claim puts low (so a claim of 10× fewer \
-         needs at least {} on the other); below that it is *too few events to judge*. The \
-         paper's coverage trends are about minification (a pixel wider than a voxel); where a \
-         case is magnified they are not judged. A claim that fails says why, from the same \
-         numbers.\n\n| Claim | Scope | Holds | Measured |\n|---|---|---|---|\n",
-        10 * MIN_EVENTS
-    );
+         on. {} The paper's coverage trends are about minification (a pixel wider than a \
+         voxel); where a case is magnified they are not judged. A claim that fails says why \
+         (`why: …`), from the same numbers.\n\n| Claim | Scope | Holds | Measured |\n\
+         |---|---|---|---|\n",
+        count_rule()
+    )
+}
+
+/// The whole report as Markdown.
+pub fn markdown(doc: &Document<'_>) -> String {
+    let (t, f) = (doc.tables, doc.flight);
+    let mut s = String::from("# footprint: exact antialiasing of textured terrain, reproduced\n\n");
+    s += &intro(doc.source, doc.command, t, doc.size);
+    s += &claims_preamble();
     for c in claims(t, f) {
         s += &format!(
             "| {} | {} | {} | {} |\n",
@@ -562,4 +767,142 @@ pub fn markdown(doc: &Document<'_>) -> String {
     s += &crate::report::glint::section(doc.glint, doc.glint_note);
     s += &differences_section(doc.differences, t);
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::fixture;
+    use crate::view::Size;
+
+    const SIZE: Size = Size {
+        width: 400,
+        height: 400,
+    };
+
+    /// Before: "the eye at the fit-first-hit height" and "FOV 10°, fit-first-hit" while the
+    /// views were moved onto the map, a pixel 0.42, 0.30 and 0.12 voxel wide at the first hit.
+    #[test]
+    fn the_views_are_described_as_placed() {
+        let moved = fixture::paper_tables(false, [0.42, 0.30, 0.12]);
+        let text = intro("survey.asc", "footprint report", &moved, SIZE)
+            + &crate::report::tables::markdown(&moved, "survey.asc");
+        for wrong in [
+            "the eye at the fit-first-hit height",
+            "FOV 10°, fit-first-hit",
+        ] {
+            assert!(!text.contains(wrong), "{wrong:?} in:\n{text}");
+        }
+        for said in [
+            "400×400 pixels, FOV 10°",
+            "The views at 40°, 20° and 5° are placed on the map (`--geometry on-map`), not the \
+             paper's",
+            "the first hit brought nearer than the fit-first-hit distance",
+            "A pixel is 0.42 voxel wide at the first hit at 40°, 0.30 at 20° and 0.12 at 5°",
+        ] {
+            assert!(text.contains(said), "{said:?} missing from:\n{text}");
+        }
+        // The paper's own views say so, with their own footprints.
+        let paper = fixture::paper_tables(true, [1.0, 1.0, 1.0]);
+        let text = intro("built-in", "footprint report", &paper, SIZE);
+        for said in [
+            "The views at 40°, 20° and 5° are the paper's: from the map's centre heading north, \
+             the eye at the fit-first-hit height",
+            "A pixel is 1.00 voxel wide at the first hit at 40°, 1.00 at 20° and 1.00 at 5°",
+        ] {
+            assert!(text.contains(said), "{said:?} missing from:\n{text}");
+        }
+    }
+
+    /// Before: "at least 10 events on the side the claim puts low", while the code asked the
+    /// high side for them. The preamble is the rule's own words.
+    #[test]
+    fn the_claims_preamble_is_the_rule_the_claims_use() {
+        let text = claims_preamble();
+        assert!(text.contains(&count_rule()), "{text}");
+        assert!(!text.contains("on the side the claim puts low"), "{text}");
+    }
+
+    /// The pyramid study at 5° as in the issue: `mean` with shift 0 and a lower RMSE than
+    /// `silhouette` in every mode; the pyramid changes 978 pixels, 1.2 % of the upper half.
+    fn study(mean_shift: f64) -> Vec<Variant> {
+        let changed = Changed::new(978, 80_000, 16, 80_000);
+        vec![
+            fixture::variant("silhouette", &[("as", 6.22), ("ps", 9.1)], 0.0, changed),
+            fixture::variant("mean", &[("as", 6.18), ("ps", 9.0)], mean_shift, changed),
+            fixture::variant(
+                "level 0",
+                &[("as", 6.1), ("ps", 8.9)],
+                0.0,
+                Changed::default(),
+            ),
+        ]
+    }
+
+    /// Before: "the upper half of the image is drawn from coarse pyramid voxels" and "a filter
+    /// that lowers distant ridges shows terrain from too far away", whatever the numbers.
+    #[test]
+    fn the_pyramid_section_follows_its_table() {
+        let text = pyramid_section(&study(0.0));
+        for wrong in [
+            "the upper half of the image is drawn from coarse pyramid voxels",
+            "shows terrain from too far away",
+        ] {
+            assert!(!text.contains(wrong), "{wrong:?} in:\n{text}");
+        }
+        for said in [
+            "978 of the 80,000 pixels of the upper half (1.2 %)",
+            "16 of the lower half's 80,000 (0.02 %)",
+            "`mean` has the lower RMSE in every mode (AS 6.22 with `silhouette`, 6.18 with \
+             `mean`)",
+            "both best shifts are 0: no pitch shift tried (±0.25 px) brings the upper half \
+             nearer the ground truth",
+            "| AS-EXACT upper half, unshifted → shifted |",
+        ] {
+            assert!(text.contains(said), "{said:?} missing from:\n{text}");
+        }
+        // A shift is said as the table has it.
+        let text = pyramid_section(&study(0.125));
+        assert!(
+            text.contains(
+                "`mean`'s best shift is +0.1250 px: its distant terrain stands 0.125 px lower"
+            ),
+            "{text}"
+        );
+        // Mixed: each filter is named for the modes it wins.
+        let mut mixed = study(0.0);
+        mixed[0].rmse[1].1 = 8.0;
+        let text = pyramid_section(&mixed);
+        assert!(
+            text.contains(
+                "`silhouette` has the lower RMSE in PS and `mean` has the lower RMSE in AS"
+            ) || text.contains("`mean` has the lower RMSE in AS"),
+            "{text}"
+        );
+        assert!(!text.contains("in every mode"), "{text}");
+    }
+
+    /// The differences section says what the pyramid changes and where the views came from,
+    /// from the numbers.
+    #[test]
+    fn the_differences_say_what_was_measured() {
+        let moved = fixture::paper_tables(false, [0.42, 0.30, 0.12]);
+        let changed = study(0.0)[0].changed_from_level0;
+        let d = fixture::differences(&moved, Some(changed), &[("as", 6.22), ("ps", 9.1)]);
+        let text = differences_section(&d, &moved);
+        for wrong in [
+            "Every LOD mode samples coarse pyramid voxels at a distance",
+            "would show mostly its mirrored copies",
+        ] {
+            assert!(!text.contains(wrong), "{wrong:?} in:\n{text}");
+        }
+        for said in [
+            "the paper's views show 80 % (40°), 80 % (20°) and 80 % (5°) mirrored copies",
+            "so 3 of the 3 views are placed on the map",
+            "differs from level 0's in 978 of the 80,000 pixels of the upper half (1.2 %)",
+            "0.42 voxel at 40°",
+        ] {
+            assert!(text.contains(said), "{said:?} missing from:\n{text}");
+        }
+    }
 }

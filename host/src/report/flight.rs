@@ -29,9 +29,9 @@ fn table(f: &fly::Fly, get: &dyn Fn(&fly::ModeFly) -> Option<fly::Histogram>) ->
 fn excess(f: &fly::Fly, reference: &fly::ModeFly) -> String {
     let frame = f.modes.iter().any(|m| m.large_changes.is_some());
     let mut s = format!(
-        "\nAgainst the reference flight (`as-exact` at level 0, {} columns per pixel): large \
-         changes (6 and more) and the excess over the reference's own ({} in the column{}).\n\n",
-        f.reference_columns.unwrap_or(0),
+        "\nAgainst the reference flight ({}): large changes (6 and more) and the excess over \
+         the reference's own ({} in the column{}).\n\n",
+        crate::report::document::reference_words(f.reference_columns.unwrap_or(0)),
         thousands(reference.column_large_changes),
         reference.large_changes.map_or(String::new(), |c| format!(
             ", {} over the frame",

@@ -28,6 +28,95 @@ pub fn geometry(c: &Case) -> String {
     )
 }
 
+/// `a`, `a and b`, `a, b and c`.
+fn and_list(items: &[String]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// How a case's view was placed, from its [`Case::view`]: the paper's, or what placing it on
+/// the map changed (after "the views at 40° and 20° are").
+fn placed(c: &Case) -> &'static str {
+    let v = &c.view;
+    let nearer = v.first_hit_m < v.paper_first_hit_m * (1.0 - 1e-9);
+    match (v.moved, nearer) {
+        (false, false) => {
+            "the paper's: from the map's centre heading north, the eye at the fit-first-hit \
+             height"
+        }
+        (true, true) => {
+            "placed on the map (`--geometry on-map`), not the paper's: the eye moved off the \
+             map's centre and turned, the first hit brought nearer than the fit-first-hit \
+             distance"
+        }
+        (true, false) => {
+            "placed on the map (`--geometry on-map`): the eye moved off the map's centre and \
+             turned, the first hit at the fit-first-hit distance"
+        }
+        (false, true) => {
+            "from the map's centre heading north, the first hit brought nearer than the \
+             fit-first-hit distance (`--geometry on-map`)"
+        }
+    }
+}
+
+/// How the cases' views were placed and how wide a pixel is at each one's first hit, as
+/// sentences made from the cases ([`Case::view`], [`Case::pixel_voxels`]): `The views at 40°,
+/// 20° and 5° are the paper's: …. A pixel is 1.00 voxel wide at the first hit at 40°, …`.
+/// Empty without cases.
+pub fn views_words(t: &Tables15) -> String {
+    let mut groups: Vec<(&str, Vec<String>)> = Vec::new();
+    for c in &t.cases {
+        let what = placed(c);
+        let pitch = format!("{}°", c.pitch);
+        match groups.iter_mut().find(|(w, _)| *w == what) {
+            Some((_, pitches)) => pitches.push(pitch),
+            None => groups.push((what, vec![pitch])),
+        }
+    }
+    if groups.is_empty() {
+        return String::new();
+    }
+    let how = groups
+        .iter()
+        .map(|(what, pitches)| {
+            let (views, are) = if pitches.len() == 1 {
+                ("view", "is")
+            } else {
+                ("views", "are")
+            };
+            format!("the {views} at {} {are} {what}", and_list(pitches))
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    let widths: Vec<String> = t
+        .cases
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            format!(
+                "{:.2}{} at {}°",
+                c.pixel_voxels,
+                if k == 0 {
+                    " voxel wide at the first hit"
+                } else {
+                    ""
+                },
+                c.pitch
+            )
+        })
+        .collect();
+    let mut how = how;
+    how[..1].make_ascii_uppercase();
+    format!(
+        "{how}. A pixel is {} (the paper's rule makes it 1).",
+        and_list(&widths)
+    )
+}
+
 /// The sentence under Table 1 for magnified cases (empty if none): which, by how much, and
 /// that the paper's minification trends are not expected to hold there.
 pub fn magnified_note(t: &Tables15) -> String {
@@ -52,7 +141,8 @@ pub fn magnified_note(t: &Tables15) -> String {
          (the pixel's footprint across there, in voxels, in brackets; the paper's rule makes it 1, and \
          a case counts as magnified below {MAGNIFIED_BELOW}): the view magnifies the map, where \
          the paper's views minify it. The paper's minification trends (PS coverage falling with \
-         the pitch, SS coverage below 1) are not expected to hold in these cases.\n\n",
+         the pitch, SS coverage below 1) are not judged in these cases; the claims quote their \
+         numbers.\n\n",
         magnified.join(", ")
     )
 }
@@ -65,8 +155,9 @@ pub fn markdown(t: &Tables15, source: &str) -> String {
         "level 0 alone (LOD off)"
     };
     let mut s = format!(
-        "Map: {source}. FOV 10°, fit-first-hit, per-column averages; the walk steps through \
-         {walk}.\n\n"
+        "Map: {source}. FOV {}°. {} Per-column averages; the walk steps through {walk}.\n\n",
+        footprint_scenes::view::PAPER_FOV_DEG,
+        views_words(t)
     );
     s += &format!(
         "**Table 1.** The viewing parameters and the attributes of each case. *V* is the one \
