@@ -156,6 +156,14 @@ fn shift_words(v: &Variant) -> String {
     }
 }
 
+/// The fewest decimals, 2 to 4, at which `a` and `b` print apart (4 if they never do): an
+/// error called lower is not printed equal to the other.
+fn distinct_decimals(a: f64, b: f64) -> usize {
+    (2..=4)
+        .find(|&d| format!("{a:.d$}") != format!("{b:.d$}"))
+        .unwrap_or(4)
+}
+
 /// Which of the two height filters (the study's first two rows) has the lower error, mode by
 /// mode, and where each puts the distant terrain: the sentence follows the table.
 fn filters_words(study: &[Variant]) -> String {
@@ -195,8 +203,9 @@ fn filters_words(study: &[Variant]) -> String {
         .find(|((m, _), _)| m == "as")
         .or_else(|| a.rmse.iter().zip(&b.rmse).next())
         .map(|((m, ea), (_, eb))| {
+            let d = distinct_decimals(*ea, *eb);
             format!(
-                " ({} {ea:.2} with `{}`, {eb:.2} with `{}`)",
+                " ({} {ea:.d$} with `{}`, {eb:.d$} with `{}`)",
                 m.to_uppercase(),
                 a.pyramid,
                 b.pyramid
@@ -880,6 +889,15 @@ mod tests {
             "{text}"
         );
         assert!(!text.contains("in every mode"), "{text}");
+        // Errors that round alike at 2 decimals are printed apart.
+        let mut close = study(0.0);
+        close[0].rmse[0].1 = 0.7241;
+        close[1].rmse[0].1 = 0.7236;
+        let text = pyramid_section(&close);
+        assert!(
+            text.contains("(AS 0.7241 with `silhouette`, 0.7236 with `mean`)"),
+            "{text}"
+        );
     }
 
     /// The differences section says what the pyramid changes and where the views came from,
