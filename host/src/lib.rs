@@ -22,4 +22,5 @@ pub mod render;
 pub mod report;
 pub use footprint_scenes::plates as scene;
 pub use footprint_scenes::survey;
+pub mod truth;
 pub mod view;

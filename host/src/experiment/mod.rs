@@ -13,4 +13,5 @@ pub mod paper;
 pub mod path;
 pub mod reference;
 pub mod specular;
+pub mod synthetic;
 pub mod table;

@@ -37,6 +37,26 @@ pub enum MapAction {
     /// Check every level of a baked map (.fpmap) against its checksum (opening one checks
     /// the header and the levels up to 256 MiB).
     Verify(VerifyArgs),
+    /// Write a synthetic test map as a 16-bit PNG that --dem reads (30 m cells, 0.1 m units):
+    /// a one-cell wall along a diagonal (wall), along both (wall2), or diagonal stripes of
+    /// period 2 or 4 (stripes2, stripes4), on a floor at 100 m.
+    Synth(SynthArgs),
+}
+
+/// `footprint map synth`.
+#[derive(Args, Debug)]
+pub struct SynthArgs {
+    /// Which map: wall (600 m, one cell thick, x = y), wall2 (both diagonals), stripes2 or
+    /// stripes4 (50 m ridges).
+    #[arg(long, value_enum)]
+    pub kind: crate::experiment::synthetic::Kind,
+    /// The map's side, cells (16–4096).
+    #[arg(long, default_value_t = crate::experiment::synthetic::SIDE,
+        value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub size: u32,
+    /// The PNG to write.
+    #[arg(long, value_name = "FILE.png")]
+    pub out: PathBuf,
 }
 
 /// How to read the input map (as for `render --dem`).
@@ -155,7 +175,26 @@ pub fn map(args: &MapCommandArgs) -> Result<()> {
         MapAction::Convert(a) => convert(a),
         MapAction::Bake(a) => bake::bake(a),
         MapAction::Verify(a) => bake::verify(a),
+        MapAction::Synth(a) => synth(a),
     }
+}
+
+/// Writes the synthetic map `args.kind` as a 16-bit PNG of height units.
+fn synth(args: &SynthArgs) -> Result<()> {
+    let what = format!("--out {:?}", crate::output::shown(&args.out));
+    let m = crate::experiment::synthetic::map(args.kind, args.size);
+    write_atomic(&args.out, |w| {
+        map::format::write(&m, Format::Png, w, &what)?;
+        Ok(())
+    })?;
+    crate::outln!(
+        "wrote {}: {} {}×{}, 30 m cells, 0.1 m height units",
+        crate::output::shown(&args.out),
+        args.kind.name(),
+        args.size,
+        args.size
+    )?;
+    Ok(())
 }
 
 fn info(args: &InfoArgs) -> Result<()> {

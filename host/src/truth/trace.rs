@@ -1,0 +1,406 @@
+//! One ray against the height field: every cell its ground track enters, in order, each tested
+//! exactly.
+//!
+//! **Copies.** The terrain beyond the map is the map mirrored about its edges (Sect. 7,
+//! `footprint_core::terrain::map::mirror`), so the plane is tiled by copies of the map, every
+//! other one reflected. The ray crosses them in order; inside one it is carried into the map's
+//! own coordinates (reflected where the copy is), where the cells and the max-height hierarchy
+//! ([`super::maxmip`]) are. An index one beyond a copy's edge folds onto the edge, which is
+//! the mirror's fold there.
+//!
+//! **Cells.** Inside a copy the track is followed by a 2D DDA (Amanatides–Woo) over the nodes
+//! of the hierarchy: a node the ray passes above all along (its lowest height across the node
+//! above the node's maximum) is left whole, else the walk goes down a level, and at level 0
+//! the cell is tested exactly ([`Model::hit`]). Every cell the track enters is visited, corners
+//! included; where the track passes exactly through a corner (to 10⁻⁹ of a cell) the two cells
+//! beside the corner are tested at the corner's height too, so that a track through the shared
+//! corner of two wall cells cannot pass between them.
+//!
+//! **Models.** [`Flat`]: the paper's sticks (Sect. 2), a cell a flat-topped column with
+//! vertical faces; the ray hits it if it is at or below the top at the cell's entry or exit,
+//! on the entry face or on the top. [`Smooth`]: the bilinear surface through the cells'
+//! centres, over the dual grid's patches ([`super::bilinear`]).
+
+use footprint_core::Rgb;
+
+use super::bilinear::Patch;
+use super::field::Field;
+use super::maxmip::MaxMip;
+
+/// Two exits closer than this (cells) are one corner.
+const CORNER: f64 = 1e-9;
+
+/// A ray from the eye in world cells: horizontal unit direction `(dx, dy)`, `t` the horizontal
+/// distance in cells, height `z0 + s·t` in height units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Ray {
+    /// The eye, world cells (east, south).
+    pub ox: f64,
+    /// The eye, world cells south.
+    pub oy: f64,
+    /// The unit horizontal direction, east.
+    pub dx: f64,
+    /// The unit horizontal direction, south.
+    pub dy: f64,
+    /// The eye's height, height units.
+    pub z0: f64,
+    /// Rise in height units per cell of horizontal distance.
+    pub s: f64,
+    /// The far distance, cells of horizontal distance: nothing beyond it is hit.
+    pub far: f64,
+}
+
+/// The ray in one copy's grid: the map's coordinates (reflected where the copy is), plus the
+/// model's [`Model::OFFSET`].
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Local {
+    /// The grid coordinates at `t = 0`.
+    pub ox: f64,
+    /// The grid coordinates at `t = 0`, second axis.
+    pub oy: f64,
+    /// The direction in the copy (a reflected copy flips its axis).
+    pub dx: f64,
+    /// The direction in the copy, second axis.
+    pub dy: f64,
+    /// The eye's height.
+    pub z0: f64,
+    /// The rise per cell.
+    pub s: f64,
+}
+
+impl Local {
+    #[inline(always)]
+    fn z(&self, t: f64) -> f64 {
+        self.z0 + self.s * t
+    }
+}
+
+/// A surface model over the map: its grid (the cells, or the patches between their centres),
+/// the maximum of a grid cell, and the exact test of one.
+pub(super) trait Model {
+    /// Grid coordinates are the map's plus this (0 for cells, ½ for the dual grid's patches).
+    const OFFSET: f64;
+    /// Grid cells more than the map's cells along each side (1 for patches: a half patch at
+    /// either edge of a copy).
+    const EXTRA: u32;
+    /// Whether a corner's two side cells are tested (the sticks; the bilinear surface is
+    /// continuous, and a track through a corner meets it there).
+    const CORNERS: bool;
+    /// The highest height in grid cell `(gx, gy)` of a copy.
+    fn max0(field: &Field<'_>, gx: i64, gy: i64) -> f64;
+    /// The first `t` in `[t_in, t_out]` at which the ray meets grid cell `(gx, gy)`.
+    fn hit(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t_in: f64, t_out: f64) -> Option<f64>;
+    /// The colour seen at the hit at `t` in grid cell `(gx, gy)`.
+    fn color(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t: f64) -> Rgb;
+}
+
+/// The paper's sticks: flat-topped cells with vertical faces.
+#[derive(Debug)]
+pub(super) struct Flat;
+
+impl Model for Flat {
+    const OFFSET: f64 = 0.0;
+    const EXTRA: u32 = 0;
+    const CORNERS: bool = true;
+
+    #[inline(always)]
+    fn max0(field: &Field<'_>, gx: i64, gy: i64) -> f64 {
+        field.height_at(gx, gy)
+    }
+
+    /// The ray is at or below the top at the cell's entry (the entry face) or, falling, at its
+    /// exit (the top, where it crosses the top's height). A ray that starts inside the eye's own
+    /// stick (`t_in` 0, below its top) sees out of it: the modes' walk starts one cell ahead.
+    #[inline(always)]
+    fn hit(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t_in: f64, t_out: f64) -> Option<f64> {
+        let top = field.height_at(gx, gy);
+        let z_in = ray.z(t_in);
+        if z_in <= top {
+            return (t_in > 0.0).then_some(t_in);
+        }
+        if ray.s < 0.0 && ray.z(t_out) <= top {
+            return Some(((top - ray.z0) / ray.s).clamp(t_in, t_out));
+        }
+        None
+    }
+
+    #[inline(always)]
+    fn color(field: &Field<'_>, gx: i64, gy: i64, _: &Local, _: f64) -> Rgb {
+        field.color_at(gx, gy)
+    }
+}
+
+/// The bilinear surface through the cells' centres: patch `(gx, gy)` spans the centres of
+/// cells `gx − 1 ..= gx` and `gy − 1 ..= gy`.
+#[derive(Debug)]
+pub(super) struct Smooth;
+
+impl Smooth {
+    fn patch(field: &Field<'_>, gx: i64, gy: i64) -> Patch {
+        Patch::new(
+            field.height_at(gx - 1, gy - 1),
+            field.height_at(gx, gy - 1),
+            field.height_at(gx - 1, gy),
+            field.height_at(gx, gy),
+        )
+    }
+}
+
+impl Model for Smooth {
+    const OFFSET: f64 = 0.5;
+    const EXTRA: u32 = 1;
+    const CORNERS: bool = false;
+
+    #[inline(always)]
+    fn max0(field: &Field<'_>, gx: i64, gy: i64) -> f64 {
+        field
+            .height_at(gx - 1, gy - 1)
+            .max(field.height_at(gx, gy - 1))
+            .max(field.height_at(gx - 1, gy))
+            .max(field.height_at(gx, gy))
+    }
+
+    #[inline(always)]
+    fn hit(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t_in: f64, t_out: f64) -> Option<f64> {
+        let u0 = (ray.ox + ray.dx * t_in - gx as f64).clamp(0.0, 1.0);
+        let v0 = (ray.oy + ray.dy * t_in - gy as f64).clamp(0.0, 1.0);
+        Self::patch(field, gx, gy)
+            .first_hit((u0, v0), (ray.dx, ray.dy), ray.z(t_in), ray.s, t_out - t_in)
+            .map(|tau| t_in + tau)
+    }
+
+    /// The colour of the cell that holds the hit point (the map's colours are per cell; the
+    /// modes read each voxel's own colour or Eq. 4's blend of two).
+    #[inline(always)]
+    fn color(field: &Field<'_>, _: i64, _: i64, ray: &Local, t: f64) -> Rgb {
+        let x = floor(ray.ox + ray.dx * t - Self::OFFSET);
+        let y = floor(ray.oy + ray.dy * t - Self::OFFSET);
+        field.color_at(x, y)
+    }
+}
+
+/// `⌊x⌋` as an `i64`, without a call (`f64::floor` is one on a baseline x86-64); saturating
+/// far outside any map.
+#[inline(always)]
+pub(super) fn floor(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t - 1
+    } else {
+        t
+    }
+}
+
+/// The cell index a track at coordinate `p` moving `d` is in: `⌊p⌋`, or the cell below when
+/// `p` is on a boundary and the track moves down.
+#[inline(always)]
+fn cell(p: f64, d: f64) -> i64 {
+    let f = floor(p);
+    if d < 0.0 && f as f64 == p {
+        f - 1
+    } else {
+        f
+    }
+}
+
+/// One axis of a track in a copy: where it starts, which way it moves, and the `t` per unit.
+#[derive(Clone, Copy, Debug)]
+struct Axis {
+    /// The coordinate at `t = 0`.
+    o: f64,
+    /// `1/d` (0 when the track does not move along the axis).
+    inv: f64,
+    /// Whether it moves up the axis (`d > 0`), and whether at all.
+    up: bool,
+    moves: bool,
+}
+
+impl Axis {
+    fn new(o: f64, d: f64) -> Self {
+        Self {
+            o,
+            inv: if d != 0.0 { 1.0 / d } else { 0.0 },
+            up: d > 0.0,
+            moves: d != 0.0,
+        }
+    }
+
+    /// The `t` at which the track leaves `[lo, hi]`; infinite if it does not move.
+    #[inline(always)]
+    fn exit(&self, lo: f64, hi: f64) -> f64 {
+        if !self.moves {
+            f64::INFINITY
+        } else if self.up {
+            (hi - self.o) * self.inv
+        } else {
+            (lo - self.o) * self.inv
+        }
+    }
+}
+
+/// The smaller of two numbers that are not NaN (no NaN handling: one compare).
+#[inline(always)]
+fn min(a: f64, b: f64) -> f64 {
+    if b < a {
+        b
+    } else {
+        a
+    }
+}
+
+/// The ray's first hit in one copy between `t0` and `t1`: its `t` and colour.
+pub(super) fn trace_copy<M: Model>(
+    field: &Field<'_>,
+    mip: &MaxMip,
+    ray: &Local,
+    t0: f64,
+    t1: f64,
+) -> Option<(f64, Rgb)> {
+    let gw = i64::from(field.width + M::EXTRA);
+    let gh = i64::from(field.height + M::EXTRA);
+    // The copy in grid coordinates.
+    let (box_x, box_y) = (
+        (M::OFFSET, f64::from(field.width) + M::OFFSET),
+        (M::OFFSET, f64::from(field.height) + M::OFFSET),
+    );
+    let mut ix = cell(ray.ox + ray.dx * t0, ray.dx).clamp(0, gw - 1);
+    let mut iy = cell(ray.oy + ray.dy * t0, ray.dy).clamp(0, gh - 1);
+    let (ax, ay) = (Axis::new(ray.ox, ray.dx), Axis::new(ray.oy, ray.dy));
+    let top = mip.top();
+    let mut level = top;
+    let mut t = t0;
+    loop {
+        let side = 1i64 << level;
+        let (bx, by) = (ix >> level, iy >> level);
+        let (cx_lo, cy_lo) = (bx << level, by << level);
+        let (cx_hi, cy_hi) = ((cx_lo + side).min(gw), (cy_lo + side).min(gh));
+        let tx = ax.exit(-min(-(cx_lo as f64), -box_x.0), min(cx_hi as f64, box_x.1));
+        let ty = ay.exit(-min(-(cy_lo as f64), -box_y.0), min(cy_hi as f64, box_y.1));
+        let mut te = min(min(tx, ty), t1);
+        if te < t {
+            te = t;
+        }
+        let max = if level == 0 {
+            M::max0(field, ix, iy)
+        } else {
+            f64::from(mip.max(level, bx, by))
+        };
+        let lowest = if ray.s < 0.0 { ray.z(te) } else { ray.z(t) };
+        if max >= lowest {
+            if level > 0 {
+                level -= 1;
+                continue;
+            }
+            if let Some(th) = M::hit(field, ix, iy, ray, t, te) {
+                return Some((th, M::color(field, ix, iy, ray, th)));
+            }
+        }
+        if te >= t1 {
+            return None;
+        }
+        // On into the next node: across the side it leaves by, or both at a corner.
+        let eps = CORNER * (1.0 + te);
+        let (across_x, across_y) = (tx <= te + eps, ty <= te + eps);
+        let (last_x, next_x) = if ax.up {
+            (cx_hi - 1, cx_hi)
+        } else {
+            (cx_lo, cx_lo - 1)
+        };
+        let (last_y, next_y) = if ay.up {
+            (cy_hi - 1, cy_hi)
+        } else {
+            (cy_lo, cy_lo - 1)
+        };
+        if across_x && across_y {
+            if M::CORNERS {
+                // The two cells beside the corner, at the corner's height.
+                let z = ray.z(te);
+                for (sx, sy) in [(next_x, last_y), (last_x, next_y)] {
+                    if z <= M::max0(field, sx, sy) {
+                        return Some((te, M::color(field, sx, sy, ray, te)));
+                    }
+                }
+            }
+            (ix, iy) = (next_x, next_y);
+        } else if across_x {
+            ix = next_x;
+            iy = cell(ray.oy + ray.dy * te, ray.dy).clamp(cy_lo, cy_hi - 1);
+        } else if across_y {
+            iy = next_y;
+            ix = cell(ray.ox + ray.dx * te, ray.dx).clamp(cx_lo, cx_hi - 1);
+        } else {
+            // Neither side reached before t1 (rounding): the ray ends here.
+            return None;
+        }
+        if ix < 0 || iy < 0 || ix >= gw || iy >= gh {
+            // Out of the copy (to rounding, before `t1`): the next copy takes it.
+            return None;
+        }
+        t = te;
+        level = (level + 1).min(top);
+    }
+}
+
+/// The ray's first hit within the far distance: its horizontal distance (cells) and the colour
+/// seen there; `None` for the sky.
+pub(super) fn trace<M: Model>(field: &Field<'_>, mip: &MaxMip, ray: &Ray) -> Option<(f64, Rgb)> {
+    let (w, h) = (f64::from(field.width), f64::from(field.height));
+    if ray.s >= 0.0 && ray.z0 > field.max {
+        return None;
+    }
+    if ray.dx == 0.0 && ray.dy == 0.0 {
+        // Straight down or up: the cell under the eye, or the sky.
+        let (x, y) = (floor(ray.ox), floor(ray.oy));
+        return (ray.s < 0.0 && ray.z0 > field.height_world(x, y)).then(|| {
+            (
+                (ray.z0 - field.height_world(x, y)) / -ray.s,
+                field.color_world(x, y),
+            )
+        });
+    }
+    let mut cx = cell(ray.ox / w, ray.dx);
+    let mut cy = cell(ray.oy / h, ray.dy);
+    let mut t = 0.0;
+    loop {
+        let (x0, y0) = (cx as f64 * w, cy as f64 * h);
+        let tx = Axis::new(ray.ox, ray.dx).exit(x0, x0 + w);
+        let ty = Axis::new(ray.oy, ray.dy).exit(y0, y0 + h);
+        let t_out = tx.min(ty).max(t);
+        let t_end = t_out.min(ray.far);
+        // Into the copy's own coordinates: a reflected copy runs its axis backwards.
+        let (ox, dx) = if cx.rem_euclid(2) == 1 {
+            (x0 + w - ray.ox, -ray.dx)
+        } else {
+            (ray.ox - x0, ray.dx)
+        };
+        let (oy, dy) = if cy.rem_euclid(2) == 1 {
+            (y0 + h - ray.oy, -ray.dy)
+        } else {
+            (ray.oy - y0, ray.dy)
+        };
+        let local = Local {
+            ox: ox + M::OFFSET,
+            oy: oy + M::OFFSET,
+            dx,
+            dy,
+            z0: ray.z0,
+            s: ray.s,
+        };
+        if t < t_end {
+            if let Some(hit) = trace_copy::<M>(field, mip, &local, t, t_end) {
+                return Some(hit);
+            }
+        }
+        if t_out >= ray.far || (ray.s >= 0.0 && ray.z0 + ray.s * t_out > field.max) {
+            return None;
+        }
+        let eps = CORNER * (1.0 + t_out.abs());
+        if tx <= t_out + eps {
+            cx += if ray.dx > 0.0 { 1 } else { -1 };
+        }
+        if ty <= t_out + eps {
+            cy += if ray.dy > 0.0 { 1 } else { -1 };
+        }
+        t = t_out;
+    }
+}
