@@ -435,7 +435,9 @@ fn experiments_refuse_bad_arguments() {
     fails_with(&["fly", "--size", "40x40", "--column", "40"], "column");
     fails_with(&["fly", "--columns-per-pixel", "0"], "--columns-per-pixel");
     fails_with(&["fly", "--reference-columns", "65"], "--reference-columns");
-    fails_with(&["fly", "--modes", "ps,references"], "reference");
+    fails_with(&["fly", "--truth-samples", "0"], "--truth-samples");
+    fails_with(&["table", "--truth-samples", "33"], "--truth-samples");
+    fails_with(&["fly", "--modes", "ps,truths"], "truth");
     fails_with(&["fly", "--causes", "--projection", "exact"], "--causes");
     fails_with(&["fly", "--modes", "xx"], "mode");
     fails_with(&["fly", "--out", "/no/such/folder"], "--out");
@@ -522,11 +524,12 @@ fn fly_json_has_table_6_bins() {
     assert!(m["all_columns"].is_object());
 }
 
-/// `fly --modes ps,as,reference --json`: the reference is listed beside the modes with the
-/// same fields; every whole-frame histogram sums to frame pairs × pixels; each mode's excess is
-/// its count less the reference's, bin by bin; the reference's excess and RMSE are zero.
+/// `fly --modes ps,as,truth,walked-reference --json`: the truth is listed beside the modes
+/// with the same fields, and so is the old walked reference; every whole-frame histogram sums
+/// to frame pairs × pixels; each mode's excess is its count less the truth's, bin by bin; the
+/// truth's excess and RMSE are zero.
 #[test]
-fn fly_json_lists_the_reference_and_every_modes_excess_over_it() {
+fn fly_json_lists_the_truth_and_every_modes_excess_over_it() {
     let o = footprint(&[
         "fly",
         "--terrain-size",
@@ -536,7 +539,9 @@ fn fly_json_lists_the_reference_and_every_modes_excess_over_it() {
         "--frames",
         "6",
         "--modes",
-        "ps,as,reference",
+        "ps,as,truth,walked-reference",
+        "--truth-samples",
+        "2",
         "--reference-columns",
         "4",
         "--causes",
@@ -544,15 +549,20 @@ fn fly_json_lists_the_reference_and_every_modes_excess_over_it() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["reference_columns"], 4);
+    assert_eq!(v["truth_samples"], 2);
     let modes = v["modes"].as_array().unwrap();
     let names: Vec<&str> = modes.iter().map(|m| m["mode"].as_str().unwrap()).collect();
-    assert_eq!(names, ["ps", "as", "reference"]);
+    assert_eq!(names, ["ps", "as", "truth", "walked-reference"]);
+    assert!(
+        modes[3]["rmse"].as_f64().unwrap() > 0.0,
+        "the walked reference differs from the truth"
+    );
     let bins = ["0", "1", "2", "3", "4", "5", "6-60", ">60"];
     let counts = |m: &serde_json::Value, key: &str| -> Vec<i64> {
         bins.iter().map(|b| m[key][b].as_i64().unwrap()).collect()
     };
     let truth = &modes[2];
+    assert_eq!(truth["mode"], "truth");
     let keys = |m: &serde_json::Value| {
         let mut k: Vec<String> = m.as_object().unwrap().keys().cloned().collect();
         k.sort();

@@ -108,6 +108,7 @@ fn every_mode_is_divided_by_the_one_v_of_its_case_where_the_walks_differ() {
         true,
         SurfaceArg::Flat,
         None,
+        footprint_host::truth::DEFAULT_SAMPLES,
         |_| {},
     )
     .unwrap();
@@ -203,6 +204,7 @@ fn a_claim_on_too_few_events_says_so() {
         true,
         SurfaceArg::Flat,
         None,
+        footprint_host::truth::DEFAULT_SAMPLES,
         |_| {},
     )
     .unwrap();

@@ -36,6 +36,7 @@ fn results() -> &'static (Tables15, Fly) {
             true,
             SurfaceArg::Flat,
             None,
+            footprint_host::truth::DEFAULT_SAMPLES,
             |_| {},
         )
         .unwrap();

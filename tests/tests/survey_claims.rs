@@ -36,6 +36,7 @@ fn claims_on(kind: Kind) -> Vec<Claim> {
         true,
         SurfaceArg::Flat,
         None,
+        footprint_host::truth::DEFAULT_SAMPLES,
         |_| {},
     )
     .unwrap();

@@ -6,7 +6,7 @@ use anyhow::{bail, Result};
 use clap::Args;
 use footprint_core::Rgb;
 
-use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg};
+use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg, TruthSamplesArg};
 use crate::experiment::fly::{self, FlyMode, FlySpec};
 use crate::experiment::path::FlightPath;
 use crate::experiment::reference::REFERENCE_COLUMNS;
@@ -68,11 +68,11 @@ pub struct FlyArgs {
     #[arg(long)]
     pub column_only: bool,
     /// Walk the pyramid (on), or level 0 voxel by voxel (off): the modes' frames and the
-    /// start's fitted eye (the reference walks level 0 either way).
+    /// start's fitted eye (the truth reads level 0 either way).
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
-    /// The surface every frame meets, the reference's too: flat-topped voxels (flat, the
-    /// paper's), or continuous where a pixel is narrower than a voxel (bilinear).
+    /// The surface every frame meets, the truth's too: flat-topped voxels (flat, the paper's),
+    /// or continuous where a pixel is narrower than a voxel (bilinear; the truth's everywhere).
     #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
     pub surface: SurfaceArg,
     /// Where the start view (the paper's pitch-5° view) is placed: paper (its geometry, over
@@ -84,19 +84,22 @@ pub struct FlyArgs {
     /// more, the horizontal sampling the paper leaves naive (Sect. 8) is supersampled.
     #[arg(long, default_value_t = 1, value_name = "K")]
     pub columns_per_pixel: u32,
-    /// Columns per pixel of the reference flight (1–64): the ground truth's settings are
-    /// as-exact at level 0 with 16.
+    /// Columns per pixel of `walked-reference` in --modes (1–64): the judge before the truth,
+    /// as-exact walked at level 0 with 16.
     #[arg(long, default_value_t = REFERENCE_COLUMNS, value_name = "K")]
     pub reference_columns: u32,
+    #[command(flatten)]
+    /// `--truth-samples`.
+    pub truth: TruthSamplesArg,
     /// Split every column's changes by the class of the pixel's footprint: at a seam of the
     /// mirrored map, magnified (narrower than a voxel), or the rest; each class's large changes
-    /// and excess over the reference (JSON `classes`).
+    /// and excess over the truth (JSON `classes`).
     #[arg(long, conflicts_with = "column_only")]
     pub causes: bool,
-    /// Do not fly the reference (faster; no excess over it, no RMSE). Listing `reference` in
+    /// Do not fly the truth (much faster; no excess over it, no RMSE). Listing `truth` in
     /// --modes flies it anyway.
-    #[arg(long)]
-    pub no_reference: bool,
+    #[arg(long, alias = "no-reference")]
+    pub no_truth: bool,
     /// Also write `DIR/flight.png`, an animated PNG of the flight at 25 frames per second:
     /// point sampling (left) and area sampling (right) side by side.
     #[arg(long, requires = "out")]
@@ -165,7 +168,8 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
         lod: args.lod == OnOff::On,
         surface: args.surface,
         columns_per_pixel: args.columns_per_pixel,
-        reference: !args.no_reference,
+        truth: !args.no_truth,
+        truth_samples: args.truth.samples,
         causes: args.causes,
         reference_columns: args.reference_columns,
         placement: args.geometry.map(Into::into),

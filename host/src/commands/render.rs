@@ -2,12 +2,12 @@
 
 use std::path::PathBuf;
 
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::Args;
 
-use crate::args::OutputFormat;
+use crate::args::{OutputFormat, RenderMode};
 use crate::lighting::{LightArgs, LoadedMaterials};
-use crate::render::{count, render_lit_once, render_timed_parallel, repeat, visible, Mode, Tables};
+use crate::render::{count, render_lit_once, render_timed_parallel, repeat, visible, Tables};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, ViewArg};
@@ -32,9 +32,16 @@ pub struct RenderArgs {
     /// or as2 (as-exact over the wedge between each column's two planes, in two lanes with a
     /// ray each: integrated across the column too, docs/how-it-works.md). The default is
     /// `as`: on the paper's three views it has the same error against the ground truth as
-    /// as-exact and is about a quarter faster (docs/cli.md, "The modes").
+    /// as-exact and is about a quarter faster (docs/cli.md, "The modes"). Or truth: the
+    /// independent reference that judges every mode, K×K exact rays a pixel
+    /// (--truth-samples), no pyramid and none of the walk's code (slow; no --counts).
     #[arg(long, default_value = "as")]
-    pub mode: Mode,
+    pub mode: RenderMode,
+    /// With --mode truth: sub-samples per pixel side, 1–32 (K×K exact rays a pixel) [default:
+    /// 8].
+    #[arg(long = "truth-samples", value_name = "K",
+        value_parser = clap::value_parser!(u32).range(1..=i64::from(crate::truth::MAX_SAMPLES)))]
+    pub truth_samples: Option<u32>,
     /// Output PNG; `-` is standard output (everything else printed then goes to standard
     /// error).
     #[arg(long, value_name = "FILE.png")]
@@ -58,6 +65,13 @@ pub struct RenderArgs {
 
 /// Runs `footprint render`.
 pub fn render(args: &RenderArgs) -> Result<()> {
+    let mode = match args.mode {
+        RenderMode::Truth => return render_truth(args),
+        RenderMode::Mode(mode) => mode,
+    };
+    if let Some(k) = args.truth_samples {
+        bail!("--truth-samples {k}: only --mode truth takes it");
+    }
     let started = std::time::Instant::now();
     // What the run is doing, on a terminal only (hidden with --json, and by indicatif when
     // stderr is not a terminal); cleared when the run ends.
@@ -82,21 +96,20 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     let frames = args.repeats as usize;
     let (rendered, repeated, threads) = match &sun {
         None => {
-            let (rendered, repeated) = repeat(frames, || {
-                render_timed_parallel(&frame, &terrain, args.mode, 1)
-            })?;
+            let (rendered, repeated) =
+                repeat(frames, || render_timed_parallel(&frame, &terrain, mode, 1))?;
             (rendered, repeated, rayon::current_num_threads())
         }
         Some(sun) => {
             // The lit frame is timed (one thread: the shader writes the whole lit image), not
             // the colour map's.
             let (rendered, repeated) = repeat(frames, || {
-                render_lit_once(&frame, &terrain, &view.camera, args.mode, sun, &mut NoCost)
+                render_lit_once(&frame, &terrain, &view.camera, mode, sun, &mut NoCost)
             })?;
             if args.counts || args.format.json {
                 // Its shading counters, from a second, counting walk, go to stderr.
                 let mut counts = Counts::new(&mut []);
-                render_lit_once(&frame, &terrain, &view.camera, args.mode, sun, &mut counts)?;
+                render_lit_once(&frame, &terrain, &view.camera, mode, sun, &mut counts)?;
                 let pixels = (frame.width() * frame.height()).max(1) as f64;
                 crate::note!(
                     "lit by the sun, specular {}: {:.2} samples lit and {:.2} highlight evaluations per pixel",
@@ -121,7 +134,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             crate::outln!(
                 "wrote {}: {w}x{h}, {}, {} ms render, {} ms in all",
                 crate::output::shown(out),
-                args.mode,
+                mode,
                 Millis(ms),
                 Millis(all)
             )?;
@@ -130,16 +143,16 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     phase.finish_and_clear();
     if args.counts || args.format.json {
         // The paper's counters (Sect. 6): a counting walk of the colour render.
-        let (_, measured) = count(&frame, &terrain, args.mode)?;
+        let (_, measured) = count(&frame, &terrain, mode)?;
         // One denominator for coverage, as `table` has: the area modes' walk's visible voxels
         // (the counting walk's own where the mode climbs as they do).
-        let v_case = if args.mode.switch() == Switch::Late {
+        let v_case = if mode.switch() == Switch::Late {
             measured.total.v
         } else {
             visible(&frame, &terrain, Switch::Late)
         };
         let summary = RenderSummary {
-            mode: args.mode,
+            mode,
             camera: *view.camera.params(),
             base_m: view.map().base_m,
             lod: view.options.lod,
@@ -175,6 +188,63 @@ pub fn render(args: &RenderArgs) -> Result<()> {
     if overview {
         // The overview is placed over the map itself (moved by --x, --y or --heading, what it
         // shows is what was asked for): no warning about mirrored copies.
+        Ok(())
+    } else {
+        view.warn_mirrored(&args.camera)
+    }
+}
+
+/// `render --mode truth`: the truth's image of the view ([`crate::truth`]), timed; the options
+/// that only a mode of the core has (its counters, its repeats, the sun) are refused, each by
+/// name.
+fn render_truth(args: &RenderArgs) -> Result<()> {
+    let started = std::time::Instant::now();
+    for (option, given) in [
+        ("--counts", args.counts),
+        ("--json", args.format.json),
+        ("--per-column", args.per_column),
+        ("--repeats", args.repeats != 1),
+        ("--sun", args.light.sun.is_some()),
+    ] {
+        if given {
+            bail!(
+                "{option}: --mode truth has no counters, repeats or sun (only the core's modes do)"
+            );
+        }
+    }
+    let samples = args.truth_samples.unwrap_or(crate::truth::DEFAULT_SAMPLES);
+    let phase = super::phases(false);
+    phase.set_message("reading the map");
+    let overview = args.camera.view_or(ViewArg::Overview) == ViewArg::Overview;
+    let view = args.camera.load(&args.map, ViewArg::Overview)?;
+    phase.set_message("rendering the truth");
+    let t = std::time::Instant::now();
+    let truth = crate::truth::Truth::new(view.map(), view.options.surface)?;
+    let image = truth.render(
+        &view.camera,
+        view.options.sky,
+        view.options.projection,
+        samples,
+    )?;
+    let ms = t.elapsed().as_secs_f64() * 1e3;
+    let p = view.camera.params();
+    let (w, h) = (p.width, p.height);
+    if let Some(out) = &args.out {
+        phase.set_message("writing the PNG");
+        write_png(out, w, h, &image)?;
+        phase.finish_and_clear();
+        let all = started.elapsed().as_secs_f64() * 1e3;
+        crate::outln!(
+            "wrote {}: {w}x{h}, truth ({samples}x{samples} rays a pixel), {} ms render, {} ms in all",
+            crate::output::shown(out),
+            Millis(ms),
+            Millis(all)
+        )?;
+    } else {
+        phase.finish_and_clear();
+        crate::note!("rendered the truth in {ms:.2} ms; nothing written (give --out FILE.png)");
+    }
+    if overview {
         Ok(())
     } else {
         view.warn_mirrored(&args.camera)

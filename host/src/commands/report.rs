@@ -9,6 +9,7 @@ use clap::{Args, ValueEnum};
 use footprint_core::terrain::camera::{CameraParams, Options};
 use serde_json::json;
 
+use crate::args::TruthSamplesArg;
 use crate::experiment::differences;
 use crate::experiment::fly::{self, FlySpec, BINS};
 use crate::experiment::glint::{self, GlintSpec};
@@ -44,6 +45,9 @@ pub struct ReportArgs {
     /// until they show the map) [default: paper on the built-in terrain, on-map on a map file].
     #[arg(long, value_enum)]
     pub geometry: Option<GeometryArg>,
+    #[command(flatten)]
+    /// `--truth-samples`: the truth of the tables and the flight.
+    pub truth: TruthSamplesArg,
 }
 
 /// The name a `clap` value is given by on the command line.
@@ -55,8 +59,8 @@ fn value_name(v: &impl ValueEnum) -> String {
 /// The words of the command that regenerates the report of `args`: `footprint report`, every
 /// option that changes what the report says (the map's, as given: --dem, --format, --color,
 /// --spacing, --height-scale, or the built-in terrain's --terrain, --seed and --terrain-size; then
-/// --height-filter, --lod and --frames, always, so that a change of default does not change
-/// the report; --geometry when given), and --out. --threads and --max-memory are left out:
+/// --height-filter, --lod, --frames and --truth-samples, always, so that a change of default
+/// does not change the report; --geometry when given), and --out. --threads and --max-memory are left out:
 /// images are the same for any number of threads, and the budget only refuses runs.
 pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
     let mut w: Vec<String> = vec!["footprint".into(), "report".into()];
@@ -103,6 +107,7 @@ pub fn regenerate_words(args: &ReportArgs) -> Vec<String> {
     }
     push("--lod", value_name(&args.lod));
     push("--frames", args.frames.to_string());
+    push("--truth-samples", args.truth.samples.to_string());
     if let Some(g) = &args.geometry {
         push("--geometry", value_name(g));
     }
@@ -154,6 +159,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
     let fly_spec = FlySpec {
         lod,
         placement,
+        truth_samples: args.truth.samples,
         ..FlySpec::paper(args.frames)
     };
     fly_spec.check_memory(0)?;
@@ -184,6 +190,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         lod,
         SurfaceArg::Flat,
         placement,
+        args.truth.samples,
         |msg| {
             bar.set_message(msg.to_string());
             bar.inc(1);
@@ -400,7 +407,7 @@ mod tests {
             (
                 &["footprint", "report", "--out", "/r"][..],
                 "footprint report --terrain mountains --seed 1 --terrain-size 1024 --height-filter silhouette \
-                 --lod on --frames 400 --out /r",
+                 --lod on --frames 400 --truth-samples 8 --out /r",
             ),
             (
                 &[
@@ -422,7 +429,7 @@ mod tests {
                     "r",
                 ][..],
                 "cd '/w d' && footprint report --terrain mountains --seed 7 --terrain-size 128 --height-filter mean \
-                 --lod off --frames 9 --out r",
+                 --lod off --frames 9 --truth-samples 8 --out r",
             ),
             (
                 &[
@@ -442,7 +449,8 @@ mod tests {
                     "/r",
                 ][..],
                 "footprint report --dem '/m/a b.dat' --format asc --color /m/c.png --spacing 12.5 \
-                 --height-scale 0.05 --height-filter silhouette --lod on --frames 400 --out /r",
+                 --height-scale 0.05 --height-filter silhouette --lod on --frames 400 \
+                 --truth-samples 8 --out /r",
             ),
             (
                 &[
@@ -456,7 +464,8 @@ mod tests {
                     "/r",
                 ][..],
                 "footprint report --dem - --format hgt --height-filter silhouette --lod on \
-                 --frames 400 --out /r  # the map was read from standard input: pipe the same \
+                 --frames 400 --truth-samples 8 --out /r  # the map was read from standard input: pipe \
+                 the same \
                  file into it",
             ),
         ] {

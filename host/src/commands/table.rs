@@ -3,7 +3,7 @@
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 
-use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes};
+use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes, TruthSamplesArg};
 use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table;
 use crate::report::tables;
@@ -54,7 +54,8 @@ pub struct TableArgs {
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
     /// The surface the modes and the ground truth meet: flat-topped voxels (flat, the
-    /// paper's), or continuous where a pixel is narrower than a voxel (bilinear).
+    /// paper's), or continuous where a pixel is narrower than a voxel (bilinear; the truth
+    /// meets it everywhere).
     #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
     pub surface: SurfaceArg,
     /// Where the paper's views are placed: paper (its geometry, over the mirrored copies of a
@@ -62,6 +63,9 @@ pub struct TableArgs {
     /// [default: paper on the built-in terrain, on-map on a map file].
     #[arg(long, value_enum)]
     pub geometry: Option<GeometryArg>,
+    #[command(flatten)]
+    /// `--truth-samples`.
+    pub truth: TruthSamplesArg,
 }
 
 impl CaseArg {
@@ -97,6 +101,7 @@ pub fn table(args: &TableArgs) -> Result<()> {
         lod,
         args.surface,
         args.geometry.map(Into::into),
+        args.truth.samples,
         |msg| {
             bar.set_message(msg.to_string());
             bar.inc(1);

@@ -1,5 +1,6 @@
 //! How the pyramid's coarse heights ([`HeightFilter`]) move the distant terrain, and what that
-//! does to each mode's error against the ground truth ([`super::reference`]).
+//! does to each mode's error against the ground truth ([`crate::truth`], at its default
+//! [`crate::truth::DEFAULT_SAMPLES`]² rays a pixel).
 //!
 //! At a low pitch every LOD mode samples coarse voxels in the upper rows while the ground
 //! truth walks level 0. A height filter that lowers distant ridges lets the rays see too far,
@@ -17,7 +18,7 @@ use footprint_scenes::view::Placement;
 use serde::Serialize;
 
 use super::paper::paper_camera_placed;
-use super::reference::{reference, rmse};
+use super::reference::rmse;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_parallel, Mode, Tables};
@@ -123,12 +124,13 @@ pub fn compare(
 ) -> Result<Vec<Variant>> {
     let main = Pyramid::build(map.clone(), filter)?;
     let camera = paper_camera_placed(map, &main, pitch, size, true, placement)?;
-    let truth = reference(
+    let truth = crate::truth::truth(
         &camera,
         &main,
         Options::default().sky,
         Projection::Paper,
         Surface::Flat,
+        crate::truth::DEFAULT_SAMPLES,
     )?;
     let other = match filter {
         HeightFilter::Silhouette => HeightFilter::Mean,

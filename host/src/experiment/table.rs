@@ -1,5 +1,5 @@
 //! The paper's Tables 1–5 (Sect. 7) on any map, plus each mode's error against the ground
-//! truth ([`super::reference`]).
+//! truth ([`crate::truth`]: `K × K` exact rays a pixel, level 0, none of the walk's code).
 //!
 //! Each case is the paper's view: FOV 10°, 400×400, the eye at the fit-first-hit height, at
 //! pitch 40°, 20° or 5°. Counts are per-column averages, as in the paper.
@@ -20,10 +20,11 @@ use footprint_core::terrain::Terrain;
 use serde::Serialize;
 
 use super::paper::{paper_view_placed, ViewPlacement};
-use super::reference::{psnr, reference, rmse};
+use super::reference::{psnr, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{count, render_timed, visible, Mode, Tables, SS_RATES};
+use crate::truth::Truth;
 use crate::view::{Size, SurfaceArg};
 use footprint_scenes::view::Placement;
 
@@ -64,7 +65,7 @@ pub struct ModeRow {
     pub ms_median: f64,
     /// The rounds timed.
     pub repeats: usize,
-    /// RMSE against the ground truth, 8-bit levels.
+    /// RMSE against the ground truth ([`crate::truth`]), 8-bit levels.
     pub rmse: f64,
     /// PSNR against the ground truth, dB (`null` if identical).
     pub psnr: Option<f64>,
@@ -188,8 +189,9 @@ pub fn steps(pitches: usize, modes: usize) -> u64 {
 }
 
 /// Runs the cases at `pitches` with `modes` at `size` (the paper's is 400×400), walking the
-/// pyramid (`lod`) or level 0 alone; the ground truth is the same either way, so the RMSE with
-/// and without `lod` shows the pyramid's share of the error.
+/// pyramid (`lod`) or level 0 alone; the ground truth ([`crate::truth`], `truth_samples ×
+/// truth_samples` rays a pixel, on `surface`) is the same either way, so the RMSE with and
+/// without `lod` shows the pyramid's share of the error.
 #[allow(
     clippy::too_many_arguments,
     reason = "the tables' inputs, each one option of `footprint table`"
@@ -203,8 +205,10 @@ pub fn run(
     lod: bool,
     surface: SurfaceArg,
     placement: Option<Placement>,
+    truth_samples: u32,
     mut progress: impl FnMut(&str),
 ) -> Result<Tables15> {
+    crate::truth::check_samples("--truth-samples", truth_samples)?;
     let terrain = pyramid.terrain(lod)?;
     let options = Options {
         lod,
@@ -212,18 +216,13 @@ pub fn run(
         ..Options::default()
     };
     let placement = placement.unwrap_or_else(|| Placement::for_map(map));
+    let judge = Truth::new(map, options.surface)?;
     let mut cases = Vec::new();
     for &pitch in pitches {
         let view = paper_view_placed(map, pyramid, pitch, size, lod, placement)?;
         let camera = view.camera;
         progress(&format!("pitch {pitch}°: ground truth"));
-        let truth = reference(
-            &camera,
-            pyramid,
-            options.sky,
-            options.projection,
-            options.surface,
-        )?;
+        let truth = judge.render(&camera, options.sky, options.projection, truth_samples)?;
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;
         let cols = camera.width() as f64;

@@ -1,5 +1,5 @@
 //! Table 6 (the changes between frames of the flight, Sect. 5) as Markdown: the chosen column,
-//! every column, and each mode's excess over the reference flight.
+//! every column, and each mode's excess over the truth's flight.
 
 use crate::experiment::fly::{self, BINS};
 use crate::report::number::{signed_thousands, thousands};
@@ -24,14 +24,14 @@ fn table(f: &fly::Fly, get: &dyn Fn(&fly::ModeFly) -> Option<fly::Histogram>) ->
     s
 }
 
-/// The excess over the reference: per mode, its large changes (6 and more) and the
-/// reference's, in the column and over every column, and the RMSE against the reference.
+/// The excess over the truth's flight: per mode, its large changes (6 and more) and the
+/// truth's, in the column and over every column, and the RMSE against the truth.
 fn excess(f: &fly::Fly, reference: &fly::ModeFly) -> String {
     let frame = f.modes.iter().any(|m| m.large_changes.is_some());
+    let k = f.reference_columns.unwrap_or(0);
     let mut s = format!(
-        "\nAgainst the reference flight ({}): large changes (6 and more) and the excess over \
-         the reference's own ({} in the column{}).\n\n",
-        crate::report::document::reference_words(f.reference_columns.unwrap_or(0)),
+        "\nAgainst the truth's flight ({k}×{k} exact rays a pixel, none of the walk's code): \
+         large changes (6 and more) and the excess over the truth's own ({} in the column{}).\n\n",
         thousands(reference.column_large_changes),
         reference.large_changes.map_or(String::new(), |c| format!(
             ", {} over the frame",
@@ -70,7 +70,7 @@ fn excess(f: &fly::Fly, reference: &fly::ModeFly) -> String {
 }
 
 /// Table 6 as Markdown: the chosen column, then (when measured) every column, then the excess
-/// over the reference flight (when flown).
+/// over the truth's flight (when flown).
 pub fn markdown(f: &fly::Fly) -> String {
     let flown = match &f.path {
         Some(p) => format!(
@@ -110,13 +110,13 @@ pub fn markdown(f: &fly::Fly) -> String {
 }
 
 /// Every column's large changes split by the class of the pixel's footprint
-/// ([`crate::experiment::causes`]), with each class's excess over the reference.
+/// ([`crate::experiment::causes`]), with each class's excess over the truth.
 fn classes(f: &fly::Fly) -> String {
     let names = crate::experiment::causes::CLASSES;
     let mut s = String::from(
         "\nEvery column's large changes (6 and more) by the pixel's footprint: at a seam of the \
          mirrored map, magnified (narrower than a voxel), the rest; the excess over the \
-         reference in brackets.\n\n| Mode |",
+         truth in brackets.\n\n| Mode |",
     );
     for n in names {
         s += &format!(" {n} |");
