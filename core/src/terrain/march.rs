@@ -489,7 +489,6 @@ impl<'a, 't> March<'a, 't> {
         // ([`Corner`]): one load and compare where the ray crosses into the next row, and only
         // on a hit does the ride leave its loop to stand on the corner.
         // (A wide sampler's walk has none: `with_corners(!S::WIDE)` in the column walk.)
-        let half = d_frac >> 1;
         enum Stop {
             Hit,
             End,
@@ -595,14 +594,17 @@ impl<'a, 't> March<'a, 't> {
                         // The row's edge before the boundary along the ray (the fraction
                         // past it at the new centre is at least half the step's): the new
                         // row's cell at the last centre; else the old row's at this one.
-                        let behind = frac >= half;
-                        let (at_corner, h_corner) = if behind {
-                            (idx.wrapping_add_signed(dcross - du), h.wrapping_sub(rise))
+                        let behind = frac >= d_frac >> 1;
+                        let at_corner = if behind {
+                            idx.wrapping_add_signed(dcross.wrapping_sub(du))
                         } else {
-                            (idx, h)
+                            idx
                         };
                         idx = idx.wrapping_add_signed(dcross);
-                        if i64::from(at(at_corner)) << 24 > h_corner {
+                        // The ray's lower height of the two centres (the slope's sign is the
+                        // ride's): where the corner is, the stop tests it exactly.
+                        let low = if ASCENDING { h.wrapping_sub(rise) } else { h };
+                        if i64::from(at(at_corner)) << 24 > low {
                             break Stop::Corner(at_corner, behind);
                         }
                     } else {
