@@ -135,7 +135,7 @@ pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usi
     mode.walk_column(frame, terrain, x, &mut counts, &mut pixels);
     let mut visible = Vec::new();
     visit_visible(frame, terrain, x, mode.switch(), |march| {
-        visible.push(march.step_index());
+        visible.push(march.sequence_index());
     });
     let mut tally = counts.counts.total;
     tally.v = visible.len() as u64;
@@ -194,7 +194,7 @@ pub fn count(
 /// Every counter of [`Counts`], and the step index of every voxel a sampler samples.
 struct Recorded<'a> {
     counts: Counts<'a>,
-    sampled: Vec<u32>,
+    sampled: Vec<u64>,
 }
 
 impl Cost for Recorded<'_> {
@@ -218,7 +218,7 @@ impl Cost for Recorded<'_> {
     }
     fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
         self.counts.sample(voxel, color, weight);
-        let k = voxel.step_index();
+        let k = voxel.sequence_index();
         if self.sampled.last() != Some(&k) {
             self.sampled.push(k);
         }
@@ -255,7 +255,7 @@ impl Cost for Recorded<'_> {
 /// The sampled step indices that are not visible (hidden) and the visible ones not sampled
 /// (missed); both lists are increasing, because the walk and the visibility pass step through
 /// one voxel sequence.
-fn hidden_and_missed(sampled: &[u32], visible: &[u32]) -> (u64, u64) {
+fn hidden_and_missed(sampled: &[u64], visible: &[u64]) -> (u64, u64) {
     let (mut i, mut j, mut hidden, mut missed) = (0, 0, 0u64, 0u64);
     while i < sampled.len() || j < visible.len() {
         match (sampled.get(i), visible.get(j)) {

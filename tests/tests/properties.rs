@@ -493,10 +493,10 @@ proptest! {
                 let (mut all, mut skipped) = (Vec::new(), Vec::new());
                 visit(frame, terrain, col, switch, |m, seen| {
                     if seen {
-                        all.push(m.step_index());
+                        all.push(m.sequence_index());
                     }
                 });
-                visit_visible(frame, terrain, col, switch, |m| skipped.push(m.step_index()));
+                visit_visible(frame, terrain, col, switch, |m| skipped.push(m.sequence_index()));
                 prop_assert_eq!(&all, &skipped, "column {} {:?}", col, switch);
             }
             Ok(())

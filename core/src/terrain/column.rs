@@ -350,7 +350,7 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     let max_h = terrain.max_height();
     cost.begin_column(col);
 
-    let mut march = March::new(frame, terrain, column, S::SWITCH);
+    let mut march = March::new(frame, terrain, column, S::SWITCH).with_corners(!S::WIDE);
     cost.new_ray();
     let mut px = Pixels {
         frame,
@@ -411,8 +411,13 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
             if ray.slope >= 0 && ray.h > max_h {
                 break;
             }
+            // A cell entered at a corner is tested within the step that crosses into the next
+            // row ([`March::on_corner`]): stepping off it is no step of its own.
+            let corner = march.on_corner();
             let dn = march.advance();
-            px.cost.step(px.in_footprint);
+            if !corner {
+                px.cost.step(px.in_footprint);
+            }
             if march.n() > column.n_far {
                 break;
             }

@@ -242,7 +242,8 @@ pub struct Counts<'a> {
     columns: &'a mut [Tally],
     current: Tally,
     column: usize,
-    last_sampled: Option<u32>,
+    /// The last voxel sampled ([`Voxel::sequence_index`]).
+    last_sampled: Option<u64>,
 }
 
 impl<'a> Counts<'a> {
@@ -300,7 +301,7 @@ impl Cost for Counts<'_> {
         self.current.b += 1;
     }
     fn sample(&mut self, voxel: &Voxel<'_>, _: Color16, _: Weight) {
-        let index = voxel.step_index();
+        let index = voxel.sequence_index();
         self.current.c += 1;
         if self.last_sampled != Some(index) {
             self.current.m += 1;

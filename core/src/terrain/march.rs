@@ -126,6 +126,33 @@ pub struct March<'a, 't> {
     n_far: i64,
     /// The maximum-pyramid level of the last successful skip, where the next one starts.
     skip_level: u32,
+    /// Whether the sequence holds the cells the ground track enters at a corner ([`Corner`]);
+    /// off for a wide sampler, whose every step reads the cells on either side across.
+    corners: bool,
+    /// The corner cell the cursor stands on, if any: the cursor's other fields already describe
+    /// the voxel after it.
+    corner: Option<Corner>,
+}
+
+/// A cell the ray's ground track enters between two voxels of the sequence, at a corner.
+///
+/// Between two centres along the ray the track may also cross into the next row across. It
+/// then passes through one cell that neither centre is over: the next row's cell at the
+/// earlier centre, if the track crosses the row's edge before the boundary between the two
+/// voxels along the ray (`behind`), or the earlier row's cell at the later centre if after it.
+/// The paper's uniform incremental sampling tests the centres only and steps past that cell,
+/// so a one-voxel wall along a diagonal, whose cells touch only at their corners, shows gaps
+/// in every mode. The sequence holds it between the two voxels, tested at the centre `n` of
+/// the voxel whose major-axis position it shares, as every voxel is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Corner {
+    /// The cell's index in the level's arrays.
+    idx: usize,
+    /// Whether it shares the earlier voxel's position along the ray (and the later one's row
+    /// across); otherwise the later voxel's position and the earlier one's row.
+    behind: bool,
+    /// Crossings into the next cell across before a mirror edge, counted from this cell.
+    cross_left: u32,
 }
 
 impl<'a, 't> March<'a, 't> {
@@ -184,9 +211,27 @@ impl<'a, 't> March<'a, 't> {
             planned: 0,
             n_far: column.n_far,
             skip_level: 0,
+            corners: true,
+            corner: None,
         };
         m.enter_level();
         m
+    }
+
+    /// The same cursor with or without the cells the ground track enters at a corner
+    /// ([`Corner`]; on by default): a wide sampler's walk, which reads the cells on either side
+    /// of every step across, has no use for them.
+    #[must_use]
+    pub fn with_corners(mut self, on: bool) -> Self {
+        self.corners = on;
+        self
+    }
+
+    /// Whether the cursor stands on a cell the ground track enters at a corner, between two
+    /// voxels of the uniform sequence ([`March::advance`] goes on to the later one).
+    #[inline(always)]
+    pub fn on_corner(&self) -> bool {
+        self.corner.is_some()
     }
 
     /// Recomputes the level-dependent state after a change of level (a few times a column).
@@ -313,11 +358,11 @@ impl<'a, 't> March<'a, 't> {
     /// The cell index across after `crossed` more crossings in the direction the ray moves
     /// across (one cell each): the ride counts only the crossings left, not the cell.
     #[inline(always)]
-    fn cv_after(&self, crossed: u32) -> i64 {
+    fn cv_after(&self, crossed: i64) -> i64 {
         if self.flip == 0 {
-            self.cv + i64::from(crossed)
+            self.cv + crossed
         } else {
-            self.cv - i64::from(crossed)
+            self.cv - crossed
         }
     }
 
@@ -329,7 +374,7 @@ impl<'a, 't> March<'a, 't> {
         if crossed == 0 {
             return;
         }
-        self.cv = self.cv_after(crossed);
+        self.cv = self.cv_after(i64::from(crossed));
         self.cross_left -= crossed;
         self.off_v = self
             .off_v
@@ -343,18 +388,50 @@ impl<'a, 't> March<'a, 't> {
         }
     }
 
-    /// Moves the cross coordinate to `v` and, if it entered another cell, the index with it.
+    /// Moves the cross coordinate to `v` and, if it entered another cell, the index with it;
+    /// the index was `prev` at the voxel before this step (for the cell entered at a corner,
+    /// [`Corner`], which the cursor then stands on).
     #[inline(always)]
-    fn cross_to(&mut self, v: i64) {
+    fn cross_to(&mut self, v: i64, prev: usize) {
         self.v = v;
         let cv = v >> (32 + self.l);
         if cv != self.cv {
             self.pv = period_step(self.pv, self.len_v, cv > self.cv);
             self.cv = cv;
-            let off_v = self.offset_v(self.pv);
-            self.idx = self.idx.wrapping_sub(self.off_v).wrapping_add(off_v);
+            let (old, off_v) = (self.off_v, self.offset_v(self.pv));
+            let ahead = self.idx;
+            self.idx = self.idx.wrapping_sub(old).wrapping_add(off_v);
             self.off_v = off_v;
             self.plan_cross();
+            // Over a mirror edge the next row is this one again: no cell between.
+            if self.corners && off_v != old {
+                self.corner =
+                    Some(self.corner_at(v, prev.wrapping_sub(old).wrapping_add(off_v), ahead));
+            }
+        }
+    }
+
+    /// The corner cell of a step that ended at cross coordinate `v` in a new row: `behind`
+    /// (the new row at the earlier centre) if the ray's track crosses into the row before the
+    /// boundary between the two voxels along the ray, half a step back, else `ahead` (the old
+    /// row at the later centre). The cursor's crossings are counted from the new row.
+    #[cold]
+    fn corner_at(&self, v: i64, behind: usize, ahead: usize) -> Corner {
+        // dv_step = dv·2^(l+1): half of it is exact.
+        let mid = v - (self.dv_step >> 1);
+        let left = self.cross_left + self.gap;
+        if mid >> (32 + self.l) == self.cv {
+            Corner {
+                idx: behind,
+                behind: true,
+                cross_left: left,
+            }
+        } else {
+            Corner {
+                idx: ahead,
+                behind: false,
+                cross_left: left + 1,
+            }
         }
     }
 
@@ -408,12 +485,47 @@ impl<'a, 't> March<'a, 't> {
         let mut rise = ray.slope.to_bits().wrapping_mul(dn);
         let mut h = ray.h.to_bits();
         let mut unreported = 0;
+        // The cells entered at a corner are tested within the step that crosses a row
+        // ([`Corner`]): one load and compare where the ray crosses into the next row, and only
+        // on a hit does the ride leave its loop to stand on the corner.
+        // (A wide sampler's walk has none: `with_corners(!S::WIDE)` in the column walk.)
         enum Stop {
             Hit,
             End,
             Edge,
+            Corner(usize, bool),
         }
         loop {
+            if let Some(corner) = self.corner {
+                // The ray is at the corner's centre here: test the corner as any voxel, then
+                // step on to the voxel after it.
+                let top = i64::from(heights.get(corner.idx).copied().unwrap_or(0)) << 24;
+                if top > h {
+                    ray.h = Height::from_bits(h);
+                    let flow = on_hit.hit(&self.voxel(), Height::from_bits(top), ray, unreported);
+                    unreported = 0;
+                    // Returned on, the corner is done with: the walk's `advance` steps on.
+                    if flow == Flow::Stop || limit != u32::MAX {
+                        return 0;
+                    }
+                    if flow == Flow::NewSlope {
+                        if (ray.slope.to_bits() >= 0) != ASCENDING {
+                            return 0;
+                        }
+                        rise = ray.slope.to_bits().wrapping_mul(dn);
+                    }
+                    h = ray.h.to_bits();
+                }
+                self.corner = None;
+                if corner.behind {
+                    h = h.wrapping_add(rise);
+                    if self.n() > self.n_far {
+                        // The voxel after it lies beyond the far distance: the walk ends.
+                        ray.h = Height::from_bits(h);
+                        return unreported;
+                    }
+                }
+            }
             let start = self.run.min(limit);
             let (mut left, mut idx) = (start, self.idx);
             let mut frac = self.frac() ^ flip;
@@ -441,7 +553,12 @@ impl<'a, 't> March<'a, 't> {
                 };
                 let top = i64::from(top) << 24;
                 if top > h {
-                    let voxel = self.voxel_at(idx, frac, cross_left + gap, start - left);
+                    #[allow(
+                        clippy::cast_possible_wrap,
+                        reason = "a run is at most one level's side plus the far distance: below 2^23 steps"
+                    )]
+                    let taken = (start - left) as i32;
+                    let voxel = self.voxel_at(idx, frac, cross_left + gap, taken);
                     ray.h = Height::from_bits(h);
                     let steps = unreported + (mark - left);
                     (unreported, mark) = (0, left);
@@ -473,7 +590,26 @@ impl<'a, 't> March<'a, 't> {
                     // Into the next cell across the ray: one row over (the cell index across
                     // follows from the crossings left, `March::cv_after`).
                     cross_left -= 1;
-                    idx = idx.wrapping_add_signed(dcross);
+                    if !H::WIDE {
+                        // The row's edge before the boundary along the ray (the fraction
+                        // past it at the new centre is at least half the step's): the new
+                        // row's cell at the last centre; else the old row's at this one.
+                        let behind = frac >= d_frac >> 1;
+                        let at_corner = if behind {
+                            idx.wrapping_add_signed(dcross.wrapping_sub(du))
+                        } else {
+                            idx
+                        };
+                        idx = idx.wrapping_add_signed(dcross);
+                        // The ray's lower height of the two centres (the slope's sign is the
+                        // ride's): where the corner is, the stop tests it exactly.
+                        let low = if ASCENDING { h.wrapping_sub(rise) } else { h };
+                        if i64::from(at(at_corner)) << 24 > low {
+                            break Stop::Corner(at_corner, behind);
+                        }
+                    } else {
+                        idx = idx.wrapping_add_signed(dcross);
+                    }
                 }
             };
             self.take_crossings(self.cross_left - cross_left);
@@ -484,8 +620,25 @@ impl<'a, 't> March<'a, 't> {
             let v = self.v + dv_step * i64::from(start - left);
             match found {
                 Stop::Edge => {
-                    // An edge across the ray: the general crossing, then the same run.
-                    self.cross_to(v);
+                    // An edge across the ray: the general crossing, then the same run (from
+                    // the cell entered at the corner, if any).
+                    self.cross_to(v, idx.wrapping_add_signed(-du));
+                    if self.corner.is_some_and(|c| c.behind) {
+                        h = h.wrapping_sub(rise);
+                    }
+                    continue;
+                }
+                Stop::Corner(idx, behind) => {
+                    // A cell entered at a corner reaches the ray: stand on it.
+                    self.v = v;
+                    self.corner = Some(Corner {
+                        idx,
+                        behind,
+                        cross_left: self.cross_left + self.gap + u32::from(!behind),
+                    });
+                    if behind {
+                        h = h.wrapping_sub(rise);
+                    }
                     continue;
                 }
                 Stop::Hit => {
@@ -618,7 +771,7 @@ impl<'a, 't> March<'a, 't> {
     /// run's far end, rounded up, and one cell more), so that the voxels passed over are
     /// those its wedge would have found below the ray.
     pub fn skip(&mut self, h: &mut Height, rise: Height, wide: bool) -> u32 {
-        if self.run == 0 {
+        if self.run == 0 || self.corner.is_some() {
             return 0;
         }
         let margin = if wide {
@@ -691,8 +844,10 @@ impl<'a, 't> March<'a, 't> {
             self.v = v;
             self.commit(inner);
         }
-        self.advance();
-        *h = Height::from_bits(ray + i64::from(best) * rise_bits);
+        // The last step may end on a cell entered at a corner behind the next voxel, at the
+        // last centre inside the block: the ray is at the cursor's centre.
+        let moved = self.advance() != 0;
+        *h = Height::from_bits(ray + i64::from(best - u32::from(!moved)) * rise_bits);
         best
     }
 
@@ -706,16 +861,32 @@ impl<'a, 't> March<'a, 't> {
         }
     }
 
-    /// Steps to the next voxel and returns the distance moved, in half-voxels.
+    /// Steps to the next voxel and returns the distance moved, in half-voxels: 0 onto a cell
+    /// entered at a corner behind the next voxel, and from one ahead of it ([`Corner`]).
     #[inline(always)]
     pub fn advance(&mut self) -> i64 {
+        if let Some(corner) = self.corner.take() {
+            return if corner.behind { self.dn } else { 0 };
+        }
         if self.run > 0 {
+            let prev = self.idx;
             self.idx = self.idx.wrapping_add_signed(self.du);
-            self.cross_to(self.v + self.dv_step);
+            self.cross_to(self.v + self.dv_step, prev);
             self.commit(1);
-            return self.dn;
+            return self.moved();
         }
         self.step_out_of_run()
+    }
+
+    /// What a step of `dn` half-voxels moved the cursor: nothing if it stands on a cell
+    /// entered at a corner behind the voxel it reached.
+    #[inline(always)]
+    fn moved(&self) -> i64 {
+        if self.corner.is_some_and(|c| c.behind) {
+            0
+        } else {
+            self.dn
+        }
     }
 
     /// The step that ends a run: a climb, a mirror edge, or a step past the far distance.
@@ -735,19 +906,25 @@ impl<'a, 't> March<'a, 't> {
             self.enter_level();
             return dn;
         }
+        let prev = self.idx;
         self.j += 1;
         self.n += self.dn;
         self.pu = period_step(self.pu, self.len_u, self.forward);
         self.idx = self.offset_u() + self.off_v;
-        self.cross_to(self.v.saturating_add(self.dv_step));
+        self.cross_to(self.v.saturating_add(self.dv_step), prev);
         self.plan_run();
-        self.dn
+        self.moved()
     }
 
     /// The current voxel's centre, half-voxels along the ray.
     #[inline(always)]
     pub fn n(&self) -> i64 {
-        self.n + i64::from(self.taken()) * self.dn
+        let n = self.n + i64::from(self.taken()) * self.dn;
+        if self.corner.is_some_and(|c| c.behind) {
+            n - self.dn
+        } else {
+            n
+        }
     }
 
     /// The current pyramid level.
@@ -760,6 +937,11 @@ impl<'a, 't> March<'a, 't> {
     #[inline(always)]
     pub fn step_index(&self) -> u32 {
         self.k.saturating_add(self.taken())
+    }
+
+    /// The current voxel's place in the sequence, corners included ([`Voxel::sequence_index`]).
+    pub fn sequence_index(&self) -> u64 {
+        self.voxel().sequence_index()
     }
 
     /// The array offset of the current voxel's major-axis coordinate.
@@ -785,7 +967,8 @@ impl<'a, 't> March<'a, 't> {
     /// The height of the current voxel (the stick containing the ray's point).
     #[inline(always)]
     pub fn height(&self) -> Height {
-        height(self.heights.get(self.idx).copied().unwrap_or(0))
+        let idx = self.corner.map_or(self.idx, |c| c.idx);
+        height(self.heights.get(idx).copied().unwrap_or(0))
     }
 
     /// The steps left in the current run: the next `run_left()` calls of [`March::advance`]
@@ -803,17 +986,23 @@ impl<'a, 't> March<'a, 't> {
 
     /// The current voxel's `(x, y)` at its level, after mirroring.
     pub fn cell(&self) -> (u32, u32) {
-        let (u, v) = (fold(self.pu_now(), self.len_u), fold(self.pv, self.len_v));
-        match self.axis {
-            Axis::X => (u, v),
-            Axis::Y => (v, u),
-        }
+        let (x, y) = self.cell_unmirrored();
+        (
+            mirror(x, self.level.width()),
+            mirror(y, self.level.height()),
+        )
     }
 
     /// The current voxel's `(x, y)` at its level in the infinite (unmirrored) grid: level-L
     /// voxel `(x, y)` covers level-0 voxels `x·2^L .. (x+1)·2^L` and likewise in `y`.
     pub fn cell_unmirrored(&self) -> (i64, i64) {
-        let (u, v) = (self.u_cell(), self.cv);
+        let (mut u, mut v) = (self.u_cell(), self.cv);
+        match self.corner {
+            // The earlier voxel's position along the ray, or its row across.
+            Some(Corner { behind: true, .. }) => u -= if self.forward { 1 } else { -1 },
+            Some(_) => v = self.cv_after(-1),
+            None => {}
+        }
         match self.axis {
             Axis::X => (u, v),
             Axis::Y => (v, u),
@@ -836,9 +1025,17 @@ impl<'a, 't> March<'a, 't> {
         frac
     }
 
-    /// The current voxel as a sampler sees it.
+    /// The current voxel as a sampler sees it. On a cell entered at a corner ([`Corner`]) the
+    /// ray's cross coordinate lies outside it, at its edge behind (a corner behind the next
+    /// voxel) or ahead.
     #[inline(always)]
     pub fn voxel(&self) -> Voxel<'_> {
+        if let Some(c) = self.corner {
+            let (toward, taken) = if c.behind { (0, -1) } else { (u32::MAX, 0) };
+            let mut voxel = self.voxel_at(c.idx, toward, c.cross_left, taken);
+            voxel.corner = true;
+            return voxel;
+        }
         self.voxel_at(
             self.idx,
             self.frac() ^ self.flip,
@@ -854,13 +1051,14 @@ impl<'a, 't> March<'a, 't> {
     /// are written per hit: everything else a sampler may ask is read from the cursor when
     /// asked.
     #[inline(always)]
-    fn voxel_at(&self, idx: usize, toward: u32, cross_left: u32, taken: u32) -> Voxel<'_> {
+    fn voxel_at(&self, idx: usize, toward: u32, cross_left: u32, taken: i32) -> Voxel<'_> {
         Voxel {
             march: self,
             idx,
             toward,
             cross_left,
             taken,
+            corner: false,
         }
     }
 
@@ -920,8 +1118,12 @@ pub struct Voxel<'v> {
     /// Crossings into the next cell across, in the direction the ray moves across, before a
     /// mirror edge (see [`March::plan_cross`]).
     cross_left: u32,
-    /// Steps into the run beyond the cursor's own count.
-    taken: u32,
+    /// Steps into the run beyond the cursor's own count (−1: a cell entered at a corner,
+    /// behind the cursor's voxel).
+    taken: i32,
+    /// Whether it is a cell the ground track enters at a corner ([`Corner`]), between two
+    /// voxels of the uniform sequence.
+    corner: bool,
 }
 
 impl Voxel<'_> {
@@ -929,15 +1131,37 @@ impl Voxel<'_> {
     #[inline(always)]
     pub fn n(&self) -> i64 {
         let m = self.march;
-        m.n + i64::from(m.taken() + self.taken) * m.dn
+        m.n + (i64::from(m.taken()) + i64::from(self.taken)) * m.dn
     }
 
-    /// The index of the voxel in the column's sequence (the number of steps taken): the
-    /// identity the distinct-sample count `M` uses (Sect. 6).
+    /// The index of the voxel in the column's sequence (the number of steps taken): with
+    /// [`Voxel::is_corner`], the identity the distinct-sample count `M` uses (Sect. 6).
     #[inline(always)]
     pub fn step_index(&self) -> u32 {
         let m = self.march;
-        m.k.saturating_add(m.taken() + self.taken)
+        m.k.saturating_add(m.taken())
+            .saturating_add_signed(self.taken)
+    }
+
+    /// The voxel's place in the column's sequence, corners included: twice the
+    /// [`Voxel::step_index`], plus one for a cell entered at a corner behind the next voxel,
+    /// minus one for one ahead of it. The identity the distinct-sample count `M` uses (Sect. 6).
+    #[inline(always)]
+    pub fn sequence_index(&self) -> u64 {
+        let k = 2 * u64::from(self.step_index());
+        match (self.corner, self.taken < 0) {
+            (false, _) => k,
+            (true, true) => k + 1,
+            (true, false) => k.saturating_sub(1),
+        }
+    }
+
+    /// Whether the voxel is a cell the ray's ground track enters at a corner, between two
+    /// voxels of the uniform sequence along the ray: it shares the [`Voxel::step_index`] of
+    /// the voxel whose position along the ray it has.
+    #[inline(always)]
+    pub fn is_corner(&self) -> bool {
+        self.corner
     }
 
     /// The voxel's pyramid level.
@@ -950,11 +1174,12 @@ impl Voxel<'_> {
     /// [`March::cell_unmirrored`]).
     pub fn cell_unmirrored(&self) -> (i64, i64) {
         let m = self.march;
-        let j = m.j + i64::from(m.taken() + self.taken);
+        let j = m.j + i64::from(m.taken()) + i64::from(self.taken);
         let u = if m.forward { j } else { -j - 1 };
+        let v = m.cv_after(i64::from(m.cross_left + m.gap) - i64::from(self.cross_left));
         match m.axis {
-            Axis::X => (u, m.cv_after(m.cross_left + m.gap - self.cross_left)),
-            Axis::Y => (m.cv_after(m.cross_left + m.gap - self.cross_left), u),
+            Axis::X => (u, v),
+            Axis::Y => (v, u),
         }
     }
 
@@ -1318,20 +1543,43 @@ mod tests {
             1e5,
             false,
             |frame, terrain, column| {
-                let mut march = March::new(frame, terrain, column, Switch::Nearest);
-                let mut crossed = 0;
-                for k in 0..200 {
-                    let (x, y) = march.cell_unmirrored();
-                    assert_eq!(y, column.cross_at(march.n()), "step {k}");
-                    assert_eq!(march.height(), height(at(&heights, (x, y))), "step {k}");
-                    let before = y;
-                    march.advance();
-                    crossed += i64::from(march.cell_unmirrored().1 != before);
+                for corners in [false, true] {
+                    let mut march =
+                        March::new(frame, terrain, column, Switch::Nearest).with_corners(corners);
+                    let (mut crossed, mut seen) = (0, 0);
+                    let mut last = march.cell_unmirrored();
+                    for k in 0..400 {
+                        let (x, y) = march.cell_unmirrored();
+                        if march.on_corner() {
+                            seen += 1;
+                        } else {
+                            assert_eq!(y, column.cross_at(march.n()), "step {k}");
+                        }
+                        assert_eq!(march.height(), height(at(&heights, (x, y))), "step {k}");
+                        if k > 0 && corners {
+                            // Every cell the ground track enters, in order: each one beside
+                            // the last, never diagonal to it.
+                            // (Over a mirror edge across, the row repeats: the cell between
+                            // is the one before or after it.)
+                            let apart = (x - last.0).abs() + (y - last.1).abs();
+                            let mirrored = mirror(y, MAP) == mirror(last.1, MAP);
+                            assert!(
+                                apart == 1 || apart == 2 && mirrored,
+                                "step {k}: {last:?} to {:?}",
+                                (x, y)
+                            );
+                        }
+                        last = (x, y);
+                        let before = y;
+                        march.advance();
+                        crossed += i64::from(march.cell_unmirrored().1 != before);
+                    }
+                    assert!(
+                        crossed > 50,
+                        "the walk moves across the map: {crossed} crossings"
+                    );
+                    assert_eq!(seen > 0, corners, "cells entered at a corner: {seen}");
                 }
-                assert!(
-                    crossed > 50,
-                    "the walk moves across the map: {crossed} crossings"
-                );
             },
         );
     }
@@ -1352,7 +1600,9 @@ mod tests {
             1e5,
             false,
             |frame, terrain, column| {
-                let mut march = March::new(frame, terrain, column, Switch::Nearest);
+                // The continuous surface's walk has no corners (it is a wide sampler's).
+                let mut march =
+                    March::new(frame, terrain, column, Switch::Nearest).with_corners(false);
                 let mut checked = 0;
                 for k in 0..200 {
                     let (x, y) = march.cell_unmirrored();
