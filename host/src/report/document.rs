@@ -8,7 +8,6 @@ use crate::experiment::fly;
 use crate::experiment::glint::Glint;
 use crate::experiment::heights::{Changed, Variant, SHIFT_MODE};
 use crate::experiment::inspect::PixelChoice;
-use crate::experiment::reference::REFERENCE_COLUMNS;
 use crate::experiment::table::Tables15;
 use crate::report::number::thousands;
 
@@ -84,17 +83,11 @@ fn list(v: &[(String, f64)]) -> String {
         .join(", ")
 }
 
-/// What the report says its ground truth is: the one place that words it, for the truth's
-/// module to update when the truth changes (TODO(truth): take the words from the new host
-/// `truth` module when it replaces `experiment::reference`).
+/// What the report says its ground truth is: the one place that words it ([`crate::truth`]).
 pub fn truth_words() -> String {
-    reference_words(REFERENCE_COLUMNS)
-}
-
-/// The ground truth's settings with `columns` columns per pixel (the reference flight's may
-/// differ from the tables' [`REFERENCE_COLUMNS`]), in words: [`truth_words`]'s one source.
-pub fn reference_words(columns: u32) -> String {
-    format!("`as-exact` at level 0, {columns} columns per pixel")
+    "`truth`: K×K exact rays a pixel (`--truth-samples`), each meeting every cell its ground \
+     track enters at level 0, none of the walk's code"
+        .to_string()
 }
 
 /// A share as a percentage: `1.2 %`, `0.04 %`, `37 %`.
@@ -636,7 +629,7 @@ pub fn differences_section(d: &Differences, t: &Tables15) -> String {
             format!(
                 "These views walk level 0 (`--lod off`), as the ground truth ({}) does, so what \
                  is left is each sampler's own error: along the column, and across it (one \
-                 column per pixel against the truth's {REFERENCE_COLUMNS}); run the same command \
+                 column per pixel against the truth's K×K rays); run the same command \
                  with `--lod on` for the pyramid's share.",
                 truth_words()
             )
