@@ -489,6 +489,7 @@ impl<'a, 't> March<'a, 't> {
         // ([`Corner`]): one load and compare where the ray crosses into the next row, and only
         // on a hit does the ride leave its loop to stand on the corner.
         // (A wide sampler's walk has none: `with_corners(!S::WIDE)` in the column walk.)
+        let corners = !H::WIDE && self.corners;
         enum Stop {
             Hit,
             End,
@@ -590,7 +591,7 @@ impl<'a, 't> March<'a, 't> {
                     // Into the next cell across the ray: one row over (the cell index across
                     // follows from the crossings left, `March::cv_after`).
                     cross_left -= 1;
-                    if !H::WIDE {
+                    if corners {
                         // The row's edge before the boundary along the ray (the fraction
                         // past it at the new centre is at least half the step's): the new
                         // row's cell at the last centre; else the old row's at this one.
