@@ -9,7 +9,7 @@
 //! both are there ([`pyramid::reduce_row`], the core's own arithmetic), so each level holds
 //! at most one row waiting for its pair. Each grid of a level (heights along x, along y, the
 //! maximum, the colours) is written through a buffer of [`BUFFER`] bytes at its offset in the
-//! file's order ([`Grid`]: row-major rows as they come; in strips, a block of rows at a time,
+//! file's order (`Grid`: row-major rows as they come; in strips, a block of rows at a time,
 //! each strip's part at its place), and its CRC-32 is kept as it goes, one per strip; a level's
 //! checksum joins them in file order ([`crc32fast::Hasher::combine`]). The header is written
 //! last.

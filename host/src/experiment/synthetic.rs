@@ -6,7 +6,7 @@
 //! one voxel thick along a diagonal shows gaps in every mode (issue 50). Each map is a floor at
 //! [`FLOOR`] height units with the feature raised on it; its scale is a 16-bit PNG's defaults
 //! (30 m cells, 0.1 m height units), so the map in memory ([`map`]) is the map that `--dem`
-//! reads back from the PNG [`footprint map synth`](crate::commands::map) writes, colours (the
+//! reads back from the PNG [`footprint map synth`](mod@crate::commands::map) writes, colours (the
 //! tint from height) included.
 
 use crate::map::{tint, Map};

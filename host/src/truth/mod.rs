@@ -6,9 +6,9 @@
 //! ([`Camera::slope_at`], [`Camera::pixel_angle`]), and nothing else.
 //!
 //! **What it computes.** Each pixel is the mean of `K × K` stratified sub-samples over its whole
-//! area, in both image axes ([`camera`]): Eq. 1's box filter over the pixel, estimated by
+//! area, in both image axes (module `camera`): Eq. 1's box filter over the pixel, estimated by
 //! `K²` exact point samples. Each sub-sample is its own ray, met exactly with the height field
-//! ([`trace`]): every cell its ground track enters is visited in order (a 2D DDA, corners
+//! (module `trace`): every cell its ground track enters is visited in order (a 2D DDA, corners
 //! included), and the first hit's colour is the sample's; a ray that meets nothing within the
 //! far distance sees the sky ([`footprint_core::terrain::camera::Options::sky`]). The `K²`
 //! colours are averaged in integers and rounded once to 8 bits, half up
@@ -16,7 +16,7 @@
 //!
 //! **Surfaces.** [`Surface::Flat`] is the paper's model (Sect. 2: the heights as "voxels
 //! (sticks)", flat-topped columns with vertical faces); [`Surface::Bilinear`] is the continuous
-//! surface through the cells' centres ([`bilinear`]), everywhere: the object that
+//! surface through the cells' centres (module `bilinear`), everywhere: the object that
 //! `--surface bilinear` approximates. The modes meet that surface only where a pixel is
 //! narrower than half a voxel and blend into the flat tops between half a voxel and one
 //! (`footprint_core::terrain::surface`); beyond, they integrate the flat tops that the
@@ -37,7 +37,7 @@
 //! sampling integrates evenly in Eq. 2's slope across the pixel (the same to first order).
 //!
 //! **Speed.** Rows in parallel (rayon); empty air is skipped through the truth's own
-//! max-height quadtree over level 0 ([`maxmip`]), which changes no result; a ray above the
+//! max-height quadtree over level 0 (module `maxmip`), which changes no result; a ray above the
 //! map's highest point and rising is sky.
 //!
 //! Cohen-Or's paper calls area sampling "exact" along the column and leaves the horizontal

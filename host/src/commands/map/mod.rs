@@ -1,5 +1,5 @@
 //! `footprint map info FILE` and `footprint map convert IN OUT`: check a height map before
-//! rendering it, and convert between formats; `map bake` and `map verify` are in [`bake`].
+//! rendering it, and convert between formats; `map bake` and `map verify` are in its `bake` module.
 
 mod bake;
 
