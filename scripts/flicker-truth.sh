@@ -6,7 +6,8 @@
 #   MAP: mountains eroded plains msh tujunga comanche (default: all six, in that order)
 #   Runs `footprint fly MAP --frames N --modes ps,ss16,as,as-exact,as2 --causes --json` per map
 #   (the truth, K = 8, is fly's default reference), writes OUT/MAP.json, then prints the
-#   tables from every OUT/*.json present (`scripts/flicker-truth.sh --table` prints only).
+#   tables from every OUT/MAP.json present (`scripts/flicker-truth.sh --table` prints only).
+#   On 2026-11-29 (b08129f, 2 shared cores) FRAMES=80 took 529–744 s a map, 64 min in all.
 set -euo pipefail
 bin=${FOOTPRINT_BIN:?set FOOTPRINT_BIN to a release build of footprint}
 dems=${DEMS:-/work/dems}
@@ -33,35 +34,48 @@ if [ "${names[0]}" != --table ]; then
     echo "$n: $(( $(date +%s) - start )) s" >&2
   done
 fi
+# Tables: excess large changes over the truth's own and their ratios ("–" where the divisor is
+# 0 or negative, or the dividend negative); the raw large changes; the causes (excess per
+# class); the mean RMSE against the truth's frames.
 python3 - "$out" "${order[@]}" <<'PY'
 import json, os, sys
 out, order = sys.argv[1], sys.argv[2:]
 runs = [(n, json.load(open(f"{out}/{n}.json"))) for n in order if os.path.exists(f"{out}/{n}.json")]
 modes = ["ps", "ss16", "as", "as-exact", "as2"]
-print("| map | frames | truth's own | " + " | ".join(modes)
-      + " | PS/as | PS/as2 | as2/as | as2/SS16 |")
-print("|---" * (6 + len(modes)) + "|")
+def ratio(a, b, fmt="{:.1f}"):
+    return fmt.format(a / b) if b > 0 and a >= 0 else "–"
+print("| map | frames | truth's own | PS | SS16 | `as` | `as-exact` | `as2` | PS / `as` | PS / `as2` | `as2` / `as` | `as2` / SS16 |")
+print("|---" * 12 + "|")
 for n, d in runs:
     by = {m["mode"]: m for m in d["modes"]}
     ex = {m: by[m]["excess"]["all_columns"] for m in modes}
-    r = lambda a, b: f"{ex[a] / ex[b]:.1f}" if ex[b] > 0 else "∞"
-    r2 = lambda a, b: f"{ex[a] / ex[b]:.2f}" if ex[b] > 0 else "∞"
     print(f"| {n} | {d['frames']} | {d['reference']['large_changes']:,} | "
-          + " | ".join(f"{ex[m]:,}" for m in modes)
-          + f" | {r('ps', 'as')} | {r('ps', 'as2')} | {r2('as2', 'as')} | {r2('as2', 'ss16')} |")
+          + " | ".join(f"{ex[m]:,}".replace("-", "−") for m in modes)
+          + f" | {ratio(ex['ps'], ex['as'])} | {ratio(ex['ps'], ex['as2'])} | {ratio(ex['as2'], ex['as'], '{:.2f}')} | {ratio(ex['as2'], ex['ss16'], '{:.2f}')} |")
 print()
-print("| map | pixels: seam / magnified / rest | as: seam / magnified / rest | as2: seam / magnified / rest |")
-print("|---" * 4 + "|")
+print("| map | truth | PS | SS16 | `as` | `as-exact` | `as2` | PS / `as` | PS / `as2` | `as2` / `as` | `as2` / SS16 |")
+print("|---" * 11 + "|")
+for n, d in runs:
+    by = {m["mode"]: m for m in d["modes"]}
+    lc = {m: by[m]["large_changes"] for m in modes}
+    print(f"| {n} | {d['reference']['large_changes']:,} | " + " | ".join(f"{lc[m]:,}" for m in modes)
+          + f" | {ratio(lc['ps'], lc['as'])} | {ratio(lc['ps'], lc['as2'])} | {ratio(lc['as2'], lc['as'], '{:.2f}')} | {ratio(lc['as2'], lc['ss16'], '{:.2f}')} |")
+print()
+print("| map | pixels: seam / magnified / rest | truth's own: seam / magnified / rest | `as`: seam / magnified / rest | `as2`: seam / magnified / rest |")
+print("|---" * 5 + "|")
 for n, d in runs:
     by = {m["mode"]: m for m in d["modes"]}
     cls = lambda m: {c["class"]: c for c in by[m]["classes"]}
     c = cls("as")
-    tot = sum(c[k]["pixels"] for k in ("seam", "magnified", "rest"))
-    share = " / ".join(f"{100 * c[k]['pixels'] / tot:.1f}" for k in ("seam", "magnified", "rest"))
-    cells = [" / ".join(f"{cls(m)[k]['excess']:,}" for k in ("seam", "magnified", "rest")) for m in ("as", "as2")]
-    print(f"| {n} | {share} % | " + " | ".join(cells) + " |")
+    ks = ("seam", "magnified", "rest")
+    tot = sum(c[k]["pixels"] for k in ks)
+    share = " / ".join(f"{100 * c[k]['pixels'] / tot:.1f}" for k in ks)
+    ref = {c["class"]: c for c in d["reference"].get("classes", [])}
+    refs = " / ".join(f"{ref[k]['large_changes']:,}" for k in ks) if ref else "–"
+    cells = [" / ".join(f"{cls(m)[k]['excess']:,}".replace("-", "−") for k in ks) for m in ("as", "as2")]
+    print(f"| {n} | {share} % | {refs} | " + " | ".join(cells) + " |")
 print()
-print("| map | " + " | ".join(f"RMSE {m}" for m in modes) + " |")
+print("| map | " + " | ".join(["PS", "SS16", "`as`", "`as-exact`", "`as2`"]) + " |")
 print("|---" * (1 + len(modes)) + "|")
 for n, d in runs:
     by = {m["mode"]: m for m in d["modes"]}
