@@ -217,7 +217,7 @@ fn the_modes_show_the_diagonal_walls_solid_from_the_command_line() {
         let o = footprint(&["map", "synth", "--kind", kind, "--out", png_s]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         for pitch in ["0", "5"] {
-            for mode in ["ps", "li", "ss16", "as", "as-exact"] {
+            for mode in ["ps", "li", "ss16", "as", "as-exact", "as2"] {
                 let out = dir.path().join(format!("{kind}_{pitch}_{mode}.png"));
                 let args = [
                     "render",

@@ -19,7 +19,7 @@ use crate::sink::PixelSink;
 use crate::terrain::camera::Column;
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
-use crate::terrain::march::{Flow, Hits, March, Voxel};
+use crate::terrain::march::{Corners, Flow, Hits, March, Voxel};
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::Terrain;
 
@@ -254,6 +254,7 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
 
 impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O> {
     const WIDE: bool = S::WIDE;
+    const CORNERS: Corners = S::CORNERS;
 
     /// The hits on one voxel: each sampler call may raise the ray or begin the next pixel,
     /// and the same voxel is tested again until the ray passes above it; then the ride steps
@@ -350,7 +351,8 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     let max_h = terrain.max_height();
     cost.begin_column(col);
 
-    let mut march = March::new(frame, terrain, column, S::SWITCH).with_corners(!S::WIDE);
+    let mut march =
+        March::new(frame, terrain, column, S::SWITCH).with_corners(S::CORNERS != Corners::Off);
     cost.new_ray();
     let mut px = Pixels {
         frame,

@@ -127,7 +127,7 @@ pub struct March<'a, 't> {
     /// The maximum-pyramid level of the last successful skip, where the next one starts.
     skip_level: u32,
     /// Whether the sequence holds the cells the ground track enters at a corner ([`Corner`]);
-    /// off for a wide sampler, whose every step reads the cells on either side across.
+    /// which of them a ride stops on is its sampler's choice ([`Corners`]).
     corners: bool,
     /// The corner cell the cursor stands on, if any: the cursor's other fields already describe
     /// the voxel after it.
@@ -153,6 +153,25 @@ struct Corner {
     behind: bool,
     /// Crossings into the next cell across before a mirror edge, counted from this cell.
     cross_left: u32,
+    /// The index of the voxel of the sequence beside it across, at the same position along
+    /// the ray (the earlier voxel for a cell `behind`, else the later one).
+    beside: usize,
+}
+
+/// Which cells entered at a corner ([`Corner`]) a sampler's walk tests.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Corners {
+    /// None: the paper's uniform sequence (a wide sampler on the continuous surface, whose
+    /// every step tests the cells on either side across).
+    Off,
+    /// Every one the ray passes below: the walk misses no cell.
+    All,
+    /// Those the ray passes below that rise above the voxel beside them across
+    /// ([`Corner::beside`]): the peaks a wedge's sections, each read across its own row at
+    /// the centre line, would step past (a one-voxel diagonal wall). A corner cell no higher
+    /// than that voxel adds no occluder at its distance that the rows' sections lack, and on
+    /// a flat map it would only repeat a colour across its neighbour's lanes.
+    Peaks,
 }
 
 impl<'a, 't> March<'a, 't> {
@@ -405,32 +424,35 @@ impl<'a, 't> March<'a, 't> {
             self.plan_cross();
             // Over a mirror edge the next row is this one again: no cell between.
             if self.corners && off_v != old {
-                self.corner =
-                    Some(self.corner_at(v, prev.wrapping_sub(old).wrapping_add(off_v), ahead));
+                self.corner = Some(self.corner_at(v, prev, ahead, old, off_v));
             }
         }
     }
 
-    /// The corner cell of a step that ended at cross coordinate `v` in a new row: `behind`
-    /// (the new row at the earlier centre) if the ray's track crosses into the row before the
-    /// boundary between the two voxels along the ray, half a step back, else `ahead` (the old
-    /// row at the later centre). The cursor's crossings are counted from the new row.
+    /// The corner cell of a step from the voxel at `prev` that ended at cross coordinate `v`
+    /// in a new row (whose offset is `off_v`, the old row's `old`; the cursor stands in it
+    /// already): the new row at the earlier centre (`behind`) if the ray's track crosses into
+    /// the row before the boundary between the two voxels along the ray, half a step back,
+    /// else the old row at the later centre (`ahead`, the index before the crossing). The
+    /// cursor's crossings are counted from the new row.
     #[cold]
-    fn corner_at(&self, v: i64, behind: usize, ahead: usize) -> Corner {
+    fn corner_at(&self, v: i64, prev: usize, ahead: usize, old: usize, off_v: usize) -> Corner {
         // dv_step = dv·2^(l+1): half of it is exact.
         let mid = v - (self.dv_step >> 1);
         let left = self.cross_left + self.gap;
         if mid >> (32 + self.l) == self.cv {
             Corner {
-                idx: behind,
+                idx: prev.wrapping_sub(old).wrapping_add(off_v),
                 behind: true,
                 cross_left: left,
+                beside: prev,
             }
         } else {
             Corner {
                 idx: ahead,
                 behind: false,
                 cross_left: left + 1,
+                beside: self.idx,
             }
         }
     }
@@ -486,22 +508,30 @@ impl<'a, 't> March<'a, 't> {
         let mut h = ray.h.to_bits();
         let mut unreported = 0;
         // The cells entered at a corner are tested within the step that crosses a row
-        // ([`Corner`]): one load and compare where the ray crosses into the next row, and only
-        // on a hit does the ride leave its loop to stand on the corner.
-        // (A wide sampler's walk has none: `with_corners(!S::WIDE)` in the column walk.)
-        let corners = !H::WIDE && self.corners;
+        // ([`Corner`]): one load and compare where the ray crosses into the next row (for
+        // [`Corners::Peaks`], a second against the voxel beside it), and only on a hit does
+        // the ride leave its loop to stand on the corner.
+        let corners = H::CORNERS != Corners::Off && self.corners;
+        // Whether a corner cell is taken: one above the ray's `low` height and, if the sampler
+        // takes peaks only, above the voxel beside it.
+        let takes = |corner: u16, beside: usize, low: i64| {
+            i64::from(corner) << 24 > low
+                && (H::CORNERS != Corners::Peaks
+                    || corner > heights.get(beside).copied().unwrap_or(0))
+        };
         enum Stop {
             Hit,
             End,
             Edge,
-            Corner(usize, bool),
+            Corner(usize, usize, bool),
         }
         loop {
             if let Some(corner) = self.corner {
                 // The ray is at the corner's centre here: test the corner as any voxel, then
                 // step on to the voxel after it.
-                let top = i64::from(heights.get(corner.idx).copied().unwrap_or(0)) << 24;
-                if top > h {
+                let top = heights.get(corner.idx).copied().unwrap_or(0);
+                if takes(top, corner.beside, h) {
+                    let top = i64::from(top) << 24;
                     ray.h = Height::from_bits(h);
                     let flow = on_hit.hit(&self.voxel(), Height::from_bits(top), ray, unreported);
                     unreported = 0;
@@ -596,17 +626,22 @@ impl<'a, 't> March<'a, 't> {
                         // past it at the new centre is at least half the step's): the new
                         // row's cell at the last centre; else the old row's at this one.
                         let behind = frac >= d_frac >> 1;
-                        let at_corner = if behind {
-                            idx.wrapping_add_signed(dcross.wrapping_sub(du))
+                        // The voxel beside it across: the earlier centre's for a cell behind,
+                        // else the later one's.
+                        let (at_corner, beside) = if behind {
+                            (
+                                idx.wrapping_add_signed(dcross.wrapping_sub(du)),
+                                idx.wrapping_add_signed(du.wrapping_neg()),
+                            )
                         } else {
-                            idx
+                            (idx, idx.wrapping_add_signed(dcross))
                         };
                         idx = idx.wrapping_add_signed(dcross);
                         // The ray's lower height of the two centres (the slope's sign is the
                         // ride's): where the corner is, the stop tests it exactly.
                         let low = if ASCENDING { h.wrapping_sub(rise) } else { h };
-                        if i64::from(at(at_corner)) << 24 > low {
-                            break Stop::Corner(at_corner, behind);
+                        if takes(at(at_corner), beside, low) {
+                            break Stop::Corner(at_corner, beside, behind);
                         }
                     } else {
                         idx = idx.wrapping_add_signed(dcross);
@@ -629,11 +664,12 @@ impl<'a, 't> March<'a, 't> {
                     }
                     continue;
                 }
-                Stop::Corner(idx, behind) => {
+                Stop::Corner(idx, beside, behind) => {
                     // A cell entered at a corner reaches the ray: stand on it.
                     self.v = v;
                     self.corner = Some(Corner {
                         idx,
+                        beside,
                         behind,
                         cross_left: self.cross_left + self.gap + u32::from(!behind),
                     });
@@ -1083,6 +1119,8 @@ pub trait Hits {
     /// planes ([`crate::terrain::sampler::Sampler::WIDE`]), which reaches at most two cells to
     /// either side, and decides the hit itself.
     const WIDE: bool = false;
+    /// Which cells entered at a corner the ride stops on ([`Corners`]): all, by default.
+    const CORNERS: Corners = Corners::All;
     /// The ray `ray` passes below the top `top` of `voxel`, `steps` steps after the last
     /// report. May raise the ray or replace it with the next pixel's.
     fn hit(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, steps: u32) -> Flow;

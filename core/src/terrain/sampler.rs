@@ -17,7 +17,7 @@ use crate::num::{Coord, Eye, Height, Line, Weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
-use crate::terrain::march::Voxel;
+use crate::terrain::march::{Corners, Voxel};
 
 pub use crate::terrain::ray::Ray;
 
@@ -85,6 +85,10 @@ pub trait Sampler {
     /// `top`), the sampler decides whether the step is a hit ([`Hit::Rejected`] when it is
     /// not), and the walk skips empty air only by blocks that hold the neighbours too.
     const WIDE: bool = false;
+    /// Which cells that the ray's ground track enters at a corner, between two voxels of the
+    /// paper's uniform sequence, the walk tests ([`Corners`]): every one, by default, so that
+    /// the walk misses no cell.
+    const CORNERS: Corners = Corners::All;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.

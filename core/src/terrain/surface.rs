@@ -39,7 +39,7 @@ use crate::num::Height;
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
-use crate::terrain::march::Voxel;
+use crate::terrain::march::{Corners, Voxel};
 use crate::terrain::ray::Ray;
 use crate::terrain::sampler::{Hit, Pixel, Sampler};
 
@@ -105,6 +105,9 @@ impl<S: Sampler> Sampler for Smooth<S> {
     /// The surface at a centre may rise above the voxel's own top: the walk tests the cells
     /// around it across too.
     const WIDE: bool = true;
+    /// The surface between the centres is continuous: no cell stands apart at a corner (and
+    /// every step tests the cells on either side across).
+    const CORNERS: Corners = Corners::Off;
 
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
