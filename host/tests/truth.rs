@@ -206,8 +206,8 @@ fn the_command_line_writes_a_synthetic_map_and_renders_its_truth() {
 /// The terrain's top edge (per column, the highest row that is not sky) has no jagged column:
 /// where the walk stepped past a wall cell crossed at a corner, the edge dropped to what lies
 /// behind (21–23 of 400 columns at pitch 0 in every mode before the walk took corner cells).
-/// Every mode but `as2` (its lanes still miss such cells: issue 51) and `classic` (the aliased
-/// baseline), at pitch 0 and 5°.
+/// Every mode but `classic` (the aliased baseline), `as2` included (its walk takes the corner
+/// cells that rise above the voxel beside them), at pitch 0 and 5°.
 #[test]
 fn the_modes_show_the_diagonal_walls_solid_from_the_command_line() {
     let dir = tempfile::tempdir().unwrap();

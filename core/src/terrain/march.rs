@@ -158,7 +158,8 @@ struct Corner {
     beside: usize,
 }
 
-/// Which cells entered at a corner ([`Corner`]) a sampler's walk tests.
+/// Which of the cells that the ray's ground track enters at a corner, between two voxels of the
+/// uniform sequence along the ray, a sampler's walk tests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Corners {
     /// None: the paper's uniform sequence (a wide sampler on the continuous surface, whose
@@ -166,8 +167,8 @@ pub enum Corners {
     Off,
     /// Every one the ray passes below: the walk misses no cell.
     All,
-    /// Those the ray passes below that rise above the voxel beside them across
-    /// ([`Corner::beside`]): the peaks a wedge's sections, each read across its own row at
+    /// Those the ray passes below that rise above the voxel of the sequence beside them
+    /// across, at the same position along the ray: the peaks a wedge's sections, each read across its own row at
     /// the centre line, would step past (a one-voxel diagonal wall). A corner cell no higher
     /// than that voxel adds no occluder at its distance that the rows' sections lack, and on
     /// a flat map it would only repeat a colour across its neighbour's lanes.
