@@ -63,6 +63,9 @@ fn main() {
     } else {
         build(&root, &out.join("wasm-target"))
     };
+    // The one command that adds the target, for `serve`'s refusal and the warning below.
+    let add_target = add_target_command();
+    println!("cargo:rustc-env=FOOTPRINT_ADD_WASM_TARGET={add_target}");
     match built {
         Ok(path) => {
             fs::copy(&path, &wasm).expect("copy the page's WebAssembly into OUT_DIR");
@@ -84,8 +87,7 @@ fn main() {
             if !chosen {
                 println!(
                     "cargo:warning=footprint serve will not work: the page's WebAssembly was \
-                     not built ({why}); run `rustup target add wasm32-unknown-unknown` and \
-                     build again"
+                     not built ({why}); run `{add_target}` and build again"
                 );
             }
         }
@@ -96,14 +98,35 @@ fn main() {
 /// rustup rewrites whenever a target is added; `None` if there is no such file (a toolchain
 /// not installed by rustup).
 fn installed_components() -> Option<PathBuf> {
+    let path = sysroot()?.join("lib/rustlib/components");
+    path.is_file().then_some(path)
+}
+
+/// The sysroot of the compiler that builds this crate (`rustc --print sysroot`).
+fn sysroot() -> Option<PathBuf> {
     let rustc = env::var_os("RUSTC").unwrap_or_else(|| "rustc".into());
     let out = Command::new(rustc)
         .args(["--print", "sysroot"])
         .output()
         .ok()?;
     let sysroot = String::from_utf8(out.stdout).ok()?;
-    let path = Path::new(sysroot.trim()).join("lib/rustlib/components");
-    path.is_file().then_some(path)
+    Some(PathBuf::from(sysroot.trim()))
+}
+
+/// The command that adds the WebAssembly target to the toolchain building this crate: under
+/// rustup (a sysroot in `…/toolchains/NAME`), `rustup +NAME target add …`, which also serves a
+/// `cargo +nightly` build (a plain `rustup target add` adds it to the default toolchain only).
+fn add_target_command() -> String {
+    let toolchain = sysroot().and_then(|root| {
+        let parent = root.parent()?;
+        (parent.file_name()? == "toolchains")
+            .then(|| root.file_name()?.to_str().map(str::to_owned))
+            .flatten()
+    });
+    match toolchain {
+        Some(name) => format!("rustup +{name} target add wasm32-unknown-unknown"),
+        None => "rustup target add wasm32-unknown-unknown".to_owned(),
+    }
 }
 
 /// Runs the nested build; the path of the `.wasm`, or why it failed.

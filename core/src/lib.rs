@@ -35,7 +35,9 @@
 //!   ([`terrain::sampler::Point`]), linear interpolation ([`terrain::sampler::Linear`]),
 //!   supersampling ([`terrain::sampler::Super`]) and area sampling, both as the paper's Fig. 12
 //!   writes it ([`terrain::sampler::ParallelArea`]) and with the exact ray through each voxel's
-//!   top ([`terrain::sampler::Area`]) — and the paper's cost model ([`terrain::cost`]). The
+//!   top ([`terrain::sampler::Area`]) — plus area sampling in both axes, the footprint between
+//!   the column's two planes as well as its two rays (`as2`, [`terrain::wedge::Wedge`]), and
+//!   the paper's cost model ([`terrain::cost`]). The
 //!   classic voxel-space renderer ([`terrain::classic`]) is the baseline they are measured
 //!   against.
 //! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*

@@ -136,7 +136,7 @@ pub fn mirrored_warning(view: &str, map: &Map, placed: &view::Placed, why: Why) 
         Why::PapersDistances => format!(
             "the built-in terrain keeps the paper's view, its first hit {first} away beyond the \
              {size} map, as the paper's own terrain is mirrored to infinity (Sect. 7); give \
-             --dem for a view placed on a map"
+             --geometry on-map (or --dem) for a view placed on a map"
         ),
         Why::MapTooSmall => format!(
             "the {size} map is too small for this view even with the first hit {first} away"

@@ -28,8 +28,9 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Render one frame to PNG (without view options, the map itself from above its south
-    /// edge; with any, the paper's view), and optionally print its cost counters.
+    /// Render one frame to PNG (the map itself from above its south edge; --view paper for the
+    /// paper's camera; --x, --y, --pitch … adjust either), and optionally print its cost
+    /// counters.
     Render(Box<RenderArgs>),
     /// Time every mode in the paper's three views and the classic renderer's view, interleaved:
     /// ms per frame on one thread and on all, ratios to classic and to PS, steps per frame.
@@ -48,7 +49,8 @@ pub enum Command {
     Inspect(Box<InspectArgs>),
     /// Every terrain experiment, written as REPORT.md, index.html, images and plots.
     Report(Box<ReportArgs>),
-    /// Check a height map (`map info FILE`) or convert it to another format (`map convert IN OUT`).
+    /// Height maps: check one (`map info`), convert it (`map convert`), bake it with its pyramid
+    /// (`map bake`) and check a baked one (`map verify`), or write a synthetic one (`map synth`).
     Map(commands::MapCommandArgs),
     /// Print the lines the firmware (firmware/) prints, rendered on the host, for comparison.
     FirmwareReference(commands::FirmwareReferenceArgs),

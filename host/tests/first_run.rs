@@ -162,7 +162,7 @@ fn serve_without_the_page_names_the_fix_in_one_line() {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(
-        stderr.contains("`rustup target add wasm32-unknown-unknown`")
+        (stderr.contains("`rustup ") && stderr.contains(" target add wasm32-unknown-unknown`"))
             || stderr.contains("FOOTPRINT_NO_WASM"),
         "{stderr}"
     );

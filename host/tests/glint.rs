@@ -144,7 +144,7 @@ fn the_conservative_clamp_flickers_less_than_none() {
 /// spread of the normals that one ray per column meets, and that spread jumps when the ray
 /// crosses other cells.
 #[test]
-#[ignore = "fails, a measured finding (README, Sun glint): over wet rock clamp99 adds more \
+#[ignore = "fails, a measured finding (docs/glint.md): over wet rock clamp99 adds more \
             flicker than none (+41 against +23 changes of 6+ levels), although its RMSE is \
             lower (6.66 against 8.05); run with --ignored to see the numbers"]
 fn clamp99_flickers_less_than_none() {

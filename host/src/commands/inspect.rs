@@ -117,6 +117,22 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         ..view.options
     };
     let mut json = serde_json::Map::new();
+    // Each picture as it is written: its file and size, printed as `render` prints its PNG.
+    let mut wrote = Vec::new();
+    let written = |picture: &'static str,
+                   out: PathBuf,
+                   width: u32,
+                   height: u32,
+                   pixels: &[footprint_core::Rgb]|
+     -> Result<Written> {
+        write_png(&out, width, height, pixels)?;
+        Ok(Written {
+            picture,
+            out: crate::output::shown(&out),
+            width,
+            height,
+        })
+    };
     if args.zoom {
         let pic = inspect::zoom(
             view.camera.params(),
@@ -127,7 +143,13 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             48,
             6,
         )?;
-        write_png(&path_for("zoom"), pic.width, pic.height, &pic.pixels)?;
+        wrote.push(written(
+            "zoom",
+            path_for("zoom"),
+            pic.width,
+            pic.height,
+            &pic.pixels,
+        )?);
     }
     if let Some(p) = args.pixel {
         let (samples, color, pic) = inspect::pixel(
@@ -139,7 +161,13 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             p.col,
             (64, 256),
         )?;
-        write_png(&path_for("pixel"), pic.width, pic.height, &pic.pixels)?;
+        wrote.push(written(
+            "pixel",
+            path_for("pixel"),
+            pic.width,
+            pic.height,
+            &pic.pixels,
+        )?);
         json.insert(
             "pixel".into(),
             serde_json::json!({
@@ -164,7 +192,13 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
     if args.footprint {
         let (counts, pic) =
             inspect::footprint(&view.camera, &view.pyramid, pictures, args.mode, 1024)?;
-        write_png(&path_for("footprint"), pic.width, pic.height, &pic.pixels)?;
+        wrote.push(written(
+            "footprint",
+            path_for("footprint"),
+            pic.width,
+            pic.height,
+            &pic.pixels,
+        )?);
         json.insert("footprint".into(), serde_json::to_value(counts)?);
         if !args.format.json {
             crate::outln!(
@@ -186,7 +220,13 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             p.col,
             720,
         )?;
-        write_png(&path_for("wedge"), pic.width, pic.height, &pic.pixels)?;
+        wrote.push(written(
+            "wedge",
+            path_for("wedge"),
+            pic.width,
+            pic.height,
+            &pic.pixels,
+        )?);
         if !args.format.json {
             let ground = |m: Option<f64>| {
                 m.map_or("nowhere within the far distance".into(), |m| {
@@ -218,7 +258,24 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
         json.insert("wedge".into(), serde_json::to_value(summary)?);
     }
     if args.format.json {
+        json.insert("wrote".into(), serde_json::to_value(&wrote)?);
         crate::outln!("{}", serde_json::Value::Object(json))?;
+    } else {
+        for w in &wrote {
+            crate::outln!("wrote {}: {}x{}, {}", w.out, w.width, w.height, w.picture)?;
+        }
     }
     view.warn_mirrored(&args.camera)
+}
+
+/// A picture `inspect` wrote (the JSON's `wrote`).
+#[derive(Debug, serde::Serialize)]
+struct Written {
+    /// Which picture: `zoom`, `pixel`, `footprint` or `wedge`.
+    picture: &'static str,
+    /// Its file, as given (`-`: standard output).
+    out: String,
+    /// Its size, pixels.
+    width: u32,
+    height: u32,
 }

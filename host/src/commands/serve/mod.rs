@@ -109,8 +109,9 @@ pub fn serve(args: &ServeArgs) -> Result<()> {
             );
         }
         bail!(
-            "serve: the page needs the WebAssembly target, once: `rustup target add \
-             wasm32-unknown-unknown`, then `cargo run --release -- serve` again"
+            "serve: the page needs the WebAssembly target, once: `{}`, then `cargo run \
+             --release -- serve` again",
+            env!("FOOTPRINT_ADD_WASM_TARGET")
         );
     }
     let mut assets = vec![
