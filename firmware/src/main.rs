@@ -353,11 +353,12 @@ fn run_plate(buffers: PlateBuffers) -> Result<(), Error> {
     Ok(())
 }
 
-/// Prints one `error` line; `false` if the call accepted its bad input.
+/// Prints one `expected error` line (the call was given bad input on purpose, and refused
+/// it); `false` if the call accepted its bad input.
 fn error_line<T>(call: fmt::Arguments<'_>, result: Result<T, Error>) -> bool {
     match result {
         Err(e) => {
-            hprintln!("error {}: {}", call, e);
+            hprintln!("expected error {}: {}", call, e);
             true
         }
         Ok(_) => {
@@ -622,6 +623,13 @@ fn main() -> ! {
             hprintln!("FAIL stack: more than {} bytes", stack::WINDOW);
             code = debug::EXIT_FAILURE;
         }
+    }
+    // The last line says whether every check passed (the `expected error` lines above are
+    // constructors refusing bad input on purpose: passes).
+    if code == debug::EXIT_SUCCESS {
+        hprintln!("# verdict: PASS, every check passed");
+    } else {
+        hprintln!("# verdict: FAIL, see the FAIL lines above");
     }
     debug::exit(code);
     #[allow(clippy::empty_loop)]

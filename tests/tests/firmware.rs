@@ -191,6 +191,12 @@ fn firmware_output_equals_the_host_reference() {
         );
     }
     assert!(text.contains("# calibration: "), "{text}");
+    // The run ends on its verdict.
+    assert_eq!(
+        text.lines().last(),
+        Some("# verdict: PASS, every check passed"),
+        "{text}"
+    );
 
     // The smallest embedding draws the same area-sampled image.
     let minimal = String::from_utf8(run_under_qemu(&runner, &bin.join("minimal"))).unwrap();
@@ -312,7 +318,10 @@ fn the_reference_is_consistent() {
     assert!(field(specular, "flagged") <= field(specular, "fragments"));
     let baked = plate().expect("the plate");
     assert!(baked.triangles.len() > 1000 && baked.vertices.len() < baked.triangles.len() * 3);
-    let errors = lines.iter().filter(|l| l.starts_with("error ")).count();
+    let errors = lines
+        .iter()
+        .filter(|l| l.starts_with("expected error "))
+        .count();
     assert_eq!(errors, 10, "{lines:#?}");
     assert_eq!(lines.len(), 19);
 }

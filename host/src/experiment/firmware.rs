@@ -93,10 +93,11 @@ pub fn frame_line(mode: Mode, size: Size, hash: u64, t: &Tally) -> String {
 /// Drops a constructor's value: only its error matters here.
 fn unit<T>(_: T) {}
 
-/// One `error` line, or an error if the call was accepted.
+/// One `expected error` line (a constructor refusing the bad input it was given on purpose),
+/// or an error if the call was accepted.
 fn error_line(call: &str, result: Result<(), Error>) -> Result<String> {
     match result {
-        Err(e) => Ok(format!("error {call}: {e}")),
+        Err(e) => Ok(format!("expected error {call}: {e}")),
         Ok(()) => bail!("{call} accepted bad input"),
     }
 }
