@@ -38,8 +38,9 @@ pub enum MapAction {
     /// the header and the levels up to 256 MiB).
     Verify(VerifyArgs),
     /// Write a synthetic test map as a 16-bit PNG that --dem reads (30 m cells, 0.1 m units):
-    /// a one-cell wall along a diagonal (wall), along both (wall2), or diagonal stripes of
-    /// period 2 or 4 (stripes2, stripes4), on a floor at 100 m.
+    /// a one-cell wall along a diagonal (wall), along both (wall2), diagonal stripes of period
+    /// 2 or 4 (stripes2, stripes4), thin ridges at 24 angles (ridges), a checkerboard of
+    /// blocks (checker), plateaus behind cliffs (mesas), or steep continuous terrain (steep).
     Synth(SynthArgs),
 }
 
@@ -47,7 +48,9 @@ pub enum MapAction {
 #[derive(Args, Debug)]
 pub struct SynthArgs {
     /// Which map: wall (600 m, one cell thick, x = y), wall2 (both diagonals), stripes2 or
-    /// stripes4 (50 m ridges).
+    /// stripes4 (50 m ridges), ridges (50 m, one cell thick, 15° apart from the centre),
+    /// checker (4-cell blocks, 50 m), mesas (nine round plateaus, 150–900 m, with cliffs) or
+    /// steep (sine ridges around 1,000 m, slopes up to about 75°).
     #[arg(long, value_enum)]
     pub kind: crate::experiment::synthetic::Kind,
     /// The map's side, cells (16–4096).
