@@ -119,18 +119,14 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
     let mut json = serde_json::Map::new();
     // Each picture as it is written: its file and size, printed as `render` prints its PNG.
     let mut wrote = Vec::new();
-    let written = |picture: &'static str,
-                   out: PathBuf,
-                   width: u32,
-                   height: u32,
-                   pixels: &[footprint_core::Rgb]|
-     -> Result<Written> {
-        write_png(&out, width, height, pixels)?;
+    let written = |picture: &'static str, pic: &inspect::Picture| -> Result<Written> {
+        let out = path_for(picture);
+        write_png(&out, pic.width, pic.height, &pic.pixels)?;
         Ok(Written {
             picture,
             out: crate::output::shown(&out),
-            width,
-            height,
+            width: pic.width,
+            height: pic.height,
         })
     };
     if args.zoom {
@@ -143,13 +139,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             48,
             6,
         )?;
-        wrote.push(written(
-            "zoom",
-            path_for("zoom"),
-            pic.width,
-            pic.height,
-            &pic.pixels,
-        )?);
+        wrote.push(written("zoom", &pic)?);
     }
     if let Some(p) = args.pixel {
         let (samples, color, pic) = inspect::pixel(
@@ -161,13 +151,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             p.col,
             (64, 256),
         )?;
-        wrote.push(written(
-            "pixel",
-            path_for("pixel"),
-            pic.width,
-            pic.height,
-            &pic.pixels,
-        )?);
+        wrote.push(written("pixel", &pic)?);
         json.insert(
             "pixel".into(),
             serde_json::json!({
@@ -192,13 +176,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
     if args.footprint {
         let (counts, pic) =
             inspect::footprint(&view.camera, &view.pyramid, pictures, args.mode, 1024)?;
-        wrote.push(written(
-            "footprint",
-            path_for("footprint"),
-            pic.width,
-            pic.height,
-            &pic.pixels,
-        )?);
+        wrote.push(written("footprint", &pic)?);
         json.insert("footprint".into(), serde_json::to_value(counts)?);
         if !args.format.json {
             crate::outln!(
@@ -220,13 +198,7 @@ pub fn inspect(args: &InspectArgs) -> Result<()> {
             p.col,
             720,
         )?;
-        wrote.push(written(
-            "wedge",
-            path_for("wedge"),
-            pic.width,
-            pic.height,
-            &pic.pixels,
-        )?);
+        wrote.push(written("wedge", &pic)?);
         if !args.format.json {
             let ground = |m: Option<f64>| {
                 m.map_or("nowhere within the far distance".into(), |m| {
