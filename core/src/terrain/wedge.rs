@@ -331,7 +331,7 @@ fn row_color(voxel: &Voxel<'_>, lo: i64, hi: i64) -> Color16 {
 impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
     const SWITCH: Switch = Switch::Late;
     const WIDE: bool = true;
-    /// The peaks only: the rows' sections read every other cell the wedge reaches.
+    /// The peaks only: the rows' sections read all the other cells the wedge reaches.
     const CORNERS: Corners = Corners::Peaks;
 
     #[inline(always)]
