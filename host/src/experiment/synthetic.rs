@@ -85,24 +85,18 @@ impl Kind {
 
     /// The height of cell `(x, y)` of a `side`-wide map, height units.
     pub fn height(self, x: u32, y: u32, side: u32) -> u16 {
+        // A raised cell's top, or the floor.
+        let raised = |on: bool, top: u16| if on { top } else { FLOOR };
+        let diagonal = i64::from(x) - i64::from(y);
         match self {
-            Kind::Ridges => return if on_spoke(x, y, side) { RIDGE } else { FLOOR },
-            Kind::Mesas => return mesa(x, y, side),
-            Kind::Steep => return steep(x, y),
-            _ => {}
-        }
-        let raised = match self {
-            Kind::Wall => x == y,
-            Kind::Wall2 => x == y || x + y + 1 == side,
-            Kind::Stripes2 => (i64::from(x) - i64::from(y)).rem_euclid(2) == 0,
-            Kind::Stripes4 => (i64::from(x) - i64::from(y)).rem_euclid(4) < 2,
-            Kind::Checker => (x / BLOCK + y / BLOCK) % 2 == 0,
-            Kind::Ridges | Kind::Mesas | Kind::Steep => false,
-        };
-        match (raised, self) {
-            (false, _) => FLOOR,
-            (true, Kind::Wall | Kind::Wall2) => WALL,
-            (true, _) => RIDGE,
+            Kind::Wall => raised(x == y, WALL),
+            Kind::Wall2 => raised(x == y || x + y + 1 == side, WALL),
+            Kind::Stripes2 => raised(diagonal.rem_euclid(2) == 0, RIDGE),
+            Kind::Stripes4 => raised(diagonal.rem_euclid(4) < 2, RIDGE),
+            Kind::Checker => raised((x / BLOCK + y / BLOCK) % 2 == 0, RIDGE),
+            Kind::Ridges => raised(on_spoke(x, y, side), RIDGE),
+            Kind::Mesas => mesa(x, y, side),
+            Kind::Steep => steep(x, y),
         }
     }
 
