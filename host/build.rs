@@ -1,7 +1,7 @@
 //! Builds the browser page's WebAssembly (`web/`, `footprint-web` for `wasm32-unknown-unknown`)
 //! into `$OUT_DIR/footprint_web.wasm`, which `footprint serve` embeds.
 //!
-//! A nested `cargo build` in its own target folder (under `$OUT_DIR`), with the workspace's
+//! A nested `cargo build` in its own target folder (`<target>/wasm-page`), with the workspace's
 //! lock file (`--locked`) and none of the outer build's flags (sanitizers, clippy's wrapper).
 //! If the target is not installed (`rustup target add wasm32-unknown-unknown`) or the build
 //! fails, the host still builds: the file is left empty, a warning says why, and `serve`
@@ -12,6 +12,9 @@ use std::env;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+#[path = "build/wasm_target.rs"]
+mod wasm_target;
 
 fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
@@ -34,6 +37,7 @@ fn main() {
         println!("cargo:rerun-if-changed={}", root.join(dir).display());
     }
     println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=build/wasm_target.rs");
     println!(
         "cargo:rerun-if-changed={}",
         root.join("web/static").display()
@@ -61,10 +65,10 @@ fn main() {
     let built = if chosen {
         Err("FOOTPRINT_NO_WASM is set".to_owned())
     } else {
-        build(&root, &out.join("wasm-target"))
+        build(&root, &page_target_dir(&out))
     };
     // The one command that adds the target, for `serve`'s refusal and the warning below.
-    let add_target = add_target_command();
+    let add_target = wasm_target::add_target_command(sysroot().as_deref());
     println!("cargo:rustc-env=FOOTPRINT_ADD_WASM_TARGET={add_target}");
     match built {
         Ok(path) => {
@@ -94,6 +98,23 @@ fn main() {
     }
 }
 
+/// The nested build's target folder: `wasm-page` in the outer build's target folder
+/// (`OUT_DIR` is `<target>/<profile>/build/footprint-host-<hash>/out`), so that the debug and
+/// release builds, clippy's and the docs' share one build of the page (each in its own
+/// `OUT_DIR` took 180 MB and a few minutes more); `OUT_DIR/wasm-target` if the layout is
+/// another. Concurrent outer builds wait for each other on cargo's lock of that folder.
+fn page_target_dir(out: &Path) -> PathBuf {
+    let is_build = out
+        .parent()
+        .and_then(Path::parent)
+        .and_then(Path::file_name)
+        == Some("build".as_ref());
+    match out.ancestors().nth(4) {
+        Some(target) if is_build && target.is_dir() => target.join("wasm-page"),
+        _ => out.join("wasm-target"),
+    }
+}
+
 /// The toolchain's list of installed components, `<sysroot>/lib/rustlib/components`, which
 /// rustup rewrites whenever a target is added; `None` if there is no such file (a toolchain
 /// not installed by rustup).
@@ -113,22 +134,6 @@ fn sysroot() -> Option<PathBuf> {
     Some(PathBuf::from(sysroot.trim()))
 }
 
-/// The command that adds the WebAssembly target to the toolchain building this crate: under
-/// rustup (a sysroot in `…/toolchains/NAME`), `rustup +NAME target add …`, which also serves a
-/// `cargo +nightly` build (a plain `rustup target add` adds it to the default toolchain only).
-fn add_target_command() -> String {
-    let toolchain = sysroot().and_then(|root| {
-        let parent = root.parent()?;
-        (parent.file_name()? == "toolchains")
-            .then(|| root.file_name()?.to_str().map(str::to_owned))
-            .flatten()
-    });
-    match toolchain {
-        Some(name) => format!("rustup +{name} target add wasm32-unknown-unknown"),
-        None => "rustup target add wasm32-unknown-unknown".to_owned(),
-    }
-}
-
 /// Runs the nested build; the path of the `.wasm`, or why it failed.
 fn build(root: &Path, target_dir: &Path) -> Result<PathBuf, String> {
     let cargo = env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
@@ -142,7 +147,7 @@ fn build(root: &Path, target_dir: &Path) -> Result<PathBuf, String> {
             "-p",
             "footprint-web",
             "--target",
-            "wasm32-unknown-unknown",
+            wasm_target::WASM_TARGET,
             "--target-dir",
         ])
         .arg(target_dir)
@@ -166,7 +171,10 @@ fn build(root: &Path, target_dir: &Path) -> Result<PathBuf, String> {
             .unwrap_or("cargo build failed");
         return Err(first.to_owned());
     }
-    let path = target_dir.join("wasm32-unknown-unknown/release/footprint_web.wasm");
+    let path = target_dir.join(format!(
+        "{}/release/footprint_web.wasm",
+        wasm_target::WASM_TARGET
+    ));
     if path.is_file() {
         Ok(path)
     } else {

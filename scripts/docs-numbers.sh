@@ -3,13 +3,16 @@
 # printed as Markdown.
 #
 # Usage: FOOTPRINT_BIN=target/release/footprint scripts/docs-numbers.sh [SECTION …]
-#   SECTION: coverage | instructions | bench | pyramid (default: all four, in that order)
+#   SECTION: coverage | instructions | bench | pyramid | firmware | wasm (default: all, in that
+#            order)
 #   coverage      the paper's three views: P, L, V and M/V per mode (`footprint table --json`)
 #   instructions  instructions per pixel, exact and paper projection (scripts/instructions.sh,
 #                 valgrind; a few minutes per mode)
 #   bench         ms per frame, one thread, fastest (median) of 15 interleaved rounds, and ×PS
 #                 (`footprint bench`; wall-clock: run it on a quiet machine)
 #   pyramid       RMSE through the pyramid / at level 0 on six maps (`footprint table --lod`)
+#   firmware      docs/embedding.md's cost table and stacks (the firmware under QEMU)
+#   wasm          docs/browser.md's module size (the page host/build.rs built)
 # DEMS is the folder with msh_2007_10m.tif, bigtujunga_srtm30m.tif, D1.png and C1W.png
 # (default /work/dems; see docs/measurements.md for where they come from).
 set -euo pipefail
@@ -99,11 +102,48 @@ for name in names:
 EOF
 }
 
+# docs/embedding.md's cost table (its rows are checked against the same run, within 5 %, by
+# tests/tests/firmware.rs) and the stacks, from the firmware under QEMU.
+firmware() {
+  (cd firmware && cargo run --release --quiet 2>/dev/null) > "$tmp/firmware.txt"
+  python3 - "$tmp/firmware.txt" <<'EOF'
+import re, sys
+out = open(sys.argv[1]).read()
+rows = [("PS", "ps"), ("SS8", "ss8"), ("`as` (the paper's)", "as"), ("`as-exact`", "as-exact"),
+        ("`as2`", "as2"), ("`as` lit, `clamp99` (the glint frame)", "GLINT")]
+glint = re.search(r"^# icount (\S+): render \d+ instructions, [\d.]+ per pixel; the same frame unlit", out, re.M)
+print("| mode | render, instructions per frame | per pixel | with the frame tables, per pixel |")
+print("|---|---|---|---|")
+for label, name in rows:
+    if name == "GLINT":
+        name = glint[1] if glint else "?"
+    m = re.search(rf"^# icount {re.escape(name)}: render (\d+) instructions, ([\d.]+) per pixel(?:; with the frame tables \d+ per frame, ([\d.]+) per pixel)?", out, re.M)
+    if m is None:
+        print(f"| {label} | (no line) | | |")
+        continue
+    tables = f"{float(m[3]):,.1f}" if m[3] else ""
+    print(f"| {label} | {int(m[1]):,} | {float(m[2]):,.1f} | {tables} |")
+for line in out.splitlines():
+    if line.startswith(("# stack", "# icount frame tables", "# icount pyramid", "# verdict")):
+        print(line)
+EOF
+}
+
+# docs/browser.md's module size (checked within 10 % by host/tests/serve.rs): the page's
+# WebAssembly, as host/build.rs builds it for the release binary.
+wasm() {
+  local f
+  f=$(ls -t target/release/build/footprint-host-*/out/footprint_web.wasm 2>/dev/null | head -1)
+  [ -n "$f" ] || { echo "no page built: cargo build --release (with the wasm32 target)" >&2; return 1; }
+  stat -c '%s bytes: %n' "$f"
+}
+
 sections=("$@")
-[ ${#sections[@]} -gt 0 ] || sections=(coverage instructions bench pyramid)
+all=(coverage instructions bench pyramid firmware wasm)
+[ ${#sections[@]} -gt 0 ] || sections=("${all[@]}")
 for s in "${sections[@]}"; do
   case $s in
-    coverage | instructions | bench | pyramid) echo "## $s"; "$s"; echo ;;
-    *) echo "docs-numbers.sh: unknown section $s (coverage, instructions, bench, pyramid)" >&2; exit 2 ;;
+    coverage | instructions | bench | pyramid | firmware | wasm) echo "## $s"; "$s"; echo ;;
+    *) echo "docs-numbers.sh: unknown section $s (${all[*]})" >&2; exit 2 ;;
   esac
 done

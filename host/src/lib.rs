@@ -24,3 +24,6 @@ pub use footprint_scenes::plates as scene;
 pub use footprint_scenes::survey;
 pub mod truth;
 pub mod view;
+#[cfg(test)]
+#[path = "../build/wasm_target.rs"]
+mod wasm_target;

@@ -29,21 +29,19 @@ fn png_hash(path: &Path) -> String {
 
 /// `footprint render`'s hash for the same view and mode.
 fn render_hash(pitch: &str, mode: &str, size: &str) -> String {
+    render_hash_of(&[
+        "--view", "paper", "--pitch", pitch, "--mode", mode, "--size", size,
+    ])
+}
+
+/// The hash of the PNG `footprint render ARGS --out …` writes.
+fn render_hash_of(args: &[&str]) -> String {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("frame.png");
-    let o = footprint(&[
-        "render",
-        "--view",
-        "paper",
-        "--pitch",
-        pitch,
-        "--mode",
-        mode,
-        "--size",
-        size,
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let mut all = vec!["render"];
+    all.extend_from_slice(args);
+    all.extend(["--out", out.to_str().unwrap()]);
+    let o = footprint(&all);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     png_hash(&out)
 }
@@ -284,6 +282,17 @@ fn the_page_opens_the_map_serve_was_given() {
         "{info}"
     );
     assert_eq!(browser.eval("document.body.dataset.message"), "");
+    // Issue 55, item 5: the map opens in the view `render --dem` takes of it (the map itself),
+    // not the paper's view of its centre (a wallpaper of its mirrored copies).
+    let hashes = browser.eval("[document.body.dataset.hash0, document.body.dataset.hash1]");
+    for (half, mode) in ["ps", "as"].into_iter().enumerate() {
+        let dem = grid.to_str().unwrap();
+        assert_eq!(
+            hashes[half].as_str().unwrap(),
+            render_hash_of(&["--dem", dem, "--mode", mode, "--size", "120x90"]),
+            "{mode}: the page's first frame of a served map differs from `render --dem`'s"
+        );
+    }
 }
 
 #[test]

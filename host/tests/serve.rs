@@ -204,3 +204,30 @@ fn a_baked_map_is_served_and_a_corrupt_one_refused() {
 
 /// The first byte of a baked map's level 0.
 const HEADER: usize = 4096;
+
+/// docs/browser.md's size of the page's WebAssembly module is the one `serve` sends (issue
+/// 55, item 3: it said 847,135 bytes when 1,707,494 were sent), within 10 %, which a compiler
+/// release may move.
+#[test]
+fn the_module_size_in_browser_md_is_the_one_served() {
+    if !common::browser::page_or_warn() {
+        return;
+    }
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/browser.md"))
+        .unwrap();
+    let text = doc.split_whitespace().collect::<Vec<_>>().join(" ");
+    let said = text
+        .split("module that `serve` sends is ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .expect("docs/browser.md says how large the module `serve` sends is");
+    let said: f64 = said.replace(',', "").parse().unwrap();
+    let served = Served::start(&[]);
+    let (status, _, body) = get(served.port, "/footprint_web.wasm", "localhost");
+    assert_eq!(status, 200);
+    let sent = body.len() as f64;
+    assert!(
+        (said / sent - 1.0).abs() <= 0.10,
+        "docs/browser.md says the module is {said} bytes; serve sent {sent}"
+    );
+}

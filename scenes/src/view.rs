@@ -222,6 +222,17 @@ pub fn paper_camera(
     Ok(Camera::new(params)?)
 }
 
+/// The overview of the map of `pyramid` ([`overview_params`]), with the default far distance
+/// ([`default_far_voxels`]): the view `footprint render` takes of a map when no view option is
+/// given, and the page's view of a map the user picked.
+pub fn overview_camera(pyramid: &Pyramid, width: u32, height: u32) -> Result<Camera, FitError> {
+    let map = pyramid.map();
+    let mut params = overview_params(map, width, height);
+    let probe = Camera::new(params)?;
+    params.far_m = default_far_voxels(map.width, map.height, probe.pixel_angle()) * map.spacing_m;
+    Ok(Camera::new(params)?)
+}
+
 /// A view whose terrain pixels are more than this share mirrored copies of the map (beyond its
 /// edges, [`mirror`]) measures the mirror rather than the map ([`Coverage::mostly_mirrored`]).
 pub const MOSTLY_MIRRORED: f64 = 0.5;

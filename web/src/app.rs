@@ -189,7 +189,8 @@ impl App {
     }
 
     /// Replaces the map by the built-in terrain of `seed` and `size`, seen by the paper's camera
-    /// at the current pitch and size. On error the map stays as it was.
+    /// at the current pitch and size (the page's opening view). On error the map stays as it
+    /// was.
     pub fn load_builtin(&mut self, seed: u64, size: u32) -> Result<(), String> {
         procedural::check_size(size)?;
         memory::check(
@@ -198,12 +199,25 @@ impl App {
             "the map and its pyramid",
         )
         .map_err(|e| e.to_string())?;
-        self.replace(build(procedural::procedural(seed, size))?)
+        let pyramid = build(procedural::procedural(seed, size))?;
+        let camera = view::paper_camera(
+            &pyramid,
+            self.params.pitch_deg,
+            self.params.width,
+            self.params.height,
+            self.options,
+        )
+        .map_err(|e| format!("camera: {e}"))?;
+        self.replace(pyramid, camera);
+        Ok(())
     }
 
     /// Replaces the map by the files the user dropped: a height map (`.png`, `.asc`, `.hgt`,
-    /// `.tif`) named `name`, and optionally a colour PNG of the same size, read by the CLI's
-    /// readers with the CLI's limits and one-line errors. On error the map stays as it was.
+    /// `.tif`, `.fpmap`) named `name`, and optionally a colour PNG of the same size, read by the
+    /// CLI's readers with the CLI's limits and one-line errors, seen by the view `footprint
+    /// render --dem` takes of it ([`App::overview`]): the map itself, not the paper's view of its
+    /// centre (on a small map, a wallpaper of its mirrored copies). On error the map stays as it
+    /// was.
     pub fn load_files(
         &mut self,
         name: &str,
@@ -217,7 +231,7 @@ impl App {
             }
             let (pyramid, _) =
                 footprint_maps::baked::from_bytes(path, bytes).map_err(|e| e.to_string())?;
-            return self.replace(pyramid);
+            return self.replace_overview(pyramid);
         }
         let color_path = color.map(|(n, _)| Path::new(n));
         let mut files = vec![(path, bytes)];
@@ -233,22 +247,30 @@ impl App {
             },
         )
         .map_err(|e| e.to_string())?;
-        self.replace(build(loaded.map)?)
+        self.replace_overview(build(loaded.map)?)
     }
 
-    /// Puts the pyramid in place with the paper's camera at the current pitch and size.
-    fn replace(&mut self, pyramid: Pyramid) -> Result<(), String> {
-        let camera = view::paper_camera(
-            &pyramid,
-            self.params.pitch_deg,
-            self.params.width,
-            self.params.height,
-            self.options,
-        )
-        .map_err(|e| format!("camera: {e}"))?;
+    /// Puts the pyramid in place with its overview at the current size.
+    fn replace_overview(&mut self, pyramid: Pyramid) -> Result<(), String> {
+        let camera = view::overview_camera(&pyramid, self.params.width, self.params.height)
+            .map_err(|e| format!("camera: {e}"))?;
+        self.replace(pyramid, camera);
+        Ok(())
+    }
+
+    /// Puts the pyramid in place, seen by `camera`.
+    fn replace(&mut self, pyramid: Pyramid, camera: Camera) {
         self.pyramid = pyramid;
         self.params = *camera.params();
         self.forget_frames();
+    }
+
+    /// The map's overview ([`view::overview_camera`]: the whole map from above its south edge,
+    /// `render`'s default view), `width`×`height` pixels. On error the camera stays as it was.
+    pub fn overview(&mut self, width: u32, height: u32) -> Result<(), String> {
+        let camera = view::overview_camera(&self.pyramid, width, height)
+            .map_err(|e| format!("camera: {e}"))?;
+        self.set_camera(camera);
         Ok(())
     }
 
@@ -257,11 +279,17 @@ impl App {
     pub fn paper_view(&mut self, pitch_deg: f64, width: u32, height: u32) -> Result<(), String> {
         let camera = view::paper_camera(&self.pyramid, pitch_deg, width, height, self.options)
             .map_err(|e| format!("camera: {e}"))?;
-        if (width, height) != (self.params.width, self.params.height) {
+        self.set_camera(camera);
+        Ok(())
+    }
+
+    /// Moves to `camera`; a new size starts the flicker meters again.
+    fn set_camera(&mut self, camera: Camera) {
+        let params = *camera.params();
+        if (params.width, params.height) != (self.params.width, self.params.height) {
             self.forget_frames();
         }
-        self.params = *camera.params();
-        Ok(())
+        self.params = params;
     }
 
     /// Moves the camera to `params` (the size and the far distance stay), if the core takes
@@ -464,6 +492,47 @@ mod tests {
         );
         app.render(0).unwrap();
         app.render(1).unwrap();
+    }
+
+    /// A map the user picks opens in the view `footprint render --dem` takes of it (the
+    /// overview: the map itself), not the paper's view of its centre, which on a 300×250 map
+    /// is a wallpaper of its mirrored copies.
+    #[test]
+    fn a_picked_map_opens_in_the_view_render_takes_of_it() {
+        let (w, h) = (300u32, 250u32);
+        let mut asc = format!("ncols {w}\nnrows {h}\nxllcorner 0\nyllcorner 0\ncellsize 10\n");
+        for y in 0..h {
+            let row: Vec<String> = (0..w)
+                .map(|x| {
+                    let (fx, fy) = (f64::from(x) / 23.0, f64::from(y) / 17.0);
+                    format!(
+                        "{:.0}",
+                        200.0 + 60.0 * fx.sin() * fy.cos() + 0.2 * f64::from(y)
+                    )
+                })
+                .collect();
+            asc.push_str(&row.join(" "));
+            asc.push('\n');
+        }
+        let mut app = small();
+        app.load_files("hill.asc", asc.as_bytes(), None).unwrap();
+        let expected = view::overview_camera(&app.pyramid, 64, 48).unwrap();
+        assert_eq!(app.params(), expected.params());
+        let mirrored = with_frame(&app.pyramid, app.options, app.params, |frame, terrain| {
+            Ok(view::coverage(app.map(), frame, terrain))
+        })
+        .unwrap();
+        assert!(mirrored.terrain() > 0);
+        assert!(
+            mirrored.mirrored_fraction() < 0.05,
+            "{:.3} of the terrain mirrored",
+            mirrored.mirrored_fraction()
+        );
+        // The paper's view stays a button away.
+        app.paper_view(20.0, 64, 48).unwrap();
+        assert_eq!(app.params().fov_deg, view::PAPER_FOV_DEG);
+        app.overview(64, 48).unwrap();
+        assert_eq!(app.params(), expected.params());
     }
 
     /// A baked map (`footprint map bake`) loads on the page as on the CLI, and a corrupt one

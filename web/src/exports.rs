@@ -143,6 +143,12 @@ pub extern "C" fn fp_paper_view(pitch: f64, width: u32, height: u32) -> u32 {
     with_app(|app, _| app.paper_view(pitch, width, height))
 }
 
+/// The map's overview (`render`'s default view), `width`×`height` pixels.
+#[no_mangle]
+pub extern "C" fn fp_overview(width: u32, height: u32) -> u32 {
+    with_app(|app, _| app.overview(width, height))
+}
+
 /// Moves the camera: eye at (`x`, `y`) metres, `eye` metres high, `heading` and `pitch`
 /// degrees (the size, the field of view and the far distance stay).
 #[no_mangle]

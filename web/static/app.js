@@ -2,7 +2,8 @@
 // in two modes, one per half of the canvas; this script only moves the camera, draws the
 // pixels and shows the numbers.
 //
-// URL parameters (all optional): pitch=20, size=400x400, left=ps, right=as, seed, terrain=1024,
+// URL parameters (all optional): pitch=20 (the paper's view at that pitch; without it a map
+// `serve --dem` was given opens in its overview), size=400x400, left=ps, right=as, seed, terrain=1024,
 // and for tests: count=1 (count once the first frames are drawn), bench=N (fly N frames of the
 // paper's path and report the times), still=1 (no animation loop). When the page has drawn,
 // counted and benched what it was asked, <body data-ready="1"> carries data-hash0/1 (the
@@ -98,6 +99,18 @@ function paperView(pitch) {
   }
 }
 
+// The map's overview: `footprint render`'s view of a map without view options (the map itself,
+// from above its south edge), the page's view of a map the user picked.
+function overview() {
+  const [w, h] = params.has('size') ? params.get('size').split('x').map(Number) : size();
+  if (check(fp.fp_overview(w, h), 'overview')) {
+    canvas.width = 2 * w;
+    canvas.height = h;
+    $('pitch').value = fp.fp_param(4).toFixed(1);
+    moved();
+  }
+}
+
 function moved() {
   state.dirty = true;
   state.counted = false;
@@ -185,6 +198,7 @@ for (const half of [0, 1]) {
   select.addEventListener('change', () => setMode(half, select.value));
 }
 $('paper-view').addEventListener('click', () => paperView(Number($('pitch').value)));
+$('overview').addEventListener('click', () => overview());
 $('pitch').addEventListener('change', () => paperView(Number($('pitch').value)));
 $('fly').addEventListener('click', () => {
   // Sect. 5: from the pitch-5° view, 0.5 m forward a frame.
@@ -224,12 +238,12 @@ canvas.addEventListener('pointermove', (e) => {
 // Maps: a height map (.png, .asc, .hgt, .tif, .fpmap) and optionally its colour PNG, the height map
 // first (two files dropped at once: the one named like a colour map, `color`/`colour`/`C1W`,
 // is the colour map). Parsed in Rust by the CLI's readers: the same limits, the same one-line
-// errors.
+// errors. The map opens in its overview, the view `footprint render --dem` takes of it.
 async function loadFiles(files) {
-  if (files.length === 0) return;
+  if (files.length === 0) return false;
   if (files.length > 2) {
     message('give one height map, or a height PNG and its colour PNG');
-    return;
+    return false;
   }
   const isColor = (f) => /colou?r|^c[\d_-]/i.test(f.name);
   let [height, color] = files;
@@ -240,11 +254,12 @@ async function loadFiles(files) {
     put(2, new Uint8Array(await color.arrayBuffer()));
     put(3, new TextEncoder().encode(color.name));
   }
-  if (check(fp.fp_load_files(color ? 1 : 0))) {
-    message('');
-    mapInfo();
-    moved();
-  }
+  if (!check(fp.fp_load_files(color ? 1 : 0))) return false;
+  message('');
+  mapInfo();
+  $('pitch').value = fp.fp_param(4).toFixed(1);
+  moved();
+  return true;
 }
 // The picker: a height map, and a colour PNG for it if one is chosen (before or after).
 const picked = () => [...$('files').files, ...$('color-file').files];
@@ -260,9 +275,10 @@ document.addEventListener('drop', (e) => {
 
 // The map `footprint serve` was given: its files, or the built-in terrain's seed and side.
 const served = await (await fetch('map.json')).json().catch(() => ({}));
+let userMap = false;
 if (served.height) {
   const fetchFile = async (f) => new File([await (await fetch(f.url)).arrayBuffer()], f.name);
-  await loadFiles([await fetchFile(served.height), ...(served.color ? [await fetchFile(served.color)] : [])]);
+  userMap = await loadFiles([await fetchFile(served.height), ...(served.color ? [await fetchFile(served.color)] : [])]);
 } else if (served.terrain_size && (served.terrain_size !== 1024 || served.seed !== 1)) {
   check(fp.fp_load_builtin(served.seed, served.terrain_size), 'built-in terrain');
 }
@@ -270,8 +286,14 @@ if (served.height) {
 // The first frames, as the URL asks.
 setMode(0, params.get('left') ?? 'ps');
 setMode(1, params.get('right') ?? 'as');
-$('pitch').value = params.get('pitch') ?? 20;
-paperView(Number($('pitch').value));
+// The built-in terrain opens in the paper's view (pitch 20° unless the URL says), a map
+// `serve --dem` was given in its overview, as `footprint render` shows each.
+if (userMap && !params.has('pitch')) {
+  overview();
+} else {
+  $('pitch').value = params.get('pitch') ?? 20;
+  paperView(Number($('pitch').value));
+}
 mapInfo();
 draw();
 if (params.has('count')) count();
