@@ -1,6 +1,7 @@
 //! The `footprint` command line: its arguments ([`Cli`]), and [`main`], which parses them, runs
 //! the command and turns every error into one line on stderr and exit code 2.
 
+use std::os::fd::AsFd;
 use std::process::ExitCode;
 
 use crate::commands::{self, BenchArgs, FlyArgs, InspectArgs, RenderArgs, ReportArgs, TableArgs};
@@ -19,8 +20,8 @@ pub struct Cli {
     /// the same for any number.
     #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
     pub threads: Option<u16>,
-    /// The memory a run may use, e.g. 512M or 4G (default: the memory available now, less an
-    /// eighth). A run that would need more is refused before it allocates.
+    /// The memory a run may use, e.g. 512M or 4G, at least 1M (default: the memory available
+    /// now, less an eighth). A run that would need more is refused before it allocates.
     #[arg(long, global = true, value_name = "SIZE", value_parser = crate::memory::parse_size)]
     pub max_memory: Option<u64>,
 }
@@ -82,9 +83,25 @@ impl Command {
     }
 }
 
+/// Whether the process started with standard output closed (`>&-`). Rust's runtime opens
+/// `/dev/null` read-write in place of a closed standard descriptor before `main`, so that is
+/// what descriptor 1 then is; a shell's `>/dev/null` opens it write-only.
+fn stdout_was_closed() -> bool {
+    let fd = std::io::stdout();
+    let fd = fd.as_fd();
+    let read_write = rustix::fs::fcntl_getfl(fd)
+        .is_ok_and(|f| f & rustix::fs::OFlags::RWMODE == rustix::fs::OFlags::RDWR);
+    let null = |st: rustix::fs::Stat| (st.st_mode & 0o170_000 == 0o020_000).then_some(st.st_rdev);
+    let here = rustix::fs::fstat(fd).ok().and_then(null);
+    let dev_null = rustix::fs::stat("/dev/null").ok().and_then(null);
+    read_write && here.is_some() && here == dev_null
+}
+
 /// Before a command runs: if one of its outputs is standard output, everything it prints goes
-/// to standard error ([`crate::console::stdout_is_output`]); two outputs cannot both be it.
-fn claim_stdout(command: &Command) -> anyhow::Result<()> {
+/// to standard error ([`crate::console::stdout_is_output`]); two outputs cannot both be it,
+/// and a closed one (`stdout_closed`, `>&-`) cannot be it: the image would go nowhere, or into
+/// whatever file took descriptor 1 since.
+fn claim_stdout(command: &Command, stdout_closed: bool) -> anyhow::Result<()> {
     let mut taken: Option<&str> = None;
     for (option, path) in command.file_outputs() {
         if !crate::output::is_stdout(path) {
@@ -97,6 +114,9 @@ fn claim_stdout(command: &Command) -> anyhow::Result<()> {
             );
         }
         taken = Some(option);
+        if stdout_closed {
+            anyhow::bail!("{option} -: standard output is closed");
+        }
         crate::console::stdout_is_output();
     }
     Ok(())
@@ -183,6 +203,7 @@ where
 /// The whole program: parses the process's arguments, runs the command, and prints any error
 /// as one line (exit code 2).
 pub fn main() -> ExitCode {
+    let stdout_closed = stdout_was_closed();
     crate::output::stale::mark_start();
     quiet_on_closed_stdout();
     let cli = match parse(std::env::args_os()) {
@@ -201,20 +222,15 @@ pub fn main() -> ExitCode {
     }
     // The hard guard: never past what the process really has, whatever --max-memory says.
     crate::alloc_guard::set_limit(crate::memory::budget().min(crate::memory::room()));
-    if let Some(n) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new()
-            .num_threads(usize::from(n))
-            .build_global()
-        {
-            crate::note!("error: --threads {n}: {e}");
-            return ExitCode::from(2);
-        }
+    if let Err(e) = start_threads(cli.threads) {
+        crate::note!("error: {e}");
+        return ExitCode::from(2);
     }
     if let Err(e) = crate::output::remove_temporaries_on_signal() {
         crate::note!("error: {e:#}");
         return ExitCode::from(2);
     }
-    if let Err(e) = claim_stdout(&cli.command) {
+    if let Err(e) = claim_stdout(&cli.command, stdout_closed) {
         crate::note!("error: {e:#}");
         return ExitCode::from(2);
     }
@@ -232,6 +248,35 @@ pub fn main() -> ExitCode {
         Command::Serve(args) => commands::serve(args),
     };
     finish(result)
+}
+
+/// Starts the global thread pool: `--threads N`, or one thread per core. rayon would start it
+/// at its first use and panic there if the threads cannot be started (`ulimit -v 20000`: "The
+/// global thread pool has not been initialized", exit 101); and a failed start cannot be
+/// retried (the global pool is set once, failed or not). So the threads are first started in
+/// a pool of their own: if that fails, `--threads N` is refused in one line, and without it
+/// the run goes on with no thread but its own (the main thread as the pool's only worker).
+fn start_threads(threads: Option<u16>) -> Result<(), String> {
+    let builder = || {
+        let b = rayon::ThreadPoolBuilder::new();
+        match threads {
+            Some(n) => b.num_threads(usize::from(n)),
+            None => b,
+        }
+    };
+    let trial = builder().build().map(drop);
+    let global = match (trial, threads) {
+        (Ok(()), _) => builder().build_global(),
+        (Err(e), Some(n)) => return Err(format!("--threads {n}: cannot start the threads: {e}")),
+        (Err(_), None) => rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .use_current_thread()
+            .build_global(),
+    };
+    global.map_err(|e| match threads {
+        Some(n) => format!("--threads {n}: {e}"),
+        None => format!("cannot start the threads: {e}"),
+    })
 }
 
 /// The exit code of a run that gave `result`, once what is left of standard output is flushed:

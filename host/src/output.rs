@@ -233,7 +233,30 @@ pub fn folder_of(path: &Path) -> &Path {
 /// A path as the user wrote it, for messages: control characters (escape sequences in a
 /// hostile file name) are shown escaped, never sent to the terminal.
 pub fn shown(path: &Path) -> String {
-    escape_controls(&path.display().to_string())
+    let place = places()
+        .iter()
+        .find(|(staged, _)| staged == path)
+        .map(|(_, place)| place.clone());
+    escape_controls(&place.as_deref().unwrap_or(path).display().to_string())
+}
+
+/// The files staged for a folder of outputs ([`folder::Folder`]), each with the place it is
+/// written for, so that [`shown`] names a staged file by its place: an error while writing
+/// `DIR/.footprint-2BrXGk` is about `DIR/cut_ps.png`, the file the user asked for.
+static PLACES: Mutex<Vec<(PathBuf, PathBuf)>> = Mutex::new(Vec::new());
+
+fn places() -> std::sync::MutexGuard<'static, Vec<(PathBuf, PathBuf)>> {
+    PLACES.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Names the staged file `staged` by `place` in messages ([`shown`]).
+pub(crate) fn stage_for(staged: &Path, place: &Path) {
+    places().push((staged.to_path_buf(), place.to_path_buf()));
+}
+
+/// Forgets the place of `staged` (renamed into it, or removed).
+pub(crate) fn unstage(staged: &Path) {
+    places().retain(|(s, _)| s != staged);
 }
 
 /// An I/O error as a message: its text without the ` (os error N)` that follows it.

@@ -245,3 +245,27 @@ fn a_closed_pipe_says_cannot_write_once() {
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
 }
+
+/// Issue 54, item 11: `render --out -` with standard output closed (`>&-`) printed `wrote -`
+/// and exited 0, the image gone. Now it is one line naming `--out -`, exit 2; into `/dev/null`
+/// (asked for) it still succeeds.
+#[test]
+fn an_output_on_a_closed_stdout_is_refused() {
+    let exe = env!("CARGO_BIN_EXE_footprint");
+    let run = |redirect: &str| {
+        let script = format!("exec \"$0\" render --size 32x32 --mode ps --out - {redirect}");
+        Command::new("sh")
+            .args(["-c", &script, exe])
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap()
+    };
+    let o = run(">&-");
+    assert_one_line_error(
+        &o,
+        &["render", "--out", "-", ">&-"],
+        "--out -: standard output is closed",
+    );
+    let o = run(">/dev/null");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -968,8 +968,8 @@ fn standard_input_is_a_map_too() {
     );
     // A stream over the memory budget is refused, not read to the end of memory.
     let o = footprint_with_stdin(
-        &["--max-memory", "1K", "map", "info", "--format", "asc", "-"],
-        &vec![b' '; 4096],
+        &["--max-memory", "1M", "map", "info", "--format", "asc", "-"],
+        &vec![b' '; 2 << 20],
     );
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
@@ -1093,4 +1093,74 @@ fn common_one_line(o: &Output, args: &[&str], names: &str) {
         stderr.contains(names),
         "{args:?}: should name {names}: {stderr}"
     );
+}
+
+/// Issue 54, item 9: endless inputs were read until the memory budget (14 s and 8.4 GB for
+/// `map info /dev/zero`), then "out of memory … bake the map" named no file. Each is now
+/// refused within a bound, in one line naming it: a stream that is neither text nor a PNG or
+/// TIFF past the largest SRTM tile (25.9 MB), a file read whole past half the budget.
+#[test]
+fn endless_inputs_are_refused_within_a_bound_naming_them() {
+    use common::{assert_one_line_error, footprint_bounded};
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A .vrt that is /dev/zero, and one whose tile is /dev/urandom.
+    std::os::unix::fs::symlink("/dev/zero", d.join("zero.vrt")).unwrap();
+    std::fs::write(
+        d.join("random.vrt"),
+        "<VRTDataset rasterXSize=\"4\" rasterYSize=\"4\"><VRTRasterBand band=\"1\">\
+         <SimpleSource><SourceFilename>/dev/urandom</SourceFilename><SourceBand>1</SourceBand>\
+         <SrcRect xOff=\"0\" yOff=\"0\" xSize=\"4\" ySize=\"4\"/><DstRect xOff=\"0\" yOff=\"0\" \
+         xSize=\"4\" ySize=\"4\"/></SimpleSource></VRTRasterBand></VRTDataset>",
+    )
+    .unwrap();
+    // A sparse file of 100 GB.
+    let sparse = d.join("huge.asc");
+    std::fs::File::create(&sparse)
+        .unwrap()
+        .set_len(100 << 30)
+        .unwrap();
+    let (zero_vrt, random_vrt, huge) =
+        (s(&d.join("zero.vrt")), s(&d.join("random.vrt")), s(&sparse));
+    let out = s(&d.join("o.png"));
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["map", "info", "/dev/zero"], "/dev/zero"),
+        (vec!["map", "info", "/dev/urandom"], "/dev/urandom"),
+        (
+            vec![
+                "render",
+                "--dem",
+                "/dev/zero",
+                "--format",
+                "hgt",
+                "--out",
+                &out,
+            ],
+            "/dev/zero",
+        ),
+        (vec!["map", "info", &zero_vrt], "zero.vrt"),
+        (
+            vec!["render", "--dem", &random_vrt, "--out", &out],
+            "/dev/urandom",
+        ),
+        (
+            vec!["fly", "--path", "/dev/urandom", "--frames", "2"],
+            "/dev/urandom",
+        ),
+        (
+            vec!["serve", "--port", "0", "--max-memory", "1G", "--dem", &huge],
+            "huge.asc",
+        ),
+    ];
+    for (args, names) in cases {
+        let started = std::time::Instant::now();
+        let o = footprint_bounded(&args, 60).unwrap_or_else(|e| panic!("{args:?}: {e}"));
+        assert_one_line_error(&o, &args, names);
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(20),
+            "{args:?}: refused only after {:?}",
+            started.elapsed()
+        );
+    }
+    assert!(!d.join("o.png").exists());
 }

@@ -306,3 +306,64 @@ fn an_allocation_past_the_real_memory_is_one_line() {
         }
     }
 }
+
+/// Issue 54, item 7: under a small address-space limit (`ulimit -v`), `render` panicked in
+/// rayon ("The global thread pool has not been initialized", exit 101, four lines). Every
+/// limit from where the binary starts at all to where it renders, in steps of 2 MB, must give a
+/// picture (exit 0) or one line and exit 2.
+#[test]
+fn a_small_address_space_never_panics() {
+    let dir = tempfile::tempdir().unwrap();
+    let asc = dir.path().join("small.asc");
+    let mut grid = String::from("ncols 32\nnrows 24\nxllcorner 0\nyllcorner 0\ncellsize 30\n");
+    for y in 0..24 {
+        let row: Vec<String> = (0..32)
+            .map(|x| ((x * 3 + y * 7) % 40).to_string())
+            .collect();
+        grid.push_str(&row.join(" "));
+        grid.push('\n');
+    }
+    std::fs::write(&asc, grid).unwrap();
+    let out = dir.path().join("o.png");
+    let exe = env!("CARGO_BIN_EXE_footprint");
+    let mut rendered = false;
+    let mut ran = 0;
+    for mb in (8..=400).step_by(2) {
+        let script = format!(
+            "ulimit -v {} && exec \"$0\" render --dem \"$1\" --size 64x48 --out \"$2\"",
+            mb * 1024
+        );
+        let o = std::process::Command::new("sh")
+            .args([
+                "-c",
+                &script,
+                exe,
+                asc.to_str().unwrap(),
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        // Too small to start the binary at all: the kernel or the shell ends it, not us.
+        if ran == 0 && o.status.code().is_none_or(|c| c == 126 || c == 127) {
+            continue;
+        }
+        ran += 1;
+        match o.status.code() {
+            Some(0) => {
+                rendered = true;
+                break;
+            }
+            Some(2) => assert_eq!(
+                stderr.lines().count(),
+                1,
+                "ulimit -v {mb} MB: more than one line: {stderr}"
+            ),
+            other => panic!("ulimit -v {mb} MB: exit {other:?}: {stderr}"),
+        }
+    }
+    assert!(
+        rendered,
+        "no limit up to 400 MB rendered ({ran} runs started)"
+    );
+}

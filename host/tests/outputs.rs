@@ -425,7 +425,7 @@ save() { # NAME DIR CODE
 save fly /dev/shm $?
 "$BIN" glint --measure $small --frames 3 --reference-columns 2 --out "$D/ro/glint" > /dev/null 2> "$R/glint.err"
 save glint "$D/ro/glint" $?
-"$BIN" report --terrain-size 64 --frames 2 --out "$D/report" > /dev/null 2> "$R/report.err"
+"$BIN" report --terrain-size 64 --frames 2 --truth-samples 1 --out "$D/report" > /dev/null 2> "$R/report.err"
 save report "$D/report" $?
 # A folder whose second file is bind-mounted: refused before the first is replaced.
 printf OLD-PS > "$D/bound/cut_ps.png"; : > "$D/bound/cut_as.png"
@@ -702,4 +702,65 @@ fn a_dangling_link_as_out_makes_its_target_and_leaves_nothing_beside_it() {
         leftovers(&dir.path().join("report-1")),
         Vec::<String>::new()
     );
+}
+
+/// Issue 54, item 11: on a full disk, `fly --out` said "No space left on device (os error
+/// 28)" without the output's name, and `report` named its temporary file (`.footprint-…`)
+/// instead of the real one. Each `--out` below is a tmpfs of one page (private mounts, as
+/// above): one line, exit 2, naming a file of the folder by its own name, nothing left.
+#[test]
+fn a_full_disk_names_the_output_not_its_temporary_file() {
+    let unshare = match private_mounts() {
+        Ok(u) => u,
+        Err(why) => {
+            eprintln!("SKIPPED: {why}");
+            return;
+        }
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for sub in ["fly", "animation", "report", "results"] {
+        std::fs::create_dir_all(d.join(sub)).unwrap();
+    }
+    let script = r#"
+set -u
+D="$1"; BIN="$2"; R="$D/results"
+for m in fly animation report; do mount -t tmpfs -o size=4k tmpfs "$D/$m" || exit 77; done
+small="--terrain-size 64 --size 96x64"
+"$BIN" fly $small --frames 200 --modes ps,as --out "$D/fly" > /dev/null 2> "$R/fly.err"
+echo $? > "$R/fly.code"; ls -A "$D/fly" > "$R/fly.ls"
+"$BIN" fly $small --frames 40 --modes ps --animation --out "$D/animation" > /dev/null 2> "$R/animation.err"
+echo $? > "$R/animation.code"; ls -A "$D/animation" > "$R/animation.ls"
+"$BIN" report --terrain-size 64 --frames 2 --truth-samples 1 --out "$D/report" > /dev/null 2> "$R/report.err"
+echo $? > "$R/report.code"; ls -A "$D/report" > "$R/report.ls"
+for m in fly animation report; do umount "$D/$m"; done
+"#;
+    let o = Command::new(unshare[0])
+        .args(&unshare[1..])
+        .args(["sh", "-c", script, "sh"])
+        .arg(d)
+        .arg(env!("CARGO_BIN_EXE_footprint"))
+        .output()
+        .unwrap();
+    if o.status.code() == Some(77) {
+        eprintln!(
+            "SKIPPED: cannot mount here: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        return;
+    }
+    assert!(o.status.success(), "{o:?}");
+    let read = |name: &str| std::fs::read_to_string(d.join("results").join(name)).unwrap();
+    for case in ["fly", "animation", "report"] {
+        let err = read(&format!("{case}.err"));
+        assert_eq!(read(&format!("{case}.code")).trim(), "2", "{case}: {err}");
+        let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(lines.len(), 1, "{case}: {err}");
+        let folder = d.join(case).display().to_string();
+        assert!(
+            err.contains(&format!("{folder}/")) && !err.contains(".footprint-"),
+            "{case}: the error should name the output in {folder}, not its temporary file: {err}"
+        );
+        assert_eq!(read(&format!("{case}.ls")), "", "{case}: files left");
+    }
 }

@@ -23,7 +23,7 @@ use footprint_core::terrain::{mirror, Scale, Strips, MAX_LEVELS};
 use footprint_core::Rgb;
 use footprint_scenes::tint::TintScale;
 
-use super::mosaic::Mosaic;
+use super::mosaic::{Mosaic, Tile};
 use super::MapError;
 
 /// Bytes gathered per section before they are written.
@@ -42,8 +42,9 @@ pub struct Plan {
     pub height_scale_m: f64,
     /// Metres of height unit 0.
     pub base_m: f64,
-    /// The lowest and highest height units the rows will hold: the tint spans them, and the
-    /// bake fails if the rows do not (the source changed).
+    /// The lowest and highest height units the rows may hold: the tint spans them, and the
+    /// bake fails if a row holds one outside them (a source changed). The rows may span less:
+    /// a tile that a later one covers may hold the extremes.
     pub range: (u16, u16),
     /// The height filter of the pyramid.
     pub filter: HeightFilter,
@@ -54,20 +55,60 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The plan of a surveyed mosaic, its levels in `strips`.
-    pub fn of_mosaic(m: &Mosaic, filter: HeightFilter, strips: Option<u32>) -> Self {
-        Self {
+    /// The plan of a surveyed mosaic, its levels in `strips`. Its range is the one the map
+    /// holds, as the tint of the mosaic read in memory spans it: the tiles' own, or, where tiles
+    /// overlap (a tile drawn over may hide the highest or lowest cells of one below), read from
+    /// the rows in a pass of its own.
+    pub fn of_mosaic(
+        m: &Mosaic,
+        filter: HeightFilter,
+        strips: Option<u32>,
+    ) -> Result<Self, MapError> {
+        let range = if overlapping(&m.tiles) {
+            held_range(m)?
+        } else {
+            m.unit_range()
+        };
+        Ok(Self {
             width: m.width,
             height: m.height,
             spacing_m: m.spacing.spacing_m,
             height_scale_m: m.height_scale_m,
             base_m: m.base_m,
-            range: m.unit_range(),
+            range,
             filter,
             source: m.source.clone(),
             strips,
+        })
+    }
+}
+
+/// Whether two tiles with data share a cell.
+fn overlapping(tiles: &[Tile]) -> bool {
+    let data: Vec<&Tile> = tiles.iter().filter(|t| t.has_data).collect();
+    data.iter().enumerate().any(|(i, a)| {
+        data.iter().skip(i + 1).any(|b| {
+            a.x < b.x + b.width
+                && b.x < a.x + a.width
+                && a.y < b.y + b.height
+                && b.y < a.y + a.height
+        })
+    })
+}
+
+/// The lowest and highest height units of the mosaic's rows.
+fn held_range(m: &Mosaic) -> Result<(u16, u16), MapError> {
+    let mut row = vec![0u16; m.width as usize];
+    let mut rows = m.rows();
+    let (mut lo, mut hi) = (u16::MAX, u16::MIN);
+    for _ in 0..m.height {
+        rows.next_row(&mut row)?;
+        for &v in &row {
+            lo = lo.min(v);
+            hi = hi.max(v);
         }
     }
+    Ok((lo, hi))
 }
 
 /// Rows of a grid in strips gathered before each strip's part of them is written (a block of
@@ -451,10 +492,10 @@ pub fn bake(
         std::mem::swap(&mut north, &mut row);
         std::mem::swap(&mut row, &mut south);
     }
-    if (lo, hi) != plan.range {
+    if lo < plan.range.0 || hi > plan.range.1 {
         return Err(invalid(format!(
-            "its heights span units {lo} to {hi}, not {} to {} as surveyed: a file changed while \
-             it was read",
+            "its heights span units {lo} to {hi}, beyond {} to {} as surveyed: a file changed \
+             while it was read",
             plan.range.0, plan.range.1
         )));
     }
@@ -513,7 +554,7 @@ pub fn bake_mosaic(
     file: &mut File,
     what: &str,
 ) -> Result<u64, MapError> {
-    let plan = Plan::of_mosaic(mosaic, filter, strips);
+    let plan = Plan::of_mosaic(mosaic, filter, strips)?;
     let mut rows = mosaic.rows();
     bake(&plan, |row| rows.next_row(row), file, what)
 }

@@ -28,6 +28,34 @@ pub const STREAM_GRACE: Duration = Duration::from_secs(2);
 /// How many first bytes are kept for guessing the format.
 const HEAD: usize = 16;
 
+/// The most bytes of a stream read while it is neither text nor signed as a PNG or a TIFF: the
+/// largest SRTM tile (3601² big-endian int16), the one binary format without a signature that
+/// a stream can be. `/dev/zero` and `/dev/urandom` are refused here, not at the memory budget
+/// (8.4 GB and 14 s before, with a message that named no file).
+pub const MAX_UNSIGNED_STREAM: u64 = 3601 * 3601 * 2;
+
+/// How many first bytes of a stream say whether it is text.
+const TEXT_PROBE: usize = 4096;
+
+/// Whether the first bytes of a stream may be a height map of unbounded length: a PNG or TIFF
+/// signature, or text (an ASCII grid; a flight path).
+fn signed_or_text(first: &[u8]) -> bool {
+    let probe = first.get(..TEXT_PROBE).unwrap_or(first);
+    let text = match std::str::from_utf8(probe) {
+        Ok(t) => t,
+        // A character cut at the probe's end.
+        Err(e) if e.error_len().is_none() => probe
+            .get(..e.valid_up_to())
+            .and_then(|p| std::str::from_utf8(p).ok())
+            .unwrap_or(""),
+        Err(_) => "",
+    };
+    first.starts_with(b"\x89PNG")
+        || first.starts_with(b"II*\0")
+        || first.starts_with(b"MM\0*")
+        || (!text.is_empty() && !text.chars().any(|c| c.is_control() && !c.is_whitespace()))
+}
+
 /// An opened map input (see the module documentation).
 pub struct Input {
     /// The path as given (`-` for standard input).
@@ -82,7 +110,7 @@ impl Input {
     /// An input over `bytes` that came from `path`; `what` names it in errors. Refused if it
     /// is longer than the memory budget, as a stream would be.
     pub fn from_bytes(path: &Path, what: &str, bytes: Vec<u8>) -> Result<Self, MapError> {
-        if bytes.len() as u64 > crate::memory::budget() {
+        if bytes.len() as u64 > crate::memory::budget() / 2 {
             return Err(MapError::StreamTooLong {
                 what: what.to_owned(),
             });
@@ -106,7 +134,7 @@ impl Input {
             error,
         };
         let (source, len) = if is_stdin(path) {
-            let bytes = read_stream(io::stdin().lock(), what, 0)?;
+            let bytes = read_stream(io::stdin().lock(), what, Vec::new())?;
             let len = bytes.len() as u64;
             (Source::Memory(Cursor::new(bytes)), len)
         } else {
@@ -324,16 +352,20 @@ fn read_special(mut file: File, what: &str) -> Result<Vec<u8>, MapError> {
     };
     set_blocking(&file).map_err(io_err)?;
     first.truncate(n);
-    let rest = read_stream(file, what, first.len() as u64)?;
-    first.extend_from_slice(&rest);
-    Ok(first)
+    read_stream(file, what, first)
 }
 
 /// Reads all of `path` (`-`: standard input) as [`Input::open`] opens it: never blocking on a
-/// FIFO with no writer, a stream at most the memory budget; `what` names it in errors.
+/// FIFO with no writer, a stream at most half the memory budget, and a regular file too (a
+/// 100 GB sparse file is refused from its length); `what` names it in errors.
 pub fn read_all(path: &Path, what: &str) -> Result<Vec<u8>, MapError> {
     let mut input = Input::open(path, what)?;
-    let mut bytes = Vec::new();
+    if input.len > crate::memory::budget() / 2 {
+        return Err(MapError::StreamTooLong {
+            what: what.to_owned(),
+        });
+    }
+    let mut bytes = Vec::with_capacity(usize::try_from(input.len).unwrap_or(0));
     input
         .read_to_end(&mut bytes)
         .map_err(|e| input.io_error(e))?;
@@ -355,24 +387,43 @@ pub fn read_side_file(path: &Path) -> Option<String> {
     Some(text)
 }
 
-/// Reads a stream to its end, refusing one longer than the memory budget (`already` bytes of it
-/// were read before).
-fn read_stream(stream: impl Read, what: &str, already: u64) -> Result<Vec<u8>, MapError> {
-    let budget = crate::memory::budget();
-    let mut bytes = Vec::new();
-    stream
-        .take(budget.saturating_add(1).saturating_sub(already))
-        .read_to_end(&mut bytes)
-        .map_err(|error| MapError::Io {
-            what: what.to_owned(),
-            error,
-        })?;
-    if bytes.len() as u64 + already > budget {
-        return Err(MapError::StreamTooLong {
-            what: what.to_owned(),
-        });
+/// Reads the rest of a stream after its first bytes `bytes`, refusing it past half the memory
+/// budget (the reader needs the rest beside it), or past [`MAX_UNSIGNED_STREAM`] if it is
+/// neither text nor signed as a PNG or TIFF. Its buffer grows by doubling up to that bound,
+/// never past it.
+fn read_stream(mut stream: impl Read, what: &str, mut bytes: Vec<u8>) -> Result<Vec<u8>, MapError> {
+    let limit = crate::memory::budget() / 2;
+    let mut chunk = vec![0u8; 1 << 16];
+    loop {
+        let n = match stream.read(&mut chunk) {
+            Ok(0) => return Ok(bytes),
+            Ok(n) => n,
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+            Err(error) => {
+                return Err(MapError::Io {
+                    what: what.to_owned(),
+                    error,
+                })
+            }
+        };
+        let len = bytes.len() as u64 + n as u64;
+        if len > MAX_UNSIGNED_STREAM && !signed_or_text(&bytes) {
+            return Err(MapError::NotAMapStream {
+                what: what.to_owned(),
+            });
+        }
+        if len > limit {
+            return Err(MapError::StreamTooLong {
+                what: what.to_owned(),
+            });
+        }
+        if bytes.len() + n > bytes.capacity() {
+            let grown = (2 * bytes.capacity()).max(1 << 16);
+            let cap = usize::try_from(limit).unwrap_or(usize::MAX).min(grown);
+            bytes.reserve_exact(cap.saturating_sub(bytes.len()).max(n));
+        }
+        bytes.extend_from_slice(chunk.get(..n).unwrap_or_default());
     }
-    Ok(bytes)
 }
 
 impl Read for Input {

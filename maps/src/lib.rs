@@ -156,9 +156,16 @@ pub enum MapError {
         /// Its width and height.
         size: (u32, u32),
     },
-    /// A stream (standard input, a FIFO) longer than the memory budget ([`crate::memory`]).
+    /// A stream (standard input, a FIFO) longer than half the memory budget
+    /// ([`crate::memory`]), or a file read whole that is.
     StreamTooLong {
         /// The map, e.g. `height map "-"`.
+        what: String,
+    },
+    /// A stream that is no height map within the bound of the formats that can be streamed
+    /// without a signature ([`input::MAX_UNSIGNED_STREAM`]): `/dev/zero`, `/dev/urandom`.
+    NotAMapStream {
+        /// The input, e.g. `height map "/dev/zero"`.
         what: String,
     },
     /// A FIFO or device gave nothing to read within [`input::STREAM_GRACE`]: a FIFO no one
@@ -256,16 +263,18 @@ impl fmt::Display for MapError {
             MapError::TooLarge { what, side } => {
                 write!(f, "{what}: side {side} exceeds {MAX_SIDE}")
             }
-            MapError::TooMuchMemory { what, size } => write!(
-                f,
-                "{what}: {}×{} cells need {}, more than the memory budget of {} (--max-memory)",
-                size.0,
-                size.1,
-                memory::show(
-                    memory::map_bytes(size.0, size.1).unwrap_or(u64::MAX)
-                ),
-                memory::show(memory::budget())
-            ),
+            MapError::TooMuchMemory { what, size } => {
+                let (need, budget) = memory::show_need(
+                    memory::map_bytes(size.0, size.1).unwrap_or(u64::MAX),
+                    memory::budget(),
+                );
+                write!(
+                    f,
+                    "{what}: {}×{} cells need {need}, more than the memory budget of {budget} \
+                     (--max-memory)",
+                    size.0, size.1
+                )
+            }
             MapError::NothingToRead { what, fifo } => write!(
                 f,
                 "{what}: {} within {} s; nothing read",
@@ -278,8 +287,15 @@ impl fmt::Display for MapError {
             ),
             MapError::StreamTooLong { what } => write!(
                 f,
-                "{what}: the stream is longer than the memory budget of {} (--max-memory)",
-                memory::show(memory::budget())
+                "{what}: longer than {}, half the memory budget (--max-memory), which is the \
+                 most read whole",
+                memory::show(memory::budget() / 2)
+            ),
+            MapError::NotAMapStream { what } => write!(
+                f,
+                "{what}: {} read and still no height map: not text, and no PNG or TIFF \
+                 signature (the largest SRTM tile, the one format without one, is that long)",
+                memory::show(input::MAX_UNSIGNED_STREAM)
             ),
             MapError::SizeMismatch {
                 color,

@@ -112,17 +112,38 @@ pub fn rlimit_room() -> Option<u64> {
     Some(limit.saturating_sub(mapped))
 }
 
-/// Bytes in a readable unit ("1.5 GB").
+/// Bytes in a readable unit, three significant digits ("1.50 GB", "12.3 MB", "512 kB"), or
+/// bytes below a kilobyte.
 pub fn show(bytes: u64) -> String {
     let b = bytes as f64;
-    if b >= 1e12 {
-        format!("{:.1} TB", b / 1e12)
-    } else if b >= 1e9 {
-        format!("{:.1} GB", b / 1e9)
+    let (v, unit) = match b {
+        b if b >= 1e12 => (b / 1e12, "TB"),
+        b if b >= 1e9 => (b / 1e9, "GB"),
+        b if b >= 1e6 => (b / 1e6, "MB"),
+        b if b >= 1e3 => (b / 1e3, "kB"),
+        _ => return format!("{bytes} bytes"),
+    };
+    let digits = match v {
+        v if v >= 99.95 => 0,
+        v if v >= 9.995 => 1,
+        _ => 2,
+    };
+    format!("{v:.digits$} {unit}")
+}
+
+/// A need and the budget it exceeds, each as [`show`] says it, or in bytes when [`show`]
+/// would say the same of both ("need 1.00 MB, more than the memory budget of 1.00 MB").
+pub fn show_need(need: u64, budget: u64) -> (String, String) {
+    let (n, b) = (show(need), show(budget));
+    if n == b {
+        (format!("{need} bytes"), format!("{budget} bytes"))
     } else {
-        format!("{:.0} MB", (b / 1e6).max(1.0))
+        (n, b)
     }
 }
+
+/// The smallest `--max-memory`: the program's own code and buffers need more than this.
+pub const MIN_BUDGET: u64 = 1 << 20;
 
 /// Parses `--max-memory`: bytes, or a number with K, M, G or T (powers of 1024).
 pub fn parse_size(s: &str) -> Result<u64, String> {
@@ -146,7 +167,13 @@ pub fn parse_size(s: &str) -> Result<u64, String> {
     if !n.is_finite() || n <= 0.0 || n * scale as f64 >= u64::MAX as f64 {
         return Err(format!("{s:?}: must be a positive size below 16 EB"));
     }
-    Ok((n * scale as f64) as u64)
+    let bytes = (n * scale as f64) as u64;
+    if bytes < MIN_BUDGET {
+        return Err(format!(
+            "{s:?}: must be at least 1M (the program alone needs more)"
+        ));
+    }
+    Ok(bytes)
 }
 
 /// Refuses a run that needs `need` bytes (`None`: more than a 64-bit count) when the budget is
@@ -155,11 +182,10 @@ pub fn check(need: Option<u64>, what: &str, for_what: &str) -> Result<()> {
     let budget = budget();
     match need {
         Some(n) if n <= budget => Ok(()),
-        Some(n) => bail!(
-            "{what}: {for_what} need {}, more than the memory budget of {} (--max-memory)",
-            show(n),
-            show(budget)
-        ),
+        Some(n) => {
+            let (need, budget) = show_need(n, budget);
+            bail!("{what}: {for_what} need {need}, more than the memory budget of {budget} (--max-memory)")
+        }
         None => bail!("{what}: {for_what} would need more memory than any machine has"),
     }
 }
@@ -209,7 +235,12 @@ mod tests {
 
     #[test]
     fn sizes_parse_with_units() {
-        assert_eq!(parse_size("1000"), Ok(1000));
+        assert_eq!(parse_size("1048576"), Ok(1 << 20));
+        // Issue 54, item 11: a fraction of a byte, or a budget the program cannot run in.
+        assert!(parse_size("0.0001").is_err());
+        assert!(parse_size("1000").is_err());
+        assert!(parse_size("1K").is_err());
+        assert_eq!(parse_size("1M"), Ok(1 << 20));
         assert_eq!(parse_size("512M"), Ok(512 << 20));
         assert_eq!(parse_size("4G"), Ok(4 << 30));
         assert_eq!(parse_size("1.5g"), Ok(3 << 29));
@@ -218,6 +249,24 @@ mod tests {
         assert!(parse_size("-1G").is_err());
         assert!(parse_size("4X").is_err());
         assert!(parse_size("1e30T").is_err());
+    }
+
+    /// Issue 54, item 11: "need 1 MB, more than the memory budget of 1 MB".
+    #[test]
+    fn a_need_never_reads_as_its_budget() {
+        assert_eq!(show(512), "512 bytes");
+        assert_eq!(show(1_500), "1.50 kB");
+        assert_eq!(show(12_345_678), "12.3 MB");
+        assert_eq!(show(999_999_999), "1000 MB");
+        assert_eq!(show(2_500_000_000), "2.50 GB");
+        assert_eq!(
+            show_need(1_048_577, 1_048_576),
+            ("1048577 bytes".to_owned(), "1048576 bytes".to_owned())
+        );
+        assert_eq!(
+            show_need(3_000_000, 1_048_576),
+            ("3.00 MB".to_owned(), "1.05 MB".to_owned())
+        );
     }
 
     #[test]

@@ -99,6 +99,20 @@ fn unescape(raw: &str) -> Result<String, String> {
     Ok(out)
 }
 
+/// The deepest nesting of elements a `.vrt` may have (GDAL's are 4 deep): a file nested
+/// 150,000 deep overflowed the stack when its tree was dropped (exit 134).
+const MAX_DEPTH: usize = 64;
+
+/// At most 80 characters of `text`, for an error that quotes the file (a 1 MB
+/// `<GeoTransform>` was echoed whole).
+fn clip(text: &str) -> String {
+    const MAX: usize = 80;
+    match text.char_indices().nth(MAX) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_owned(),
+    }
+}
+
 /// Parses an XML document into its root element.
 fn parse_xml(text: &str) -> Result<Element, String> {
     let mut stack: Vec<Element> = vec![Element::default()];
@@ -138,7 +152,11 @@ fn parse_xml(text: &str) -> Result<Element, String> {
             let name = r[..end].trim();
             let done = stack.pop().ok_or("an end tag with no element")?;
             if done.name != name || stack.is_empty() {
-                return Err(format!("</{name}> does not close <{}>", done.name));
+                return Err(format!(
+                    "</{}> does not close <{}>",
+                    clip(name),
+                    clip(&done.name)
+                ));
             }
             if let Some(top) = stack.last_mut() {
                 top.children.push(done);
@@ -184,6 +202,8 @@ fn parse_xml(text: &str) -> Result<Element, String> {
                 if let Some(top) = stack.last_mut() {
                     top.children.push(el);
                 }
+            } else if stack.len() > MAX_DEPTH {
+                return Err(format!("elements nested deeper than {MAX_DEPTH}"));
             } else {
                 stack.push(el);
             }
@@ -191,7 +211,7 @@ fn parse_xml(text: &str) -> Result<Element, String> {
     }
     if stack.len() != 1 {
         let open = stack.last().map(|e| e.name.clone()).unwrap_or_default();
-        return Err(format!("<{open}> is never closed"));
+        return Err(format!("<{}> is never closed", clip(&open)));
     }
     let mut doc = stack.pop().unwrap_or_default();
     match doc.children.len() {
@@ -219,10 +239,15 @@ pub fn read(path: &Path) -> Result<Vrt, MapError> {
             format!("longer than {} MiB", MAX_LEN >> 20),
         ));
     }
-    let bytes = std::fs::read(path).map_err(|error| MapError::Io {
-        what: what.clone(),
-        error,
-    })?;
+    // As every input is read (a FIFO never waited on for ever; a device such as `/dev/zero`
+    // named `x.vrt`, whose length says nothing and which never ends, read within a bound).
+    let bytes = super::input::read_all(path, &what)?;
+    if bytes.len() as u64 > MAX_LEN {
+        return Err(malformed(
+            &what,
+            format!("longer than {} MiB", MAX_LEN >> 20),
+        ));
+    }
     let text = String::from_utf8(bytes).map_err(|_| malformed(&what, "not UTF-8 text"))?;
     let base = path.parent().unwrap_or(Path::new(""));
     parse(&text, base).map_err(|detail| match detail {
@@ -253,7 +278,7 @@ fn parse(text: &str, base: &Path) -> Result<Vrt, Refusal> {
     if root.name != "VRTDataset" {
         return Err(bad(format!(
             "its root is <{}>, not <VRTDataset>",
-            root.name
+            clip(&root.name)
         )));
     }
     let size = |key: &str| -> Result<u32, Refusal> {
@@ -271,7 +296,12 @@ fn parse(text: &str, base: &Path) -> Result<Vrt, Refusal> {
                 .split(',')
                 .map(|t| t.trim().parse::<f64>())
                 .collect::<Result<_, _>>()
-                .map_err(|_| bad(format!("<GeoTransform> {:?} is not six numbers", g.text)))?;
+                .map_err(|_| {
+                    bad(format!(
+                        "<GeoTransform> {:?} is not six numbers",
+                        clip(&g.text)
+                    ))
+                })?;
             let v: [f64; 6] = v
                 .try_into()
                 .map_err(|_| bad("<GeoTransform> is not six numbers".to_owned()))?;
@@ -292,7 +322,7 @@ fn parse(text: &str, base: &Path) -> Result<Vrt, Refusal> {
         more => return Err(no(format!("{} bands; a height mosaic has one", more.len()))),
     };
     if let Some(sub) = band.attr("subClass") {
-        return Err(no(format!("a <VRTRasterBand subClass=\"{sub}\">")));
+        return Err(no(format!("a <VRTRasterBand subClass=\"{}\">", clip(sub))));
     }
     let mut sources = Vec::new();
     for child in &band.children {
@@ -302,8 +332,9 @@ fn parse(text: &str, base: &Path) -> Result<Vrt, Refusal> {
             | "Scale" | "Histograms" => continue,
             other => {
                 return Err(no(format!(
-                    "<{other}> in the band (only <SimpleSource> and <ComplexSource> of whole \
-                     tiles)"
+                    "<{}> in the band (only <SimpleSource> and <ComplexSource> of whole \
+                     tiles)",
+                    clip(other)
                 )))
             }
         }
@@ -329,11 +360,12 @@ fn source(el: &Element, base: &Path) -> Result<Source, Refusal> {
         .child("SourceFilename")
         .ok_or_else(|| bad(format!("a <{kind}> without <SourceFilename>")))?;
     let name = file.text.trim();
+    let shown = clip(name);
     if name.is_empty() {
         return Err(bad("an empty <SourceFilename>".to_owned()));
     }
     if name.starts_with("/vsi") {
-        return Err(no(format!("the GDAL virtual file {name:?}")));
+        return Err(no(format!("the GDAL virtual file {shown:?}")));
     }
     let path = if file.attr("relativeToVRT").map(str::trim) == Some("1") {
         base.join(name)
@@ -346,32 +378,34 @@ fn source(el: &Element, base: &Path) -> Result<Source, Refusal> {
             | "NODATA" | "UseMaskBand" => {}
             other => {
                 return Err(no(format!(
-                    "<{other}> in <{kind}> of {name:?} (a mosaic of whole tiles takes none)"
+                    "<{}> in <{kind}> of {shown:?} (a mosaic of whole tiles takes none)",
+                    clip(other)
                 )))
             }
         }
     }
     if let Some(b) = el.child("SourceBand") {
         if b.text.trim() != "1" {
-            return Err(no(format!("band {} of {name:?}", b.text.trim())));
+            return Err(no(format!("band {} of {shown:?}", clip(b.text.trim()))));
         }
     }
     let rect = |tag: &str| -> Result<[u32; 4], Refusal> {
         let r = el
             .child(tag)
-            .ok_or_else(|| bad(format!("<{kind}> of {name:?} has no <{tag}>")))?;
+            .ok_or_else(|| bad(format!("<{kind}> of {shown:?} has no <{tag}>")))?;
         let mut out = [0u32; 4];
         for (slot, key) in out.iter_mut().zip(["xOff", "yOff", "xSize", "ySize"]) {
             let v = r
                 .attr(key)
-                .ok_or_else(|| bad(format!("<{tag}> of {name:?} has no {key}")))?;
+                .ok_or_else(|| bad(format!("<{tag}> of {shown:?} has no {key}")))?;
             let x: f64 = v
                 .trim()
                 .parse()
-                .map_err(|_| bad(format!("<{tag}> {key}={v:?} is not a number")))?;
+                .map_err(|_| bad(format!("<{tag}> {key}={:?} is not a number", clip(v))))?;
             if !(x.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&x)) {
                 return Err(no(format!(
-                    "<{tag}> {key}={v} of {name:?}: not a whole number of cells"
+                    "<{tag}> {key}={} of {shown:?}: not a whole number of cells",
+                    clip(v)
                 )));
             }
             *slot = x as u32;
@@ -381,7 +415,7 @@ fn source(el: &Element, base: &Path) -> Result<Source, Refusal> {
     let (src, dst) = (rect("SrcRect")?, rect("DstRect")?);
     if src[0] != 0 || src[1] != 0 || src[2] != dst[2] || src[3] != dst[3] {
         return Err(no(format!(
-            "{name:?} is read in part or resampled (SrcRect {src:?}, DstRect {dst:?}): only \
+            "{shown:?} is read in part or resampled (SrcRect {src:?}, DstRect {dst:?}): only \
              whole tiles"
         )));
     }
@@ -457,5 +491,44 @@ mod tests {
         assert!(refused("<VRTDataset rasterXSize=\"1\"/>").contains("rasterYSize"));
         assert!(refused("<a><b></a>").contains("not XML"));
         assert!(refused("<Other/>").contains("not <VRTDataset>"));
+    }
+
+    /// Issue 54, item 4: 150,000 nested elements (a 1 MB file) overflowed the stack (exit 134)
+    /// when the tree was dropped. Now refused at the 65th level, in one short line.
+    #[test]
+    fn deep_nesting_is_refused_not_a_stack_overflow() {
+        let n = 150_000;
+        let text = format!("{}{}", "<a>".repeat(n), "</a>".repeat(n));
+        let Err(Refusal::Malformed(d)) = parse(&text, Path::new("")) else {
+            panic!("accepted {n} nested elements")
+        };
+        assert!(d.contains("nested deeper than 64"), "{d}");
+        // GDAL's own depth is fine.
+        assert!(parse(GDAL, Path::new("")).is_ok());
+    }
+
+    /// Issue 54, item 11: a bad `<GeoTransform>` of 1 MB was echoed whole.
+    #[test]
+    fn what_the_file_says_is_quoted_short() {
+        let long = "9,".repeat(500_000);
+        let text = GDAL.replace(
+            "1.0e+03,  1.0e+01,  0.0e+00,  5.0e+03,  0.0e+00, -1.0e+01",
+            &long,
+        );
+        let Err(Refusal::Malformed(d)) = parse(&text, Path::new("")) else {
+            panic!("accepted")
+        };
+        assert!(
+            d.contains("<GeoTransform>") && d.len() < 200,
+            "{} bytes",
+            d.len()
+        );
+        let name = "x".repeat(100_000);
+        let Err(Refusal::Malformed(d) | Refusal::Unsupported(d)) =
+            parse(&format!("<{name}/>"), Path::new(""))
+        else {
+            panic!("accepted")
+        };
+        assert!(d.len() < 200, "{} bytes", d.len());
     }
 }

@@ -23,8 +23,8 @@ use anyhow::{anyhow, bail, Result};
 use tempfile::TempPath;
 
 use super::{
-    folder_of, io_message, keep_mode, links_followed, register, replace, shown, stale, target,
-    unregister, Target,
+    folder_of, io_message, keep_mode, links_followed, register, replace, shown, stage_for, stale,
+    target, unregister, unstage, Target,
 };
 
 /// A temporary file registered for removal on a signal while it lives, removed when dropped
@@ -46,6 +46,7 @@ impl Registered {
     fn disarm(mut self) {
         if let Some(t) = self.0.take() {
             unregister(&t);
+            unstage(&t);
             let _ = t.keep();
         }
     }
@@ -55,6 +56,7 @@ impl Drop for Registered {
     fn drop(&mut self) {
         if let Some(t) = &self.0 {
             unregister(t);
+            unstage(t);
         }
     }
 }
@@ -197,6 +199,7 @@ impl Folder {
         let empty = temp.as_file().metadata().map_err(cannot)?.ino();
         let temp = Registered::new(temp.into_temp_path());
         let path = temp.path().to_path_buf();
+        stage_for(&path, &place);
         staged.push(Staged {
             name: name.to_owned(),
             temp,

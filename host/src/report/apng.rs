@@ -62,7 +62,9 @@ impl Animation {
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_animated(frames, 0)?;
         encoder.set_frame_delay(1, fps)?;
-        let writer = encoder.write_header()?;
+        let writer = encoder
+            .write_header()
+            .with_context(|| format!("output {:?}", crate::output::shown(path)))?;
         Ok(Self {
             writer,
             tmp,
@@ -75,8 +77,15 @@ impl Animation {
         })
     }
 
-    /// Appends a frame (`width × height`, row-major from the top).
+    /// Appends a frame (`width × height`, row-major from the top). An error names the output
+    /// (a full disk: `output "DIR/flight.png": …`).
     pub fn push(&mut self, pixels: &[Rgb]) -> Result<()> {
+        let path = self.path.clone();
+        self.push_frame(pixels)
+            .with_context(|| format!("output {:?}", crate::output::shown(&path)))
+    }
+
+    fn push_frame(&mut self, pixels: &[Rgb]) -> Result<()> {
         if pixels.len() != self.width * self.height {
             bail!(
                 "animation frame of {} pixels for a {}×{} animation",
@@ -133,7 +142,7 @@ impl Animation {
         }
         self.writer
             .finish()
-            .with_context(|| format!("output {:?}", self.path.display().to_string()))?;
+            .with_context(|| format!("output {:?}", crate::output::shown(&self.path)))?;
         self.tmp.finish()
     }
 }

@@ -84,20 +84,25 @@ pub struct ReadArgs {
 }
 
 impl ReadArgs {
+    /// Reads `path`: a map file, or a mosaic (a folder of tiles or a `.vrt`), as `--dem` reads
+    /// them in every other command.
     fn load(&self, path: &Path) -> Result<Loaded> {
-        Ok(map::load(
-            path,
-            &LoadOptions {
-                format: self.format,
-                color: None,
-                spacing_m: self.spacing,
-                height_scale_m: self.height_scale,
-                nodata: self.nodata,
-                vertical_unit: self.vertical_unit,
-                ..LoadOptions::default()
-            },
-        )
-        .inspect(|loaded| {
+        let opts = LoadOptions {
+            format: self.format,
+            color: None,
+            spacing_m: self.spacing,
+            height_scale_m: self.height_scale,
+            nodata: self.nodata,
+            vertical_unit: self.vertical_unit,
+            ..LoadOptions::default()
+        };
+        let paths = [path.to_owned()];
+        let loaded = if map::mosaic::is_mosaic(&paths) {
+            map::mosaic::load_mosaic(&paths, &opts)
+        } else {
+            map::load(path, &opts)
+        };
+        Ok(loaded.inspect(|loaded| {
             if let Some(sentinel) = &loaded.sentinel {
                 crate::note!("warning: {}: {}", path.display(), sentinel.warning());
             }
@@ -109,7 +114,7 @@ impl ReadArgs {
 #[derive(Args, Debug)]
 pub struct InfoArgs {
     /// The height map: .png, .hgt, .asc, .tif or .tiff (else --format, else its first bytes);
-    /// `-` reads standard input.
+    /// `-` reads standard input; a folder of tiles or a GDAL .vrt is a mosaic.
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
     /// How to read it.
@@ -123,7 +128,8 @@ pub struct InfoArgs {
 /// `footprint map convert`.
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
-    /// The input height map; `-` reads standard input.
+    /// The input height map; `-` reads standard input; a folder of tiles or a GDAL .vrt is a
+    /// mosaic.
     #[arg(value_name = "IN")]
     pub input: PathBuf,
     /// The output file; its format comes from its extension (see --to). `-` is standard
