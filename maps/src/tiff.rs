@@ -601,7 +601,8 @@ fn pixel_spacing(p: &Placement, keys: &[u16], height: u32) -> (Spacing, Option<S
 }
 
 /// Writes `map` as a float32 TIFF in metres (`base_m + u · height_scale_m`), one strip per
-/// 64 rows, uncompressed, with `ModelPixelScale` set to the map's spacing. `what` names the
+/// 64 rows, uncompressed, with `ModelPixelScale` set to the map's spacing and GeoKeys that
+/// say both are metres (`ProjLinearUnitsGeoKey` and `VerticalUnitsGeoKey` 9001). `what` names the
 /// output in errors.
 pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError> {
     let values: Vec<f32> = map
@@ -626,6 +627,29 @@ pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>
                 Tag::ModelPixelScaleTag,
                 &[map.spacing_m, map.spacing_m, map.height_scale_m][..],
             )
+            .map_err(fail)?;
+        // Its units: a projected model in metres, heights in metres.
+        let keys: [u16; 16] = [
+            1,
+            1,
+            0,
+            3,
+            KEY_MODEL_TYPE,
+            0,
+            1,
+            1,
+            KEY_LINEAR_UNITS,
+            0,
+            1,
+            epsg::METRE,
+            KEY_VERTICAL_UNITS,
+            0,
+            1,
+            epsg::METRE,
+        ];
+        image
+            .encoder()
+            .write_tag(Tag::Unknown(GEO_KEY_DIRECTORY), &keys[..])
             .map_err(fail)?;
         image.write_data(&values).map_err(fail)?;
     }
