@@ -340,6 +340,14 @@ impl MapArgs {
                 if let Some(sentinel) = &loaded.sentinel {
                     crate::note!("warning: {}: {}", dem.display(), sentinel.warning());
                 }
+                for w in &loaded.warnings {
+                    // A mosaic's warnings name their tiles already.
+                    if map::mosaic::is_mosaic(dems) {
+                        crate::note!("warning: {w}");
+                    } else {
+                        crate::note!("warning: {}: {w}", dem.display());
+                    }
+                }
                 if loaded.voids_filled > 0 {
                     // A mosaic's count holds its gaps too (cells no tile covers, set to the
                     // lowest height: `footprint_maps::mosaic`).

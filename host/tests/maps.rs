@@ -321,7 +321,19 @@ fn geotiffs_take_their_pixel_size_and_fill_nan_voids() {
     assert_eq!(v["format"], "tiff");
     assert_eq!(v["detail"], "TIFF float32, 10 rows per strip, uncompressed");
     assert_eq!(v["spacing_m"], 12.5);
-    assert_eq!(v["spacing_note"], "ModelPixelScale 12.5 m");
+    // No GeoKeys: the pixel size's unit is unknown, read as metres, and warned of.
+    assert_eq!(
+        v["spacing_note"],
+        "ModelPixelScale 12.5, read as metres: the file does not give its unit; give --spacing \
+         if it is not metres"
+    );
+    assert!(
+        v["warnings"][0]
+            .as_str()
+            .unwrap()
+            .contains("give --spacing"),
+        "{v}"
+    );
     assert_eq!(v["voids_filled"], 1);
     assert_eq!(
         (v["min_m"].as_f64(), v["max_m"].as_f64()),
@@ -1163,4 +1175,125 @@ fn endless_inputs_are_refused_within_a_bound_naming_them() {
         );
     }
     assert!(!d.join("o.png").exists());
+
+/// A GeoTIFF fixture written by GDAL (`scripts/gdal-fixtures.py`).
+fn gdal_fixture(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../maps/tests/fixtures/geotiff")
+        .join(name)
+}
+
+/// Runs `render --dem` on `dem` into `dir` (must succeed); returns its stderr.
+fn render_warnings(dem: &Path, dir: &Path, extra: &[&str]) -> String {
+    let out = dir.join("frame.png");
+    let (d, o) = (s(dem), s(&out));
+    let mut args = vec!["render", "--size", "8x8", "--dem", &d, "--out", &o];
+    args.extend_from_slice(extra);
+    let r = footprint(&args);
+    let stderr = String::from_utf8_lossy(&r.stderr).into_owned();
+    assert!(r.status.success(), "{args:?}: {stderr}");
+    stderr
+}
+
+/// Issue "Reliability, round five", items 1–3, through the binary: GDAL's GeoTIFFs read with
+/// their units, south-up flipped, a rotation refused, undeclared voids read as voids; and what
+/// a file leaves unknown is one `warning:` line naming the option, in `render` as in
+/// `map info`.
+#[test]
+fn gdal_geotiffs_and_their_warnings() {
+    let dir = tempfile::tempdir().unwrap();
+    // EPSG:2264+6360 with GeoTIFF 1.1 keys: 30 ftUS cells, heights in US survey feet.
+    let v = info(&gdal_fixture("ncsp-ftus-navd88-ftus.tif"), &[]);
+    assert!(
+        (v["spacing_m"].as_f64().unwrap() - 9.144_018).abs() < 1e-5,
+        "{v}"
+    );
+    assert_eq!(v["vertical_unit"], "us-foot");
+    assert!((v["max_m"].as_f64().unwrap() - 1500.0 * 1200.0 / 3937.0).abs() < 1e-3);
+    assert!(v.get("warnings").is_none(), "{v}");
+    // South-up: 10 m cells, flipped; no warning.
+    let v = info(&gdal_fixture("south-up.tif"), &[]);
+    assert_eq!(v["spacing_m"], 10.0);
+    assert!(
+        v["detail"].as_str().unwrap().contains("flipped north-up"),
+        "{v}"
+    );
+    // Rotated: refused by every command, naming the file (a copy: no output beside the
+    // fixtures).
+    let rotated = dir.path().join("rotated.tif");
+    std::fs::copy(gdal_fixture("rotated.tif"), &rotated).unwrap();
+    bad_file(&rotated, "rotated or sheared");
+    // The COG mostly of -32768: voids, and the warning names the value and --nodata, in
+    // render too.
+    let cog = gdal_fixture("cog-undeclared-voids.tif");
+    let v = info(&cog, &[]);
+    assert_eq!(
+        (v["min_m"].as_f64(), v["max_m"].as_f64()),
+        (Some(933.0), Some(1000.0))
+    );
+    let stderr = render_warnings(&cog, dir.path(), &[]);
+    let warnings: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{stderr}");
+    assert!(
+        warnings[0].contains("cog-undeclared-voids.tif")
+            && warnings[0].contains("-32768 appears in 132 cells")
+            && warnings[0].contains("give --nodata -32768"),
+        "{stderr}"
+    );
+    // A TIFF without pixel size, and one without GeoKeys: a warning naming --spacing in render
+    // and in map info's text, none once --spacing is given.
+    let data: Vec<f32> = (0..20 * 10).map(|i| 250.0 + (i % 20) as f32).collect();
+    for (name, pixel, says) in [
+        ("plain.tif", None, "gives no pixel size"),
+        ("nokeys.tif", Some(12.5), "unit of the pixel size"),
+    ] {
+        let tif = dir.path().join(name);
+        write_tiff_f32(&tif, 20, 10, &data, pixel);
+        let stderr = render_warnings(&tif, dir.path(), &[]);
+        let line = stderr
+            .lines()
+            .find(|l| l.starts_with("warning: "))
+            .unwrap_or_else(|| panic!("{name}: no warning: {stderr}"));
+        assert!(
+            line.contains(name) && line.contains(says) && line.contains("--spacing"),
+            "{line}"
+        );
+        let text = ok(&["map", "info", &s(&tif)]);
+        assert!(
+            text.lines()
+                .any(|l| l.starts_with("warning   ") && l.contains("--spacing")),
+            "{text}"
+        );
+        let stderr = render_warnings(&tif, dir.path(), &["--spacing", "10"]);
+        assert!(!stderr.contains("warning:"), "{stderr}");
+    }
+    // Heights in doubt: feet horizontally, no vertical unit: a warning naming --vertical-unit.
+    let feet = dir.path().join("feet.tif");
+    let mut buf = Cursor::new(Vec::new());
+    {
+        let mut enc = TiffEncoder::new(&mut buf).unwrap();
+        let mut img = enc.new_image::<colortype::Gray32Float>(20, 10).unwrap();
+        img.encoder()
+            .write_tag(Tag::ModelPixelScaleTag, &[30.0f64, 30.0, 0.0][..])
+            .unwrap();
+        // Projected, EPSG:2264 (NAD83 / North Carolina (ftUS)), no vertical keys.
+        let keys: [u16; 12] = [1, 1, 0, 2, 1024, 0, 1, 1, 3072, 0, 1, 2264];
+        img.encoder()
+            .write_tag(Tag::Unknown(34_735), &keys[..])
+            .unwrap();
+        img.write_data(&data).unwrap();
+    }
+    std::fs::write(&feet, buf.into_inner()).unwrap();
+    let stderr = render_warnings(&feet, dir.path(), &[]);
+    assert!(
+        stderr.lines().any(|l| l.starts_with("warning: ")
+            && l.contains("feet.tif")
+            && l.contains("--vertical-unit us-foot")),
+        "{stderr}"
+    );
+    let stderr = render_warnings(&feet, dir.path(), &["--vertical-unit", "us-foot"]);
+    assert!(!stderr.contains("warning:"), "{stderr}");
 }

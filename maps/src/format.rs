@@ -14,7 +14,7 @@ use super::input::{is_stdin, InMemory, Input};
 pub use super::kind::{Format, VerticalUnit};
 pub use super::png::DEFAULT_PNG_HEIGHT_SCALE_M;
 use super::png::{self, load_color_map};
-use super::{asc, bil, describe, hgt, tiff, tint::tint, Map, MapError};
+use super::{asc, bil, describe, epsg, hgt, tiff, tint::tint, Map, MapError};
 
 /// The spacing of a PNG height map, or of a TIFF without `ModelPixelScale`, when `--spacing`
 /// is not given: metres per voxel.
@@ -126,7 +126,17 @@ pub struct Sentinel {
     pub count: u64,
     /// The file's own void value, if it declares one (another value, then).
     pub declared: Option<f64>,
+    /// Whether the cells holding it were read as voids: so when every other height lies far
+    /// above it ([`SENTINEL_GAP`]), as in a map whose cells are mostly voids; else they are
+    /// read as heights (pits).
+    pub void: bool,
 }
+
+/// An undeclared sentinel is read as a void when every other height of the map lies more than
+/// this above it, in the file's units: no terrain drops 1,000 m (or feet) to exactly −32768,
+/// −32767, −9999 or −999999 at one spot, while a bathymetric grid that reaches such a depth
+/// holds the depths around it too.
+pub const SENTINEL_GAP: f32 = 1_000.0;
 
 impl Sentinel {
     /// The one-line warning, without the file's name (the host puts it in front), e.g.
@@ -148,6 +158,18 @@ impl Sentinel {
         } else {
             ("they are", "heights (pits)", "them as voids")
         };
+        if self.void {
+            let (it, voids) = if self.count == 1 {
+                ("it is", "a void")
+            } else {
+                ("they are", "voids")
+            };
+            return format!(
+                "{value} appears in {cells} and {declared}: every other height lies far above \
+                 it, so {it} read as {voids} (filled from the neighbours); give --nodata {value} \
+                 to declare it so"
+            );
+        }
         format!(
             "{value} appears in {cells} and {declared}: {they} read as {heights}; give --nodata \
              {value} to treat {them}"
@@ -187,17 +209,48 @@ pub fn find_sentinel(values: &[f32], declared: Option<f64>) -> Option<Sentinel> 
         .iter()
         .enumerate()
         .max_by_key(|&(i, &c)| (c, std::cmp::Reverse(i)))?;
-    (count > 0).then(|| Sentinel {
-        value: f64::from(
-            SENTINELS
-                .get(i)
-                .copied()
-                .or(first_float)
-                .unwrap_or(FLOAT_SENTINEL),
-        ),
+    if count == 0 {
+        return None;
+    }
+    let float = i == SENTINELS.len();
+    let value = SENTINELS
+        .get(i)
+        .copied()
+        .or(first_float)
+        .unwrap_or(FLOAT_SENTINEL);
+    // Every other height far above it: voids (see `SENTINEL_GAP`).
+    let is_it = |v: f32| {
+        if float {
+            v <= FLOAT_SENTINEL
+        } else {
+            v == value
+        }
+    };
+    let void = values
+        .iter()
+        .filter(|&&v| !v.is_nan() && !is_it(v))
+        .all(|&v| v - value > SENTINEL_GAP);
+    Some(Sentinel {
+        value: f64::from(value),
         count,
         declared,
+        void,
     })
+}
+
+/// Turns the cells of `sentinel` (when it is read as a void) into voids (NaN): the cells equal
+/// to it, or for the float sentinel every float at or below [`FLOAT_SENTINEL`].
+pub fn void_sentinel(values: &mut [f32], sentinel: &Sentinel) {
+    if !sentinel.void {
+        return;
+    }
+    let value = sentinel.value as f32;
+    let float = value <= FLOAT_SENTINEL;
+    for v in values {
+        if *v == value || (float && *v <= FLOAT_SENTINEL) {
+            *v = f32::NAN;
+        }
+    }
 }
 
 /// Eight lanes of [`find_sentinel`]'s first pass: each lane's lowest value so far, a void
@@ -236,8 +289,9 @@ pub fn grouped_u64(n: u64) -> String {
 enum FileUnit {
     /// The format's heights are metres (SRTM); the note says so.
     Metres(&'static str),
-    /// The file does not say; a hint to add to the note (may be empty).
-    Unspecified(String),
+    /// The file does not say: a hint to add to the note (may be empty), and a warning when
+    /// the file gives cause to doubt that the heights are metres (e.g. feet horizontally).
+    Unspecified(String, Option<String>),
     /// The file says (e.g. `VerticalUnitsGeoKey 9002`).
     Declared(VerticalUnit, String),
     /// The file gives a unit code the readers do not know: the key's name and the code.
@@ -255,6 +309,10 @@ struct Read {
     /// The file's own void value.
     declared: Option<f64>,
     unit: FileUnit,
+    /// The file's vertical CRS is a depth (positive down): the values are negated.
+    depth: bool,
+    /// Warnings the reader gave (the unit of the pixel size unknown, …).
+    warnings: Vec<String>,
 }
 
 /// A loaded map and what was learnt on the way.
@@ -282,6 +340,11 @@ pub struct Loaded {
     pub vertical_unit: VerticalUnit,
     /// Where that unit came from, e.g. `VerticalUnitsGeoKey 9002 (foot)` or `--vertical-unit`.
     pub vertical_note: String,
+    /// One-line warnings about what the file leaves unknown (the unit of its pixel size or of
+    /// its heights, no pixel size at all), each naming the option that settles it, without the
+    /// file's name: the host prints each as `warning: FILE: …`. The sentinel's is apart
+    /// ([`Loaded::sentinel`]).
+    pub warnings: Vec<String>,
 }
 
 /// Checks a `--spacing` or `--height-scale` value.
@@ -300,7 +363,7 @@ fn check_option(option: &'static str, value: Option<f64>) -> Result<(), MapError
 pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     let file = match open_file(path, opts)? {
         Opened::Png(loaded) => return Ok(*loaded),
-        Opened::Grid(file) => file,
+        Opened::Grid(file) => *file,
     };
     let what = describe("height map", path);
     let GridFile {
@@ -311,15 +374,23 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
         sentinel,
         vertical_unit,
         vertical_note,
+        mut warnings,
         ..
     } = file;
     let spacing = match (opts.spacing_m, file_spacing) {
         (Some(s), _) => Spacing::metres(s, "--spacing"),
         (None, Some(s)) => s,
-        (None, None) => Spacing::metres(
-            DEFAULT_SPACING_M,
-            "the default: the file gives no pixel size (give --spacing)",
-        ),
+        (None, None) => {
+            warnings.push(format!(
+                "the file gives no pixel size: its cells are read as {} m; give --spacing \
+                 (metres per cell) for its own",
+                Shown(DEFAULT_SPACING_M)
+            ));
+            Spacing::metres(
+                DEFAULT_SPACING_M,
+                "the default: the file gives no pixel size (give --spacing)",
+            )
+        }
     };
     // A sentinel may make the heights span too much to hold: the error then says why.
     let mut loaded =
@@ -335,6 +406,7 @@ pub fn load(path: &Path, opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     loaded.sentinel = sentinel;
     loaded.vertical_unit = vertical_unit;
     loaded.vertical_note = vertical_note;
+    loaded.warnings = warnings;
     Ok(loaded)
 }
 
@@ -358,12 +430,15 @@ pub struct GridFile {
     pub vertical_unit: VerticalUnit,
     /// Where that unit came from.
     pub vertical_note: String,
+    /// Warnings, as [`Loaded::warnings`] (not the one of a missing pixel size, which is the
+    /// caller's: it gives the spacing).
+    pub warnings: Vec<String>,
 }
 
 /// What [`open_file`] read: a PNG is a map already; the other formats are grids of metres.
 enum Opened {
     Png(Box<Loaded>),
-    Grid(GridFile),
+    Grid(Box<GridFile>),
 }
 
 /// Reads a file of heights (`.hgt`, `.asc`, TIFF, `.bil`; not a PNG, which holds height
@@ -371,7 +446,7 @@ enum Opened {
 /// `--vertical-unit` applied (`--spacing`, `--height-scale` and `--color` are the caller's).
 pub fn read_grid(path: &Path, opts: &LoadOptions<'_>) -> Result<GridFile, MapError> {
     match open_file(path, opts)? {
-        Opened::Grid(file) => Ok(file),
+        Opened::Grid(file) => Ok(*file),
         Opened::Png(_) => Err(MapError::Unsupported {
             what: describe("height map", path),
             detail: "a PNG in a mosaic: a PNG holds no georeferencing to place it by (use \
@@ -475,6 +550,7 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
                 sentinel: None,
                 vertical_unit: unit,
                 vertical_note,
+                warnings: Vec::new(),
             })));
         }
         Format::Hgt => {
@@ -506,6 +582,8 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
                 scan: false,
                 declared: Some(f64::from(hgt::VOID)),
                 unit: FileUnit::Metres("SRTM heights are metres"),
+                depth: false,
+                warnings: Vec::new(),
             }
         }
         Format::Asc => {
@@ -518,18 +596,18 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
                 georef: Some(georef),
                 scan: true,
                 declared: header.nodata.map(f64::from),
-                unit: FileUnit::Unspecified(String::new()),
+                unit: FileUnit::Unspecified(String::new(), None),
+                depth: false,
+                warnings: Vec::new(),
             }
         }
         Format::Tiff => {
             let looks = input.looks_like();
             let (grid, info) = tiff::read(input).map_err(|e| hint(e, looks))?;
-            let unit = match info.vertical_units {
-                Some(code) => match VerticalUnit::from_epsg(code) {
-                    Some(u) => FileUnit::Declared(u, format!("VerticalUnitsGeoKey {code} ({u})")),
-                    None => FileUnit::Unknown("VerticalUnitsGeoKey", code),
-                },
-                None => FileUnit::Unspecified(feet_hint(info.linear_units)),
+            let (unit, depth) = tiff_unit(&info);
+            let warnings = match (&info.spacing_unknown, opts.spacing_m) {
+                (Some(w), None) => vec![w.clone()],
+                _ => Vec::new(),
             };
             Read {
                 grid,
@@ -539,6 +617,8 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
                 scan: true,
                 declared: info.nodata,
                 unit,
+                depth,
+                warnings,
             }
         }
         Format::Bil => {
@@ -550,7 +630,9 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
                 georef: info.georef,
                 scan: true,
                 declared: info.nodata,
-                unit: FileUnit::Unspecified(String::new()),
+                unit: FileUnit::Unspecified(String::new(), None),
+                depth: false,
+                warnings: Vec::new(),
             }
         }
     };
@@ -562,6 +644,8 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
         scan,
         declared,
         unit,
+        depth,
+        mut warnings,
     } = read;
     // --nodata: the value as stored, compared in single precision (as the grid holds it).
     if let Some(nd) = opts.nodata {
@@ -577,6 +661,9 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
     } else {
         None
     };
+    if let Some(s) = &sentinel {
+        void_sentinel(&mut grid.values, s);
+    }
     let (vertical_unit, vertical_note) = match (opts.vertical_unit, unit) {
         (Some(u), file) => {
             let file = match file {
@@ -588,10 +675,13 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
         }
         (None, FileUnit::Declared(u, note)) => (u, note),
         (None, FileUnit::Metres(note)) => (VerticalUnit::Metre, format!("metres: {note}")),
-        (None, FileUnit::Unspecified(hint)) => (
-            VerticalUnit::Metre,
-            format!("metres, assumed: the file declares no vertical unit{hint}"),
-        ),
+        (None, FileUnit::Unspecified(hint, warning)) => {
+            warnings.extend(warning);
+            (
+                VerticalUnit::Metre,
+                format!("metres, assumed: the file declares no vertical unit{hint}"),
+            )
+        }
         (None, FileUnit::Unknown(key, code)) => {
             return Err(MapError::Unsupported {
                 what,
@@ -602,13 +692,22 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
             })
         }
     };
-    if vertical_unit != VerticalUnit::Metre {
-        let k = vertical_unit.metres();
+    // A depth is a negated height.
+    let (vertical_note, sign) = if depth {
+        (
+            format!("{vertical_note}; depths (positive down), negated into heights"),
+            -1.0,
+        )
+    } else {
+        (vertical_note, 1.0)
+    };
+    if vertical_unit != VerticalUnit::Metre || depth {
+        let k = vertical_unit.metres() * sign;
         for v in &mut grid.values {
             *v = (f64::from(*v) * k) as f32;
         }
     }
-    Ok(Opened::Grid(GridFile {
+    Ok(Opened::Grid(Box::new(GridFile {
         grid,
         format,
         detail,
@@ -617,17 +716,62 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
         sentinel,
         vertical_unit,
         vertical_note,
-    }))
+        warnings,
+    })))
+}
+
+/// The unit of a TIFF's heights: `VerticalUnitsGeoKey` if present, else the unit of its
+/// `VerticalCSTypeGeoKey` in the EPSG registry ([`epsg::vertical_crs`]), else unspecified
+/// (with a warning when its horizontal unit is feet, or its vertical CRS one the reader does
+/// not know); and whether the vertical CRS is a depth.
+fn tiff_unit(info: &tiff::TiffInfo) -> (FileUnit, bool) {
+    let vertical = info.vertical_cs.and_then(epsg::vertical_crs);
+    let depth = vertical.is_some_and(|v| v.depth);
+    if let Some(code) = info.vertical_units {
+        let unit = match VerticalUnit::from_epsg(code) {
+            Some(u) => FileUnit::Declared(u, format!("VerticalUnitsGeoKey {code} ({u})")),
+            None => FileUnit::Unknown("VerticalUnitsGeoKey", code),
+        };
+        return (unit, depth);
+    }
+    if let (Some(cs), Some(v)) = (info.vertical_cs, vertical) {
+        if let Some(u) = VerticalUnit::from_epsg(v.unit) {
+            let note = format!("VerticalCSTypeGeoKey {cs}, whose unit in the EPSG registry is {u}");
+            return (FileUnit::Declared(u, note), depth);
+        }
+    }
+    // The horizontal unit, as the file gives it or as its projected CRS implies.
+    let linear = info
+        .linear_units
+        .or_else(|| info.projected_cs.and_then(epsg::projected_unit));
+    let hint = feet_hint(linear, info.linear_units.is_none());
+    let warning = match info.vertical_cs {
+        Some(cs) => Some(format!(
+            "VerticalCSTypeGeoKey {cs} is not a vertical CRS whose unit the reader knows: the \
+             heights are read as metres; give --vertical-unit metre|foot|us-foot"
+        )),
+        None if !hint.is_empty() => Some(format!(
+            "the file declares no vertical unit{hint}; the heights are read as metres"
+        )),
+        None => None,
+    };
+    (FileUnit::Unspecified(hint, warning), false)
 }
 
 /// A hint for a TIFF that gives no vertical unit: if its horizontal unit (the EPSG code of
-/// `ProjLinearUnitsGeoKey`) is feet, its heights may be too.
-fn feet_hint(linear_units: Option<u16>) -> String {
+/// `ProjLinearUnitsGeoKey`, or of its projected CRS's unit when `implied`) is feet, its
+/// heights may be too.
+fn feet_hint(linear_units: Option<u16>, implied: bool) -> String {
     let unit = linear_units.and_then(VerticalUnit::from_epsg);
+    let key = if implied {
+        "the unit of its ProjectedCSTypeGeoKey"
+    } else {
+        "ProjLinearUnitsGeoKey"
+    };
     match (linear_units, unit) {
         (Some(code), Some(u)) if u != VerticalUnit::Metre => format!(
-            ", though its horizontal unit is {} (ProjLinearUnitsGeoKey {code}): give \
-             --vertical-unit {u} if its heights are too",
+            ", though its horizontal unit is {} ({key} {code}): give --vertical-unit {u} if \
+             its heights are too",
             unit_plural(u)
         ),
         _ => String::new(),
@@ -725,6 +869,7 @@ fn from_grid(
         sentinel: None,
         vertical_unit: VerticalUnit::Metre,
         vertical_note: String::new(),
+        warnings: Vec::new(),
     })
 }
 

@@ -24,6 +24,8 @@ pub mod asc;
 pub mod bake_stream;
 pub mod baked;
 pub mod bil;
+pub mod epsg;
+mod epsg_units;
 pub mod format;
 pub mod georef;
 pub mod grid;

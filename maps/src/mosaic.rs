@@ -105,6 +105,8 @@ pub struct Mosaic {
     pub vertical_unit: VerticalUnit,
     /// Where it came from.
     pub vertical_note: String,
+    /// The tiles' warnings ([`crate::Loaded::warnings`]), each after its tile's name.
+    pub warnings: Vec<String>,
     /// The mosaic's name: the folder, the `.vrt`, or the first file and how many more.
     pub source: String,
     /// How the tiles are read again (format, `--nodata`, `--vertical-unit`).
@@ -470,6 +472,15 @@ impl Mosaic {
             (_, n) => format!("{} and {} more tiles", first.path.display(), n - 1),
         };
         let sentinel = merge_sentinels(surveyed.iter().filter_map(|s| s.file.sentinel));
+        let warnings = surveyed
+            .iter()
+            .flat_map(|s| {
+                s.file
+                    .warnings
+                    .iter()
+                    .map(move |w| format!("{}: {w}", s.path.display()))
+            })
+            .collect();
         Ok(Self {
             tiles,
             width,
@@ -491,6 +502,7 @@ impl Mosaic {
             sentinel,
             vertical_unit: first.file.vertical_unit,
             vertical_note: first.file.vertical_note.clone(),
+            warnings,
             source,
             read,
         })
@@ -610,7 +622,11 @@ fn merge_sentinels(all: impl Iterator<Item = Sentinel>) -> Option<Sentinel> {
     let mut merged: Vec<Sentinel> = Vec::new();
     for s in all {
         match merged.iter_mut().find(|m| m.value == s.value) {
-            Some(m) => m.count += s.count,
+            Some(m) => {
+                m.count += s.count;
+                // Read as voids only if every tile read them so: else the message says pits.
+                m.void &= s.void;
+            }
             None => merged.push(s),
         }
     }
@@ -763,5 +779,6 @@ pub fn load_mosaic(paths: &[PathBuf], opts: &LoadOptions<'_>) -> Result<Loaded, 
         sentinel: m.sentinel,
         vertical_unit: m.vertical_unit,
         vertical_note: m.vertical_note.clone(),
+        warnings: m.warnings.clone(),
     })
 }

@@ -18,6 +18,7 @@ use tiff::decoder::{ChunkType, Decoder, DecodingResult, Limits};
 use tiff::tags::{SampleFormat, Tag};
 use tiff::{ColorType, TiffError, TiffFormatError};
 
+use super::epsg;
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::Input;
@@ -34,6 +35,10 @@ const KEY_MODEL_TYPE: u16 = 1024;
 const KEY_LINEAR_UNITS: u16 = 3076;
 /// VerticalUnitsGeoKey: the unit of the heights, codes as [`KEY_LINEAR_UNITS`].
 const KEY_VERTICAL_UNITS: u16 = 4099;
+/// ProjectedCSTypeGeoKey: the projected CRS's EPSG code (GeoTIFF 1.1's ProjectedCRSGeoKey).
+const KEY_PROJECTED_CS: u16 = 3072;
+/// VerticalCSTypeGeoKey: the vertical CRS's EPSG code (GeoTIFF 1.1's VerticalGeoKey).
+const KEY_VERTICAL_CS: u16 = 4096;
 
 /// What a TIFF told about itself, for `footprint map info`.
 #[derive(Clone, Debug, PartialEq)]
@@ -49,8 +54,19 @@ pub struct TiffInfo {
     pub vertical_units: Option<u16>,
     /// `ProjLinearUnitsGeoKey`, if present: the horizontal unit's EPSG code.
     pub linear_units: Option<u16>,
-    /// Where the image lies (`ModelTiepoint` and `ModelPixelScale`), if it says.
+    /// `ProjectedCSTypeGeoKey`, if present and not 0 or 32767: the projected CRS's EPSG code,
+    /// whose unit ([`crate::epsg::projected_unit`]) is the horizontal unit when
+    /// `ProjLinearUnitsGeoKey` is absent (GeoTIFF 1.1 keys, as GDAL writes a compound CRS).
+    pub projected_cs: Option<u16>,
+    /// `VerticalCSTypeGeoKey`, if present: the vertical CRS's EPSG code, whose unit
+    /// ([`crate::epsg::vertical_crs`]) is the heights' when `VerticalUnitsGeoKey` is absent.
+    pub vertical_cs: Option<u16>,
+    /// Where the image lies (`ModelTiepoint` and `ModelPixelScale`, or
+    /// `ModelTransformation`), if it says.
     pub georef: Option<Georef>,
+    /// Why the unit of the pixel size is not known, if it is not: the spacing was read as
+    /// metres, and the loader warns unless `--spacing` is given.
+    pub spacing_unknown: Option<String>,
 }
 
 fn malformed(what: &str, detail: impl Into<String>) -> MapError {
@@ -251,10 +267,23 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
         Some(v) => v.into_u16_vec().map_err(err)?,
         None => Vec::new(),
     };
-    let spacing = pixel_spacing(&mut dec, height, &keys, what)?;
-    let georef = georeferencing(&mut dec, &keys, what)?;
-    let vertical_units = geo_key(&keys, KEY_VERTICAL_UNITS).filter(|&c| c != 0 && c != 32_767);
+    let placement = placement(&mut dec, what)?;
+    let (spacing, spacing_unknown) = match &placement {
+        Some(p) => {
+            let (s, unknown) = pixel_spacing(p, &keys, height);
+            (Some(s), unknown)
+        }
+        None => (None, None),
+    };
+    let georef = placement
+        .as_ref()
+        .and_then(|p| georeferencing(p, &keys, height));
+    let south_up = placement.is_some_and(|p| p.south_up);
+    let defined = |c: &u16| *c != 0 && *c != 32_767;
+    let vertical_units = geo_key(&keys, KEY_VERTICAL_UNITS).filter(defined);
     let linear_units = geo_key(&keys, KEY_LINEAR_UNITS);
+    let projected_cs = geo_key(&keys, KEY_PROJECTED_CS).filter(defined);
+    let vertical_cs = geo_key(&keys, KEY_VERTICAL_CS).filter(|&c| c != 0);
     let nodata: Option<f64> = match dec.find_tag(Tag::GdalNodata).map_err(err)? {
         Some(v) => {
             let text = v.into_string().map_err(err)?;
@@ -302,13 +331,22 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
             ),
         ));
     }
+    let mut values = values;
+    if south_up {
+        flip_rows(&mut values, width as usize);
+    }
     let grid = Grid {
         width,
         height,
         values,
     };
+    let flipped = if south_up {
+        ", rows stored south to north (flipped north-up)"
+    } else {
+        ""
+    };
     let detail = format!(
-        "TIFF {type_name}, {layout}, {}",
+        "TIFF {type_name}, {layout}, {}{flipped}",
         compression_name(compression)
     );
     Ok((
@@ -319,9 +357,21 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
             nodata,
             vertical_units,
             linear_units,
+            projected_cs,
+            vertical_cs,
             georef,
+            spacing_unknown,
         },
     ))
+}
+
+/// Reverses the order of the rows of `width`-wide row-major `values`.
+fn flip_rows(values: &mut [f32], width: usize) {
+    let rows = values.len() / width.max(1);
+    for y in 0..rows / 2 {
+        let (top, bottom) = values.split_at_mut((rows - 1 - y) * width);
+        top[y * width..(y + 1) * width].swap_with_slice(&mut bottom[..width]);
+    }
 }
 
 /// The value of the GeoKey `id`, if `keys` (the GeoKeyDirectory) holds it in place.
@@ -349,103 +399,210 @@ fn convert<T: Copy>(v: Vec<T>, f: impl Fn(T) -> f64, void: impl Fn(f64) -> bool)
 /// GTRasterTypeGeoKey: 1 pixels are areas, 2 pixels are points.
 const KEY_RASTER_TYPE: u16 = 1025;
 
-/// Where the image lies, from `ModelTiepoint` (raster `(i, j)` at model `(X, Y)`) and
-/// `ModelPixelScale`, if both are present: `None` without them.
-fn georeferencing<R: io::Read + io::Seek>(
+/// How the grid lies in the file's model space, from `ModelPixelScale` (with `ModelTiepoint`)
+/// or, without them, `ModelTransformation`.
+#[derive(Clone, Copy, Debug)]
+struct Placement {
+    /// A cell's width and height in the model's units, both positive.
+    cell: (f64, f64),
+    /// The model coordinates of raster point (0, 0) (the tiepoint), if the file gives them.
+    origin: Option<(f64, f64)>,
+    /// The rows are stored south to north (a positive y step): the grid is flipped.
+    south_up: bool,
+    /// The tag it came from, for notes.
+    from: &'static str,
+}
+
+/// Reads the grid's [`Placement`]; `None` if the file gives neither `ModelPixelScale` nor
+/// `ModelTransformation`. A transformation that rotates or shears the grid, or mirrors it
+/// east-west, is refused: the core draws north-up grids only.
+fn placement<R: io::Read + io::Seek>(
     dec: &mut Decoder<R>,
-    keys: &[u16],
     what: &str,
-) -> Result<Option<Georef>, MapError> {
+) -> Result<Option<Placement>, MapError> {
     let err = |e| tiff_error(what, e);
-    let (Some(scale), Some(tie)) = (
-        dec.find_tag(Tag::ModelPixelScaleTag).map_err(err)?,
-        dec.find_tag(Tag::ModelTiepointTag).map_err(err)?,
-    ) else {
+    if let Some(scale) = dec.find_tag(Tag::ModelPixelScaleTag).map_err(err)? {
+        let scale = scale.into_f64_vec().map_err(err)?;
+        let (sx, sy) = match scale.as_slice() {
+            [sx, sy, ..] => (sx.abs(), sy.abs()),
+            _ => return Err(malformed(what, "ModelPixelScale has fewer than 2 values")),
+        };
+        if !(sx.is_finite() && sy.is_finite() && sx > 0.0 && sy > 0.0) {
+            return Err(malformed(
+                what,
+                format!("ModelPixelScale {sx} × {sy} is not a positive size"),
+            ));
+        }
+        let tie = match dec.find_tag(Tag::ModelTiepointTag).map_err(err)? {
+            Some(v) => v.into_f64_vec().map_err(err)?,
+            None => Vec::new(),
+        };
+        // Tiepoint (i, j, k, X, Y, Z): raster (i, j) is at model (X, Y).
+        let origin = match tie.as_slice() {
+            [i, j, _, x, y, ..] => Some((x - i * sx, y + j * sy)),
+            _ => None,
+        };
+        return Ok(Some(Placement {
+            cell: (sx, sy),
+            origin,
+            south_up: false,
+            from: "ModelPixelScale",
+        }));
+    }
+    let Some(m) = dec.find_tag(Tag::ModelTransformationTag).map_err(err)? else {
         return Ok(None);
     };
-    let (scale, tie) = (
-        scale.into_f64_vec().map_err(err)?,
-        tie.into_f64_vec().map_err(err)?,
-    );
-    let ([sx, sy, ..], [i, j, _, x, y, ..]) = (scale.as_slice(), tie.as_slice()) else {
-        return Ok(None);
+    let m = m.into_f64_vec().map_err(err)?;
+    // Row-major 4×4: X = a·i + b·j + d, Y = e·i + f·j + h.
+    let [a, b, _, d, e, f, _, h, ..] = m.as_slice() else {
+        return Err(malformed(
+            what,
+            format!("ModelTransformation has {} values, not 16", m.len()),
+        ));
     };
-    let (sx, sy) = (sx.abs(), sy.abs());
+    let (a, b, d, e, f, h) = (*a, *b, *d, *e, *f, *h);
+    if ![a, b, d, e, f, h].iter().all(|v| v.is_finite()) {
+        return Err(malformed(
+            what,
+            "ModelTransformation holds a non-finite value",
+        ));
+    }
+    if b != 0.0 || e != 0.0 {
+        return Err(MapError::Unsupported {
+            what: what.to_owned(),
+            detail: format!(
+                "a grid rotated or sheared by its ModelTransformation ({a} {b}; {e} {f}): the \
+                 reader draws north-up grids only; warp it north-up first (e.g. gdalwarp)"
+            ),
+        });
+    }
+    if !(a > 0.0 && f != 0.0) {
+        return Err(MapError::Unsupported {
+            what: what.to_owned(),
+            detail: format!(
+                "a ModelTransformation step of {a} × {f}: the reader draws grids whose columns \
+                 run west to east only"
+            ),
+        });
+    }
+    Ok(Some(Placement {
+        cell: (a, f.abs()),
+        origin: Some((d, h)),
+        south_up: f > 0.0,
+        from: "ModelTransformation",
+    }))
+}
+
+/// Where the image lies, from its [`Placement`], once north-up: `None` without a tiepoint.
+fn georeferencing(p: &Placement, keys: &[u16], height: u32) -> Option<Georef> {
+    let (x, y) = p.origin?;
+    let (sx, sy) = p.cell;
     let crs = if geo_key(keys, KEY_MODEL_TYPE) == Some(2) {
         Crs::Geographic
     } else {
         Crs::Projected
     };
+    // The y step from row to row as stored: down for a north-up grid, up for a south-up one.
+    let step = if p.south_up { sy } else { -sy };
     // The corner of pixel (0, 0); a point pixel's value is at its centre.
-    let (mut west, mut north) = (x - i * sx, y + j * sy);
+    let (mut west, mut first) = (x, y);
     if geo_key(keys, KEY_RASTER_TYPE) == Some(2) {
-        (west, north) = (west - sx / 2.0, north + sy / 2.0);
+        (west, first) = (west - sx / 2.0, first - step / 2.0);
     }
+    // Flipped, the first stored row is the southern one: the north edge is past the last.
+    let north = if p.south_up {
+        first + f64::from(height) * sy
+    } else {
+        first
+    };
     let georef = Georef {
         crs,
         west,
         north,
         cell: (sx, sy),
-        from: "ModelTiepoint",
+        from: p.from,
     };
-    Ok(georef.is_valid().then_some(georef))
+    georef.is_valid().then_some(georef)
 }
 
-/// The pixel size from `ModelPixelScale`, in metres (see the module docs), if present.
-fn pixel_spacing<R: io::Read + io::Seek>(
-    dec: &mut Decoder<R>,
-    height: u32,
-    keys: &[u16],
-    what: &str,
-) -> Result<Option<Spacing>, MapError> {
-    let err = |e| tiff_error(what, e);
-    let Some(scale) = dec.find_tag(Tag::ModelPixelScaleTag).map_err(err)? else {
-        return Ok(None);
-    };
-    let scale = scale.into_f64_vec().map_err(err)?;
-    let (sx, sy) = match scale.as_slice() {
-        [sx, sy, ..] => (sx.abs(), sy.abs()),
-        _ => return Err(malformed(what, "ModelPixelScale has fewer than 2 values")),
-    };
-    if !(sx.is_finite() && sy.is_finite() && sx > 0.0 && sy > 0.0) {
-        return Err(malformed(
-            what,
-            format!("ModelPixelScale {sx} × {sy} is not a positive size"),
-        ));
-    }
+/// The pixel size from the [`Placement`], in metres (see the module docs), and why its unit is
+/// not known if it is not (then it was read as metres).
+fn pixel_spacing(p: &Placement, keys: &[u16], height: u32) -> (Spacing, Option<String>) {
+    let (sx, sy) = p.cell;
+    let from = p.from;
     let key = |id: u16| geo_key(keys, id);
     if key(KEY_MODEL_TYPE) == Some(2) {
-        let tie = match dec.find_tag(Tag::ModelTiepointTag).map_err(err)? {
-            Some(v) => v.into_f64_vec().map_err(err)?,
-            None => Vec::new(),
-        };
-        // Tiepoint (i, j, k, X, Y, Z): raster (i, j) is at longitude X, latitude Y.
-        let lat = match tie.as_slice() {
-            [_, j, _, _, y, ..] => y - (f64::from(height) / 2.0 - j) * sy,
-            _ => 0.0,
+        // The latitude of the grid's middle row.
+        let lat = match p.origin {
+            Some((_, y)) if p.south_up => y + f64::from(height) / 2.0 * sy,
+            Some((_, y)) => y - f64::from(height) / 2.0 * sy,
+            None => 0.0,
         };
         let cell = if sx == sy {
-            format!("ModelPixelScale {sx}° (geographic)")
+            format!("{from} {sx}° (geographic)")
         } else {
-            format!("ModelPixelScale {sx}°×{sy}° (geographic)")
+            format!("{from} {sx}°×{sy}° (geographic)")
         };
-        return Ok(Some(Spacing::geographic(lat, sx, sy, &cell)));
+        return (Spacing::geographic(lat, sx, sy, &cell), None);
     }
-    let (unit, to_m) = match key(KEY_LINEAR_UNITS) {
-        Some(9002) => ("ft", 0.3048),
-        Some(9003) => ("US survey ft", 1200.0 / 3937.0),
-        _ => ("m", 1.0),
-    };
-    let note = if sx == sy {
-        format!("ModelPixelScale {sx} {unit}")
+    let size = if sx == sy {
+        format!("{sx}")
     } else {
-        format!("ModelPixelScale {sx}×{sy} {unit}; square voxels of their geometric mean")
+        format!("{sx}×{sy}")
     };
-    Ok(Some(Spacing::metres((sx * sy).sqrt() * to_m, note)))
+    let (code, source) = match (key(KEY_LINEAR_UNITS), key(KEY_PROJECTED_CS)) {
+        (Some(code), _) => (Some(code), String::new()),
+        (None, Some(cs)) => match epsg::projected_unit(cs) {
+            Some(code) => (
+                Some(code),
+                format!(" (the unit of ProjectedCSTypeGeoKey {cs})"),
+            ),
+            None => (None, format!("ProjectedCSTypeGeoKey {cs} is not a projected CRS the reader knows the unit of")),
+        },
+        (None, None) => (None, "it has no ProjLinearUnitsGeoKey or ProjectedCSTypeGeoKey".to_owned()),
+    };
+    let unit = match code {
+        Some(9001) => Some(("m", 1.0)),
+        Some(9002) => Some(("ft", 0.3048)),
+        Some(9003) => Some(("US survey ft", 1200.0 / 3937.0)),
+        _ => None,
+    };
+    let mean = if sx == sy {
+        ""
+    } else {
+        "; square voxels of their geometric mean"
+    };
+    let spacing_m = (sx * sy).sqrt();
+    match unit {
+        Some((unit, to_m)) => (
+            Spacing::metres(
+                spacing_m * to_m,
+                format!("{from} {size} {unit}{source}{mean}"),
+            ),
+            None,
+        ),
+        None => {
+            let why = match code {
+                Some(c) => format!("ProjLinearUnitsGeoKey {c} is a unit the reader does not know"),
+                None => source,
+            };
+            (
+                Spacing::metres(
+                    spacing_m,
+                    format!("{from} {size}, read as metres: the file does not give its unit{mean}; give --spacing if it is not metres"),
+                ),
+                Some(format!(
+                    "the unit of the pixel size ({from} {size}) is unknown ({why}): read as \
+                     metres; give --spacing (metres per cell) if it is not"
+                )),
+            )
+        }
+    }
 }
 
 /// Writes `map` as a float32 TIFF in metres (`base_m + u · height_scale_m`), one strip per
-/// 64 rows, uncompressed, with `ModelPixelScale` set to the map's spacing. `what` names the
+/// 64 rows, uncompressed, with `ModelPixelScale` set to the map's spacing and GeoKeys that
+/// say both are metres (`ProjLinearUnitsGeoKey` and `VerticalUnitsGeoKey` 9001). `what` names the
 /// output in errors.
 pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError> {
     let values: Vec<f32> = map
@@ -470,6 +627,29 @@ pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>
                 Tag::ModelPixelScaleTag,
                 &[map.spacing_m, map.spacing_m, map.height_scale_m][..],
             )
+            .map_err(fail)?;
+        // Its units: a projected model in metres, heights in metres.
+        let keys: [u16; 16] = [
+            1,
+            1,
+            0,
+            3,
+            KEY_MODEL_TYPE,
+            0,
+            1,
+            1,
+            KEY_LINEAR_UNITS,
+            0,
+            1,
+            epsg::METRE,
+            KEY_VERTICAL_UNITS,
+            0,
+            1,
+            epsg::METRE,
+        ];
+        image
+            .encoder()
+            .write_tag(Tag::Unknown(GEO_KEY_DIRECTORY), &keys[..])
             .map_err(fail)?;
         image.write_data(&values).map_err(fail)?;
     }
@@ -601,12 +781,120 @@ mod tests {
         assert_eq!(&g.values[..2], &[-5.0, 10.0]);
         assert!(g.values[2].is_nan());
         assert_eq!(&g.values[3..], &[300.0, 7.0, 8.0]);
+        // A projected model that names no unit: read as metres, and said so.
         let s = info.spacing.unwrap();
+        assert_eq!(s.spacing_m, 10.0);
+        assert!(
+            s.note.starts_with("ModelPixelScale 10, read as metres"),
+            "{}",
+            s.note
+        );
         assert_eq!(
-            (s.spacing_m, s.note.as_str()),
-            (10.0, "ModelPixelScale 10 m")
+            info.spacing_unknown.as_deref(),
+            Some(
+                "the unit of the pixel size (ModelPixelScale 10) is unknown (it has no \
+                 ProjLinearUnitsGeoKey or ProjectedCSTypeGeoKey): read as metres; give \
+                 --spacing (metres per cell) if it is not"
+            )
         );
         assert_eq!(info.detail, "TIFF int16, 2 rows per strip, uncompressed");
+        // With ProjLinearUnitsGeoKey 9001, or a projected CRS in metres (UTM 33N), it is known.
+        let metres = [
+            1,
+            1,
+            0,
+            2,
+            KEY_MODEL_TYPE,
+            0,
+            1,
+            1,
+            KEY_LINEAR_UNITS,
+            0,
+            1,
+            9001,
+        ];
+        let utm = [
+            1,
+            1,
+            0,
+            2,
+            KEY_MODEL_TYPE,
+            0,
+            1,
+            1,
+            KEY_PROJECTED_CS,
+            0,
+            1,
+            32_633,
+        ];
+        for (keys, note) in [
+            (&metres, "ModelPixelScale 10 m"),
+            (
+                &utm,
+                "ModelPixelScale 10 m (the unit of ProjectedCSTypeGeoKey 32633)",
+            ),
+        ] {
+            let bytes = encode::<colortype::GrayI16>(
+                3,
+                2,
+                &data,
+                Compression::Uncompressed,
+                Some((&[10.0, 10.0, 0.0], &[0.0; 6], keys)),
+                Some("-9999"),
+            );
+            let info = read_bytes(&bytes).unwrap().1;
+            let s = info.spacing.unwrap();
+            assert_eq!((s.spacing_m, s.note.as_str()), (10.0, note));
+            assert_eq!(info.spacing_unknown, None);
+        }
+        // A projected CRS the table does not know, and a unit code the reader does not know.
+        for (keys, why) in [
+            (
+                [
+                    1,
+                    1,
+                    0,
+                    2,
+                    KEY_MODEL_TYPE,
+                    0,
+                    1,
+                    1,
+                    KEY_PROJECTED_CS,
+                    0,
+                    1,
+                    4326,
+                ],
+                "ProjectedCSTypeGeoKey 4326 is not a projected CRS the reader knows the unit of",
+            ),
+            (
+                [
+                    1,
+                    1,
+                    0,
+                    2,
+                    KEY_MODEL_TYPE,
+                    0,
+                    1,
+                    1,
+                    KEY_LINEAR_UNITS,
+                    0,
+                    1,
+                    9036,
+                ],
+                "ProjLinearUnitsGeoKey 9036 is a unit the reader does not know",
+            ),
+        ] {
+            let bytes = encode::<colortype::GrayI16>(
+                3,
+                2,
+                &data,
+                Compression::Uncompressed,
+                Some((&[10.0, 10.0, 0.0], &[0.0; 6], &keys)),
+                None,
+            );
+            let unknown = read_bytes(&bytes).unwrap().1.spacing_unknown.unwrap();
+            assert!(unknown.contains(why), "{unknown}");
+        }
     }
 
     #[test]

@@ -357,6 +357,8 @@ fn a_sentinel_without_nodata_is_reported_and_nodata_makes_it_a_void() {
         "pits.tif",
         &geotiff::<colortype::GrayI16>(8, 8, &data, &[], None),
     );
+    // Every other height lies far above it: read as voids, and reported (issue "Reliability,
+    // round five", item 3: read as pits, they made the render all white).
     let l = load(&tif, &LoadOptions::default()).unwrap();
     let s = l.sentinel.expect("a sentinel");
     assert_eq!(
@@ -364,16 +366,38 @@ fn a_sentinel_without_nodata_is_reported_and_nodata_makes_it_a_void() {
         Sentinel {
             value: -32767.0,
             count: 3,
-            declared: None
+            declared: None,
+            void: true,
         }
     );
     assert_eq!(
         s.warning(),
-        "-32767 appears in 3 cells and the file declares no nodata value: they are read as \
-         heights (pits); give --nodata -32767 to treat them as voids"
+        "-32767 appears in 3 cells and the file declares no nodata value: every other height \
+         lies far above it, so they are read as voids (filled from the neighbours); give \
+         --nodata -32767 to declare it so"
+    );
+    assert_eq!(l.voids_filled, 3);
+    assert_eq!(l.range_m, (100.0, 163.0));
+
+    // Depths that reach down to it (a bathymetric grid): read as heights, and reported.
+    let deep: Vec<i16> = (0..64)
+        .map(|i| if i % 9 == 0 { -9999 } else { -9000 - 10 * i })
+        .collect();
+    let tif_deep = put(
+        dir.path(),
+        "deep.tif",
+        &geotiff::<colortype::GrayI16>(8, 8, &deep, &[], None),
+    );
+    let l = load(&tif_deep, &LoadOptions::default()).unwrap();
+    let s = l.sentinel.expect("a sentinel");
+    assert_eq!((s.value, s.count, s.void), (-9999.0, 8, false));
+    assert_eq!(
+        s.warning(),
+        "-9999 appears in 8 cells and the file declares no nodata value: they are read as \
+         heights (pits); give --nodata -9999 to treat them as voids"
     );
     assert_eq!(l.voids_filled, 0);
-    assert_eq!(l.range_m.0, -32767.0);
+    assert_eq!(l.range_m.0, -9999.0);
 
     let opts = LoadOptions {
         nodata: Some(-32767.0),
@@ -422,23 +446,18 @@ fn float_and_ascii_sentinels() {
         "f.tif",
         &geotiff::<colortype::Gray32Float>(4, 4, &data, &[], None),
     );
-    // Next to heights of metres, -3.4e38 spans more than 16-bit heights hold: the error
-    // names the sentinel and the flag.
-    let msg = refused(&tif, &LoadOptions::default());
-    assert!(
-        msg.contains("more than 16-bit heights can hold: -3.4028234663852886e38 appears in 1 cell"),
-        "{msg}"
-    );
-    assert!(
-        msg.ends_with("give --nodata -3.4028234663852886e38 to treat it as a void"),
-        "{msg}"
-    );
+    // Far below every other height: read as a void, and reported (it used to be read as a
+    // height, and then the heights spanned more than 16 bits hold).
+    let l = load(&tif, &LoadOptions::default()).unwrap();
+    assert_eq!((l.voids_filled, l.range_m), (1, (0.0, 15.0)));
     let s = find_sentinel(&data, None).unwrap();
-    assert_eq!((s.value, s.count), (f64::from(f32::MIN), 1));
+    assert_eq!(l.sentinel, Some(s));
+    assert_eq!((s.value, s.count, s.void), (f64::from(f32::MIN), 1, true));
     assert_eq!(
         s.warning(),
-        "-3.4028234663852886e38 appears in 1 cell and the file declares no nodata value: it is \
-         read as a height (a pit); give --nodata -3.4028234663852886e38 to treat it as a void"
+        "-3.4028234663852886e38 appears in 1 cell and the file declares no nodata value: every \
+         other height lies far above it, so it is read as a void (filled from the neighbours); \
+         give --nodata -3.4028234663852886e38 to declare it so"
     );
     // The value the warning gives works.
     let opts = LoadOptions {

@@ -272,6 +272,9 @@ fn bake_mosaic(args: &BakeArgs) -> Result<()> {
     if let Some(sentinel) = &mosaic.sentinel {
         crate::note!("warning: {}: {}", name, sentinel.warning());
     }
+    for w in &mosaic.warnings {
+        crate::note!("warning: {w}");
+    }
     if mosaic.tile_voids + mosaic.gap_cells > 0 {
         crate::note!(
             "note: {}: {} voids filled from their neighbours, {} cells between tiles set to the \

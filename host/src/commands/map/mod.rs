@@ -106,6 +106,9 @@ impl ReadArgs {
             if let Some(sentinel) = &loaded.sentinel {
                 crate::note!("warning: {}: {}", path.display(), sentinel.warning());
             }
+            for w in &loaded.warnings {
+                crate::note!("warning: {}: {w}", path.display());
+            }
         })?)
     }
 }
@@ -163,6 +166,9 @@ struct InfoJson {
     vertical_note: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     sentinel: Option<String>,
+    /// What the file leaves unknown, each with the option that settles it.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    warnings: Vec<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     relief_hint: Option<String>,
     min_unit: u16,
@@ -230,6 +236,7 @@ fn info(args: &InfoArgs) -> Result<()> {
         vertical_unit: loaded.vertical_unit.name(),
         vertical_note: loaded.vertical_note.clone(),
         sentinel: loaded.sentinel.as_ref().map(|s| s.warning()),
+        warnings: loaded.warnings.clone(),
         relief_hint: map::relief_hint(m, loaded.format, loaded.range_m),
         min_unit: lo,
         max_unit: hi,
@@ -262,6 +269,9 @@ fn info(args: &InfoArgs) -> Result<()> {
     )?;
     crate::outln!("vertical  {} ({})", json.vertical_unit, json.vertical_note)?;
     if let Some(warning) = &json.sentinel {
+        crate::outln!("warning   {warning}")?;
+    }
+    for warning in &json.warnings {
         crate::outln!("warning   {warning}")?;
     }
     if let Some(hint) = &json.relief_hint {
