@@ -1175,6 +1175,7 @@ fn endless_inputs_are_refused_within_a_bound_naming_them() {
         );
     }
     assert!(!d.join("o.png").exists());
+}
 
 /// A GeoTIFF fixture written by GDAL (`scripts/gdal-fixtures.py`).
 fn gdal_fixture(name: &str) -> std::path::PathBuf {
