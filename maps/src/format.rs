@@ -304,7 +304,8 @@ struct Read {
     detail: String,
     spacing: Option<Spacing>,
     georef: Option<Georef>,
-    /// Look for void sentinels (TIFF, ASCII grids, BIL; not SRTM, whose void is fixed).
+    /// Look for void sentinels (every format but PNG; in SRTM, other than its fixed void: a
+    /// `.hgt` holding −32767 was read as pits without a word).
     scan: bool,
     /// The file's own void value.
     declared: Option<f64>,
@@ -579,7 +580,7 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
                 detail,
                 spacing,
                 georef,
-                scan: false,
+                scan: true,
                 declared: Some(f64::from(hgt::VOID)),
                 unit: FileUnit::Metres("SRTM heights are metres"),
                 depth: false,

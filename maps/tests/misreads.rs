@@ -294,6 +294,24 @@ fn a_little_endian_tile_named_hgt_is_refused_and_a_big_endian_one_loads() {
     assert_eq!(b.voids_filled, 200);
 }
 
+/// Issue 54, item 11: a `.hgt` holding −32767 (not its void, −32768) got no warning, though
+/// the rule of docs/maps.md covers it: it is reported as every other format's sentinels are.
+#[test]
+fn a_hgt_holding_another_sentinel_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut t = tile();
+    for v in t.iter_mut().skip(5000).step_by(9000).take(20) {
+        *v = -32767;
+    }
+    let be: Vec<u8> = t.iter().flat_map(|v| v.to_be_bytes()).collect();
+    let p = put(dir.path(), "N46E008.hgt", &be);
+    let l = load(&p, &LoadOptions::default()).unwrap();
+    let s = l.sentinel.expect("-32767 reported");
+    assert_eq!(s.value, -32767.0);
+    assert_eq!(s.count, 20);
+    assert!(s.warning().contains("--nodata -32767"), "{}", s.warning());
+}
+
 #[test]
 fn a_flat_little_endian_tile_is_refused_too() {
     // A coastal plain of 0 to 40 m, steps of a metre or less: read big-endian it is blocky
