@@ -85,7 +85,9 @@ impl Command {
 
 /// Whether the process started with standard output closed (`>&-`). Rust's runtime opens
 /// `/dev/null` read-write in place of a closed standard descriptor before `main`, so that is
-/// what descriptor 1 then is; a shell's `>/dev/null` opens it write-only.
+/// what descriptor 1 then is; a shell's `>/dev/null` opens it write-only. (A parent that hands
+/// it `/dev/null` read-write, as Python's `subprocess.DEVNULL` does, is taken for closed too:
+/// `--out -` is then refused, where it would write the image nowhere.)
 fn stdout_was_closed() -> bool {
     let fd = std::io::stdout();
     let fd = fd.as_fd();

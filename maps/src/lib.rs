@@ -36,6 +36,7 @@ pub mod memory;
 pub mod mosaic;
 pub mod png;
 pub mod tiff;
+mod tiff_lzw;
 pub mod voids;
 pub mod vrt;
 

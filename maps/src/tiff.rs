@@ -15,17 +15,21 @@
 use std::io::{self, Cursor, Write};
 
 use tiff::decoder::{ChunkType, Decoder, DecodingResult, Limits};
-use tiff::tags::{SampleFormat, Tag};
+use tiff::tags::{ByteOrder, SampleFormat, Tag};
 use tiff::{ColorType, TiffError, TiffFormatError};
 
 use super::epsg;
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::Input;
+use super::tiff_lzw::{self, Chunks, Sample};
 use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "TIFF";
+
+/// TIFF's code for LZW compression.
+const LZW: u16 = 5;
 
 /// GeoTIFF's GeoKeyDirectoryTag.
 const GEO_KEY_DIRECTORY: u16 = 34_735;
@@ -110,7 +114,7 @@ fn tiff_error(what: &str, e: TiffError) -> MapError {
 fn max_expansion(code: u16) -> Option<u64> {
     match code {
         1 => Some(1),              // none
-        5 => Some(4096),           // LZW: at most ~3,640 bytes per 9-bit code
+        LZW => Some(4096),         // LZW: at most ~3,640 bytes per 9-bit code
         8 | 32_946 => Some(1_100), // Deflate: at most 1,032 : 1
         32_773 => Some(64),        // PackBits: 128 bytes per 2
         _ => None,
@@ -120,7 +124,7 @@ fn max_expansion(code: u16) -> Option<u64> {
 fn compression_name(code: u16) -> String {
     match code {
         1 => "uncompressed".into(),
-        5 => "LZW".into(),
+        LZW => "LZW".into(),
         8 | 32_946 => "Deflate".into(),
         32_773 => "PackBits".into(),
         c => format!("compression {c}"),
@@ -189,7 +193,7 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
     let bytes_per_sample = u64::from(bits / 8);
 
     // The chunks must lie inside the file and hold enough data for the declared size.
-    let (layout, offsets_tag, counts_tag) = match dec.get_chunk_type() {
+    let (layout, offsets_tag, counts_tag, chunk) = match dec.get_chunk_type() {
         ChunkType::Strip => {
             let rows: u32 = dec
                 .find_tag_unsigned(Tag::RowsPerStrip)
@@ -199,6 +203,7 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
                 format!("{} rows per strip", rows.min(height)),
                 Tag::StripOffsets,
                 Tag::StripByteCounts,
+                (width, rows.min(height)),
             )
         }
         ChunkType::Tile => {
@@ -214,6 +219,7 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
                 format!("tiled {tw}×{th}"),
                 Tag::TileOffsets,
                 Tag::TileByteCounts,
+                (tw, th),
             )
         }
     };
@@ -302,7 +308,31 @@ pub fn read(input: Input) -> Result<(Grid, TiffInfo), MapError> {
     limits.intermediate_buffer_size = limits.decoding_buffer_size.max(1 << 24);
     limits.ifd_value_size = usize::try_from(file_len).unwrap_or(usize::MAX);
     let mut dec = dec.with_limits(limits);
-    let image = dec.read_image().map_err(err)?;
+    let image = if compression == LZW {
+        // Not the crate's LZW reader (see `tiff_lzw`).
+        let predictor: u16 = dec
+            .find_tag_unsigned(Tag::Predictor)
+            .map_err(err)?
+            .unwrap_or(1);
+        let sample = match type_name {
+            "int16" => Sample::I16,
+            "uint16" => Sample::U16,
+            "int32" => Sample::I32,
+            _ => Sample::F32,
+        };
+        let chunks = Chunks {
+            size: (width, height),
+            chunk,
+            tiled: dec.get_chunk_type() == ChunkType::Tile,
+            offsets: &offsets,
+            counts: &counts,
+        };
+        let big_endian = dec.byte_order() == ByteOrder::BigEndian;
+        tiff_lzw::read(dec.inner(), &chunks, sample, big_endian, predictor)
+            .map_err(|e| malformed(what, e))?
+    } else {
+        dec.read_image().map_err(err)?
+    };
     let void = |v: f64| nodata == Some(v);
     let values: Vec<f32> = match image {
         DecodingResult::I16(v) => convert(v, f64::from, void),
