@@ -196,7 +196,7 @@ pub fn fly(args: &FlyArgs) -> Result<()> {
     let map = pyramid.map();
     let bar = super::progress(args.frames as u64, "frames", args.format.json);
     // Drawn from the start (placing the first view takes a moment), not at the first frame.
-    bar.enable_steady_tick(std::time::Duration::from_millis(250));
+    super::steady_tick(&bar, std::time::Duration::from_millis(250));
     let result = if args.animation {
         let Some(folder) = &folder else {
             bail!("--animation: give --out DIR");

@@ -34,9 +34,32 @@ pub fn phases(hidden: bool) -> indicatif::ProgressBar {
     if hidden {
         bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     } else {
-        bar.enable_steady_tick(std::time::Duration::from_millis(100));
+        steady_tick(&bar, std::time::Duration::from_millis(100));
     }
     bar
+}
+
+/// Redraws `bar` every `period` from a thread of its own while stderr is a terminal, so that
+/// it moves while a phase runs. indicatif's own `enable_steady_tick` panics when no thread can
+/// be started (a small address-space limit, `ulimit -v`); here the bar is then drawn only
+/// when it changes (issue 54, item 7: never a panic). The thread ends with the bar.
+pub fn steady_tick(bar: &indicatif::ProgressBar, period: std::time::Duration) {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return;
+    }
+    let bar = bar.downgrade();
+    let ticker = move || loop {
+        std::thread::sleep(period);
+        match bar.upgrade() {
+            Some(bar) if !bar.is_finished() => bar.tick(),
+            _ => break,
+        }
+    };
+    // A failed start leaves the bar without steady ticks; nothing else depends on them.
+    let _ = std::thread::Builder::new()
+        .name("progress".into())
+        .spawn(ticker);
 }
 
 /// The one progress-bar style of every long run: a 30-cell bar, `pos/len unit`, the current
