@@ -131,6 +131,19 @@ impl fmt::Display for Shown {
     }
 }
 
+/// Checks that a slice holds the `expected` number of cells.
+pub(crate) fn check_len(what: &'static str, expected: usize, actual: usize) -> Result<(), Error> {
+    if actual == expected {
+        Ok(())
+    } else {
+        Err(Error::SliceLength {
+            what,
+            expected,
+            actual,
+        })
+    }
+}
+
 /// Checks that `value` is finite and inside `min..=max` (or `min < value < max` when `open`).
 pub(crate) fn check(
     what: &'static str,

@@ -100,7 +100,7 @@ fn stdout_was_closed() -> bool {
 }
 
 /// Before a command runs: if one of its outputs is standard output, everything it prints goes
-/// to standard error ([`crate::console::stdout_is_output`]); two outputs cannot both be it,
+/// to standard error ([`crate::console::hand_stdout_to_output`]); two outputs cannot both be it,
 /// and a closed one (`stdout_closed`, `>&-`) cannot be it: the image would go nowhere, or into
 /// whatever file took descriptor 1 since.
 fn claim_stdout(command: &Command, stdout_closed: bool) -> anyhow::Result<()> {
@@ -119,7 +119,7 @@ fn claim_stdout(command: &Command, stdout_closed: bool) -> anyhow::Result<()> {
         if stdout_closed {
             anyhow::bail!("{option} -: standard output is closed");
         }
-        crate::console::stdout_is_output();
+        crate::console::hand_stdout_to_output();
     }
     Ok(())
 }

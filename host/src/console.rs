@@ -8,7 +8,7 @@
 //! them) and [`note!`](crate::note) (a line on standard error, its control characters escaped).
 //!
 //! When an output file is standard output itself (`--out -`, `--out /dev/stdout`), standard
-//! output carries that file and nothing else: [`stdout_is_output`] sends what `out!` and
+//! output carries that file and nothing else: [`hand_stdout_to_output`] sends what `out!` and
 //! `outln!` print (summaries, tables, JSON, CSV) to standard error instead.
 
 use std::fmt;
@@ -20,13 +20,13 @@ static STDOUT_IS_OUTPUT: AtomicBool = AtomicBool::new(false);
 
 /// Sends everything printed from now on to standard error: standard output carries an output
 /// file (what was printed before is flushed first).
-pub fn stdout_is_output() {
+pub fn hand_stdout_to_output() {
     if !STDOUT_IS_OUTPUT.swap(true, Ordering::SeqCst) {
         let _ = io::stdout().lock().flush();
     }
 }
 
-/// True if standard output carries an output file ([`stdout_is_output`]).
+/// True if standard output carries an output file ([`hand_stdout_to_output`]).
 pub fn stdout_taken() -> bool {
     STDOUT_IS_OUTPUT.load(Ordering::SeqCst)
 }
@@ -68,13 +68,26 @@ pub fn flush() -> Result<(), StdoutError> {
     io::stdout().lock().flush().map_err(StdoutError)
 }
 
+/// `text` with its control characters escaped (`\u{1b}`), so that it prints as it is.
+pub fn escape_controls(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 /// Writes to standard error, its control characters but newlines escaped (a file name's
 /// escape sequences never reach the terminal); a failure is ignored.
 pub fn note(args: fmt::Arguments<'_>) {
     let text = args.to_string();
     let clean: String = text
         .split('\n')
-        .map(crate::output::escape_controls)
+        .map(escape_controls)
         .collect::<Vec<_>>()
         .join("\n");
     let _ = io::stderr().lock().write_all(clean.as_bytes());

@@ -15,7 +15,7 @@
 //!   `/dev/stderr`, `/dev/fd/N` or `/proc/self/fd/N`, is written through the descriptor, at its
 //!   offset and with its flags (`>> log` appends): never renamed over the file it points to,
 //!   whatever that is (a file, a pipe, a terminal, a socket). When it is standard output, every
-//!   message goes to standard error ([`crate::console::stdout_is_output`]).
+//!   message goes to standard error ([`crate::console::hand_stdout_to_output`]).
 //! * A **special file** (a character or block device such as `/dev/null`, a FIFO, a socket, or
 //!   a file reached through another process's `/proc/PID/fd`) is written through, in place: it
 //!   is opened for writing without blocking, never created, truncated, renamed over or
@@ -237,7 +237,7 @@ pub fn shown(path: &Path) -> String {
         .iter()
         .find(|(staged, _)| staged == path)
         .map(|(_, place)| place.clone());
-    escape_controls(&place.as_deref().unwrap_or(path).display().to_string())
+    crate::console::escape_controls(&place.as_deref().unwrap_or(path).display().to_string())
 }
 
 /// The files staged for a folder of outputs ([`folder::Folder`]), each with the place it is
@@ -266,19 +266,6 @@ pub fn io_message(error: &io::Error) -> String {
         Some(i) if error.raw_os_error().is_some() => text[..i].to_owned(),
         _ => text,
     }
-}
-
-/// `text` with its control characters escaped (`\u{1b}`), so that it prints as it is.
-pub fn escape_controls(text: &str) -> String {
-    text.chars()
-        .map(|c| {
-            if c.is_control() {
-                c.escape_default().to_string()
-            } else {
-                c.to_string()
-            }
-        })
-        .collect()
 }
 
 /// Opens a special file `at` for writing in place, without blocking: a FIFO with no reader is
@@ -401,7 +388,7 @@ impl Sink {
         let target = match target(path)? {
             Target::Descriptor(n) => {
                 if n == 1 {
-                    crate::console::stdout_is_output();
+                    crate::console::hand_stdout_to_output();
                 }
                 return Ok(Sink::Through {
                     file: descriptor(path, n)?,
@@ -639,7 +626,10 @@ mod tests {
 
     #[test]
     fn control_characters_are_escaped() {
-        assert_eq!(escape_controls("a\u{1b}[31mb\u{7}"), "a\\u{1b}[31mb\\u{7}");
+        assert_eq!(
+            crate::console::escape_controls("a\u{1b}[31mb\u{7}"),
+            "a\\u{1b}[31mb\\u{7}"
+        );
         assert_eq!(shown(Path::new("plain é.png")), "plain é.png");
     }
 

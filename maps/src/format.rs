@@ -12,6 +12,7 @@ use super::georef::Georef;
 use super::grid::{Grid, Spacing};
 use super::input::{is_stdin, InMemory, Input};
 pub use super::kind::{Format, VerticalUnit};
+use super::numbers::grouped_u64;
 pub use super::png::DEFAULT_PNG_HEIGHT_SCALE_M;
 use super::png::{self, load_color_map};
 use super::{asc, bil, describe, epsg, hgt, tiff, tint::tint, Map, MapError};
@@ -259,29 +260,6 @@ pub fn void_sentinel(values: &mut [f32], sentinel: &Sentinel) {
 #[inline]
 fn lowest_lanes(c: &[f32; 8], low: [f32; 8]) -> [f32; 8] {
     std::array::from_fn(|i| if c[i] < low[i] { c[i] } else { low[i] })
-}
-
-/// `n` with commas between groups of three digits: `-1,234,567`.
-pub fn grouped(n: i64) -> String {
-    let digits = grouped_u64(n.unsigned_abs());
-    if n < 0 {
-        format!("-{digits}")
-    } else {
-        digits
-    }
-}
-
-/// `n` with commas between groups of three digits: `1,234,567`.
-pub fn grouped_u64(n: u64) -> String {
-    let s = n.to_string();
-    let mut out = String::with_capacity(s.len() + s.len() / 3);
-    for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 /// The unit a file gives its heights in, as a reader found it.
@@ -556,7 +534,7 @@ fn open_file(path: &Path, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
         }
         Format::Hgt => {
             // The spacing comes from the name: check it before reading the data.
-            let side = hgt::side_from_len(input.len()).unwrap_or(0);
+            let side = super::kind::hgt_side_from_len(input.len()).unwrap_or(0);
             let spacing = match opts.spacing_m {
                 Some(_) => None,
                 None => match hgt::spacing(path, side) {

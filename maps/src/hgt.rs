@@ -15,10 +15,11 @@
 use std::io::{self, Read, Write};
 use std::path::Path;
 
-use super::format::grouped;
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::Input;
+use super::kind::{hgt_side_from_len, HGT_SIDES};
+use super::numbers::grouped;
 use super::{validate_memory, Map, MapError};
 
 /// The format's name in errors.
@@ -27,12 +28,9 @@ pub const FORMAT: &str = "SRTM .hgt";
 /// The void value.
 pub const VOID: i16 = i16::MIN;
 
-/// The tile sides and their cell size in arc-seconds.
-pub const SIDES: [(u32, u32); 2] = [(1201, 3), (3601, 1)];
-
 /// The arc-seconds per cell of a `side`×`side` tile, if it is an SRTM size.
 pub fn arcsec_for_side(side: u32) -> Option<u32> {
-    SIDES.iter().find(|s| s.0 == side).map(|s| s.1)
+    HGT_SIDES.iter().find(|s| s.0 == side).map(|s| s.1)
 }
 
 /// The latitude and longitude of a tile's south-west corner from its file name, e.g.
@@ -97,14 +95,6 @@ pub fn georef(path: &Path, side: u32) -> Option<Georef> {
     ))
 }
 
-/// The side of a tile from the file's length in bytes, if it is one of [`SIDES`].
-pub fn side_from_len(len: u64) -> Option<u32> {
-    SIDES
-        .iter()
-        .map(|s| s.0)
-        .find(|&side| u64::from(side) * u64::from(side) * 2 == len)
-}
-
 /// Reads a `.hgt` tile: its heights (voids as NaN) and a description of the tile.
 ///
 /// The size comes from the file's length and is checked before anything is allocated; a length
@@ -113,7 +103,7 @@ pub fn read(mut input: Input) -> Result<(Grid, String), MapError> {
     let what = input.what().to_owned();
     let what = what.as_str();
     let len = input.len();
-    let Some(side) = side_from_len(len) else {
+    let Some(side) = hgt_side_from_len(len) else {
         return Err(MapError::Malformed {
             what: what.to_owned(),
             format: FORMAT,
@@ -396,11 +386,11 @@ mod tests {
 
     #[test]
     fn sizes_from_lengths() {
-        assert_eq!(side_from_len(2_884_802), Some(1201));
-        assert_eq!(side_from_len(25_934_402), Some(3601));
-        assert_eq!(side_from_len(2_884_801), None);
-        assert_eq!(side_from_len(0), None);
-        assert_eq!(side_from_len(2 * 1200 * 1200), None);
+        assert_eq!(hgt_side_from_len(2_884_802), Some(1201));
+        assert_eq!(hgt_side_from_len(25_934_402), Some(3601));
+        assert_eq!(hgt_side_from_len(2_884_801), None);
+        assert_eq!(hgt_side_from_len(0), None);
+        assert_eq!(hgt_side_from_len(2 * 1200 * 1200), None);
     }
 
     /// A smooth ramp reads plausibly big-endian; its bytes swapped do not; a flat tile tells

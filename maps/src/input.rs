@@ -251,7 +251,7 @@ pub fn sniff(head: &[u8], len: u64) -> Option<Format> {
         Some(Format::Tiff)
     } else if ASC_KEYS.iter().any(|k| starts_ci(k)) {
         Some(Format::Asc)
-    } else if super::hgt::side_from_len(len).is_some() {
+    } else if super::kind::hgt_side_from_len(len).is_some() {
         Some(Format::Hgt)
     } else {
         None

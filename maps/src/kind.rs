@@ -1,5 +1,6 @@
-//! Which format a height map is in ([`Format`]), by name and by extension: below the readers
-//! and the input that sniffs a stream's first bytes, so that neither imports the loader.
+//! Which format a height map is in ([`Format`]), by name and by extension, and an SRTM tile by
+//! its length ([`hgt_side_from_len`]): below the readers and the input that sniffs a stream's
+//! first bytes, so that neither imports the loader.
 
 use std::fmt;
 use std::path::Path;
@@ -113,6 +114,18 @@ impl fmt::Display for VerticalUnit {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
+}
+
+/// The SRTM `.hgt` tile sides and their cell size in arc-seconds.
+pub const HGT_SIDES: [(u32, u32); 2] = [(1201, 3), (3601, 1)];
+
+/// The side of an SRTM tile from the file's length in bytes, if it is one of [`HGT_SIDES`] (the
+/// tile has no header: its length is all that says what it is).
+pub fn hgt_side_from_len(len: u64) -> Option<u32> {
+    HGT_SIDES
+        .iter()
+        .map(|s| s.0)
+        .find(|&side| u64::from(side) * u64::from(side) * 2 == len)
 }
 
 #[cfg(test)]

@@ -34,6 +34,7 @@ pub mod input;
 pub mod kind;
 pub mod memory;
 pub mod mosaic;
+pub mod numbers;
 pub mod png;
 pub mod tiff;
 mod tiff_lzw;

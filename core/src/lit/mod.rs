@@ -58,8 +58,9 @@ use crate::specular::detect::PI_Q30;
 use crate::specular::{clamp_at, sqrt_q30, Clamp, Light, Normal, Phong, N_MAX};
 use crate::terrain::camera::floor_i64;
 use crate::terrain::cost::Cost;
-use crate::terrain::map::{mirror, Axis, Terrain};
+use crate::terrain::map::{Axis, Terrain};
 use crate::terrain::march::Voxel;
+use crate::terrain::side::mirror;
 use crate::trig::sin_cos_deg;
 
 /// The default ambient and diffuse light, `(ambient, diffuse)`: `0.35 + 0.65·max(N·L, 0)`

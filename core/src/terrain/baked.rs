@@ -27,8 +27,9 @@ use core::ops::Range;
 
 use crate::color::Rgb;
 use crate::error::Error;
-use crate::terrain::map::{cells, next_size, Level, Scale, Terrain, MAX_LEVELS};
+use crate::terrain::map::{next_size, Level, Scale, Terrain, MAX_LEVELS};
 use crate::terrain::pyramid::{self, HeightFilter};
+use crate::terrain::side::cells;
 use crate::terrain::strips::Strips;
 
 /// The first 8 bytes of every baked map: a name and the bytes that text-mode transfers and

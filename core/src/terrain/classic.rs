@@ -25,8 +25,8 @@ use crate::sink::PixelSink;
 use crate::terrain::column::{render_frame, ColumnOut};
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
-use crate::terrain::map::mirror_side;
 use crate::terrain::map::Axis;
+use crate::terrain::side::mirror_side;
 use crate::terrain::Terrain;
 
 /// Positions are counted in fifths of a half-voxel, so that the description's steps (1 voxel,

@@ -43,8 +43,9 @@ use crate::num::{height, Height};
 use crate::terrain::camera::{Column, Switch};
 use crate::terrain::frame::Frame;
 use crate::terrain::map::Axis;
-use crate::terrain::map::{fold, mirror, period, Level, Terrain};
+use crate::terrain::map::{Level, Terrain};
 use crate::terrain::ray::Ray;
+use crate::terrain::side::{fold, mirror, period};
 use crate::terrain::strips::Strips;
 
 /// A cursor on the voxel sequence of one column.
@@ -1491,8 +1492,8 @@ mod tests {
     use super::*;
     use crate::num::Coord;
     use crate::terrain::camera::{Camera, CameraParams, Options};
-    use crate::terrain::map::mirror;
     use crate::terrain::pyramid::{self, HeightFilter};
+    use crate::terrain::side::mirror;
     use crate::terrain::{Level, Scale};
 
     const MAP: u32 = 64;

@@ -30,11 +30,13 @@ pub mod march;
 pub mod pyramid;
 pub mod ray;
 pub mod sampler;
+pub(crate) mod side;
 pub mod strips;
 pub mod surface;
 pub mod visibility;
 pub mod wedge;
 
-pub use map::{mirror, next_size, Axis, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
+pub use map::{next_size, Axis, Level, Scale, Terrain, MAX_LEVELS};
 pub use march::Voxel;
+pub use side::{mirror, MAX_SIDE};
 pub use strips::Strips;

@@ -26,9 +26,10 @@
 //! where a ray passes above a whole block and can cross it in one step.
 
 use crate::color::Rgb;
+use crate::error::check_len;
 use crate::error::Error;
 use crate::terrain::map::Axis;
-use crate::terrain::map::{check_len, next_size, Level, Scale, Terrain, MAX_LEVELS};
+use crate::terrain::map::{next_size, Level, Scale, Terrain, MAX_LEVELS};
 use crate::terrain::strips::Strips;
 
 /// How a coarse voxel's height is made from the 2×2 voxels below it.

@@ -16,8 +16,8 @@
 //!
 //! Index `(x, y)` of either order is `X(x) + Y(y)`: [`Strips::x`] and [`Strips::y`].
 
-use crate::error::Error;
-use crate::terrain::map::{cells, check_len, mirror, MAX_SIDE};
+use crate::error::{check_len, Error};
+use crate::terrain::side::{cells, mirror, MAX_SIDE};
 
 /// Columns of the neighbouring strips stored on either side of a strip's own.
 pub const HALO: u32 = 4;

@@ -1,9 +1,9 @@
 //! Numbers as people read them: counts with thousands separators (`1,325,513`), written by
-//! the map readers' own [`footprint_maps::format::grouped`].
+//! the map readers' own [`footprint_maps::numbers::grouped`].
 
-pub use footprint_maps::format::grouped_u64 as thousands;
+pub use footprint_maps::numbers::grouped_u64 as thousands;
 
-use footprint_maps::format::grouped;
+use footprint_maps::numbers::grouped;
 
 /// `n` with its sign always shown and thousands separators: `+1,234`, `-5`, `+0`.
 pub fn signed_thousands(n: i64) -> String {

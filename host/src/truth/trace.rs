@@ -2,7 +2,7 @@
 //! exactly.
 //!
 //! **Copies.** The terrain beyond the map is the map mirrored about its edges (Sect. 7,
-//! `footprint_core::terrain::map::mirror`), so the plane is tiled by copies of the map, every
+//! `footprint_core::terrain::mirror`), so the plane is tiled by copies of the map, every
 //! other one reflected. The ray crosses them in order; inside one it is carried into the map's
 //! own coordinates (reflected where the copy is), where the cells and the max-height hierarchy
 //! ([`super::maxmip`]) are. An index one beyond a copy's edge folds onto the edge, which is

@@ -341,12 +341,15 @@ pub(super) fn info(args: &InfoArgs) -> Result<()> {
     let m = pyramid.map();
     let (lo, hi) = m.height_range();
     let metres = |u: u16| m.base_m + f64::from(u) * m.height_scale_m;
-    crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
+    crate::outln!("file      {}", crate::console::escape_controls(&json.file))?;
     crate::outln!(
         "format    baked map (.fpmap), levels {}",
         layout_said(opened.header.strips)
     )?;
-    crate::outln!("source    {}", crate::output::escape_controls(&json.source))?;
+    crate::outln!(
+        "source    {}",
+        crate::console::escape_controls(&json.source)
+    )?;
     crate::outln!(
         "size      {} × {} ({} cells), {}",
         m.width,
@@ -385,7 +388,7 @@ pub(super) fn verify(args: &VerifyArgs) -> Result<()> {
         json.width,
         json.height,
         json.height_filter,
-        crate::output::escape_controls(&json.source)
+        crate::console::escape_controls(&json.source)
     )?;
     Ok(())
 }

@@ -247,7 +247,7 @@ fn info(args: &InfoArgs) -> Result<()> {
         crate::outln!("{}", serde_json::to_string(&json)?)?;
         return Ok(());
     }
-    crate::outln!("file      {}", crate::output::escape_controls(&json.file))?;
+    crate::outln!("file      {}", crate::console::escape_controls(&json.file))?;
     crate::outln!("format    {} ({})", json.format, json.detail)?;
     crate::outln!("size      {} × {} ({} cells)", m.width, m.height, m.len())?;
     crate::outln!("spacing   {:.3} m ({})", m.spacing_m, json.spacing_note)?;
@@ -301,7 +301,7 @@ fn convert(args: &ConvertArgs) -> Result<()> {
         anyhow::bail!(
             "{out_what}: unknown map format ({}): name it .png, .hgt, .asc, .tif or .tiff, or \
              give --to png|hgt|asc|tiff",
-            crate::output::escape_controls(&ext)
+            crate::console::escape_controls(&ext)
         );
     };
     // A baked map is written from its level 0 (its heights as baked, in its own height
@@ -352,7 +352,7 @@ fn convert(args: &ConvertArgs) -> Result<()> {
         Format::Asc | Format::Tiff | Format::Bil => {}
     }
     // Written to standard output, the map is followed by nothing: the summary goes to stderr
-    // (`crate::console::stdout_is_output`).
+    // (`crate::console::hand_stdout_to_output`).
     crate::outln!("{summary}")?;
     Ok(())
 }
