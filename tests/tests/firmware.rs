@@ -218,6 +218,15 @@ fn firmware_output_equals_the_host_reference() {
         );
     }
 
+    // The instruction budgets (issue 52, item 3): no frame more than 2 % over its baseline.
+    let budget = std::fs::read_to_string(firmware_dir().join("budget.txt")).unwrap();
+    let over = over_budget(&budget, &text);
+    assert!(
+        over.is_empty(),
+        "over firmware/budget.txt:\n{}\n(a rise needs a commit that says why)",
+        over.join("\n")
+    );
+
     // The smallest embedding draws the same area-sampled image.
     let minimal = String::from_utf8(run_under_qemu(&runner, &bin.join("minimal"))).unwrap();
     let first = minimal.lines().next().unwrap_or_default().to_owned();
@@ -247,11 +256,65 @@ fn documented_per_pixel(doc: &str, label: &str) -> f64 {
         .unwrap_or_else(|_| panic!("docs/embedding.md, row {label:?}: {cell:?} is not a number"))
 }
 
-/// The instructions per pixel of the firmware's `# icount NAME: render …, X per pixel` line.
+/// How far a frame's instructions per pixel may rise over its line in firmware/budget.txt.
+const BUDGET_SLACK: f64 = 0.02;
+
+/// The frames of `budget` (firmware/budget.txt: `NAME per-pixel` lines, `#` comments) that the
+/// firmware's output `out` measures more than [`BUDGET_SLACK`] above their line, one message
+/// each; a frame the output lacks is a failed test.
+fn over_budget(budget: &str, out: &str) -> Vec<String> {
+    budget
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .filter_map(|line| {
+            let (name, allowed) = line
+                .split_once(' ')
+                .unwrap_or_else(|| panic!("firmware/budget.txt: {line:?} is not `NAME VALUE`"));
+            let allowed: f64 = allowed.trim().parse().unwrap_or_else(|_| {
+                panic!("firmware/budget.txt: {line:?}: {allowed:?} is not a number")
+            });
+            let measured = measured_per_pixel(out, name);
+            (measured > allowed * (1.0 + BUDGET_SLACK)).then(|| {
+                format!(
+                    "{name}: {measured} instructions per pixel, {:+.1} % over its budget of {allowed}",
+                    (measured / allowed - 1.0) * 100.0
+                )
+            })
+        })
+        .collect()
+}
+
+/// The budget check passes a frame within 2 % of its line and fails one above it (a run
+/// without QEMU sees the check fail once).
+#[test]
+fn a_rise_of_more_than_two_percent_fails_the_budget() {
+    let budget = "# comment\nps 300.0\nas-roll0 800\n";
+    let out = |ps: &str, roll: &str| {
+        format!(
+            "# icount ps: render 1 instructions, {ps} per pixel; with the frame tables 2 per frame, 9.0 per pixel (instructions, not cycles)\n\
+             # icount as-roll0: walk 1 + resample 2 instructions, {roll} per pixel; with the fan's tables 9.0 per pixel (instructions, not cycles)\n"
+        )
+    };
+    assert!(over_budget(budget, &out("305.9", "816.0")).is_empty());
+    assert!(over_budget(budget, &out("250.0", "100.0")).is_empty());
+    let over = over_budget(budget, &out("306.1", "800.0"));
+    assert_eq!(over.len(), 1, "{over:?}");
+    assert!(
+        over[0].starts_with("ps: 306.1 instructions per pixel, +2.0 % over"),
+        "{over:?}"
+    );
+    let over = over_budget(budget, &out("300.0", "816.1"));
+    assert_eq!(over.len(), 1, "{over:?}");
+    assert!(over[0].starts_with("as-roll0: 816.1"), "{over:?}");
+}
+
+/// The instructions per pixel of the firmware's `# icount NAME: …, X per pixel` line (a
+/// `render` or a `walk` line: the first "per pixel" figure).
 fn measured_per_pixel(out: &str, name: &str) -> f64 {
     let line = out
         .lines()
-        .find(|l| l.starts_with(&format!("# icount {name}: render ")))
+        .find(|l| l.starts_with(&format!("# icount {name}: ")))
         .unwrap_or_else(|| panic!("no instruction count for {name}:\n{out}"));
     let before = line.split(" per pixel").next().unwrap_or_default();
     let number = before.rsplit(' ').next().unwrap_or_default();
