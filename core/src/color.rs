@@ -1,5 +1,5 @@
 //! Colours: the 8-bit RGB voxel colour, the 8.8 fixed-point sample colour ([`Color16`],
-//! [`to_color16`], [`to_rgb`]) and a pixel's colour before it is rounded ([`Color32`]), shared
+//! `to_color16`, [`to_rgb`]) and a pixel's colour before it is rounded ([`Color32`]), shared
 //! by both rooms.
 
 /// An 8-bit-per-channel RGB colour, as stored in a terrain colour map and in the output image.
@@ -32,7 +32,7 @@ pub type Color16 = [u16; 3];
 
 /// An 8-bit colour as an 8.8 colour (exact).
 #[inline]
-pub fn to_color16(c: Rgb) -> Color16 {
+pub(crate) fn to_color16(c: Rgb) -> Color16 {
     [c.r, c.g, c.b].map(|x| u16::from(x) << 8)
 }
 
@@ -51,7 +51,7 @@ pub type Color32 = [u32; 3];
 
 /// An 8-bit colour as a [`Color32`] (exact).
 #[inline]
-pub fn to_color32(c: Rgb) -> Color32 {
+pub(crate) fn to_color32(c: Rgb) -> Color32 {
     [c.r, c.g, c.b].map(|x| u32::from(x) << 16)
 }
 

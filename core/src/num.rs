@@ -52,7 +52,7 @@ pub const MAX_SLOPE: f64 = (1u64 << MAX_SLOPE_LOG2) as f64;
 pub(crate) const MAX_SLOPE_BITS: i64 = 1 << (MAX_SLOPE_LOG2 + 24);
 
 /// The largest `|x|` or `|y|` of the eye, in voxels (the map itself repeats by mirroring).
-pub const MAX_COORD: f64 = (1u64 << 21) as f64;
+pub(crate) const MAX_COORD: f64 = (1u64 << 21) as f64;
 
 /// The largest far distance, in voxels.
 pub const MAX_FAR: f64 = (1u64 << 21) as f64;
@@ -68,7 +68,7 @@ pub fn height(units: u16) -> Height {
 /// (`0 ≤ r < 2^24`) it is `q·b + ⌊r·b / 2^24⌋`, and both products stay below 2^63, so no
 /// 128-bit product is needed (the Cortex-M4 has none).
 #[inline(always)]
-pub fn mul_floor_24(a: i64, b: i64) -> i64 {
+pub(crate) fn mul_floor_24(a: i64, b: i64) -> i64 {
     (a >> 24) * b + (((a & 0xFF_FFFF) * b) >> 24)
 }
 
@@ -80,7 +80,7 @@ pub fn mul_floor_24(a: i64, b: i64) -> i64 {
 /// `p·r·2^32 + p·s + q·r + ⌊q·s / 2^32⌋`, every term below 2^62 in magnitude. Beyond, it
 /// takes the 128-bit product (which the Cortex-M4 does in software, about 40 instructions).
 #[inline(always)]
-pub fn mul_floor_32(a: i64, b: i64) -> i64 {
+pub(crate) fn mul_floor_32(a: i64, b: i64) -> i64 {
     if (-MUL_32_LIMIT..=MUL_32_LIMIT).contains(&a) && (0..MUL_32_LIMIT).contains(&b) {
         mul_floor_32_in_range(a, b)
     } else {

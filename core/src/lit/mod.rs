@@ -13,7 +13,7 @@
 //! heights, cells `2^L` voxels wide), so distant normals are prefiltered as the colours are.
 //! **The view direction** of a sample is from its voxel's top centre to the eye.
 //!
-//! **Lobes.** A pixel keeps one lobe per octave of the exponent ([`LOBES`]): water and rock
+//! **Lobes.** A pixel keeps one lobe per octave of the exponent (`LOBES`): water and rock
 //! under one pixel are two highlights, each with the moments of its own samples, weighted by
 //! their share of the highlight `w·K_spec` (the pixel's weighted normal `N̄`, its length, the
 //! mean `n`), and the pixel's highlight is their sum. One lobe for both had neither's width.
@@ -22,7 +22,7 @@
 //! * `None`: one Phong evaluation at the lobe's mean normal `N̄` and the pixel's view `Ē`, with
 //!   the lobe's mean `n`: the highlight aliases where the normals under the pixel spread;
 //! * `Clamp(policy)`: the same evaluation with Amanatides' `n′` and `K′_spec`
-//!   ([`clamp_at`]). The normals' turn comes from the normals the sampler met, with their
+//!   (`clamp_at`). The normals' turn comes from the normals the sampler met, with their
 //!   weights, and needs no pairwise loop: the weight-averaged unit normal has length
 //!   `|N̄| ≈ 1 − σ²/2` for an RMS turn σ from the mean, and two normals of equal weight `θ`
 //!   apart have `σ = θ/2`, so the pixel's turn is `2σ` (a sliver of tilted shore in a water
@@ -54,8 +54,10 @@ use fixed::types::U2F30;
 use crate::color::{Color16, Rgb};
 use crate::error::{check, Error};
 use crate::num::Weight;
+use crate::specular::clamp::clamp_at;
 use crate::specular::detect::PI_Q30;
-use crate::specular::{clamp_at, sqrt_q30, Clamp, Light, Normal, Phong, N_MAX};
+use crate::specular::normal::sqrt_q30;
+use crate::specular::{Clamp, Light, Normal, Phong, N_MAX};
 use crate::terrain::camera::floor_i64;
 use crate::terrain::cost::Cost;
 use crate::terrain::map::{Axis, Terrain};
@@ -264,9 +266,9 @@ struct Acc {
 /// with `clamp99` against the reference's 1, and 3 with a lobe per octave). Within an octave
 /// lobes differ in width by less than √2, and the clamp sees only the spread of the normals of
 /// the surfaces that share the lobe.
-pub const LOBES: usize = (u16::BITS - N_MAX.leading_zeros()) as usize;
+pub(crate) const LOBES: usize = (u16::BITS - N_MAX.leading_zeros()) as usize;
 
-/// The lobe of exponent `n` ([`LOBES`]).
+/// The lobe of exponent `n` (`LOBES`).
 #[inline(always)]
 fn octave(n: u16) -> usize {
     n.max(1).ilog2() as usize
@@ -338,7 +340,7 @@ fn fold3(i: i64, len: u32) -> (usize, usize, usize) {
     }
 }
 
-/// The paper's fragment at sampling frequency `f` ([`clamp_at`]), renormalised for a 2-D
+/// The paper's fragment at sampling frequency `f` (`clamp_at`), renormalised for a 2-D
 /// lobe: the paper's `K′ = K·Maximum[n]/Maximum[n′]` keeps the first cosine component of the
 /// 1-D signal cos^n α; a glint on terrain is a 2-D lobe (α turns in both directions across the
 /// pixel), whose level the ratio keeps only when applied once per direction:
@@ -372,7 +374,7 @@ pub struct SunShader<'s, 'o, C: Cost> {
     column: usize,
     row: Option<usize>,
     acc: Acc,
-    /// The current pixel's lobes ([`LOBES`]) and which of them samples reached (bit `k`).
+    /// The current pixel's lobes (`LOBES`) and which of them samples reached (bit `k`).
     lobes: [Lobe; LOBES],
     used: u16,
     /// The inner cost, which every event reaches too.

@@ -59,7 +59,7 @@ pub fn clamp(phong: &Phong, spread: Spread, policy: Clamp) -> Clamped {
 /// `clamp_at(phong, ⌊π/2D⌋, policy)`; callers with a fractional frequency blend `clamp_at` at
 /// its floor and ceiling (the shaded terrain does, so that a pixel's highlight does not step
 /// as its spread drifts).
-pub fn clamp_at(phong: &Phong, f: u16, policy: Clamp) -> Clamped {
+pub(crate) fn clamp_at(phong: &Phong, f: u16, policy: Clamp) -> Clamped {
     let n = phong.n();
     if policy.frequency_limit(n) <= f {
         return Clamped {

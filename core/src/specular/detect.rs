@@ -87,7 +87,7 @@ impl Spread {
     }
 
     /// The angle `D` through which the normal turns (half of `Δα_ΔN`): `acos(dot_ΔN)` for a
-    /// dot product ([`acos`], error ≤ 2.2e-8 + 2^-29).
+    /// dot product (`acos`, error ≤ 2.2e-8 + 2^-29).
     pub fn angle(&self) -> U2F30 {
         match *self {
             Spread::Dot(d) => acos(d),
@@ -141,7 +141,7 @@ impl Spread {
 /// `acos(x)` in radians for `x ∈ [−1, 1]` (clamped): Abramowitz & Stegun 4.4.46,
 /// `acos x = √(1−x)·Σ a_i x^i` on `[0, 1]` (error ≤ 2.2e-8), `π − acos(−x)` below 0, in Q30
 /// integer arithmetic (rounding adds at most 2^-29).
-pub fn acos(x: I2F30) -> U2F30 {
+pub(crate) fn acos(x: I2F30) -> U2F30 {
     const A: [i64; 8] = [
         1_686_629_690,
         -230_423_709,

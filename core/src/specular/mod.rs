@@ -8,7 +8,7 @@
 //!
 //! * [`tables`] — the compile-time tables: the cosine coefficients of cos^n, `MinDot[n]`,
 //!   `Maximum[n]`, the power cutoffs `K_p(n)` (Figure 2), `MinDot_p` and `MaxnAllowed_p`;
-//! * [`phong`] — `K_spec·cos^n α` in integer arithmetic ([`Phong`], [`Light`], [`cos_pow`]);
+//! * [`phong`] — `K_spec·cos^n α` in integer arithmetic ([`Phong`], [`Light`], `cos_pow`);
 //! * [`detect`] — `dot_ΔN` from the pixel's corner normals, a bump map's normals or the
 //!   curvature ([`Spread`]), the test `dot_ΔN < MinDot[n]` and the oversampling rate;
 //! * [`clamp`](mod@clamp) — the paper's code fragment: `n′` and `K′_spec` ([`clamp()`]);
@@ -32,13 +32,13 @@ pub mod tables;
 /// callers need not depend on `fixed` themselves.
 pub use fixed::types::{I2F30, U16F16, U1F31, U2F30};
 
-pub use clamp::{clamp, clamp_at, Clamped};
-pub use detect::{acos, Spread};
-pub use normal::{isqrt, sqrt_q30, Normal, Vector};
-pub use phong::{cos_pow, Light, Phong};
+pub use clamp::{clamp, Clamped};
+pub use detect::Spread;
+pub use normal::{isqrt, Normal, Vector};
+pub use phong::{Light, Phong};
 pub use policy::Clamp;
-pub use shade::{crow_grid, shade, specular, Material, Method, Specular};
+pub use shade::{shade, specular, Material, Method, Specular};
 pub use tables::{
-    clamp_n, coefficient, coefficients, cutoff, maximum, maxn_allowed, min_dot, min_dot_p,
-    table_sizes, Power, N_MAX,
+    coefficient, coefficients, cutoff, maximum, maxn_allowed, min_dot, min_dot_p, table_sizes,
+    Power, N_MAX,
 };

@@ -241,7 +241,7 @@ fn rsqrt_q30(u: u64) -> u64 {
 
 /// `√x` for `x` in Q30 (any `u64`), in Q30, with multiplies only (`rsqrt_q30`); relative
 /// error below 2^-28.
-pub fn sqrt_q30(x: u64) -> u64 {
+pub(crate) fn sqrt_q30(x: u64) -> u64 {
     if x == 0 {
         return 0;
     }

@@ -8,7 +8,7 @@
 //! is not unit length ([`Light::cos_alpha`] of a [`Vector`]), and the power.
 //!
 //! The power is binary exponentiation in `Q30` (`⌈log2 n⌉` squarings and at most as many
-//! multiplies, no `powf`): [`cos_pow`]. Each product is rounded to nearest, so its absolute
+//! multiplies, no `powf`): `cos_pow`. Each product is rounded to nearest, so its absolute
 //! error is at most `n·2^-30` (a squaring at most doubles the error of its operand and adds
 //! 2^-31; the result sums the errors of the squares it multiplies), 9.5e-7 at `n = 1024`.
 
@@ -153,7 +153,7 @@ impl Light {
 /// `c^n` for `c ∈ [0, 1]` (negative `c` counts as 0; `c^0 = 1` for `c > 0`, 0 for `c = 0`) by
 /// binary exponentiation in Q30, rounding each product to nearest. Error ≤ `n·2^-30`.
 #[inline]
-pub fn cos_pow(c: I2F30, n: u16) -> U2F30 {
+pub(crate) fn cos_pow(c: I2F30, n: u16) -> U2F30 {
     let c = c.to_bits();
     if c <= 0 {
         return U2F30::ZERO;

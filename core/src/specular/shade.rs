@@ -27,7 +27,7 @@ pub enum Method {
     /// "Detecting Specular Aliasing"): conservative detection at the corners; in a detected
     /// pixel the specular term is averaged over an `s × s` grid with `s = ⌈Δα_ΔN/Δα_n⌉`, the
     /// detection's oversampling rate, at least 2 and at most the cap this carries (itself
-    /// clamped to `2..=`[`MAX_GRID`]); see [`crow_grid`].
+    /// clamped to `2..=`[`MAX_GRID`]); see `crow_grid`.
     Crow(u8),
     /// An `s × s` grid in every pixel (`s` clamped to `1..=MAX_GRID`): 32 is the reference.
     Supersample(u8),
@@ -84,7 +84,7 @@ pub fn specular(fragment: &Fragment<'_>, light: &Light, phong: &Phong, method: M
 /// Specular Aliasing") finds no aliasing, else the paper's oversampling rate
 /// `⌈Δα_ΔN/Δα_n⌉` ("we … use the resultant ratio to indicate the oversampling rate"), at
 /// least 2 and at most `max` (`max` clamped to `2..=`[`MAX_GRID`]).
-pub fn crow_grid(spread: Spread, n: u16, max: u8) -> Option<u32> {
+pub(crate) fn crow_grid(spread: Spread, n: u16, max: u8) -> Option<u32> {
     if !spread.aliases(n, Clamp::Conservative) {
         return None;
     }

@@ -81,7 +81,7 @@ impl Power {
 
 /// `n` clamped to the tables' range `0..=N_MAX`.
 #[inline]
-pub fn clamp_n(n: u32) -> u16 {
+pub(crate) fn clamp_n(n: u32) -> u16 {
     // At most N_MAX after the `min`, so the fallback is never taken.
     u16::try_from(n.min(u32::from(N_MAX))).unwrap_or(N_MAX)
 }

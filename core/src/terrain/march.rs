@@ -1274,10 +1274,8 @@ impl Voxel<'_> {
     /// The voxel's index and the index step to the next cell across (in the direction the
     /// ray moves across), when at least `reach` cells lie on either side of it before a mirror
     /// edge: then cell `k` across, `|k| ≤ reach`, is at `idx + k·step` ([`Voxel::across`]
-    /// without its folds). `None` near an edge. (`reach` is at most [`HALO`] cells in a level
-    /// in strips: a strip stores that many of its neighbours' columns.)
-    ///
-    /// [`HALO`]: crate::terrain::strips::HALO
+    /// without its folds). `None` near an edge. (`reach` is at most `strips::HALO` cells in a
+    /// level in strips: a strip stores that many of its neighbours' columns.)
     #[inline(always)]
     pub fn row_around(&self, reach: u32) -> Option<(usize, isize)> {
         let m = self.march;

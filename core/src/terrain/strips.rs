@@ -7,7 +7,7 @@
 //! vertical bands of `2^shift` columns, each stored row-major on its own: a page then holds a
 //! block of the band's columns over many rows, whichever way the ray runs.
 //!
-//! Each strip also stores [`HALO`] columns of its neighbours on either side, so that every
+//! Each strip also stores `HALO` columns of its neighbours on either side, so that every
 //! cell a sampler reads across the ray (at most four to either side of the voxel under the
 //! centre line: Eq. 4's neighbour, the wedge of `as2`) is one constant stride from it, as in a
 //! row-major level. Only the walk's own steps change strip, and they do so where a run ends
@@ -20,7 +20,7 @@ use crate::error::{check_len, Error};
 use crate::terrain::side::{cells, mirror, MAX_SIDE};
 
 /// Columns of the neighbouring strips stored on either side of a strip's own.
-pub const HALO: u32 = 4;
+pub(crate) const HALO: u32 = 4;
 
 /// The shift of a row-major level: one "strip" wider than any level ([`MAX_SIDE`] = 2^16).
 const ROW_MAJOR: u32 = 17;
@@ -32,7 +32,7 @@ pub struct Strips {
     shift: u32,
     /// `2^shift − 1`.
     mask: u32,
-    /// Columns of the neighbours stored to either side: [`HALO`], or 0 row-major.
+    /// Columns of the neighbours stored to either side: `HALO`, or 0 row-major.
     halo: u32,
     /// Cells from one row of a strip to the next: `2^shift + 2·HALO`, or the width.
     row: usize,

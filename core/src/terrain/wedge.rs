@@ -6,7 +6,7 @@
 //! planes lies a wedge from the eye, whose cross-section with the row of voxels at `n` is the
 //! interval `v(n) ± |n − n_eye|·wedge` across (the column's [`Pixel::wedge`]).
 //!
-//! The wedge is split across into [`LANES`] lanes of equal width, each with its own ray
+//! The wedge is split across into `LANES` lanes of equal width, each with its own ray
 //! ([`Horizons`]). At every step where the highest of the voxel under the centre line and the
 //! two cells to either side of it across is above the walk's ray (the lowest lane's), the
 //! sampler takes each lane's part of the cross-section and reads the cells of the current
@@ -87,7 +87,7 @@ const MAX_HALF: i64 = 3 << 31;
 /// mean over the whole wedge) a thin ridge is seen at a fraction of its height over all of the
 /// wedge (docs/measurements.md, "as2's lanes"); four cost 1.5× as much and were no closer on
 /// the ridge.
-pub const LANES: usize = 2;
+pub(crate) const LANES: usize = 2;
 
 /// One in the cross section's fixed point (cells, 32 fractional bits).
 const ONE: i64 = 1 << 32;
@@ -605,7 +605,7 @@ impl FinerSpan {
     }
 }
 
-/// Lane `k` of [`LANES`] across `[lo, hi)`: equal parts, the last to `hi`.
+/// Lane `k` of `LANES` across `[lo, hi)`: equal parts, the last to `hi`.
 #[inline(always)]
 fn lane(lo: i64, hi: i64, k: usize) -> (i64, i64) {
     let width = (hi - lo) / LANES as i64;
