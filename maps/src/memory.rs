@@ -9,12 +9,11 @@ use std::sync::OnceLock;
 use anyhow::{bail, Result};
 
 /// Peak bytes per map cell while the built-in terrain is generated and its pyramid made (the
-/// generator's noise and erosion fields): measured 2026-11-26, 47 bytes per cell at 4096² (790
-/// MB).
+/// generator's noise and erosion fields): measured, 47 bytes per cell at 4096² (790 MB).
 pub const BYTES_PER_CELL: u64 = 48;
 
 /// Peak bytes per map cell while a map file is read and its pyramid made (the heights and
-/// colours of every level; the readers stream their input): measured 2026-11-26, peak resident
+/// colours of every level; the readers stream their input): measured as the peak resident
 /// memory less a 64² map's, 7.6, 7.8 and 7.8 bytes per cell at 1024², 2048² and 4096² for a
 /// 16-bit PNG and a float32 TIFF alike, 7.8 for an ESRI ASCII grid at 2048²
 /// (host/tests/memory_estimate.rs checks it within 25 %).
@@ -208,8 +207,8 @@ pub fn builtin_map_bytes(w: u32, h: u32) -> Option<u64> {
 
 /// Peak bytes per pixel while `render` or `inspect` draws an image of the exact projection (the
 /// CLI's default) and writes its PNG: the fan's grid (about 1.1 lines per image column, one
-/// `Rgb` per cell), the image, and the PNG encoder's rows. Measured 2026-11-26 on a 64² map,
-/// peak resident memory less a 64×64 run's: 11.9, 12.3 and 12.3 bytes per pixel at 1024²,
+/// `Rgb` per cell), the image, and the PNG encoder's rows. Measured on a 64² map as the peak
+/// resident memory less a 64×64 run's: 11.9, 12.3 and 12.3 bytes per pixel at 1024²,
 /// 2048² and 4096² (host/tests/memory_estimate.rs checks it within 25 %).
 pub const BYTES_PER_PIXEL: u64 = 12;
 

@@ -9,14 +9,12 @@
 //! [`Switch::Late`](crate::terrain::camera::Switch::Late) climb) a hit's height and colour
 //! move linearly in the distance from the finer level's wedge to the level's own ([`weight`]).
 //!
-//! **What the blend does, measured** (2026-11-26; docs/measurements.md, "Blending levels"). It
-//! blends the *values* at the parent's step, not the step itself: along the column the walk
-//! still takes one step per parent, so a pixel whose edge falls inside the parent still sees
-//! the parent where the finer walk saw one child. For `as2` it lowers the RMSE against the
-//! reference on five of six maps (mountains 1.84 → 1.78) and raises it on one (msh 5.52 →
-//! 5.62). The same blend for `as` and `as-exact` (an experiment, commit 4651ed6) left their
-//! whole-frame flicker unchanged (−0.6 % to +0.5 %) at +35 % and +21 % instructions per
-//! pixel, so they do not blend.
+//! **What the blend does.** It blends the *values* at the parent's step, not the step itself:
+//! along the column the walk still takes one step per parent, so a pixel whose edge falls
+//! inside the parent still sees the parent where the finer walk saw one child. It lowers
+//! `as2`'s error against the reference a little; for `as` and `as-exact` it left the flicker
+//! as it was at a third more instructions, so they do not blend (the figures are in
+//! docs/measurements.md, "Blending levels").
 
 use crate::color::Color16;
 use crate::terrain::march::Voxel;
