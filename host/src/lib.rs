@@ -13,6 +13,8 @@ pub mod cli;
 pub mod commands;
 pub mod console;
 pub mod experiment;
+pub mod firmware;
+pub mod flight_path;
 pub mod lighting;
 pub use footprint_maps as map;
 pub use footprint_maps::memory;

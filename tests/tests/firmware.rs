@@ -5,7 +5,7 @@
 //! `thumbv7em-none-eabihf`, runs it under `qemu-system-arm` (the runner of
 //! `firmware/.cargo/config.toml`, with a 120 s limit), and compares every line it prints,
 //! apart from the chip-only `#` lines (instruction counts, stack), with
-//! `footprint_host::experiment::firmware::reference_text()`, byte for byte: the frame
+//! `footprint_host::firmware::reference_text()`, byte for byte: the frame
 //! checksums, the cost counters and the constructors' error messages.
 //!
 //! It needs QEMU and the thumb target, so it is `#[ignore]`d: `cargo test --workspace` lists it
@@ -23,7 +23,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use footprint_core::Rgb;
-use footprint_host::experiment::firmware::{
+use footprint_host::firmware::{
     fnv1a64, image_hash, plate, plate_mode_name, reference_lines, reference_text, GLINT_NAME,
     PLATE_SIZE,
 };

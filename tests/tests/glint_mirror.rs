@@ -21,7 +21,7 @@ use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::sampler::Area;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
-use footprint_host::experiment::reference::box_columns;
+use footprint_host::truth::reference::box_columns;
 
 const WATER: Rgb = Rgb::new(20, 40, 90);
 const SIZE: u32 = 8;

@@ -4,7 +4,7 @@
 use anyhow::Result;
 use clap::Args;
 
-use crate::experiment::firmware;
+use crate::firmware;
 
 /// `footprint firmware-reference`.
 #[derive(Args, Debug)]

@@ -8,13 +8,13 @@ use footprint_core::Rgb;
 
 use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg, TruthSamplesArg};
 use crate::experiment::fly::{self, FlyMode, FlySpec};
-use crate::experiment::path::FlightPath;
-use crate::experiment::reference::REFERENCE_COLUMNS;
+use crate::flight_path::FlightPath;
 use crate::output::Folder;
 use crate::render::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
+use crate::truth::reference::REFERENCE_COLUMNS;
 use crate::view::{GeometryArg, MapArgs, OnOff, ProjectionArg, SurfaceArg};
 
 /// The modes of `--animation`, left to right.

@@ -5,7 +5,7 @@
 //! the reference: specular `reference` (every sample shaded with its own normal and view),
 //! exact area sampling (`as-exact`) at level 0 with several columns walked per pixel and
 //! box-filtered down to the image's width, as the colour ground truth is built
-//! ([`super::reference`]). Per method: the RMSE against the reference (8-bit levels, the mean
+//! ([`crate::truth::reference`]). Per method: the RMSE against the reference (8-bit levels, the mean
 //! over frames), Table 6's flicker bins (luminance changes between consecutive frames, in the
 //! middle column and summed over every column), the excess flicker over the reference's own,
 //! and the shading work per pixel; and Fig. 14's cut-in-time image of the middle column.
@@ -22,11 +22,11 @@ use serde::Serialize;
 
 use super::fly::{flight, large_changes, luminance, Histogram};
 use super::paper::paper_camera;
-use super::reference::{box_columns, rmse};
 use crate::lighting::{LoadedMaterials, MaterialArg, Method, AMBIENT_DIFFUSE};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{Mode, Tables};
+use crate::truth::reference::{box_columns, rmse};
 use crate::view::Size;
 
 /// The methods measured against the reference, in the order tables list them.

@@ -18,10 +18,10 @@ use footprint_scenes::view::Placement;
 use serde::Serialize;
 
 use super::paper::paper_camera_placed;
-use super::reference::rmse;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_parallel, Mode, Tables};
+use crate::truth::reference::rmse;
 use crate::view::Size;
 
 /// The pitch shifts tried, in pixels.

@@ -211,7 +211,7 @@ fn placed_camera(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiment::firmware;
+    use crate::firmware;
     use footprint_core::terrain::pyramid::HeightFilter;
 
     /// The firmware bakes `footprint_scenes::view::paper_camera`; the CLI places the same view

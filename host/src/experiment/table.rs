@@ -20,10 +20,10 @@ use footprint_core::terrain::Terrain;
 use serde::Serialize;
 
 use super::paper::{paper_view_placed, ViewPlacement};
-use super::reference::{psnr, rmse};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{count, render_timed, visible, Mode, Tables, SS_RATES};
+use crate::truth::reference::{psnr, rmse};
 use crate::truth::Truth;
 use crate::view::{Size, SurfaceArg};
 use footprint_scenes::view::Placement;

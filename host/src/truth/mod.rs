@@ -47,6 +47,7 @@ mod bilinear;
 mod camera;
 mod field;
 mod maxmip;
+pub mod reference;
 mod trace;
 
 use anyhow::{bail, Result};
@@ -127,7 +128,7 @@ impl<'m> Truth<'m> {
 
     /// The image of `camera`'s view in `projection`, `samples × samples` rays a pixel, `sky`
     /// where a ray meets nothing: row-major from the top (the layout of
-    /// [`crate::experiment::reference::reference`]).
+    /// [`crate::truth::reference::reference`]).
     ///
     /// Errors: `samples` outside `1..=`[`MAX_SAMPLES`], or a roll with the paper's projection.
     pub fn render(
@@ -205,7 +206,7 @@ impl<'m> Truth<'m> {
 
 /// The truth's image of `camera`'s view over the map of `pyramid` (its level 0 only), in
 /// `projection` on `surface`, `samples × samples` exact rays a pixel, `sky` where a ray meets
-/// nothing: row-major from the top, as [`crate::experiment::reference::reference`] (whose
+/// nothing: row-major from the top, as [`crate::truth::reference::reference`] (whose
 /// inputs it takes). Builds the max-height quadtree for the one image: for many views of one
 /// map, build a [`Truth`] once.
 ///

@@ -405,7 +405,7 @@ fn k_against_2k(map: &Map, surface: Surface, pitch: f64) -> f64 {
     let sky = Rgb::new(150, 190, 235);
     let a = t.render(&cam, sky, Projection::Paper, 4).unwrap();
     let b = t.render(&cam, sky, Projection::Paper, 8).unwrap();
-    crate::experiment::reference::rmse(&a, &b)
+    reference::rmse(&a, &b)
 }
 
 /// The truth at K = 4 and at 8 agree within [`K4_K8_RMSE`] levels on the built-in mountains

@@ -26,11 +26,11 @@ pub use mode::{FlyMode, ParseFlyModeError};
 
 use crate::experiment::causes::{classify, ClassFlicker, CLASSES};
 use crate::experiment::paper::paper_camera_placed;
-use crate::experiment::path::FlightPath;
-use crate::experiment::reference::{box_exact, rmse, supersampled, REFERENCE_COLUMNS};
+use crate::flight_path::FlightPath;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column_exact, Mode, Rate, Tables};
+use crate::truth::reference::{box_exact, rmse, supersampled, REFERENCE_COLUMNS};
 use crate::truth::{self, Truth};
 use crate::view::{Size, SurfaceArg};
 use footprint_scenes::view::Placement;

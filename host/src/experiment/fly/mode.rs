@@ -21,7 +21,7 @@ pub enum FlyMode {
     /// The judge before the truth, kept for comparison: exact area sampling (`as-exact`) walked
     /// by the core at level 0 with
     /// [`FlySpec::reference_columns`](super::FlySpec::reference_columns) columns per pixel
-    /// box-filtered to one ([`crate::experiment::reference`]). Measured against the truth like
+    /// box-filtered to one ([`crate::truth::reference`]). Measured against the truth like
     /// any mode.
     Reference,
 }
