@@ -78,7 +78,7 @@ where
 }
 
 /// Renders `frame` (either projection) sampled by `sampling` (a [`crate::Mode`], or one
-/// sampler type such as `ParallelArea`, which is all a firmware that renders one mode links),
+/// sampler type such as `PaperArea`, which is all a firmware that renders one mode links),
 /// counting with `cost`, into `buffer` in the display's own colour (the image's `W × H`
 /// pixels, row-major from the top: no [`Rgb`] image is needed), and draws it into `target`
 /// at its origin: [`Frame::render`], then one `fill_contiguous`. The pixels are the [`Rgb`]

@@ -34,8 +34,8 @@
 //!   multiresolution pyramid, in four sampling modes — point sampling
 //!   ([`terrain::sampler::Point`]), linear interpolation ([`terrain::sampler::Linear`]),
 //!   supersampling ([`terrain::sampler::Super`]) and area sampling, both as the paper's Fig. 12
-//!   writes it ([`terrain::sampler::ParallelArea`]) and with the exact ray through each voxel's
-//!   top ([`terrain::sampler::Area`]) — plus area sampling in both axes, the footprint between
+//!   writes it ([`terrain::sampler::PaperArea`]) and with the exact ray through each voxel's
+//!   top ([`terrain::sampler::ExactArea`]) — plus area sampling in both axes, the footprint between
 //!   the column's two planes as well as its two rays (`as2`, [`terrain::wedge::Wedge`]), and
 //!   the paper's cost model ([`terrain::cost`]). The
 //!   classic voxel-space renderer ([`terrain::classic`]) is the baseline they are measured
@@ -93,7 +93,7 @@
 //!
 //! ```
 //! use footprint_core::prelude::*;
-//! use footprint_core::terrain::sampler::Area;
+//! use footprint_core::terrain::sampler::ExactArea;
 //! let heights = [10u16; 16 * 16];
 //! let colors = [Rgb::new(40, 120, 40); 16 * 16];
 //! let terrain = Terrain::new(Level::new(16, 16, &heights, &colors)?, Scale::new(30.0, 0.1)?);
@@ -105,7 +105,7 @@
 //! let mut buffers: frame_buffers!(exact 16, 16) = FrameBuffers::new();
 //! let (frame, scratch) = buffers.frame(&camera, &terrain, exact)?;
 //! let mut image = [Rgb::BLACK; 64];
-//! frame.render(&terrain, &Area::new(), &mut NoCost, scratch, &mut image)?;
+//! frame.render(&terrain, &ExactArea::new(), &mut NoCost, scratch, &mut image)?;
 //! assert_eq!(image[63], Rgb::new(40, 120, 40));
 //! # Ok::<(), footprint_core::Error>(())
 //! ```

@@ -3,8 +3,8 @@
 //!
 //! The paper's modes: point sampling (Fig. 4, [`Point`]), linear interpolation (Eq. 4,
 //! [`Linear`]), supersampling at rate `N` (Fig. 8, [`Super`]), area sampling as the paper's
-//! Fig. 12 writes and costs it ([`ParallelArea`]) and with the exact ray through each voxel's
-//! top ([`Area`]); and the classic voxel-space renderer ([`classic`]), the baseline.
+//! Fig. 12 writes and costs it ([`PaperArea`]) and with the exact ray through each voxel's
+//! top ([`ExactArea`]); and the classic voxel-space renderer ([`classic`]), the baseline.
 //!
 //! A mode is a [`Sampling`]: [`Frame::render`] takes it, or one sampler. A firmware that
 //! renders one mode only links that mode's sampler when it hands [`Frame::render`] the sampler
@@ -23,9 +23,9 @@ use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
 use crate::terrain::image::{walk_rows, Sampling};
-use crate::terrain::sampler::{Area, Linear, ParallelArea, Point, Sampler, Super};
+use crate::terrain::sampler::{ExactArea, Linear, PaperArea, Point, Sampler, Super};
 use crate::terrain::surface::Smooth;
-use crate::terrain::wedge::{Wedge, WedgeOn};
+use crate::terrain::wedge::{SmoothWedge, Wedge};
 use crate::terrain::Terrain;
 
 /// A sampling mode: PS, LI, SS_N (N = 2, 4, …, 256), AS as the paper costs it (Fig. 12), the
@@ -120,11 +120,11 @@ macro_rules! with_sampler {
                 $body
             }
             Mode::As => {
-                let $s = ParallelArea::new();
+                let $s = PaperArea::new();
                 $body
             }
             Mode::AsExact => {
-                let $s = Area::new();
+                let $s = ExactArea::new();
                 $body
             }
             Mode::As2 => {
@@ -224,7 +224,7 @@ impl Mode {
 
 /// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), wrapped in
 /// [`Smooth`] when the frame's surface is continuous ([`Frame::surface`]; `as2` is then
-/// [`WedgeOn<true>`], which reads the surface itself); `classic` walks [`classic`]'s own walk,
+/// `SmoothWedge`, which reads the surface itself); `classic` walks [`classic`]'s own walk,
 /// on flat tops.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
@@ -261,7 +261,7 @@ impl Sampling for Mode {
         image: &mut [P],
     ) -> Result<(), Error> {
         if frame.surface() == Surface::Bilinear && *self == Mode::As2 {
-            WedgeOn::<true>::new().walk_image(frame, terrain, cost, image)
+            SmoothWedge::new().walk_image(frame, terrain, cost, image)
         } else if frame.surface() == Surface::Bilinear {
             with_sampler!(*self, s => Smooth::new(s).walk_image(frame, terrain, cost, image),
                 classic => classic::render(frame, terrain, cost, image))
@@ -286,7 +286,7 @@ impl Mode {
         [T]: ColumnOut,
     {
         if frame.surface() == Surface::Bilinear && self == Mode::As2 {
-            walk_rows(&WedgeOn::<true>::new(), frame, terrain, x, cost, out);
+            walk_rows(&SmoothWedge::new(), frame, terrain, x, cost, out);
         } else if frame.surface() == Surface::Bilinear {
             with_sampler!(self, s => walk_rows(&Smooth::new(s), frame, terrain, x, cost, out),
                 classic => classic::walk_into(frame, terrain, x, cost, out));

@@ -46,7 +46,7 @@ use footprint_core::prelude::*;
 use footprint_core::specular::raster::Target;
 use footprint_core::specular::{Light, Material, Normal, Phong};
 use footprint_core::terrain::baked::Baked;
-use footprint_core::terrain::sampler::{Area, ParallelArea, Point, Super};
+use footprint_core::terrain::sampler::{ExactArea, PaperArea, Point, Super};
 use footprint_core::terrain::wedge::Wedge;
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
@@ -133,7 +133,7 @@ fn run_display(
             &mut screen,
             frame,
             terrain,
-            &ParallelArea::new(),
+            &PaperArea::new(),
             &mut NoCost,
             &mut [],
             buffer,
@@ -188,7 +188,7 @@ fn run_glint(
     });
     let sun = sun?;
     let view = ([p.x_m, p.y_m, p.eye_m], camera.pixel_angle());
-    let sampler = ParallelArea::new();
+    let sampler = PaperArea::new();
     let (render, result) = instructions(|| {
         core_calls::render_lit(frame, terrain, &sampler, &sun, view, NoCost, image, lit)
     });
@@ -262,7 +262,7 @@ fn run_fan(
     let (tables, frame) = instructions(|| core_calls::frame_in(fan, &camera, terrain, options));
     let (frame, grid) = frame?;
     let (render, result) =
-        instructions(|| core_calls::walk(&frame, terrain, &ParallelArea::new(), &mut NoCost, grid));
+        instructions(|| core_calls::walk(&frame, terrain, &PaperArea::new(), &mut NoCost, grid));
     result?;
     let (resample, result) = instructions(|| core_calls::resample(&frame, grid, image));
     result?;
@@ -450,7 +450,7 @@ fn run_baked(frame: &Frame<'_>, terrain: &Terrain<'_>, image: &mut [Rgb]) -> Res
     core_calls::render(
         frame,
         terrain,
-        &ParallelArea::new(),
+        &PaperArea::new(),
         &mut NoCost,
         &mut [],
         image,
@@ -459,7 +459,7 @@ fn run_baked(frame: &Frame<'_>, terrain: &Terrain<'_>, image: &mut [Rgb]) -> Res
     core_calls::render(
         frame,
         &baked,
-        &ParallelArea::new(),
+        &PaperArea::new(),
         &mut NoCost,
         &mut [],
         image,
@@ -558,8 +558,8 @@ fn run() -> Result<bool, Error> {
     let image = &mut image[..];
     let ps = run_mode("ps", &Point, &frame, &terrain, tables, image)?;
     let ss8 = run_mode("ss8", &Super::<8>::new(), &frame, &terrain, tables, image)?;
-    let area = run_mode("as-exact", &Area::new(), &frame, &terrain, tables, image)?;
-    let paper = run_mode("as", &ParallelArea::new(), &frame, &terrain, tables, image)?;
+    let area = run_mode("as-exact", &ExactArea::new(), &frame, &terrain, tables, image)?;
+    let paper = run_mode("as", &PaperArea::new(), &frame, &terrain, tables, image)?;
     ok &= run_baked(&frame, &terrain, image)?;
     ok &= run_display(&frame, &terrain, image, display.pixels)?;
     // After the display, which compares against the `as` image.

@@ -18,7 +18,7 @@ use footprint_core::Mode;
 use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::pyramid::{self, HeightFilter};
-use footprint_core::terrain::sampler::{Area, Point};
+use footprint_core::terrain::sampler::{ExactArea, Point};
 use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale};
 use footprint_core::Rgb;
@@ -209,7 +209,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         let done = if input.mode % 2 == 0 {
             frame.render(
                 &terrain,
-                &Area::new(),
+                &ExactArea::new(),
                 &mut shader,
                 &mut scratch,
                 &mut image,

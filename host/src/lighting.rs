@@ -8,7 +8,7 @@ use std::str::FromStr;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use footprint_core::lit::{Materials, Specular, Sun, Surface};
+use footprint_core::lit::{Materials, Specular, Sun};
 use footprint_core::specular::{Clamp, Phong, Power};
 use footprint_core::terrain::Terrain;
 
@@ -150,7 +150,7 @@ pub enum LoadedMaterials {
     /// A built-in set.
     Builtin(Materials<'static>),
     /// One surface per level-0 voxel.
-    Map(Vec<Surface>),
+    Map(Vec<Phong>),
 }
 
 impl LoadedMaterials {
@@ -176,7 +176,7 @@ impl LoadedMaterials {
 pub use footprint_core::lit::AMBIENT_DIFFUSE;
 
 /// The surfaces of a `--material` PNG, loaded for a `width × height` map.
-pub fn load_materials(path: &std::path::Path, width: u32, height: u32) -> Result<Vec<Surface>> {
+pub fn load_materials(path: &std::path::Path, width: u32, height: u32) -> Result<Vec<Phong>> {
     let colors = footprint_maps::png::load_color_map(path, &[], width, height, "the map")
         .with_context(|| format!("--material {}", path.display()))?;
     colors

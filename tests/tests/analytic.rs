@@ -19,7 +19,7 @@ use footprint_core::terrain::cost::{Counts, NoCost, Tally};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::March;
 use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_core::terrain::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::sampler::{ExactArea, Linear, Point, Sampler, Super};
 use footprint_core::terrain::visibility;
 use footprint_core::terrain::Axis;
 use footprint_core::terrain::{mirror, next_size, Level, Scale, Terrain, MAX_SIDE};
@@ -65,7 +65,7 @@ fn f(h: Height) -> f64 {
 // References
 // ---------------------------------------------------------------------------------------------
 
-/// Exact area sampling of one column in f64, independently of `sampler::Area`.
+/// Exact area sampling of one column in f64, independently of `sampler::ExactArea`.
 ///
 /// Every voxel `k` of the march (within the far distance) has a top slope from the eye
 /// `σ_k = (top_k − eye)/(n_k − n_eye)`. It is visible over the slope interval
@@ -74,7 +74,7 @@ fn f(h: Height) -> f64 {
 /// each pixel's colour as 8.8 per channel in f64 (before rounding to 8 bits).
 fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[f64; 3]> {
     // The sequence area sampling walks.
-    let switch = <Area as Sampler>::SWITCH;
+    let switch = <ExactArea as Sampler>::SWITCH;
     let column = frame.column(col).expect("a column of the frame");
     let h = frame.height();
     let eye = f(frame.eye());
@@ -193,7 +193,7 @@ fn ss_reference(
 /// updates the worst error.
 fn check_area(frame: &Frame<'_>, terrain: &Terrain<'_>, ctx: &str, worst: &mut f64) -> usize {
     let mut checked = 0;
-    let image = render_columns(frame, terrain, &Area::new(), &mut NoCost);
+    let image = render_columns(frame, terrain, &ExactArea::new(), &mut NoCost);
     for (c, got) in image.iter().enumerate() {
         let want = area_reference(frame, terrain, c);
         for (i, (g, w)) in got.iter().zip(&want).enumerate() {
@@ -422,7 +422,7 @@ fn vertical_coherence_equals_restarting_every_ray() {
     let mut failures = Vec::new();
     failures.extend(coherence_all_scenes(Point, "PS"));
     failures.extend(coherence_all_scenes(Linear, "LI"));
-    failures.extend(coherence_all_scenes(Area::new(), "AS"));
+    failures.extend(coherence_all_scenes(ExactArea::new(), "AS"));
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -490,7 +490,7 @@ fn as_counters(map: &Map, pose: Pose, pitch: f64, lod: bool, exact: bool) {
         let w = frame.width();
         let mut tallies = vec![Tally::default(); w];
         let mut counts = Counts::new(&mut tallies);
-        render_columns(frame, &terrain, &Area::new(), &mut counts);
+        render_columns(frame, &terrain, &ExactArea::new(), &mut counts);
         let t = counts.total;
         let ctx = format!(
             "AS {} heading {} pitch {pitch} lod {lod}: {t:?}",
@@ -596,7 +596,7 @@ fn area_sampling_covers_every_visible_voxel() {
         for pitch in PITCHES {
             for lod in [false, true] {
                 let ctx = format!("{} pitch {pitch} lod {lod}", map.name);
-                let (t, cols) = coverage(&map, pitch, lod, &Area::new());
+                let (t, cols) = coverage(&map, pitch, lod, &ExactArea::new());
                 assert!(t.v > 0, "{ctx}: something is visible");
                 assert_eq!(t.m, t.v, "{ctx}: AS coverage M′/V == 1: {t:?}");
                 assert_eq!(t.coverage(), 1.0, "{ctx}");
@@ -610,7 +610,7 @@ fn area_sampling_covers_every_visible_voxel() {
                 ] {
                     // V depends on the sequence walked, not on the sampler: on level 0 the
                     // sequences are the same; with LOD the point modes climb earlier.
-                    if !lod || Point::SWITCH == Area::SWITCH {
+                    if !lod || Point::SWITCH == ExactArea::SWITCH {
                         assert_eq!(pt.v, t.v, "{ctx}: V does not depend on the sampler");
                     }
                     for (c, ct) in pcols.iter().enumerate() {
@@ -963,10 +963,10 @@ fn walk_reads_mirrored_terrain() {
             let b = camera_far(shifted, pitch, 16, 20.0);
             for lod in [false, true] {
                 let ia = with_frame(&a, &ts, lod, |f| {
-                    render_columns(f, &ts, &Area::new(), &mut NoCost)
+                    render_columns(f, &ts, &ExactArea::new(), &mut NoCost)
                 });
                 let ib = with_frame(&b, &tt, lod, |f| {
-                    render_columns(f, &tt, &Area::new(), &mut NoCost)
+                    render_columns(f, &tt, &ExactArea::new(), &mut NoCost)
                 });
                 assert!(ia.iter().flatten().any(|&p| p != SKY));
                 assert_eq!(ia, ib, "heading {heading} pitch {pitch} lod {lod}");
@@ -1484,7 +1484,7 @@ fn extreme_valid_inputs_do_not_panic() {
             )
             .unwrap();
         frame
-            .render(terrain, &Area::new(), &mut counts, &mut [], &mut image)
+            .render(terrain, &ExactArea::new(), &mut counts, &mut [], &mut image)
             .unwrap();
         for switch in Switch::ALL {
             visibility::count_visible(frame, terrain, switch, &mut counts);
@@ -1516,7 +1516,7 @@ fn extreme_valid_inputs_do_not_panic() {
     // Odd walk arguments.
     let camera = Camera::new(params()).unwrap();
     with_frame(&camera, &terrain, true, |frame| {
-        let full = render_columns(frame, &terrain, &Area::new(), &mut NoCost);
+        let full = render_columns(frame, &terrain, &ExactArea::new(), &mut NoCost);
         let mut out = [SKY; 2];
         // A short output: the first two rows, as in the full walk.
         column::walk(
@@ -1524,7 +1524,7 @@ fn extreme_valid_inputs_do_not_panic() {
             &terrain,
             1,
             0..4,
-            &mut Area::new(),
+            &mut ExactArea::new(),
             &mut NoCost,
             &mut out,
         );
@@ -1567,11 +1567,11 @@ fn extreme_valid_inputs_do_not_panic() {
             &terrain,
             3,
             2..9,
-            &mut Area::new(),
+            &mut ExactArea::new(),
             &mut NoCost,
             &mut part,
         );
-        let want = render_columns(frame, &terrain, &Area::new(), &mut NoCost);
+        let want = render_columns(frame, &terrain, &ExactArea::new(), &mut NoCost);
         // Starting at row 2 restarts from the eye, which for AS equals the coherent walk.
         assert_eq!(part[..2], want[3][2..4]);
         assert_eq!(part[2..], [Rgb::new(7, 7, 7); 5]);
@@ -1661,7 +1661,7 @@ fn analytic_scenes_look_as_designed() {
         let (ps, area) = with_frame(&cam, &t, false, |f| {
             (
                 render_columns(f, &t, &Point, &mut NoCost),
-                render_columns(f, &t, &Area::new(), &mut NoCost),
+                render_columns(f, &t, &ExactArea::new(), &mut NoCost),
             )
         });
         let bw = |p: &Rgb| p.r == p.g && p.g == p.b && (p.r == 0 || p.r == 255);

@@ -27,7 +27,7 @@ use footprint_core::num::Height;
 use footprint_core::prelude::*;
 use footprint_core::terrain::camera::Switch;
 use footprint_core::terrain::horizons::Horizons;
-use footprint_core::terrain::sampler::{Area, Hit, ParallelArea, Pixel, Point, Ray, Sampler};
+use footprint_core::terrain::sampler::{ExactArea, Hit, PaperArea, Pixel, Point, Ray, Sampler};
 use footprint_core::terrain::wedge::Wedge;
 use footprint_core::terrain::Voxel;
 
@@ -182,7 +182,7 @@ fn as2_is_the_area_of_the_footprint_in_both_axes() {
     let terrain = map.terrain();
     let camera = Camera::new(params(200.25)).unwrap();
     let (wide, n) = rmse(&map, &camera, &render(&terrain, &camera, &Wedge::new()));
-    let (line, _) = rmse(&map, &camera, &render(&terrain, &camera, &Area::new()));
+    let (line, _) = rmse(&map, &camera, &render(&terrain, &camera, &ExactArea::new()));
     println!(
         "RMS from the footprints' integral over {n} pixels: as2 {wide:.2}, as-exact {line:.2}"
     );
@@ -260,14 +260,11 @@ fn a_flight_over_stripes_flickers_across_columns_in_ps_as_and_as_exact_not_in_as
         ),
         (
             "as",
-            false_changes(
-                &frames(&|c| render(&terrain, c, &ParallelArea::new())),
-                &truth,
-            ),
+            false_changes(&frames(&|c| render(&terrain, c, &PaperArea::new())), &truth),
         ),
         (
             "as-exact",
-            false_changes(&frames(&|c| render(&terrain, c, &Area::new())), &truth),
+            false_changes(&frames(&|c| render(&terrain, c, &ExactArea::new())), &truth),
         ),
     ] {
         assert!(line > 1000, "{name} flickers across columns: {line}");
@@ -322,7 +319,7 @@ fn the_level_changes_continuously_in_a_slow_zoom() {
     };
     let zoom = |s: &dyn Fn(&Camera, &Terrain<'_>) -> Vec<Rgb>| flight(&|c| s(c, &terrain));
     let wide = largest_step(&zoom(&|c, t| render16(t, c, &Wedge::new())));
-    let line = largest_step(&zoom(&|c, t| render16(t, c, &Area::new())));
+    let line = largest_step(&zoom(&|c, t| render16(t, c, &ExactArea::new())));
     println!("largest step in the zoom: as2 {wide}, as-exact {line}");
     assert!(
         wide <= ZOOM_STEP,
@@ -434,7 +431,7 @@ fn as2_sees_a_ridge_across_the_column_planes() {
     .unwrap();
     let rmse_of = |image: &[Rgb]| rms_from(image, |c, i| traced(&map, &camera, c, i));
     let (wide, n) = rmse_of(&render(&terrain, &camera, &Wedge::new()));
-    let (line, _) = rmse_of(&render(&terrain, &camera, &Area::new()));
+    let (line, _) = rmse_of(&render(&terrain, &camera, &ExactArea::new()));
     println!(
         "RMS from the ridge's traced footprints over {n} pixels: as2 {wide:.2}, as-exact {line:.2}"
     );
@@ -505,8 +502,8 @@ fn as2_is_the_area_of_a_checkerboard_at_grazing_angles() {
         .collect();
     let rmse_of = |image: &[Rgb]| rms_from(image, |c, i| truth[i * SIZE as usize + c]);
     let (wide, n) = rmse_of(&render(&terrain, &camera, &Wedge::new()));
-    let (line, _) = rmse_of(&render(&terrain, &camera, &Area::new()));
-    let (paper, _) = rmse_of(&render(&terrain, &camera, &ParallelArea::new()));
+    let (line, _) = rmse_of(&render(&terrain, &camera, &ExactArea::new()));
+    let (paper, _) = rmse_of(&render(&terrain, &camera, &PaperArea::new()));
     let (point, _) = rmse_of(&render(&terrain, &camera, &Point));
     println!(
         "RMS from the checkerboard's footprint integrals over {n} pixels: as2 {wide:.2}, \
@@ -530,7 +527,7 @@ fn as2_is_the_area_of_a_checkerboard_at_grazing_angles() {
 }
 
 /// `as-exact` through one lane of `as2`'s horizons: the voxel's own height and Eq. 4's colour
-/// on the centre line, as [`Area`] samples them, but each hit weighed by
+/// on the centre line, as [`ExactArea`] samples them, but each hit weighed by
 /// [`Horizons::sample`], and what a hit sees above the pixel carried into the next one instead of
 /// hit again.
 #[derive(Clone, Copy, Debug, Default)]
@@ -561,7 +558,7 @@ impl Sampler for OneLane {
 }
 
 /// One lane is `as-exact`, pixel for pixel: the horizons' weights, their carry from one pixel
-/// into the next and the walk's ray they set are [`Area`]'s, in both projections, with the
+/// into the next and the walk's ray they set are [`ExactArea`]'s, in both projections, with the
 /// pyramid and without, over the stripes, the ridge, the checkerboard and the built-in
 /// terrain's kind of random map.
 #[test]
@@ -603,7 +600,7 @@ fn one_lane_of_the_horizons_is_as_exact_pixel_for_pixel() {
                     .unwrap();
                 let mut area = vec![Rgb::BLACK; (SIZE * SIZE) as usize];
                 frame
-                    .render(&terrain, &Area::new(), &mut NoCost, scratch, &mut area)
+                    .render(&terrain, &ExactArea::new(), &mut NoCost, scratch, &mut area)
                     .unwrap();
                 assert!(
                     lane == area,

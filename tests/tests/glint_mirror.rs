@@ -18,7 +18,7 @@ use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
 use footprint_core::terrain::cost::Counts;
 use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::sampler::Area;
+use footprint_core::terrain::sampler::ExactArea;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
 use footprint_host::truth::reference::box_columns;
@@ -106,7 +106,7 @@ fn image(
     )
     .expect("a shader");
     frame
-        .render(terrain, &Area::new(), &mut shader, &mut [], &mut grid)
+        .render(terrain, &ExactArea::new(), &mut shader, &mut [], &mut grid)
         .expect("sized");
     // The shader's grid (the walk's layout) as the image.
     let mut lit = vec![SKY; w * h];

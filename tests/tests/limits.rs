@@ -8,7 +8,7 @@ use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
 
 use footprint_core::terrain::cost::{Counts, Tally};
 use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::sampler::{Area, Linear, Point, Sampler, Super};
+use footprint_core::terrain::sampler::{ExactArea, Linear, Point, Sampler, Super};
 use footprint_core::terrain::visibility::count_visible;
 use footprint_core::terrain::{Level, Scale, Terrain, MAX_SIDE};
 use footprint_core::Rgb;
@@ -40,7 +40,7 @@ fn all_modes(terrain: &Terrain<'_>, camera: &Camera) -> (Vec<Rgb>, Vec<Rgb>) {
     draw(terrain, camera, &Linear);
     draw(terrain, camera, &Super::<2>::new());
     draw(terrain, camera, &Super::<256>::new());
-    let (area, t) = draw(terrain, camera, &Area::new());
+    let (area, t) = draw(terrain, camera, &ExactArea::new());
     assert_eq!(t.m, t.v, "AS covers every visible voxel");
     (ps, area)
 }
@@ -210,7 +210,7 @@ fn rays_at_the_height_of_a_flat_map_end_at_once() {
         far_m: 65_536_000.0,
     })
     .unwrap();
-    let (image, t) = draw(&terrain, &camera, &Area::new());
+    let (image, t) = draw(&terrain, &camera, &ExactArea::new());
     assert_eq!((t.a, t.hits, t.v), (0, 0, 0), "{t:?}");
     assert!(image.iter().all(|&p| p == SKY));
 }
@@ -260,7 +260,7 @@ fn pixels_of_zero_height_still_sample_every_visible_voxel() {
     draw(&terrain, &camera, &Point);
     draw(&terrain, &camera, &Linear);
     draw(&terrain, &camera, &Super::<256>::new());
-    let (_, t) = draw(&terrain, &camera, &Area::new());
+    let (_, t) = draw(&terrain, &camera, &ExactArea::new());
     assert!(t.v > 0 && t.m >= t.v, "every visible voxel sampled: {t:?}");
     assert!(
         t.m > t.v,

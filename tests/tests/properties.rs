@@ -26,7 +26,7 @@ use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::march::Voxel;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::terrain::sampler::{
-    Area, Hit, Linear, ParallelArea, Pixel, Point, Ray, Sampler, Super,
+    ExactArea, Hit, Linear, PaperArea, Pixel, Point, Ray, Sampler, Super,
 };
 use footprint_core::terrain::visibility::{count_visible, visit, visit_visible};
 use footprint_core::terrain::{Level, Scale, Terrain};
@@ -457,10 +457,10 @@ proptest! {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
             let (w, h) = (frame.width(), frame.height());
             let mut r = Ranges::new(w, h);
-            let img = columns(frame, terrain, &Area::new(), &mut r);
+            let img = columns(frame, terrain, &ExactArea::new(), &mut r);
             r.check(&img, "AS")?;
             let mut r = Ranges::new(w, h);
-            let img = columns(frame, terrain, &ParallelArea::new(), &mut r);
+            let img = columns(frame, terrain, &PaperArea::new(), &mut r);
             r.check(&img, "AS (paper)")?;
             let mut r = Ranges::new(w, h);
             let img = columns(frame, terrain, &Linear, &mut r);
@@ -473,7 +473,7 @@ proptest! {
     #[test]
     fn area_sampling_covers_every_visible_voxel(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
-            let (t, cols, _) = tallies(frame, terrain, &Area::new());
+            let (t, cols, _) = tallies(frame, terrain, &ExactArea::new());
             prop_assert_eq!(t.m, t.v, "{:?}", t);
             prop_assert_eq!(t.coverage(), 1.0);
             for (c, ct) in cols.iter().enumerate() {
@@ -529,11 +529,11 @@ proptest! {
                 "SS8"
             );
             prop_assert_eq!(
-                image(frame, terrain, &ParallelArea::new()),
-                image(frame, &stepping, &ParallelArea::new()),
+                image(frame, terrain, &PaperArea::new()),
+                image(frame, &stepping, &PaperArea::new()),
                 "AS (paper)"
             );
-            prop_assert_eq!(image(frame, terrain, &Area::new()), image(frame, &stepping, &Area::new()), "AS");
+            prop_assert_eq!(image(frame, terrain, &ExactArea::new()), image(frame, &stepping, &ExactArea::new()), "AS");
             Ok(())
         })
         .unwrap_or(Ok(()))?;
@@ -556,8 +556,8 @@ proptest! {
                 "SS2"
             );
             prop_assert_eq!(
-                image(frame, terrain, &ParallelArea::new()),
-                image(frame, terrain, &Fresh(ParallelArea::new())),
+                image(frame, terrain, &PaperArea::new()),
+                image(frame, terrain, &Fresh(PaperArea::new())),
                 "AS (paper)"
             );
             Ok(())
@@ -572,7 +572,7 @@ proptest! {
     fn parallel_area_weights_sum_to_the_pixel_span(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
             let mut spans = Spans::default();
-            columns(frame, terrain, &ParallelArea::new(), &mut spans);
+            columns(frame, terrain, &PaperArea::new(), &mut spans);
             for &(c, i, n, sum) in &spans.pixels {
                 let column = frame.column(c).expect("a column of the frame");
                 let span = (frame.ray(column, i + 1).at(n) - frame.ray(column, i).at(n))
@@ -599,9 +599,9 @@ proptest! {
             check_super(&t, &cols, 2, "SS2")?;
             let (t, cols, _) = tallies(frame, terrain, &Super::<16>::new());
             check_super(&t, &cols, 16, "SS16")?;
-            let (t, cols, _) = tallies(frame, terrain, &ParallelArea::new());
+            let (t, cols, _) = tallies(frame, terrain, &PaperArea::new());
             check_parallel_area(&t, &cols)?;
-            let (t, cols, _) = tallies(frame, terrain, &Area::new());
+            let (t, cols, _) = tallies(frame, terrain, &ExactArea::new());
             check_area(&t, &cols, w)
         })
         .unwrap_or(Ok(()))?;
@@ -617,7 +617,7 @@ proptest! {
                 image(frame, terrain, &Linear),
                 image(frame, terrain, &Super::<4>::new()),
                 image(frame, terrain, &Super::<256>::new()),
-                image(frame, terrain, &Area::new()),
+                image(frame, terrain, &ExactArea::new()),
             ]
         });
         // A second, independent run: a new pyramid, new tables, new samplers.
@@ -627,15 +627,15 @@ proptest! {
                 image(frame, terrain, &Linear),
                 image(frame, terrain, &Super::<4>::new()),
                 image(frame, terrain, &Super::<256>::new()),
-                image(frame, terrain, &Area::new()),
+                image(frame, terrain, &ExactArea::new()),
             ]
         });
         prop_assert_eq!(first, second);
         // The column walk agrees with the whole-frame render.
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
             let (w, h) = (frame.width(), frame.height());
-            let cols = columns(frame, terrain, &Area::new(), &mut NoCost);
-            let img = image(frame, terrain, &Area::new());
+            let cols = columns(frame, terrain, &ExactArea::new(), &mut NoCost);
+            let img = image(frame, terrain, &ExactArea::new());
             for (x, col) in cols.iter().enumerate() {
                 for (i, px) in col.iter().enumerate() {
                     let at = ((h - 1 - i) * w + x) * 3;
@@ -711,8 +711,8 @@ fn every_mode_draws_the_pinned_images_on_random_terrains() {
                 pin("li", tallies(frame, terrain, &Linear)),
                 pin("ss2", tallies(frame, terrain, &Super::<2>::new())),
                 pin("ss16", tallies(frame, terrain, &Super::<16>::new())),
-                pin("as", tallies(frame, terrain, &Area::new())),
-                pin("as-paper", tallies(frame, terrain, &ParallelArea::new())),
+                pin("as", tallies(frame, terrain, &ExactArea::new())),
+                pin("as-paper", tallies(frame, terrain, &PaperArea::new())),
             ]
         });
         match frames {

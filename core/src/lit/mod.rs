@@ -3,7 +3,7 @@
 //!
 //! The terrain is lit by a distant sun: each sample a mode takes is shaded with a diffuse term
 //! and a Phong highlight `K_spec·cos^n α` (Amanatides' "Detecting Specular Aliasing"), with
-//! `K_spec` and `n` from the voxel's [`Surface`]. Shading listens to the one walk: a [`SunShader`]
+//! `K_spec` and `n` from the voxel's [`Phong`]. Shading listens to the one walk: a [`SunShader`]
 //! is a [`Cost`] that sees every sample the sampler takes with its weight (Sect. 4: one per
 //! PS/LI hit, one per `SS_N` sub-ray, the visible height of every visible voxel for AS), lights
 //! it, and writes its own image. Without a sun nothing of this runs, and every image is the
@@ -83,28 +83,25 @@ pub enum Specular {
     Reference,
 }
 
-/// The specular material of a voxel: Phong's `n` and `K_spec`.
-pub type Surface = Phong;
-
-/// Where each voxel's [`Surface`] comes from.
+/// Where each voxel's specular material comes from: its [`Phong`] `n` and `K_spec`.
 #[derive(Clone, Copy, Debug)]
 pub enum Materials<'a> {
     /// Water where the voxel's colour is water-coloured (blue above red and green) or the
     /// voxel is flat at the map's lowest height; rock elsewhere.
     ByColor {
         /// The water's surface.
-        water: Surface,
+        water: Phong,
         /// The rock's surface.
-        rock: Surface,
+        rock: Phong,
     },
     /// One surface per level-0 voxel, row-major over the map; a coarser voxel takes the
     /// surface of its first level-0 voxel.
-    Map(&'a [Surface]),
+    Map(&'a [Phong]),
 }
 
 impl Materials<'_> {
     /// Water: `n = 1024`, `K_spec = 0.9` (a low sun's glint).
-    pub fn water() -> Surface {
+    pub fn water() -> Phong {
         Phong::from_parts(1024, U2F30::from_bits(966_367_642))
     }
 
@@ -230,7 +227,7 @@ impl<'a> Sun<'a> {
 struct Lit {
     normal: Normal,
     view: Normal,
-    surface: Surface,
+    surface: Phong,
     /// `ambient + diffuse·max(N·L, 0)`, Q15.
     light: i64,
     /// Six times the normal's mean squared turn within the voxel (`(turn_x² + turn_y²)/2`),
@@ -291,7 +288,7 @@ struct Lobe {
 }
 
 /// The largest weight a sample enters a pixel with: the samplers' weights are far below it
-/// (`ParallelArea` keeps `Σw < 2^24`, `SS_N` gives `2^24` per sub-ray), and with every value
+/// (`PaperArea` keeps `Σw < 2^24`, `SS_N` gives `2^24` per sub-ray), and with every value
 /// at most 2^30 each product `w·x` is at most 2^62, exact without an overflow check.
 const MAX_WEIGHT: i64 = 1 << 32;
 

@@ -4,7 +4,7 @@
 //! equal width across. Each lane has a ray of its own, its *horizon*: the ray from the eye
 //! through the highest top it has seen (Fig. 12's "start traversing from the voxel's top",
 //! lane by lane). A step raises only the lanes whose own cross-section rises above their own
-//! ray, and weighs each by the angle it adds there, as [`Area`] weighs a hit: so a thin ridge
+//! ray, and weighs each by the angle it adds there, as [`ExactArea`] weighs a hit: so a thin ridge
 //! that fills one lane hides what lies behind it in that lane only, and the other lanes go on
 //! to see the ground behind it.
 //!
@@ -14,14 +14,14 @@
 //!
 //! A lane may pass `R_{i+1}` well before the others (a ridge that fills it): what it saw above
 //! `R_{i+1}` is *carried* into the next pixel. One hit carried is exact: its top and colour
-//! are kept, and the next pixel weighs it as [`Area`] weighs a voxel that goes on into the next
+//! are kept, and the next pixel weighs it as [`ExactArea`] weighs a voxel that goes on into the next
 //! pixel. Two or more hits above `R_{i+1}` are carried as their weighted sum, and shared out
 //! among the pixels above in proportion to the angle each takes: that is the approximation.
 //! Where the walk ends (the far distance, or nothing left to hit), the sky fills each open
 //! lane from its ray up, and what the others carry goes on into the pixels above, each filled
 //! with the sky above what it holds ([`Horizons::sky`], [`Horizons::carries`]).
 //!
-//! With `K = 1` the one lane is [`Area`] itself, hit for hit (the same weights, so the same
+//! With `K = 1` the one lane is [`ExactArea`] itself, hit for hit (the same weights, so the same
 //! image: tested).
 
 use crate::color::{to_color16, Color16, Color32, Rgb};
@@ -30,7 +30,7 @@ use crate::num::{Eye, Height, Line, Slope, Weight};
 use crate::terrain::cost::Cost;
 use crate::terrain::march::Voxel;
 use crate::terrain::ray::Ray;
-use crate::terrain::sampler::{Area, Pixel, Sampler};
+use crate::terrain::sampler::{ExactArea, Pixel, Sampler};
 
 /// One lane's ray and what it carries.
 #[derive(Clone, Copy, Debug)]
@@ -42,7 +42,7 @@ struct Lane {
     /// Its slope.
     slope: Slope,
     /// Whether `(n, h)` is a hit's top, through which the ray passes exactly (the rounded ray
-    /// then lies at most `n′ − n` units in the last place below it, [`Area`]'s re-check).
+    /// then lies at most `n′ − n` units in the last place below it, [`ExactArea`]'s re-check).
     top: bool,
     /// Whether it has reached the pixel's upper ray.
     reached: bool,
@@ -68,14 +68,14 @@ impl Lane {
     };
 
     /// Whether `top` above the voxel centred at `n`, above the lane's rounded ray (the caller
-    /// has tested), is above its exact ray ([`Eye::above_rounded_ray`], [`Area`]'s re-check).
+    /// has tested), is above its exact ray ([`Eye::above_rounded_ray`], [`ExactArea`]'s re-check).
     #[inline(always)]
     fn passes(&self, eye: &Eye, n: i64, top: Height) -> bool {
         !self.top || eye.above_rounded_ray((self.n, self.h), self.at(n), n, top)
     }
 
     /// The lane, open, sees `top` (coloured `color`) above the voxel centred at `n`, past its
-    /// ray: its weight in the pixel below `upper` (the visible angle from the eye, as [`Area`]
+    /// ray: its weight in the pixel below `upper` (the visible angle from the eye, as [`ExactArea`]
     /// weighs a hit), and its ray raised through the top. A top at or above `upper` fills the
     /// lane's part of the pixel (H′ = H(R_{i+1})) and the lane carries what lies above it.
     #[inline(always)]
@@ -117,8 +117,8 @@ impl Lane {
 /// The `K` lanes of a wedge and the pixel's sums (see the module docs).
 #[derive(Clone, Copy, Debug)]
 pub struct Horizons<const K: usize> {
-    /// The pixel's sums, rays and eye ([`Area`]'s accumulator).
-    area: Area,
+    /// The pixel's sums, rays and eye ([`ExactArea`]'s accumulator).
+    area: ExactArea,
     lanes: [Lane; K],
     /// Whether a pixel of the column has begun (the first one starts every lane at `R_0`).
     started: bool,
@@ -136,7 +136,7 @@ impl<const K: usize> Horizons<K> {
     /// Fresh lanes, for a new column.
     pub const fn new() -> Self {
         Self {
-            area: Area::new(),
+            area: ExactArea::new(),
             lanes: [Lane::NEW; K],
             started: false,
             last: [0; 3],
@@ -169,7 +169,7 @@ impl<const K: usize> Horizons<K> {
             self.area.see();
             match lane.merged {
                 None => {
-                    // One hit carried: as `Area` weighs the voxel that goes on into this pixel.
+                    // One hit carried: as `ExactArea` weighs the voxel that goes on into this pixel.
                     if lane.h >= upper.at(lane.n) {
                         self.area
                             .accumulate(upper.slope.saturating_sub(lower), lane.color, cost);

@@ -349,7 +349,7 @@ impl<const N: u32> Sampler for Super<N> {
 /// per hit that does not finish the pixel ([`Cost::top_division`]); it is rounded down, and a
 /// hit that the rounding alone lets through is re-checked exactly and rejected.
 #[derive(Clone, Copy, Debug)]
-pub struct Area {
+pub struct ExactArea {
     upper: Line,
     eye: Eye,
     sum: [i64; 3],
@@ -358,13 +358,13 @@ pub struct Area {
     seen: bool,
 }
 
-impl Default for Area {
+impl Default for ExactArea {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl Area {
+impl ExactArea {
     /// A fresh area sampler.
     pub const fn new() -> Self {
         Self {
@@ -428,7 +428,7 @@ impl Area {
         self.upper
     }
 
-    /// `Σc/Σw` of the pixel [`Area::finish`] finished, unrounded ([`Sampler::exact`]); `None`
+    /// `Σc/Σw` of the pixel [`ExactArea::finish`] finished, unrounded ([`Sampler::exact`]); `None`
     /// with no weight (the pixel took its fallback colour).
     #[inline(always)]
     pub(crate) fn exact_color(&self) -> Option<Color32> {
@@ -464,7 +464,7 @@ impl Area {
     }
 }
 
-impl Sampler for Area {
+impl Sampler for ExactArea {
     const SWITCH: Switch = Switch::Late;
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
@@ -495,7 +495,7 @@ impl Sampler for Area {
     }
 }
 
-impl Area {
+impl ExactArea {
     /// The hit on `voxel` of height `top` above the ray (Fig. 12, perspective-exact), coloured
     /// by `color` (Eq. 4's, or what a wider sampler integrates): the exact re-check of a hit the
     /// rounded ray let through, the weight in visible angle, and the ray through the top.
@@ -545,7 +545,7 @@ impl Area {
 /// `H(R_{i+1}) − H(R_i)` is measured once, at the voxel of the pixel's first hit, so the
 /// weights of a pixel sum to that span (or the sky takes the rest). Because the rays are
 /// parallel rather than fanned from the eye, the sampler can sample a voxel hidden from the
-/// eye or miss a visible one: its coverage `M′/V` is measured, not 1 ([`Area`] is exact).
+/// eye or miss a visible one: its coverage `M′/V` is measured, not 1 ([`ExactArea`] is exact).
 ///
 /// **Ranges.** Weights are quantized to the span's top 16 bits (the span is shifted right by
 /// `s` until it is below 2^16, once per pixel), and each weight is the difference of two
@@ -553,7 +553,7 @@ impl Area {
 /// span. With 8.8 colours below 2^16, every channel's `Σ W·c` stays below 2^32: the per-hit
 /// work is 32-bit (three multiply-adds), and the pixel's three divisions are 32-bit.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct ParallelArea {
+pub struct PaperArea {
     /// `R_{i+1}`: its height at the pixel's first hit, less the ray's, is the pixel's span.
     upper: Line,
     /// How far up the span the ray has been raised (raw), 0 at the pixel's first hit.
@@ -573,7 +573,7 @@ pub struct ParallelArea {
     last: Color16,
 }
 
-impl ParallelArea {
+impl PaperArea {
     /// A fresh sampler.
     pub const fn new() -> Self {
         Self {
@@ -707,7 +707,7 @@ impl ParallelArea {
     }
 }
 
-impl Sampler for ParallelArea {
+impl Sampler for PaperArea {
     const SWITCH: Switch = Switch::Late;
     /// The ray resumes at the voxel's top with the pixel's slope (the parallel-ray assumption).
     const KEEPS_SLOPE: bool = true;

@@ -21,7 +21,7 @@
 //!   it is no hit, without computing the mean.
 //!
 //! Along the column each lane weighs its hit as `as-exact` weighs one
-//! ([`crate::terrain::sampler::Area`]: the visible angle from the eye, the lane's next ray
+//! ([`crate::terrain::sampler::ExactArea`]: the visible angle from the eye, the lane's next ray
 //! through the mean top), and the pixel is the mean of its lanes. Where the interval is a point
 //! (at the eye) every lane's step is exactly `as-exact`'s.
 //!
@@ -116,6 +116,9 @@ pub struct WedgeOn<const SMOOTH: bool> {
 
 /// `as2` on the flat tops, the paper's voxels.
 pub type Wedge = WedgeOn<false>;
+
+/// `as2` on the continuous surface (`--surface bilinear`), which it reads itself.
+pub(crate) type SmoothWedge = WedgeOn<true>;
 
 impl<const SMOOTH: bool> Default for WedgeOn<SMOOTH> {
     fn default() -> Self {

@@ -12,7 +12,7 @@ use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 
 use footprint_core::prelude::*;
-use footprint_core::terrain::sampler::Area;
+use footprint_core::terrain::sampler::ExactArea;
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
     COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, SPACING_M, WIDTH,
@@ -52,7 +52,7 @@ fn run() -> Result<(u64, u64), &'static str> {
     let (frame, scratch) = core_calls::frame_in(frame, &camera, &terrain, Options::default())
         .map_err(|_| "Frame::new")?;
     let (render, result) = instructions(|| {
-        core_calls::render(&frame, &terrain, &Area::new(), &mut NoCost, scratch, image)
+        core_calls::render(&frame, &terrain, &ExactArea::new(), &mut NoCost, scratch, image)
     });
     result.map_err(|_| "Frame::render")?;
     Ok((image_hash(image), render))
