@@ -37,7 +37,7 @@ pub fn walk<S: Sampling, C: Cost>(
     cost: &mut C,
     grid: &mut [Rgb],
 ) -> Result<(), Error> {
-    frame.render_columns(terrain, sampling, cost, 0..frame.width(), grid)
+    frame.render_columns(terrain, sampling, cost, 0..frame.grid_columns(), grid)
 }
 
 /// `Frame::render_columns` with a [`SunShader`] listening: the frame lit by `sun`. The walk
@@ -60,9 +60,9 @@ pub fn render_lit<'s, S: Sampler + Clone, C: Cost>(
     lit: &mut [Rgb],
 ) -> Result<C, Error> {
     lit.fill(frame.sky());
-    let size = (frame.width(), frame.height());
+    let size = (frame.grid_columns(), frame.grid_rows());
     let mut shader = SunShader::new(sun, terrain, eye_m, pixel_angle, size, lit, inner)?;
-    frame.render_columns(terrain, sampler, &mut shader, 0..frame.width(), grid)?;
+    frame.render_columns(terrain, sampler, &mut shader, 0..frame.grid_columns(), grid)?;
     Ok(shader.inner)
 }
 

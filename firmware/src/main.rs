@@ -272,8 +272,8 @@ fn run_fan(
         WIDTH,
         HEIGHT,
         image_hash(image),
-        frame.width(),
-        frame.height()
+        frame.grid_columns(),
+        frame.grid_rows()
     );
     let pixels = (WIDTH * HEIGHT) as u64;
     hprintln!(

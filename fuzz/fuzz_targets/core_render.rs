@@ -140,7 +140,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         Mode::Classic,
     ];
     let mode = modes[usize::from(input.mode) % modes.len()];
-    let mut tallies = vec![Tally::default(); frame.width()];
+    let mut tallies = vec![Tally::default(); frame.grid_columns()];
     let mut counts = Counts::new(&mut tallies);
     let mut image = vec![Rgb::default(); cw * ch];
     let mut scratch = vec![Rgb::default(); frame.scratch_len()];
@@ -165,7 +165,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         }
     }
     // The ground truth's full-precision cells round to the 8-bit cells.
-    let (gw, gh) = (frame.width(), frame.height());
+    let (gw, gh) = (frame.grid_columns(), frame.grid_rows());
     let mut grid = vec![Rgb::default(); gw * gh];
     let mut exact = vec![[0u32; 3]; gw * gh];
     let walked = frame.render_columns(&terrain, &mode, &mut NoCost, 0..gw, &mut grid);

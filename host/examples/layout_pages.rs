@@ -85,7 +85,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options)?;
         let mut cells: HashSet<(u32, u32, u32)> = HashSet::new();
-        for col in 0..frame.width() {
+        for col in 0..frame.grid_columns() {
             visit(&frame, &terrain, col, Mode::As.switch(), |march, _| {
                 let (x, y) = march.cell();
                 cells.insert((march.level(), x, y));

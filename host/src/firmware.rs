@@ -253,8 +253,8 @@ pub fn fan_line(
         SIZE.width,
         SIZE.height,
         image_hash(&rendered.image),
-        frame.width(),
-        frame.height()
+        frame.grid_columns(),
+        frame.grid_rows()
     ))
 }
 

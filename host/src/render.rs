@@ -45,8 +45,8 @@ pub fn render_parallel(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> 
     if rayon::current_num_threads() == 1 {
         return Ok(render_with(frame, terrain, mode, &mut NoCost)?);
     }
-    let rows = frame.height();
-    let mut grid = vec![Rgb::default(); frame.width() * rows];
+    let rows = frame.grid_rows();
+    let mut grid = vec![Rgb::default(); frame.grid_columns() * rows];
     grid.par_chunks_mut(rows)
         .enumerate()
         .try_for_each(|(x, column)| {
@@ -66,8 +66,8 @@ pub fn render_exact_parallel(
 ) -> Result<Vec<Color32>> {
     use rayon::prelude::*;
     walked();
-    let rows = frame.height();
-    let mut grid = vec![Color32::default(); frame.width() * rows];
+    let rows = frame.grid_rows();
+    let mut grid = vec![Color32::default(); frame.grid_columns() * rows];
     grid.par_chunks_mut(rows.max(1))
         .enumerate()
         .try_for_each(|(x, column)| {
@@ -79,7 +79,7 @@ pub fn render_exact_parallel(
 /// Walks one column of the grid (rows from the bottom) without counting: column `x` of
 /// [`Frame::render_columns`]' layout.
 pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> Vec<Rgb> {
-    let mut out = vec![Rgb::default(); frame.height()];
+    let mut out = vec![Rgb::default(); frame.grid_rows()];
     mode.walk_column(frame, terrain, x, &mut NoCost, &mut out);
     out
 }
@@ -91,7 +91,7 @@ pub fn render_column_exact(
     mode: Mode,
     x: usize,
 ) -> Vec<Color32> {
-    let mut out = vec![Color32::default(); frame.height()];
+    let mut out = vec![Color32::default(); frame.grid_rows()];
     mode.walk_column_exact(frame, terrain, x, &mut NoCost, &mut out);
     out
 }
@@ -199,7 +199,7 @@ fn best_of(
 /// and `render --counts` (docs/cli.md, "One `V` per case").
 pub fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 {
     use rayon::prelude::*;
-    (0..frame.width())
+    (0..frame.grid_columns())
         .into_par_iter()
         .map(|x| visible_voxels(frame, terrain, x, switch))
         .sum()
@@ -211,7 +211,7 @@ pub fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 
 pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Rendered, Measured)> {
     use rayon::prelude::*;
     walked();
-    let columns: Vec<ColumnCount> = (0..frame.width())
+    let columns: Vec<ColumnCount> = (0..frame.grid_columns())
         .into_par_iter()
         .map(|x| count_column(frame, terrain, mode, x))
         .collect();

@@ -47,7 +47,7 @@ pub fn render_lit<C: Cost>(
     sun: &Sun<'_>,
     cost: &mut C,
 ) -> Result<Rendered, Error> {
-    let (w, h) = (frame.width(), frame.height());
+    let (w, h) = (frame.grid_columns(), frame.grid_rows());
     let mut grid = vec![Rgb::default(); w * h];
     let mut lit = vec![frame.sky(); w * h];
     let p = camera.params();
@@ -127,7 +127,7 @@ pub struct ColumnCount {
 /// Renders column `x` with every counter on, then walks the visibility pass over the same voxel
 /// sequence for `V` and for the hidden and missed voxels. One walk per column and mode.
 pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> ColumnCount {
-    let mut pixels = vec![Rgb::default(); frame.height()];
+    let mut pixels = vec![Rgb::default(); frame.grid_rows()];
     let mut counts = Recorded {
         counts: Counts::new(&mut []),
         sampled: Vec::new(),
@@ -157,7 +157,7 @@ pub fn assemble(
     mode: Mode,
     columns: Vec<ColumnCount>,
 ) -> Result<(Rendered, Measured), Error> {
-    let (w, h) = (frame.width(), frame.height());
+    let (w, h) = (frame.grid_columns(), frame.grid_rows());
     let mut grid = Vec::with_capacity(w * h);
     let mut total = Tally::default();
     let mut tallies = Vec::with_capacity(w);
@@ -185,7 +185,7 @@ pub fn count(
     terrain: &Terrain<'_>,
     mode: Mode,
 ) -> Result<(Rendered, Measured), Error> {
-    let columns = (0..frame.width())
+    let columns = (0..frame.grid_columns())
         .map(|x| count_column(frame, terrain, mode, x))
         .collect();
     assemble(frame, mode, columns)

@@ -63,7 +63,7 @@ impl Tables {
 /// The horizontal distance, in voxels, at which the lowest ray of the middle column first
 /// hits the terrain, or `None` if it hits nothing within the far distance.
 pub fn first_hit_distance(frame: &Frame<'_>, terrain: &Terrain<'_>) -> Option<f64> {
-    let col = frame.width() / 2;
+    let col = frame.grid_columns() / 2;
     let mut probe = FirstHit::default();
     let mut out = [Rgb::default()];
     walk(frame, terrain, col, 0..1, &mut probe, &mut NoCost, &mut out);
@@ -325,7 +325,7 @@ impl Sampler for WhereHit {
 pub fn coverage(map: &Map, frame: &Frame<'_>, terrain: &Terrain<'_>) -> Coverage {
     let mut probe = WhereHit::new(map);
     let mut out = Vec::new();
-    for col in 0..frame.width() {
+    for col in 0..frame.grid_columns() {
         let rows = frame.column(col).map_or(0..0, |c| c.rows());
         out.resize(rows.len(), Rgb::default());
         walk(frame, terrain, col, rows, &mut probe, &mut NoCost, &mut out);
@@ -341,7 +341,7 @@ pub fn first_hit_cell(map: &Map, frame: &Frame<'_>, terrain: &Terrain<'_>) -> Op
     walk(
         frame,
         terrain,
-        frame.width() / 2,
+        frame.grid_columns() / 2,
         0..1,
         &mut probe,
         &mut NoCost,

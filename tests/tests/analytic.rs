@@ -76,7 +76,7 @@ fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[
     // The sequence area sampling walks.
     let switch = <ExactArea as Sampler>::SWITCH;
     let column = frame.column(col).expect("a column of the frame");
-    let h = frame.height();
+    let h = frame.grid_rows();
     let eye = f(frame.eye());
     let n_eye = f(column.n_eye());
     let s: Vec<f64> = (0..=h).map(|i| f(frame.ray(column, i).slope)).collect();
@@ -140,7 +140,7 @@ fn ss_reference(
         <Super<2> as Sampler>::SWITCH
     };
     let column = frame.column(col).expect("a column of the frame");
-    let h = frame.height();
+    let h = frame.grid_rows();
     let sky = frame.sky();
     let mut march = March::new(frame, terrain, column, switch);
     let mut alive = march.n() <= column.n_far();
@@ -379,7 +379,7 @@ fn coherent_vs_restart<S: Sampler + Clone>(
     terrain: &Terrain<'_>,
     sampler: &S,
 ) -> Option<(usize, usize, Rgb, Rgb)> {
-    let h = frame.height();
+    let h = frame.grid_rows();
     let coherent = render_columns(frame, terrain, sampler, &mut NoCost);
     for (c, col) in coherent.iter().enumerate() {
         for (i, &px) in col.iter().enumerate() {
@@ -447,7 +447,7 @@ fn ss_counters<const N: u32>(map: &Map, pitch: f64, lod: bool, all_terrain: bool
     let terrain = map.terrain();
     let cam = camera_far(pose_for(map), pitch, 32, 1000.0);
     with_frame(&cam, &terrain, lod, |frame| {
-        let (w, h) = (frame.width() as u64, frame.height() as u64);
+        let (w, h) = (frame.grid_columns() as u64, frame.grid_rows() as u64);
         let mut tallies = vec![Tally::default(); w as usize];
         let mut counts = Counts::new(&mut tallies);
         render_columns(frame, &terrain, &Super::<N>::new(), &mut counts);
@@ -470,7 +470,7 @@ fn ss_counters<const N: u32>(map: &Map, pitch: f64, lod: bool, all_terrain: bool
         // Exactly: the sub-samples the Fig. 8 reference counts, and the pixels it finds terrain
         // in; the deficit N·P − hits is the sky-filled sub-samples of partially-sky pixels.
         let (mut hits, mut p) = (0u64, 0u64);
-        for c in 0..frame.width() {
+        for c in 0..frame.grid_columns() {
             let (_, per_pixel) = ss_reference(frame, &terrain, c, N);
             hits += per_pixel.iter().map(|&j| u64::from(j)).sum::<u64>();
             p += per_pixel.iter().filter(|&&j| j > 0).count() as u64;
@@ -487,7 +487,7 @@ fn as_counters(map: &Map, pose: Pose, pitch: f64, lod: bool, exact: bool) {
     let terrain = map.terrain();
     let cam = camera(pose, pitch, 32);
     with_frame(&cam, &terrain, lod, |frame| {
-        let w = frame.width();
+        let w = frame.grid_columns();
         let mut tallies = vec![Tally::default(); w];
         let mut counts = Counts::new(&mut tallies);
         render_columns(frame, &terrain, &ExactArea::new(), &mut counts);
@@ -581,7 +581,7 @@ fn coverage<S: Sampler + Clone>(
     let terrain = map.terrain();
     let cam = camera(pose_for(map), pitch, 32);
     with_frame(&cam, &terrain, lod, |frame| {
-        let mut tallies = vec![Tally::default(); frame.width()];
+        let mut tallies = vec![Tally::default(); frame.grid_columns()];
         let mut counts = Counts::new(&mut tallies);
         render_columns(frame, &terrain, sampler, &mut counts);
         visibility::count_visible(frame, &terrain, S::SWITCH, &mut counts);
@@ -1013,7 +1013,7 @@ fn far_cut_is_the_last_centre_within_far() {
                 };
                 let cam = camera_far(pose, 20.0, 16, far_m);
                 with_frame(&cam, &terrain, false, |frame| {
-                    for c in 0..frame.width() {
+                    for c in 0..frame.grid_columns() {
                         let col = frame.column(c).expect("a column of the frame");
                         let n = col.n_far();
                         // 1e-9 voxel: f64 rounding of the distance itself.
@@ -1464,7 +1464,7 @@ fn extreme_valid_inputs_do_not_panic() {
         },
     ];
     fn all_modes(frame: &Frame<'_>, terrain: &Terrain<'_>) {
-        let (w, h) = (frame.width(), frame.height());
+        let (w, h) = (frame.grid_columns(), frame.grid_rows());
         let mut image = vec![Rgb::default(); w * h];
         let mut tallies = vec![Tally::default(); w];
         let mut counts = Counts::new(&mut tallies);

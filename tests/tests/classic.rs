@@ -110,7 +110,7 @@ fn classic_matches_a_float_reference_of_the_classic_algorithm() {
                 .collect();
             let reference = float_reference(&cam, &terrain, &starts);
             for (c, want) in reference.iter().enumerate() {
-                let mut got = vec![Rgb::default(); frame.height()];
+                let mut got = vec![Rgb::default(); frame.grid_rows()];
                 classic::walk(
                     frame,
                     &terrain,
@@ -140,9 +140,9 @@ fn classic_counters_are_consistent() {
     };
     let cam = camera(pose, 0.0, 32);
     with_frame(&cam, &terrain, true, |frame| {
-        let mut columns = vec![Tally::default(); frame.width()];
+        let mut columns = vec![Tally::default(); frame.grid_columns()];
         let mut counts = Counts::new(&mut columns);
-        let (w, h) = (frame.width(), frame.height());
+        let (w, h) = (frame.grid_columns(), frame.grid_rows());
         let mut image = vec![Rgb::default(); w * h];
         frame
             .render(&terrain, &Mode::Classic, &mut counts, &mut [], &mut image)

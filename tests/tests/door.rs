@@ -74,7 +74,7 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options).unwrap();
         let (w, h) = frame.image_size();
-        let (columns, rows) = (frame.width(), frame.height());
+        let (columns, rows) = (frame.grid_columns(), frame.grid_rows());
         for (k, mode) in modes().into_iter().enumerate() {
             let mut scratch = vec![Rgb::BLACK; frame.scratch_len()];
             let mut whole = vec![Rgb::BLACK; w * h];
@@ -164,7 +164,7 @@ fn the_full_precision_grid_rounds_to_the_8_bit_grid() {
         };
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options).unwrap();
-        let (columns, rows) = (frame.width(), frame.height());
+        let (columns, rows) = (frame.grid_columns(), frame.grid_rows());
         for &mode in &all {
             let mut grid = vec![Rgb::new(1, 2, 3); columns * rows];
             frame

@@ -253,7 +253,7 @@ fn tallies<S: Sampler + Clone>(
     terrain: &Terrain<'_>,
     sampler: &S,
 ) -> (Tally, Vec<Tally>, Vec<Vec<Rgb>>) {
-    let mut cols = vec![Tally::default(); frame.width()];
+    let mut cols = vec![Tally::default(); frame.grid_columns()];
     let mut counts = Counts::new(&mut cols);
     let image = columns(frame, terrain, sampler, &mut counts);
     count_visible(frame, terrain, S::SWITCH, &mut counts);
@@ -405,7 +405,7 @@ impl Cost for Spans {
 
 /// The whole image, row-major from the top, through `Frame::render` with `NoCost`.
 fn image<S: Sampler + Clone>(frame: &Frame<'_>, terrain: &Terrain<'_>, sampler: &S) -> Vec<u8> {
-    let (w, h) = (frame.width(), frame.height());
+    let (w, h) = (frame.grid_columns(), frame.grid_rows());
     let mut image = vec![Rgb::default(); w * h];
     frame
         .render(terrain, sampler, &mut NoCost, &mut [], &mut image)
@@ -455,7 +455,7 @@ proptest! {
     #[test]
     fn as_and_li_pixels_lie_within_their_samples(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
-            let (w, h) = (frame.width(), frame.height());
+            let (w, h) = (frame.grid_columns(), frame.grid_rows());
             let mut r = Ranges::new(w, h);
             let img = columns(frame, terrain, &ExactArea::new(), &mut r);
             r.check(&img, "AS")?;
@@ -489,7 +489,7 @@ proptest! {
     #[test]
     fn skipping_below_the_horizon_keeps_every_visible_voxel(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
-            for (col, switch) in (0..frame.width()).flat_map(|c| Switch::ALL.map(|s| (c, s))) {
+            for (col, switch) in (0..frame.grid_columns()).flat_map(|c| Switch::ALL.map(|s| (c, s))) {
                 let (mut all, mut skipped) = (Vec::new(), Vec::new());
                 visit(frame, terrain, col, switch, |m, seen| {
                     if seen {
@@ -590,7 +590,7 @@ proptest! {
     #[test]
     fn hits_satisfy_the_identities(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
-            let w = frame.width() as u64;
+            let w = frame.grid_columns() as u64;
             let (t, cols, _) = tallies(frame, terrain, &Point);
             check_one_sample_per_pixel(&t, &cols, "PS")?;
             let (t, cols, _) = tallies(frame, terrain, &Linear);
@@ -633,7 +633,7 @@ proptest! {
         prop_assert_eq!(first, second);
         // The column walk agrees with the whole-frame render.
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
-            let (w, h) = (frame.width(), frame.height());
+            let (w, h) = (frame.grid_columns(), frame.grid_rows());
             let cols = columns(frame, terrain, &ExactArea::new(), &mut NoCost);
             let img = image(frame, terrain, &ExactArea::new());
             for (x, col) in cols.iter().enumerate() {
@@ -660,7 +660,7 @@ fn the_cases_are_not_vacuous() {
         let case = case().new_tree(&mut runner).unwrap().current();
         let Some(p) = with_case(&case, |terrain, frame| {
             let (t, _, _) = tallies(frame, terrain, &Point);
-            (t.p, (frame.width() * frame.height()) as u64)
+            (t.p, (frame.grid_columns() * frame.grid_rows()) as u64)
         }) else {
             continue;
         };

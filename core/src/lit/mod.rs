@@ -379,8 +379,8 @@ pub struct SunShader<'s, 'o, C: Cost> {
 }
 
 impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
-    /// A shader for a frame whose walked grid is `width × height` ([`crate::terrain::frame::Frame::width`]
-    /// and [`crate::terrain::frame::Frame::height`]), whose eye is at `eye_m` (east, south, up,
+    /// A shader for a frame whose walked grid is `width × height` ([`crate::terrain::frame::Frame::grid_columns`]
+    /// and [`crate::terrain::frame::Frame::grid_rows`]), whose eye is at `eye_m` (east, south, up,
     /// in metres) and whose pixels are `pixel_angle` radians tall, writing the lit grid into
     /// `out` in the walk's own layout ([`crate::terrain::frame::Frame::render_columns`]: column
     /// by column, each from the bottom row up), which [`crate::terrain::frame::Frame::resample`]

@@ -163,11 +163,14 @@ mod tests {
         let (frame, scratch) = paper
             .frame(&camera(8, 6, 20.0), &terrain, Options::default())
             .unwrap();
-        assert_eq!((frame.width(), frame.height(), scratch.len()), (8, 6, 0));
+        assert_eq!(
+            (frame.grid_columns(), frame.grid_rows(), scratch.len()),
+            (8, 6, 0)
+        );
         let (frame, _) = paper
             .frame(&camera(4, 3, 20.0), &terrain, Options::default())
             .unwrap();
-        assert_eq!((frame.width(), frame.height()), (4, 3));
+        assert_eq!((frame.grid_columns(), frame.grid_rows()), (4, 3));
         let wide = paper.frame(&camera(9, 6, 20.0), &terrain, Options::default());
         assert!(
             matches!(
@@ -200,7 +203,7 @@ mod tests {
         let mut fan: frame_buffers!(exact 16, 8) = FrameBuffers::new();
         let (frame, scratch) = fan.frame(&camera(8, 6, 20.0), &terrain, exact).unwrap();
         assert_eq!(
-            (frame.width(), frame.height(), scratch.len()),
+            (frame.grid_columns(), frame.grid_rows(), scratch.len()),
             (lines, rows, lines * rows)
         );
     }

@@ -76,7 +76,7 @@ fn walk_indexed<C: Cost, O: ColumnOut + ?Sized>(
     out: &mut O,
     index: impl Fn(u32, u32) -> usize,
 ) {
-    let h = frame.height().min(out.rows());
+    let h = frame.grid_rows().min(out.rows());
     let Some(column) = frame.columns().get(col) else {
         return;
     };

@@ -341,7 +341,7 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     out: &mut O,
 ) {
     let first = rows.start;
-    let end = rows.end.min(frame.height()).min(first + out.rows());
+    let end = rows.end.min(frame.grid_rows()).min(first + out.rows());
     let Some(column) = frame.column(col) else {
         return;
     };
@@ -462,7 +462,7 @@ pub(crate) fn render_frame<P>(
     image: &mut [P],
     mut walk_column: impl FnMut(usize, &mut ImageColumn<'_, P>),
 ) -> Result<(), Error> {
-    let (w, h) = (frame.width(), frame.height());
+    let (w, h) = (frame.grid_columns(), frame.grid_rows());
     if image.len() != w * h {
         return Err(Error::SliceLength {
             what: "image",

@@ -261,7 +261,7 @@ impl<'t> Frame<'t> {
     /// `k` columns per pixel, `W·k` wide, the grid itself).
     pub fn image_size(&self) -> (usize, usize) {
         self.fan
-            .map_or((self.width(), self.height()), |f| f.output_size())
+            .map_or((self.grid_columns(), self.grid_rows()), |f| f.output_size())
     }
 
     /// The frame's row slopes (`rows + 1` entries, Eq. 2 at each row's lower edge).
@@ -269,13 +269,16 @@ impl<'t> Frame<'t> {
         self.rows
     }
 
-    /// Image width.
-    pub fn width(&self) -> usize {
+    /// The walk's grid's columns: the image's with the paper's projection (`W·k` with `k`
+    /// columns per pixel), the fan's lines with the exact one ([`Frame::image_size`] is the
+    /// image's size).
+    pub fn grid_columns(&self) -> usize {
         self.columns.len()
     }
 
-    /// Image height.
-    pub fn height(&self) -> usize {
+    /// The walk's grid's rows: the image's with the paper's projection, the fan's with the
+    /// exact one.
+    pub fn grid_rows(&self) -> usize {
         self.rows.len() - 1
     }
 
@@ -416,7 +419,7 @@ mod tests {
             .unwrap();
             assert_eq!(frame.rays_in_range, proved, "pitch {pitch}, fov {fov}");
             for column in frame.columns() {
-                for i in 0..=frame.height() {
+                for i in 0..=frame.grid_rows() {
                     let ray = frame.ray(column, i);
                     assert_eq!(
                         (ray.base.to_bits(), ray.slope.to_bits()),

@@ -138,7 +138,7 @@ impl Frame<'_> {
     /// projection, none with the paper's (the walk writes the image itself).
     pub fn scratch_len(&self) -> usize {
         if self.fan().is_some() {
-            self.width() * self.height()
+            self.grid_columns() * self.grid_rows()
         } else {
             0
         }
@@ -176,13 +176,13 @@ impl Frame<'_> {
                 });
             }
         }
-        self.render_columns(terrain, sampling, cost, 0..self.width(), scratch)?;
+        self.render_columns(terrain, sampling, cost, 0..self.grid_columns(), scratch)?;
         self.resample(scratch, sampling.filter(), image)
     }
 
-    /// Walks the grid's columns `columns` ([`Frame::width`] of them in all: the image's with
+    /// Walks the grid's columns `columns` ([`Frame::grid_columns`] of them in all: the image's with
     /// the paper's projection, the fan's lines with the exact one) into `grid`, their stretch
-    /// of the grid: `columns.len() × ` [`Frame::height`] cells, column by column, each from the
+    /// of the grid: `columns.len() × ` [`Frame::grid_rows`] cells, column by column, each from the
     /// bottom row up. Ranges that split `0..width` between threads write disjoint slices of one
     /// grid, which [`Frame::resample`] turns into the image.
     ///
@@ -196,7 +196,7 @@ impl Frame<'_> {
         grid: &mut [Rgb],
     ) -> Result<(), Error> {
         self.check_columns(&columns, grid.len())?;
-        for (x, out) in columns.zip(grid.chunks_exact_mut(self.height())) {
+        for (x, out) in columns.zip(grid.chunks_exact_mut(self.grid_rows())) {
             sampling.walk_column(self, terrain, x, cost, out);
         }
         Ok(())
@@ -219,7 +219,7 @@ impl Frame<'_> {
         grid: &mut [Color32],
     ) -> Result<(), Error> {
         self.check_columns(&columns, grid.len())?;
-        for (x, out) in columns.zip(grid.chunks_exact_mut(self.height())) {
+        for (x, out) in columns.zip(grid.chunks_exact_mut(self.grid_rows())) {
             sampling.walk_column_exact(self, terrain, x, cost, out);
         }
         Ok(())
@@ -227,14 +227,14 @@ impl Frame<'_> {
 
     /// Errors unless `columns` lies within the frame's and a grid of `len` cells holds them.
     fn check_columns(&self, columns: &Range<usize>, len: usize) -> Result<(), Error> {
-        if columns.start > columns.end || columns.end > self.width() {
+        if columns.start > columns.end || columns.end > self.grid_columns() {
             return Err(Error::SliceLength {
                 what: "columns",
-                expected: self.width(),
+                expected: self.grid_columns(),
                 actual: columns.end,
             });
         }
-        let cells = columns.len() * self.height();
+        let cells = columns.len() * self.grid_rows();
         if len != cells {
             return Err(Error::SliceLength {
                 what: "grid",
@@ -246,8 +246,8 @@ impl Frame<'_> {
     }
 
     /// The image ([`Frame::image_size`], row-major from the top, any pixel format) from the
-    /// whole walked grid `grid` ([`Frame::render_columns`]'s layout, [`Frame::width`] ×
-    /// [`Frame::height`] cells): the fan resampled with `filter`
+    /// whole walked grid `grid` ([`Frame::render_columns`]'s layout, [`Frame::grid_columns`] ×
+    /// [`Frame::grid_rows`] cells): the fan resampled with `filter`
     /// ([`crate::terrain::fan::Fan::resample`]) with the exact projection; with the paper's the
     /// grid's columns are the image's, turned into rows.
     ///
@@ -268,7 +268,7 @@ impl Frame<'_> {
                 image,
             );
         }
-        let (w, h) = (self.width(), self.height());
+        let (w, h) = (self.grid_columns(), self.grid_rows());
         for (what, expected, actual) in [("grid", w * h, grid.len()), ("image", w * h, image.len())]
         {
             if expected != actual {

@@ -176,7 +176,7 @@ pub fn count_visible(
     switch: Switch,
     counts: &mut Counts<'_>,
 ) {
-    for col in 0..frame.width() {
+    for col in 0..frame.grid_columns() {
         let v = visible_voxels(frame, terrain, col, switch);
         counts.set_visible(col, v);
     }

@@ -110,7 +110,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 // Its shading counters, from a second, counting walk, go to stderr.
                 let mut counts = Counts::new(&mut []);
                 render_lit_once(&frame, &terrain, &view.camera, mode, sun, &mut counts)?;
-                let pixels = (frame.width() * frame.height()).max(1) as f64;
+                let pixels = (frame.grid_columns() * frame.grid_rows()).max(1) as f64;
                 crate::note!(
                     "lit by the sun, specular {}: {:.2} samples lit and {:.2} highlight evaluations per pixel",
                     args.light.specular,
@@ -160,7 +160,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 Projection::Exact => "exact",
                 Projection::Paper => "paper",
             },
-            grid: (frame.width(), frame.height()),
+            grid: (frame.grid_columns(), frame.grid_rows()),
             measured: &measured,
             v_case,
             per_column: args.per_column,

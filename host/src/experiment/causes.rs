@@ -103,7 +103,7 @@ pub fn classify(camera: &Camera, pyramid: &Pyramid) -> Result<Vec<u8>> {
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
     let (w, h) = (camera.width(), camera.height());
-    if (frame.width(), frame.height()) != (w, h) {
+    if (frame.grid_columns(), frame.grid_rows()) != (w, h) {
         bail!("the classes need one walked column per image column");
     }
     let map = pyramid.map();

@@ -332,7 +332,7 @@ pub fn footprint(
     // (level, x, y, category): 0 hidden, 1 unsampled, 2 sampled.
     let mut cells = Vec::new();
     let mut counts = FootprintCounts::default();
-    for col in 0..frame.width() {
+    for col in 0..frame.grid_columns() {
         let mut seen = false;
         visit(&frame, &terrain, col, mode.switch(), |m, visible| {
             seen |= visible;

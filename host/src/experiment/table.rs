@@ -357,7 +357,7 @@ fn spread(
 ) -> (f64, f64) {
     use footprint_core::terrain::visibility::visit_visible;
     use rayon::prelude::*;
-    let (far, near, all) = (0..frame.width())
+    let (far, near, all) = (0..frame.grid_columns())
         .into_par_iter()
         .map(|x| {
             let (mut far, mut near, mut all) = (0f64, 0u64, 0u64);

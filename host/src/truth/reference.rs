@@ -67,7 +67,7 @@ pub fn supersampled(
     Ok(box_exact(
         &grid,
         camera.width(),
-        frame.height(),
+        frame.grid_rows(),
         options.columns_per_pixel as usize,
     ))
 }

@@ -278,8 +278,8 @@ pub fn render_columns<S: Sampler + Clone, C: Cost>(
     sampler: &S,
     cost: &mut C,
 ) -> Vec<Vec<Rgb>> {
-    let h = frame.height();
-    (0..frame.width())
+    let h = frame.grid_rows();
+    (0..frame.grid_columns())
         .map(|c| {
             let mut out = vec![Rgb::default(); h];
             let mut s = sampler.clone();
