@@ -558,7 +558,14 @@ fn run() -> Result<bool, Error> {
     let image = &mut image[..];
     let ps = run_mode("ps", &Point, &frame, &terrain, tables, image)?;
     let ss8 = run_mode("ss8", &Super::<8>::new(), &frame, &terrain, tables, image)?;
-    let area = run_mode("as-exact", &ExactArea::new(), &frame, &terrain, tables, image)?;
+    let area = run_mode(
+        "as-exact",
+        &ExactArea::new(),
+        &frame,
+        &terrain,
+        tables,
+        image,
+    )?;
     let paper = run_mode("as", &PaperArea::new(), &frame, &terrain, tables, image)?;
     ok &= run_baked(&frame, &terrain, image)?;
     ok &= run_display(&frame, &terrain, image, display.pixels)?;

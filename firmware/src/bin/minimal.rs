@@ -52,7 +52,14 @@ fn run() -> Result<(u64, u64), &'static str> {
     let (frame, scratch) = core_calls::frame_in(frame, &camera, &terrain, Options::default())
         .map_err(|_| "Frame::new")?;
     let (render, result) = instructions(|| {
-        core_calls::render(&frame, &terrain, &ExactArea::new(), &mut NoCost, scratch, image)
+        core_calls::render(
+            &frame,
+            &terrain,
+            &ExactArea::new(),
+            &mut NoCost,
+            scratch,
+            image,
+        )
     });
     result.map_err(|_| "Frame::render")?;
     Ok((image_hash(image), render))
