@@ -159,6 +159,29 @@ fn decode(compressed: &[u8], out: &mut [u8]) -> Result<usize, String> {
     Ok(written)
 }
 
+/// Undoes horizontal differencing (predictor 2) of a row of `N`-byte integer samples stored
+/// in the file's byte order: each sample becomes the running sum of the differences, modulo
+/// 2^(8·N), written back in the machine's byte order.
+fn accumulate<const N: usize>(row: &mut [u8], big_endian: bool) {
+    let mask = u64::MAX >> (64 - 8 * N);
+    let mut prev = 0u64;
+    for s in row.chunks_exact_mut(N) {
+        let v = s.iter().enumerate().fold(0u64, |v, (i, &b)| {
+            let at = if big_endian { N - 1 - i } else { i };
+            v | u64::from(b) << (8 * at)
+        });
+        prev = prev.wrapping_add(v) & mask;
+        for (i, b) in s.iter_mut().enumerate() {
+            let at = if cfg!(target_endian = "big") {
+                N - 1 - i
+            } else {
+                i
+            };
+            *b = (prev >> (8 * at)) as u8;
+        }
+    }
+}
+
 /// Turns one decoded row of samples into the machine's byte order, undoing `predictor`
 /// (1 none, 2 horizontal differencing, 3 floating point).
 fn undo_predictor(
@@ -178,31 +201,11 @@ fn undo_predictor(
             Ok(())
         }
         (2, Sample::I16 | Sample::U16) => {
-            let mut prev = 0u16;
-            for s in row.chunks_exact_mut(2) {
-                let b = [s[0], s[1]];
-                let v = if big_endian {
-                    u16::from_be_bytes(b)
-                } else {
-                    u16::from_le_bytes(b)
-                };
-                prev = prev.wrapping_add(v);
-                s.copy_from_slice(&prev.to_ne_bytes());
-            }
+            accumulate::<2>(row, big_endian);
             Ok(())
         }
         (2, Sample::I32) => {
-            let mut prev = 0u32;
-            for s in row.chunks_exact_mut(4) {
-                let b = [s[0], s[1], s[2], s[3]];
-                let v = if big_endian {
-                    u32::from_be_bytes(b)
-                } else {
-                    u32::from_le_bytes(b)
-                };
-                prev = prev.wrapping_add(v);
-                s.copy_from_slice(&prev.to_ne_bytes());
-            }
+            accumulate::<4>(row, big_endian);
             Ok(())
         }
         (3, Sample::F32) => {
