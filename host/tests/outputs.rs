@@ -370,6 +370,35 @@ fn private_mounts() -> Result<Vec<&'static str>, String> {
     }
 }
 
+/// Runs the shell `script` in a private mount namespace ([`private_mounts`]) with `$1` the
+/// folder `d` and `$2` the binary, and checks that it succeeded. False, after saying the test
+/// is skipped, where this machine cannot mount (no namespace, or the script's exit 77).
+fn run_in_private_mounts(script: &str, d: &Path) -> bool {
+    let unshare = match private_mounts() {
+        Ok(u) => u,
+        Err(why) => {
+            eprintln!("SKIPPED: {why}");
+            return false;
+        }
+    };
+    let o = Command::new(unshare[0])
+        .args(&unshare[1..])
+        .args(["sh", "-c", script, "sh"])
+        .arg(d)
+        .arg(env!("CARGO_BIN_EXE_footprint"))
+        .output()
+        .unwrap();
+    if o.status.code() == Some(77) {
+        eprintln!(
+            "SKIPPED: cannot mount here: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        return false;
+    }
+    assert!(o.status.success(), "{o:?}");
+    true
+}
+
 /// Issue 37, item 1: outputs onto mount points. Each `--out` below is a tmpfs mounted in a
 /// private mount namespace, its parent a read-only folder, or `/dev/shm` itself (a fresh tmpfs
 /// over it, in the namespace only). Before: `fly`, `glint` and `report` failed with `cannot
@@ -380,13 +409,6 @@ fn private_mounts() -> Result<Vec<&'static str>, String> {
 /// folder whose one file is bind-mounted was left half new, half old.
 #[test]
 fn outputs_onto_mount_points_and_links_into_other_file_systems() {
-    let unshare = match private_mounts() {
-        Ok(u) => u,
-        Err(why) => {
-            eprintln!("SKIPPED: {why}");
-            return;
-        }
-    };
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     for sub in [
@@ -454,21 +476,9 @@ for m in "$D/immutable" "$D/linked" "$D/bound" "$D/report" "$D/ro/glint" "$D/ro"
   umount "$m"
 done
 "#;
-    let o = Command::new(unshare[0])
-        .args(&unshare[1..])
-        .args(["sh", "-c", script, "sh"])
-        .arg(d)
-        .arg(env!("CARGO_BIN_EXE_footprint"))
-        .output()
-        .unwrap();
-    if o.status.code() == Some(77) {
-        eprintln!(
-            "SKIPPED: cannot mount here: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+    if !run_in_private_mounts(script, d) {
         return;
     }
-    assert!(o.status.success(), "{o:?}");
     let results = d.join("results");
     let read = |name: &str| std::fs::read_to_string(results.join(name)).unwrap_or_default();
     let listed = |name: &str| -> Vec<String> {
@@ -710,13 +720,6 @@ fn a_dangling_link_as_out_makes_its_target_and_leaves_nothing_beside_it() {
 /// above): one line, exit 2, naming a file of the folder by its own name, nothing left.
 #[test]
 fn a_full_disk_names_the_output_not_its_temporary_file() {
-    let unshare = match private_mounts() {
-        Ok(u) => u,
-        Err(why) => {
-            eprintln!("SKIPPED: {why}");
-            return;
-        }
-    };
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     for sub in ["fly", "animation", "report", "results"] {
@@ -735,21 +738,9 @@ echo $? > "$R/animation.code"; ls -A "$D/animation" > "$R/animation.ls"
 echo $? > "$R/report.code"; ls -A "$D/report" > "$R/report.ls"
 for m in fly animation report; do umount "$D/$m"; done
 "#;
-    let o = Command::new(unshare[0])
-        .args(&unshare[1..])
-        .args(["sh", "-c", script, "sh"])
-        .arg(d)
-        .arg(env!("CARGO_BIN_EXE_footprint"))
-        .output()
-        .unwrap();
-    if o.status.code() == Some(77) {
-        eprintln!(
-            "SKIPPED: cannot mount here: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+    if !run_in_private_mounts(script, d) {
         return;
     }
-    assert!(o.status.success(), "{o:?}");
     let read = |name: &str| std::fs::read_to_string(d.join("results").join(name)).unwrap();
     for case in ["fly", "animation", "report"] {
         let err = read(&format!("{case}.err"));

@@ -116,6 +116,16 @@ fn closed_by_server(s: &TcpStream) -> bool {
     closed
 }
 
+/// A normal `GET /` on a fresh connection: its status, its body and how long it took.
+fn get_page_timed(port: u16) -> (u16, Vec<u8>, Duration) {
+    let started = Instant::now();
+    let (status, body) = exchange(
+        port,
+        format!("GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nConnection: close\r\n\r\n").as_bytes(),
+    );
+    (status, body, started.elapsed())
+}
+
 /// The load test: 1,000 connections, half of them idle and half with half a request head sent,
 /// are open when a normal `GET /` comes; it must be answered, and within 1 s (a liveness bound:
 /// the answer itself takes a millisecond). The server keeps at most its number of connections
@@ -144,12 +154,7 @@ fn a_get_is_answered_within_a_second_while_1000_idle_connections_are_open() {
     );
     // Let the server take them all in.
     std::thread::sleep(Duration::from_millis(300));
-    let started = Instant::now();
-    let (status, body) = exchange(
-        port,
-        format!("GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nConnection: close\r\n\r\n").as_bytes(),
-    );
-    let took = started.elapsed();
+    let (status, body, took) = get_page_timed(port);
     let closed = idle.iter().filter(|s| closed_by_server(s)).count();
     println!(
         "GET / with {n} idle connections open: {status} in {took:?}; the server had closed \
@@ -425,12 +430,7 @@ fn a_get_is_answered_within_a_second_while_2000_large_answers_go_unread() {
     println!("{n} unread answers asked for in {:?}", opened.elapsed());
     // Let the server fill their sockets.
     std::thread::sleep(Duration::from_millis(500));
-    let started = Instant::now();
-    let (status, body) = exchange(
-        port,
-        format!("GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nConnection: close\r\n\r\n").as_bytes(),
-    );
-    let took = started.elapsed();
+    let (status, body, took) = get_page_timed(port);
     println!("GET / with {n} unread answers held: {status} in {took:?}");
     assert_eq!(status, 200, "GET / with {n} unread large answers held");
     assert!(body.starts_with(b"<!"), "GET / gave no page");
