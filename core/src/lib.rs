@@ -38,7 +38,7 @@
 //!   top ([`terrain::sampler::ExactArea`]) — plus area sampling in both axes, the footprint between
 //!   the column's two planes as well as its two rays (`as2`, [`terrain::wedge::Wedge`]), and
 //!   the paper's cost model ([`terrain::cost`]). The
-//!   classic voxel-space renderer ([`terrain::classic`]) is the baseline they are measured
+//!   classic voxel-space renderer (`Mode::Classic`) is the baseline they are measured
 //!   against.
 //! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*
 //!   ([`specular`]): the tables, Phong highlight, detection and clamping, drawn by the z-buffer

@@ -4,7 +4,7 @@
 //! The paper's modes: point sampling (Fig. 4, [`Point`]), linear interpolation (Eq. 4,
 //! [`Linear`]), supersampling at rate `N` (Fig. 8, [`Super`]), area sampling as the paper's
 //! Fig. 12 writes and costs it ([`PaperArea`]) and with the exact ray through each voxel's
-//! top ([`ExactArea`]); and the classic voxel-space renderer ([`classic`]), the baseline.
+//! top ([`ExactArea`]); and the classic voxel-space renderer (`classic`, [`Mode::Classic`]), the baseline.
 //!
 //! A mode is a [`Sampling`]: [`Frame::render`] takes it, or one sampler. A firmware that
 //! renders one mode only links that mode's sampler when it hands [`Frame::render`] the sampler
@@ -18,7 +18,7 @@ use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::camera::{Surface, Switch};
 use crate::terrain::classic;
-use crate::terrain::column::ColumnOut;
+use crate::terrain::column::{ColumnOut, Unwritten};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
@@ -51,7 +51,7 @@ pub enum Mode {
     /// lane ([`Wedge`]; Sect. 8's naive horizontal sampling integrated).
     As2,
     /// The classic voxel-space renderer (y-buffer, growing steps, level 0, no coherence): the
-    /// baseline, not a mode of the paper ([`classic`]).
+    /// baseline, not a mode of the paper (its own walk, `terrain::classic`).
     Classic,
 }
 
@@ -224,7 +224,7 @@ impl Mode {
 
 /// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), wrapped in
 /// [`Smooth`] when the frame's surface is continuous ([`Frame::surface`]; `as2` is then
-/// `SmoothWedge`, which reads the surface itself); `classic` walks [`classic`]'s own walk,
+/// `SmoothWedge`, which reads the surface itself); `classic` walks its own walk (`terrain::classic`),
 /// on flat tops.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
@@ -253,6 +253,19 @@ impl Sampling for Mode {
         self.walk_rows(frame, terrain, x, cost, out);
     }
 
+    fn walk_column_events<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+    ) {
+        let mut out = Unwritten {
+            rows: frame.grid_rows(),
+        };
+        self.walk_rows(frame, terrain, x, cost, &mut out);
+    }
+
     fn walk_image<C: Cost, P: PixelSink>(
         &self,
         frame: &Frame<'_>,
@@ -275,16 +288,14 @@ impl Sampling for Mode {
 impl Mode {
     /// Column `x` into 8-bit or full-precision cells ([`Sampling::walk_column`],
     /// [`Sampling::walk_column_exact`]): the sampler chosen as the impl above says.
-    fn walk_rows<C: Cost, T>(
+    fn walk_rows<C: Cost, O: ColumnOut + ?Sized>(
         self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
         x: usize,
         cost: &mut C,
-        out: &mut [T],
-    ) where
-        [T]: ColumnOut,
-    {
+        out: &mut O,
+    ) {
         if frame.surface() == Surface::Bilinear && self == Mode::As2 {
             walk_rows(&SmoothWedge::new(), frame, terrain, x, cost, out);
         } else if frame.surface() == Surface::Bilinear {

@@ -40,30 +40,26 @@ pub fn walk<S: Sampling, C: Cost>(
     frame.render_columns(terrain, sampling, cost, 0..frame.grid_columns(), grid)
 }
 
-/// `Frame::render_columns` with a [`SunShader`] listening: the frame lit by `sun`. The walk
-/// draws the colour map into `grid` (the walk's layout); the shader lights every sample it
-/// takes and writes the lit grid into `lit`, which is filled with the frame's sky first (the
-/// pixels that see only sky keep it), as `footprint_scenes::render::render_lit` does on the
-/// host; [`resample`] makes either the image. The eye is at `eye_m` (east, south, up, metres)
-/// and the pixels are `pixel_angle` radians tall (the camera's). Returns the inner cost `inner`
-/// with everything the walk and the shader counted.
+/// `Frame::render_shaded` with a [`SunShader`]: the frame lit by `sun`, into `image` (the
+/// exact projection's lit fan in `scratch`, empty for the paper's), as
+/// `footprint_scenes::render::render_lit` does on the host. The eye is at `eye_m` (east,
+/// south, up, metres) and the pixels are `pixel_angle` radians tall (the camera's). Returns the
+/// cost `cost` with everything the walk and the shader counted.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-pub fn render_lit<'s, S: Sampler + Clone, C: Cost>(
+pub fn render_lit<'s, S: Sampling, C: Cost>(
     frame: &Frame<'_>,
     terrain: &'s Terrain<'s>,
-    sampler: &S,
+    sampling: &S,
     sun: &'s Sun<'s>,
     (eye_m, pixel_angle): ([f64; 3], f64),
-    inner: C,
-    grid: &mut [Rgb],
-    lit: &mut [Rgb],
+    mut cost: C,
+    scratch: &mut [Rgb],
+    image: &mut [Rgb],
 ) -> Result<C, Error> {
-    lit.fill(frame.sky());
-    let size = (frame.grid_columns(), frame.grid_rows());
-    let mut shader = SunShader::new(sun, terrain, eye_m, pixel_angle, size, lit, inner)?;
-    frame.render_columns(terrain, sampler, &mut shader, 0..frame.grid_columns(), grid)?;
-    Ok(shader.inner)
+    let mut shader = SunShader::new(sun, terrain, eye_m, pixel_angle)?;
+    frame.render_shaded(terrain, sampling, &mut shader, &mut cost, scratch, image)?;
+    Ok(cost)
 }
 
 /// `FrameBuffers::frame`: the camera tables (soft-double trigonometry, once per frame) in

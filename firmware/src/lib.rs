@@ -57,24 +57,6 @@ pub mod glint {
     pub const SPECULAR: Specular = Specular::Clamp(Clamp::Aggressive(Power::P99));
 }
 
-/// The glint frame's lit image, in `.bss` (the walk's own grid is [`Buffers::image`]).
-pub struct GlintBuffers {
-    /// The lit image, row-major from the top.
-    pub lit: &'static mut [Rgb; WIDTH * HEIGHT],
-}
-
-impl GlintBuffers {
-    /// Takes the buffer: `Some` the first time only.
-    #[inline(never)]
-    pub fn take() -> Option<Self> {
-        Some(Self {
-            lit: cortex_m::singleton!(
-                GLINT_LIT: [Rgb; WIDTH * HEIGHT] = [Rgb::new(0, 0, 0); WIDTH * HEIGHT]
-            )?,
-        })
-    }
-}
-
 /// The `as` frame through the embedded-graphics sink (`footprint_core::embedded`): the walk
 /// writes the display's `Rgb565` into [`DisplayBuffer`], which is drawn into a [`Checking`]
 /// display.

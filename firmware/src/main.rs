@@ -58,7 +58,7 @@ use footprint_firmware::scene::{
 };
 use footprint_firmware::{
     core_calls, display, glint, image_hash, stack, take_fan_buffers, Buffers, DisplayBuffer,
-    GlintBuffers, PlateBuffers, Ratio,
+    PlateBuffers, Ratio,
 };
 
 #[exception]
@@ -163,7 +163,7 @@ fn run_display(
 }
 
 /// Renders the glint frame ([`glint`]): the terrain frame `frame` of `camera` lit by a low sun
-/// straight ahead, AS with `clamp99`, the walk's grid in `image` and the lit image in `lit`;
+/// straight ahead, AS with `clamp99`, into `image` (the paper's projection: no scratch);
 /// once timed, once with every counter on. Prints the `frame` line (the host's `glint_line`)
 /// and the `#` instruction line, with what lighting adds over `unlit`, the instructions of the
 /// same frame's unlit AS render. `Ok(false)` if the two renders differ.
@@ -173,7 +173,6 @@ fn run_glint(
     camera: &Camera,
     unlit: u64,
     image: &mut [Rgb],
-    lit: &mut [Rgb],
 ) -> Result<bool, Error> {
     let p = camera.params();
     let (setup, sun) = instructions(|| {
@@ -190,11 +189,9 @@ fn run_glint(
     let view = ([p.x_m, p.y_m, p.eye_m], camera.pixel_angle());
     let sampler = PaperArea::new();
     let (render, result) = instructions(|| {
-        core_calls::render_lit(frame, terrain, &sampler, &sun, view, NoCost, image, lit)
+        core_calls::render_lit(frame, terrain, &sampler, &sun, view, NoCost, &mut [], image)
     });
     result?;
-    // The lit grid (the walk's layout) as the image, into the colour grid's buffer.
-    core_calls::resample(frame, lit, image)?;
     let hash = image_hash(image);
 
     let counts = core_calls::render_lit(
@@ -204,10 +201,9 @@ fn run_glint(
         &sun,
         view,
         Counts::new(&mut []),
+        &mut [],
         image,
-        lit,
     )?;
-    core_calls::resample(frame, lit, image)?;
     let counted_hash = image_hash(image);
     let t: Tally = counts.total;
     hprintln!(
@@ -515,10 +511,6 @@ fn run() -> Result<bool, Error> {
         hprintln!("FAIL: the plate's buffers were taken twice");
         return Ok(false);
     };
-    let Some(GlintBuffers { lit }) = GlintBuffers::take() else {
-        hprintln!("FAIL: the glint frame's buffer was taken twice");
-        return Ok(false);
-    };
     let Some(display) = DisplayBuffer::take() else {
         hprintln!("FAIL: the display's buffer was taken twice");
         return Ok(false);
@@ -597,7 +589,7 @@ fn run() -> Result<bool, Error> {
                     places: 2
                 }
             );
-            ok &= run_glint(&frame, &terrain, &camera, paper, image, &mut lit[..])?;
+            ok &= run_glint(&frame, &terrain, &camera, paper, image)?;
         }
         _ => ok = false,
     }

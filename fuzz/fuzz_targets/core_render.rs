@@ -193,29 +193,28 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
             return;
         };
         let p = camera.params();
-        let mut lit = vec![Rgb::default(); cw * ch];
         let eye = [p.x_m, p.y_m, p.eye_m];
-        let Ok(mut shader) = SunShader::new(
-            &sun,
-            &terrain,
-            eye,
-            camera.pixel_angle(),
-            (cw, ch),
-            &mut lit,
-            NoCost,
-        ) else {
+        let Ok(mut shader) = SunShader::new(&sun, &terrain, eye, camera.pixel_angle()) else {
             return;
         };
         let done = if input.mode % 2 == 0 {
-            frame.render(
+            frame.render_shaded(
                 &terrain,
                 &ExactArea::new(),
                 &mut shader,
+                &mut NoCost,
                 &mut scratch,
                 &mut image,
             )
         } else {
-            frame.render(&terrain, &Point, &mut shader, &mut scratch, &mut image)
+            frame.render_shaded(
+                &terrain,
+                &Point,
+                &mut shader,
+                &mut NoCost,
+                &mut scratch,
+                &mut image,
+            )
         };
         assert!(done.is_ok(), "buffers were sized from the frame");
     }

@@ -36,9 +36,9 @@ impl fmt::Debug for Rendered {
     }
 }
 
-/// Renders one frame lit by `sun`: the walk's samples shaded by a [`SunShader`] into their
-/// own grid (sky where no terrain was sampled), made into the image as the colour image is
-/// ([`Frame::resample`]). The eye and the pixel's angle come from `camera`.
+/// Renders one frame lit by `sun` ([`Frame::render_shaded`] with a [`SunShader`]): the walk's
+/// samples lit, the sky where no terrain was sampled. The eye and the pixel's angle come from
+/// `camera`.
 pub fn render_lit<C: Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
@@ -47,21 +47,16 @@ pub fn render_lit<C: Cost>(
     sun: &Sun<'_>,
     cost: &mut C,
 ) -> Result<Rendered, Error> {
-    let (w, h) = (frame.grid_columns(), frame.grid_rows());
-    let mut grid = vec![Rgb::default(); w * h];
-    let mut lit = vec![frame.sky(); w * h];
+    let (w, h) = frame.image_size();
+    let mut scratch = vec![Rgb::default(); frame.scratch_len()];
+    let mut image = vec![Rgb::default(); w * h];
     let p = camera.params();
-    let mut shader = SunShader::new(
-        sun,
-        terrain,
-        [p.x_m, p.y_m, p.eye_m],
-        camera.pixel_angle(),
-        (w, h),
-        &mut lit,
-        cost,
-    )?;
-    frame.render_columns(terrain, &mode, &mut shader, 0..w, &mut grid)?;
-    image_from_grid(frame, &lit, mode)
+    let mut shader = SunShader::new(sun, terrain, [p.x_m, p.y_m, p.eye_m], camera.pixel_angle())?;
+    frame.render_shaded(terrain, &mode, &mut shader, cost, &mut scratch, &mut image)?;
+    Ok(Rendered {
+        image,
+        size: (w as u32, h as u32),
+    })
 }
 
 /// Renders one frame with cost `cost` into a new image ([`Frame::render`]).

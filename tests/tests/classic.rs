@@ -1,4 +1,4 @@
-//! The classic voxel-space baseline (`footprint_core::terrain::classic`) against a straightforward
+//! The classic voxel-space baseline (`Mode::Classic`) against a straightforward
 //! float implementation of the same algorithm, written from the public description: per
 //! column, sample points at distances that grow by one voxel, then 1.2, 1.4, …; project each
 //! sample's height with floating-point arithmetic and fill the rows above the y-buffer.
@@ -15,8 +15,8 @@ mod common;
 
 use common::{camera, pose_for, with_frame, Map, HEIGHT_SCALE_M, SKY, SPACING_M};
 use footprint_core::terrain::camera::Camera;
-use footprint_core::terrain::classic;
 use footprint_core::terrain::cost::{Counts, Tally};
+use footprint_core::terrain::image::Sampling;
 use footprint_core::terrain::Terrain;
 use footprint_core::Mode;
 use footprint_core::Rgb;
@@ -111,7 +111,7 @@ fn classic_matches_a_float_reference_of_the_classic_algorithm() {
             let reference = float_reference(&cam, &terrain, &starts);
             for (c, want) in reference.iter().enumerate() {
                 let mut got = vec![Rgb::default(); frame.grid_rows()];
-                classic::walk(
+                Mode::Classic.walk_column(
                     frame,
                     &terrain,
                     c,

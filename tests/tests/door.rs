@@ -6,12 +6,17 @@
 //! - the same image in the other pixel formats (`[u8; 3]`, a PNG's bytes; `[u8; 4]`, a canvas's
 //!   RGBA) is the `Rgb` image converted;
 //! - ranges beyond the frame, grids of the wrong length and a short scratch are refused;
+//! - a lit frame (`Frame::render_shaded`) split into column ranges, each with its own shader
+//!   (`Frame::render_columns_shaded`), equals the whole, and shading does not change what the
+//!   walk counts;
 //! - the full-precision grid (`Frame::render_columns_exact`, the ground truth's) rounds to the
 //!   8-bit grid bit for bit, in every mode and on both surfaces, and the area modes' cells keep
 //!   their fractions.
 
 use footprint_core::color::mean_to_rgb;
+use footprint_core::lit::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFUSE};
 use footprint_core::prelude::*;
+use footprint_core::specular::{Clamp, Power};
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::procedural;
 use footprint_host::pyramid::Pyramid;
@@ -37,6 +42,22 @@ fn split(n: usize, seed: u64) -> Vec<std::ops::Range<usize>> {
         at = end;
     }
     ranges
+}
+
+/// Each range with its own stretch of `grid` (`rows` cells per column, the ranges in order).
+fn stretches<'g>(
+    grid: &'g mut [Rgb],
+    ranges: &[std::ops::Range<usize>],
+    rows: usize,
+) -> Vec<(std::ops::Range<usize>, &'g mut [Rgb])> {
+    let mut rest = grid;
+    let mut out = Vec::new();
+    for r in ranges {
+        let (stretch, tail) = rest.split_at_mut(r.len() * rows);
+        out.push((r.clone(), stretch));
+        rest = tail;
+    }
+    out
 }
 
 /// The built-in terrain both tests draw, with its pyramid.
@@ -85,14 +106,7 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
             let mut grid = vec![Rgb::new(1, 2, 3); columns * rows];
             let ranges = split(columns, 0x9e37_79b9 + k as u64);
             assert!(ranges.len() > 4, "{mode}: a real split");
-            let mut stretches = Vec::new();
-            let mut rest = grid.as_mut_slice();
-            for r in &ranges {
-                let (stretch, tail) = rest.split_at_mut(r.len() * rows);
-                stretches.push((r.clone(), stretch));
-                rest = tail;
-            }
-            for (r, stretch) in stretches.into_iter().rev() {
+            for (r, stretch) in stretches(&mut grid, &ranges, rows).into_iter().rev() {
                 frame
                     .render_columns(&terrain, &mode, &mut NoCost, r, stretch)
                     .unwrap();
@@ -147,6 +161,116 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
                 "{refused:?}"
             );
         }
+    }
+}
+
+#[test]
+fn a_lit_frame_split_into_column_ranges_equals_the_whole_frame() {
+    let (map, pyramid) = scene();
+    let terrain = pyramid.terrain(true).unwrap();
+    let clamp99 = Specular::Clamp(Clamp::Aggressive(Power::P99));
+    let materials = Materials::default_by_color();
+    let sun = Sun::new(&terrain, 0.0, 12.0, AMBIENT_DIFFUSE, materials, clamp99).unwrap();
+    for (pitch, roll, projection) in [
+        (20.0, 0.0, Projection::Paper),
+        (20.0, 25.0, Projection::Exact),
+    ] {
+        let mut camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
+        camera = Camera::new(CameraParams {
+            roll_deg: roll,
+            ..*camera.params()
+        })
+        .unwrap();
+        let p = *camera.params();
+        let shader = || {
+            SunShader::new(
+                &sun,
+                &terrain,
+                [p.x_m, p.y_m, p.eye_m],
+                camera.pixel_angle(),
+            )
+        };
+        let options = Options {
+            projection,
+            ..Options::default()
+        };
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options).unwrap();
+        let (w, h) = frame.image_size();
+        let (columns, rows) = (frame.grid_columns(), frame.grid_rows());
+        for (k, mode) in modes().into_iter().enumerate() {
+            let mut scratch = vec![Rgb::BLACK; frame.scratch_len()];
+            let mut whole = vec![Rgb::BLACK; w * h];
+            let mut lit_counts = Counts::new(&mut []);
+            frame
+                .render_shaded(
+                    &terrain,
+                    &mode,
+                    &mut shader().unwrap(),
+                    &mut lit_counts,
+                    &mut scratch,
+                    &mut whole,
+                )
+                .unwrap();
+            // The walk's counters are the unlit frame's; the shader adds its own.
+            let mut counts = Counts::new(&mut []);
+            let mut unlit = vec![Rgb::BLACK; w * h];
+            frame
+                .render(&terrain, &mode, &mut counts, &mut scratch, &mut unlit)
+                .unwrap();
+            let (a, b) = (lit_counts.total, counts.total);
+            assert_eq!(
+                (a.a, a.b, a.c, a.hits, a.p, a.l, a.m),
+                (b.a, b.b, b.c, b.hits, b.p, b.l, b.m),
+                "{mode} {projection:?}: shading changed the walk"
+            );
+            assert_eq!(b.normals, 0);
+            if mode != Mode::Classic {
+                assert!(a.normals > 0, "{mode} {projection:?}: nothing was lit");
+                assert!(
+                    whole != unlit,
+                    "{mode} {projection:?}: the light changed nothing"
+                );
+            }
+            // The ranges in reverse order, a fresh shader each, into one grid.
+            let mut grid = vec![Rgb::new(1, 2, 3); columns * rows];
+            let ranges = split(columns, 0x51ed + k as u64);
+            for (r, stretch) in stretches(&mut grid, &ranges, rows).into_iter().rev() {
+                frame
+                    .render_columns_shaded(
+                        &terrain,
+                        &mode,
+                        &mut shader().unwrap(),
+                        &mut NoCost,
+                        r,
+                        stretch,
+                    )
+                    .unwrap();
+            }
+            let mut split_image = vec![Rgb::BLACK; w * h];
+            frame
+                .resample(&grid, mode.filter(), &mut split_image)
+                .unwrap();
+            assert!(
+                split_image == whole,
+                "{mode} {projection:?}: the split lit frame differs"
+            );
+        }
+        // A short image or scratch is refused.
+        let mut image = vec![Rgb::BLACK; w * h - 1];
+        let mut scratch = vec![Rgb::BLACK; frame.scratch_len()];
+        let refused = frame.render_shaded(
+            &terrain,
+            &Mode::As,
+            &mut shader().unwrap(),
+            &mut NoCost,
+            &mut scratch,
+            &mut image,
+        );
+        assert!(
+            matches!(refused, Err(Error::SliceLength { what: "image", .. })),
+            "{refused:?}"
+        );
     }
 }
 

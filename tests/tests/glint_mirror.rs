@@ -16,7 +16,6 @@ use footprint_core::specular::{Clamp, Phong, Power};
 use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
 
 use footprint_core::terrain::cost::Counts;
-use footprint_core::terrain::fan::Filter;
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::sampler::ExactArea;
 use footprint_core::terrain::Terrain;
@@ -91,26 +90,22 @@ fn image(
     let mut rows = vec![Coord::ZERO; h + 1];
     let mut cols = vec![Column::default(); w];
     let frame = Frame::new(&cam, terrain, options, &mut rows, &mut cols).expect("a frame");
-    let mut grid = vec![Rgb::default(); w * h];
-    let mut out = vec![SKY; w * h];
     let p = cam.params();
     let mut counts = Counts::new(&mut []);
-    let mut shader = SunShader::new(
-        &sun,
-        terrain,
-        [p.x_m, p.y_m, p.eye_m],
-        cam.pixel_angle(),
-        (w, h),
-        &mut out,
-        &mut counts,
-    )
-    .expect("a shader");
+    let mut shader = SunShader::new(&sun, terrain, [p.x_m, p.y_m, p.eye_m], cam.pixel_angle())
+        .expect("a shader");
+    // The paper's projection: the lit image is the walk's grid, `columns` columns per pixel.
+    let mut lit = vec![Rgb::default(); w * h];
     frame
-        .render(terrain, &ExactArea::new(), &mut shader, &mut [], &mut grid)
+        .render_shaded(
+            terrain,
+            &ExactArea::new(),
+            &mut shader,
+            &mut counts,
+            &mut [],
+            &mut lit,
+        )
         .expect("sized");
-    // The shader's grid (the walk's layout) as the image.
-    let mut lit = vec![SKY; w * h];
-    frame.resample(&out, Filter::Box, &mut lit).expect("sized");
     // Average `columns` columns per pixel, as the colour ground truth is.
     box_columns(&lit, cam.width(), h, columns as usize)
 }

@@ -11,17 +11,24 @@
 //!   fit-first-hit) at 64×48, in every terrain mode: `pitch{40,20,5}_{mode}.png`.
 //! * `specular/`: the three distinct plates at 64×64 in every specular mode:
 //!   `{plate}_{mode}.png`.
+//! * `lit/`: the terrain's 20° and 5° views lit by a low sun ahead with Amanatides' `clamp99`
+//!   (and, at 20°, without the clamp), in both projections, through the door's shading
+//!   (`Frame::render_shaded`): `pitch{20,5}_{mode}_{paper,exact}[_none].png`. They were
+//!   blessed when shading moved from a `Cost` into the door, after the CLI's lit frames of the
+//!   commit before (6ef1b85) and after were found equal byte for byte.
 
 use std::path::{Path, PathBuf};
 
-use footprint_core::terrain::camera::Options;
+use footprint_core::lit::{Materials, Specular, Sun, AMBIENT_DIFFUSE};
+use footprint_core::specular::{Clamp, Power};
+use footprint_core::terrain::camera::{Options, Projection};
 use footprint_core::terrain::cost::NoCost;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::Rgb;
 use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::procedural;
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{render_with, Mode, Tables, SS_RATES};
+use footprint_host::render::{render_lit_once, render_with, Mode, Tables, SS_RATES};
 use footprint_host::report::png::write_png;
 use footprint_host::scene::{self, Scene, SceneName};
 use footprint_host::view::Size;
@@ -57,26 +64,73 @@ fn check(room: &str, name: &str, width: u32, height: u32, pixels: &[Rgb]) -> Opt
     (differ > 0).then(|| format!("{name}: {differ} of {} pixels differ", width * height))
 }
 
-#[test]
-fn terrain_frames_match_the_golden_images() {
+/// The terrain of `terrain/` and `lit/`: the built-in terrain, seed 5, 256², and its pyramid.
+fn scene_map() -> (footprint_host::map::Map, Pyramid) {
     let map = procedural(5, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+    (map, pyramid)
+}
+
+/// The terrain frames' size.
+const SIZE: Size = Size {
+    width: 64,
+    height: 48,
+};
+
+#[test]
+fn terrain_frames_match_the_golden_images() {
+    let (map, pyramid) = scene_map();
     let terrain = pyramid.terrain(true).unwrap();
-    let size = Size {
-        width: 64,
-        height: 48,
-    };
     let mut modes = vec![Mode::Ps, Mode::Li, Mode::As, Mode::AsExact, Mode::Classic];
     modes.extend(SS_RATES.map(Mode::Ss));
     let mut failures = Vec::new();
     for pitch in PAPER_PITCHES {
-        let camera = paper_camera(&map, &pyramid, pitch, size, true).unwrap();
+        let camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, Options::default()).unwrap();
         for &mode in &modes {
             let img = render_with(&frame, &terrain, mode, &mut NoCost).unwrap();
             let name = format!("pitch{pitch}_{mode}");
             failures.extend(check("terrain", &name, img.size.0, img.size.1, &img.image));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn lit_frames_match_the_golden_images() {
+    let (map, pyramid) = scene_map();
+    let terrain = pyramid.terrain(true).unwrap();
+    let clamp99 = Specular::Clamp(Clamp::Aggressive(Power::P99));
+    let mut failures = Vec::new();
+    for (pitch, specular, suffix) in [
+        (20.0, clamp99, ""),
+        (5.0, clamp99, ""),
+        (20.0, Specular::None, "_none"),
+    ] {
+        let camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
+        // A low sun straight ahead (the camera looks north): the glint's geometry.
+        let materials = Materials::default_by_color();
+        let sun = Sun::new(&terrain, 0.0, 12.0, AMBIENT_DIFFUSE, materials, specular).unwrap();
+        for (projection, proj) in [(Projection::Paper, "paper"), (Projection::Exact, "exact")] {
+            let mut tables = Tables::new(&camera);
+            let options = Options {
+                projection,
+                ..Options::default()
+            };
+            let frame = tables.frame(&camera, &terrain, options).unwrap();
+            for mode in [
+                Mode::Ps,
+                Mode::Ss(SS_RATES[2]),
+                Mode::As,
+                Mode::AsExact,
+                Mode::As2,
+            ] {
+                let (img, _) =
+                    render_lit_once(&frame, &terrain, &camera, mode, &sun, &mut NoCost).unwrap();
+                let name = format!("pitch{pitch}_{mode}_{proj}{suffix}");
+                failures.extend(check("lit", &name, img.size.0, img.size.1, &img.image));
+            }
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

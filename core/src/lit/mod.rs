@@ -4,9 +4,10 @@
 //! The terrain is lit by a distant sun: each sample a mode takes is shaded with a diffuse term
 //! and a Phong highlight `K_spec·cos^n α` (Amanatides' "Detecting Specular Aliasing"), with
 //! `K_spec` and `n` from the voxel's [`Phong`]. Shading listens to the one walk: a [`SunShader`]
-//! is a [`Cost`] that sees every sample the sampler takes with its weight (Sect. 4: one per
-//! PS/LI hit, one per `SS_N` sub-ray, the visible height of every visible voxel for AS), lights
-//! it, and writes its own image. Without a sun nothing of this runs, and every image is the
+//! is a [`Shader`], handed to [`crate::terrain::frame::Frame::render_shaded`], that sees every
+//! sample the sampler takes with its weight (Sect. 4: one per PS/LI hit, one per `SS_N`
+//! sub-ray, the visible height of every visible voxel for AS), lights it, and makes the
+//! pixel's colour. Without a sun nothing of this runs, and every image is the
 //! colour map's.
 //!
 //! **Normals** come from the pyramid level the walk samples (central differences of the level's
@@ -62,6 +63,7 @@ use crate::terrain::camera::floor_i64;
 use crate::terrain::cost::Cost;
 use crate::terrain::map::{Axis, Terrain};
 use crate::terrain::march::Voxel;
+use crate::terrain::shade::Shader;
 use crate::terrain::side::mirror;
 use crate::trig::sin_cos_deg;
 
@@ -353,57 +355,33 @@ fn terrain_clamp(phong: &Phong, f: u16, policy: Clamp) -> Phong {
     )
 }
 
-/// Shades the samples of a walk into its own grid (the walk's layout, `W × H` of the frame's
-/// grid, column by column from the bottom up), forwarding every event to the inner cost `C`.
-///
-/// Pixels the walk never begins, or that saw only sky, are left as the caller filled them
-/// (the sky colour).
-pub struct SunShader<'s, 'o, C: Cost> {
+/// Lights the samples of a walk by a sun ([`Shader`]: a parameter of
+/// [`crate::terrain::frame::Frame::render_shaded`]): each sample's diffuse term and the
+/// pixel's highlight, as the module docs say.
+pub struct SunShader<'s> {
     sun: &'s Sun<'s>,
     terrain: &'s Terrain<'s>,
     /// The eye, in 1/65536 m (x east, y south, height).
     eye: [i64; 3],
     /// Half the pixel's angular size, radians Q30: the view's turn across a pixel.
     half_pixel: u32,
-    out: &'o mut [Rgb],
-    width: usize,
-    height: usize,
-    column: usize,
-    row: Option<usize>,
     acc: Acc,
     /// The current pixel's lobes (`LOBES`) and which of them samples reached (bit `k`).
     lobes: [Lobe; LOBES],
     used: u16,
-    /// The inner cost, which every event reaches too.
-    pub inner: C,
 }
 
-impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
-    /// A shader for a frame whose walked grid is `width × height` ([`crate::terrain::frame::Frame::grid_columns`]
-    /// and [`crate::terrain::frame::Frame::grid_rows`]), whose eye is at `eye_m` (east, south, up,
-    /// in metres) and whose pixels are `pixel_angle` radians tall, writing the lit grid into
-    /// `out` in the walk's own layout ([`crate::terrain::frame::Frame::render_columns`]: column
-    /// by column, each from the bottom row up), which [`crate::terrain::frame::Frame::resample`]
-    /// turns into the image.
+impl<'s> SunShader<'s> {
+    /// A shader for a frame of `terrain` whose eye is at `eye_m` (east, south, up, in metres)
+    /// and whose pixels are `pixel_angle` radians tall (the camera's).
     ///
-    /// Errors: [`Error::SliceLength`] when `out` does not hold `width × height` pixels;
-    /// [`Error::OutOfRange`] for a non-finite eye or pixel angle.
+    /// Errors: [`Error::OutOfRange`] for a non-finite eye or pixel angle.
     pub fn new(
         sun: &'s Sun<'s>,
         terrain: &'s Terrain<'s>,
         eye_m: [f64; 3],
         pixel_angle: f64,
-        (width, height): (usize, usize),
-        out: &'o mut [Rgb],
-        inner: C,
     ) -> Result<Self, Error> {
-        if out.len() != width * height {
-            return Err(Error::SliceLength {
-                what: "shaded image",
-                expected: width * height,
-                actual: out.len(),
-            });
-        }
         let mut eye = [0i64; 3];
         for (e, m) in eye.iter_mut().zip(eye_m) {
             *e = floor_i64(check("eye", m, -1e12, 1e12, false)? * 65536.0 + 0.5);
@@ -419,15 +397,9 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
             terrain,
             eye,
             half_pixel,
-            out,
-            width,
-            height,
-            column: 0,
-            row: None,
             acc: Acc::default(),
             lobes: [Lobe::default(); LOBES],
             used: 0,
-            inner,
         })
     }
 
@@ -510,21 +482,19 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
         })
     }
 
-    /// Writes the current pixel and clears the accumulator.
-    fn finish_pixel(&mut self) {
+    /// The current pixel's colour ([`Shader::finish_pixel`]), counting the highlight's
+    /// evaluations in `cost`; `None` when it sampled no terrain. Clears the accumulator.
+    fn finish<C: Cost>(&mut self, cost: &mut C) -> Option<Rgb> {
         let acc = core::mem::take(&mut self.acc);
         let total = acc.w_terrain.saturating_add(acc.w_sky);
-        let row = match self.row.take() {
-            Some(row) if acc.samples > 0 && total > 0 && row < self.height => row,
-            _ => {
-                // Nothing to write: the lobes are cleared unevaluated.
-                self.discard_lobes();
-                return;
-            }
-        };
+        if acc.samples == 0 || total <= 0 {
+            // Nothing to write: the lobes are cleared unevaluated.
+            self.discard_lobes();
+            return None;
+        }
         // The highlight (Q15) as white light over the terrain's share of the pixel, in the
         // channels' 8.8 × weight.
-        let spec = ((self.highlight(&acc) * 255 * 256) >> 15).saturating_mul(acc.w_terrain);
+        let spec = ((self.highlight(&acc, cost) * 255 * 256) >> 15).saturating_mul(acc.w_terrain);
         let den = total.saturating_mul(256);
         let ch = |(color, sky): (i64, i64)| {
             let c = color
@@ -536,11 +506,7 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
         };
         let ([c0, c1, c2], [s0, s1, s2]) = (acc.color, acc.sky);
         let [r, g, b] = [(c0, s0), (c1, s1), (c2, s2)].map(ch);
-        // The grid's layout (`Frame::render_columns`): column by column, from the bottom up.
-        let at = self.column.saturating_mul(self.height).saturating_add(row);
-        if let Some(p) = self.out.get_mut(at) {
-            *p = Rgb::new(r, g, b);
-        }
+        Some(Rgb::new(r, g, b))
     }
 
     /// Takes the next lobe samples reached (the lowest octave first), leaving it cleared;
@@ -563,7 +529,7 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
 
     /// The pixel's highlight, Q15: the sum of its lobes' (the reference's own sum for
     /// [`Specular::Reference`]). Clears the lobes.
-    fn highlight(&mut self, acc: &Acc) -> i64 {
+    fn highlight<C: Cost>(&mut self, acc: &Acc, cost: &mut C) -> i64 {
         let w = acc.w_terrain;
         if self.sun.specular == Specular::Reference {
             // Every sample was shaded on its own (`sample` fills no lobe).
@@ -577,18 +543,18 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
         };
         let mut sum = 0;
         while let Some(lobe) = self.next_lobe() {
-            sum += self.lobe(&lobe, w, &light);
+            sum += self.lobe(&lobe, w, &light, cost);
         }
         sum
     }
 
     /// One lobe's highlight over a pixel of terrain weight `w`, Q15, seen along `light`.
-    fn lobe(&mut self, lobe: &Lobe, w: i64, light: &Light) -> i64 {
+    fn lobe<C: Cost>(&mut self, lobe: &Lobe, w: i64, light: &Light, cost: &mut C) -> i64 {
         let w_k = lobe.w_k;
         if w_k <= 0 {
             return 0;
         }
-        self.inner.shading(1);
+        cost.shading(1);
         let Some(n_bar) = Normal::from_direction(lobe.normal) else {
             return 0;
         };
@@ -637,7 +603,7 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
                 // fraction of f, so that it does not step as the pixel's spread drifts (at the
                 // paper's ⌊f⌋ alone a drifting spread stepped a wet slope's highlight by 6 and
                 // more levels between frames: K″ ∝ n′ moves by a step of MaxnAllowed).
-                self.inner.shading(1);
+                cost.shading(1);
                 let h1 = i64::from(p1.highlight(cos).to_bits() >> 15);
                 let t = i64::try_from(t).unwrap_or(0);
                 return h0 + (((h1 - h0) * t + (1 << 15)) >> 16);
@@ -659,47 +625,22 @@ impl<'s, 'o, C: Cost> SunShader<'s, 'o, C> {
     }
 }
 
-impl<C: Cost> core::fmt::Debug for SunShader<'_, '_, C> {
-    /// The frame's size and the pixel being shaded; the image is far too large to print.
+impl core::fmt::Debug for SunShader<'_> {
+    /// The pixel being shaded; the sun and the terrain are far too large to print.
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("SunShader")
-            .field("size", &(self.width, self.height))
-            .field("pixel", &(self.column, self.row))
+            .field("samples", &self.acc.samples)
             .finish_non_exhaustive()
     }
 }
 
-impl<C: Cost> Cost for SunShader<'_, '_, C> {
-    fn begin_column(&mut self, column: usize) {
-        self.finish_pixel();
-        self.column = column;
-        self.inner.begin_column(column);
-    }
-    fn end_column(&mut self) {
-        self.finish_pixel();
-        self.inner.end_column();
-    }
-    fn step(&mut self, in_footprint: bool) {
-        self.inner.step(in_footprint);
-    }
-    fn steps(&mut self, count: u32, in_footprint: bool) {
-        self.inner.steps(count, in_footprint);
-    }
-    fn new_ray(&mut self) {
-        self.inner.new_ray();
-    }
-    fn begin_pixel(&mut self, row: usize) {
-        self.finish_pixel();
-        self.row = Some(row);
-        self.inner.begin_pixel(row);
-    }
-    fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
-        self.inner.sample(voxel, color, weight);
+impl Shader for SunShader<'_> {
+    fn sample<C: Cost>(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight, cost: &mut C) {
         let w = weight.to_bits().min(MAX_WEIGHT);
         if w <= 0 {
             return;
         }
-        self.inner.normals(1);
+        cost.normals(1);
         let Some(lit) = self.light(voxel) else {
             return;
         };
@@ -716,7 +657,7 @@ impl<C: Cost> Cost for SunShader<'_, '_, C> {
         }
         if self.sun.specular == Specular::Reference {
             // The reference shades every sample on its own and needs no lobes.
-            self.inner.shading(1);
+            cost.shading(1);
             let cos = Light::new(self.sun.l, lit.view).cos_alpha_unit(&lit.normal);
             let h = i64::from(lit.surface.highlight(cos).to_bits() >> 15);
             add(&mut acc.highlight, w, h);
@@ -739,7 +680,6 @@ impl<C: Cost> Cost for SunShader<'_, '_, C> {
         add(&mut lobe.within, w_k, lit.within);
     }
     fn sky_sample(&mut self, color: Color16, weight: Weight) {
-        self.inner.sky_sample(color, weight);
         let w = weight.to_bits().min(MAX_WEIGHT);
         if w <= 0 {
             return;
@@ -749,46 +689,18 @@ impl<C: Cost> Cost for SunShader<'_, '_, C> {
             add(sum, w, i64::from(c));
         }
     }
-    fn hit(&mut self) {
-        self.inner.hit();
-    }
-    fn ss_hit(&mut self) {
-        self.inner.ss_hit();
-    }
-    fn as_hit(&mut self) {
-        self.inner.as_hit();
-    }
-    fn top_division(&mut self) {
-        self.inner.top_division();
-    }
-    fn wedge(&mut self, cells: u32) {
-        self.inner.wedge(cells);
-    }
-    fn shifts(&mut self, count: u32) {
-        self.inner.shifts(count);
-    }
-    fn divisions(&mut self, count: u32) {
-        self.inner.divisions(count);
-    }
-    fn terrain_pixel(&mut self) {
-        self.inner.terrain_pixel();
-    }
-    fn normals(&mut self, count: u32) {
-        self.inner.normals(count);
-    }
-    fn shading(&mut self, count: u32) {
-        self.inner.shading(count);
+    fn finish_pixel<C: Cost>(&mut self, cost: &mut C) -> Option<Rgb> {
+        self.finish(cost)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::terrain::cost::NoCost;
     use crate::terrain::map::{Level, Scale};
 
     #[test]
-    fn bad_suns_and_buffers_are_errors() {
+    fn bad_suns_and_shaders_are_errors() {
         let heights = [0u16; 4];
         let colors = [Rgb::new(1, 2, 3); 4];
         let level = Level::new(2, 2, &heights, &colors).unwrap();
@@ -821,20 +733,11 @@ mod tests {
             "the zenith is a sun"
         );
         let ok = Sun::new(&terrain, 0.0, 10.0, (0.35, 0.65), by_color, Specular::None).unwrap();
-        let mut short = [Rgb::default(); 3];
-        let shader = SunShader::new(&ok, &terrain, [0.0; 3], 0.01, (2, 2), &mut short, NoCost);
-        assert!(shader.is_err(), "an image of 3 pixels for 2×2");
-        let mut out = [Rgb::default(); 4];
-        let shader = SunShader::new(
-            &ok,
-            &terrain,
-            [f64::INFINITY, 0.0, 0.0],
-            0.01,
-            (2, 2),
-            &mut out,
-            NoCost,
-        );
+        let shader = SunShader::new(&ok, &terrain, [f64::INFINITY, 0.0, 0.0], 0.01);
         assert!(shader.is_err(), "a non-finite eye");
+        let shader = SunShader::new(&ok, &terrain, [0.0; 3], f64::NAN);
+        assert!(shader.is_err(), "a non-finite pixel angle");
+        assert!(SunShader::new(&ok, &terrain, [0.0; 3], 0.01).is_ok());
     }
 
     #[test]

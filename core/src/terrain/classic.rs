@@ -18,7 +18,6 @@
 //! Counters: term `a` per sample, `b` per row whose ray is computed, a hit and `P` per pixel
 //! drawn. `M` is not counted: the classic algorithm has no notion of a sampled voxel set.
 
-use crate::color::Rgb;
 use crate::error::Error;
 use crate::num::height;
 use crate::sink::PixelSink;
@@ -33,19 +32,8 @@ use crate::terrain::Terrain;
 /// then 1.2, 1.4, …) are exact integers: the first step is 10 fifths, and each step grows by 2.
 const FIFTHS: i64 = 5;
 
-/// Draws column `col` of `frame` into `out` (rows from the bottom, `out.len() ≥ H`); rows no
-/// sample reaches are the sky.
-pub fn walk<C: Cost>(
-    frame: &Frame<'_>,
-    terrain: &Terrain<'_>,
-    col: usize,
-    cost: &mut C,
-    out: &mut [Rgb],
-) {
-    walk_into(frame, terrain, col, cost, out);
-}
-
-/// [`walk`] into any `ColumnOut`.
+/// Draws column `col` of `frame` into `out` (rows from the bottom, at least `H` of them); rows
+/// no sample reaches are the sky.
 pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,

@@ -34,6 +34,9 @@ pub(crate) trait ColumnOut {
     fn rows(&self) -> usize;
     /// Writes pixel `k`; beyond [`ColumnOut::rows`], nothing.
     fn set(&mut self, k: usize, color: Rgb);
+    /// The same output from pixel `start` on (pixel `start` becomes pixel 0), for a column whose
+    /// walk begins at row `start` ([`crate::terrain::camera::Column::rows`]).
+    fn skip_rows(&mut self, start: usize) -> &mut Self;
     /// Writes pixel `k`'s colour before rounding, which replaces the one [`ColumnOut::set`]
     /// wrote (only where [`ColumnOut::EXACT`]).
     #[inline(always)]
@@ -60,6 +63,11 @@ impl ColumnOut for [Color32] {
             *px = color;
         }
     }
+    #[inline(always)]
+    fn skip_rows(&mut self, start: usize) -> &mut Self {
+        let start = start.min(self.len());
+        self.get_mut(start..).unwrap_or_default()
+    }
 }
 
 impl ColumnOut for [Rgb] {
@@ -72,6 +80,31 @@ impl ColumnOut for [Rgb] {
         if let Some(px) = self.get_mut(k) {
             *px = color;
         }
+    }
+    #[inline(always)]
+    fn skip_rows(&mut self, start: usize) -> &mut Self {
+        let start = start.min(self.len());
+        self.get_mut(start..).unwrap_or_default()
+    }
+}
+
+/// Pixels nobody keeps: a walk for its events alone ([`crate::terrain::shade`], where a
+/// shader writes the pixels), `rows` tall.
+pub(crate) struct Unwritten {
+    /// The rows the walk may draw.
+    pub(crate) rows: usize,
+}
+
+impl ColumnOut for Unwritten {
+    #[inline(always)]
+    fn rows(&self) -> usize {
+        self.rows
+    }
+    #[inline(always)]
+    fn set(&mut self, _k: usize, _color: Rgb) {}
+    #[inline(always)]
+    fn skip_rows(&mut self, _start: usize) -> &mut Self {
+        self
     }
 }
 
@@ -122,6 +155,11 @@ impl<P: PixelSink> ColumnOut for ImageColumn<'_, P> {
         if let Some(px) = self.image.get_mut(at) {
             *px = P::from_rgb(color);
         }
+    }
+    #[inline(always)]
+    fn skip_rows(&mut self, start: usize) -> &mut Self {
+        self.start_at(start);
+        self
     }
 }
 

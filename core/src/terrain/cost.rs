@@ -80,8 +80,8 @@ pub trait Cost {
     fn shading(&mut self, _count: u32) {}
 }
 
-/// A borrowed cost counts into what it borrows (so that a wrapper such as
-/// [`crate::lit::SunShader`] can forward to a caller's counters).
+/// A borrowed cost counts into what it borrows (so that the door's shading,
+/// [`crate::terrain::frame::Frame::render_shaded`], can forward to a caller's counters).
 impl<C: Cost + ?Sized> Cost for &mut C {
     #[inline(always)]
     fn begin_column(&mut self, column: usize) {

@@ -21,7 +21,7 @@ use core::ops::Range;
 use crate::color::{Color32, Rgb};
 use crate::error::Error;
 use crate::sink::PixelSink;
-use crate::terrain::column::{self, walk_into, ColumnOut};
+use crate::terrain::column::{self, walk_into, ColumnOut, Unwritten};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
@@ -59,6 +59,17 @@ pub trait Sampling {
         out: &mut [Color32],
     );
 
+    /// Walks column `x` of `frame` as [`Sampling::walk_column`] does, for its events alone:
+    /// `cost` hears every hook, no pixel is written ([`Frame::render_shaded`], whose shader
+    /// writes them).
+    fn walk_column_events<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+    );
+
     /// Walks every column of a frame of the paper's projection straight into its image `W × H`
     /// (row-major from the top), in any pixel format.
     ///
@@ -76,18 +87,16 @@ pub trait Sampling {
 /// bottom, the column's walked rows at their own index): [`Sampling::walk_column`] and
 /// [`Sampling::walk_column_exact`], for 8-bit or full-precision cells.
 #[inline]
-pub(crate) fn walk_rows<S: Sampler + Clone, C: Cost, T>(
+pub(crate) fn walk_rows<S: Sampler + Clone, C: Cost, O: ColumnOut + ?Sized>(
     sampler: &S,
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     x: usize,
     cost: &mut C,
-    out: &mut [T],
-) where
-    [T]: ColumnOut,
-{
+    out: &mut O,
+) {
     let rows = frame.column(x).map_or(0..0, |c| c.rows());
-    let rest = out.get_mut(rows.start.min(out.len())..).unwrap_or_default();
+    let rest = out.skip_rows(rows.start);
     walk_into(frame, terrain, x, rows, &mut sampler.clone(), cost, rest);
 }
 
@@ -119,6 +128,20 @@ impl<S: Sampler + Clone> Sampling for S {
         out: &mut [Color32],
     ) {
         walk_rows(self, frame, terrain, x, cost, out);
+    }
+
+    #[inline]
+    fn walk_column_events<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+    ) {
+        let mut out = Unwritten {
+            rows: frame.grid_rows(),
+        };
+        walk_rows(self, frame, terrain, x, cost, &mut out);
     }
 
     #[inline]
@@ -163,19 +186,7 @@ impl Frame<'_> {
         if self.fan().is_none() {
             return sampling.walk_image(self, terrain, cost, image);
         }
-        let (w, h) = self.image_size();
-        for (what, expected, actual) in [
-            ("image", w * h, image.len()),
-            ("scratch", self.scratch_len(), scratch.len()),
-        ] {
-            if expected != actual {
-                return Err(Error::SliceLength {
-                    what,
-                    expected,
-                    actual,
-                });
-            }
-        }
+        self.check_render(image.len(), scratch.len())?;
         self.render_columns(terrain, sampling, cost, 0..self.grid_columns(), scratch)?;
         self.resample(scratch, sampling.filter(), image)
     }
@@ -225,8 +236,32 @@ impl Frame<'_> {
         Ok(())
     }
 
+    /// Errors unless an image of `image` pixels is [`Frame::image_size`]'s and, with the exact
+    /// projection, a scratch of `scratch` cells is [`Frame::scratch_len`]'s.
+    pub(crate) fn check_render(&self, image: usize, scratch: usize) -> Result<(), Error> {
+        let (w, h) = self.image_size();
+        let scratch_needed = if self.fan().is_some() {
+            self.scratch_len()
+        } else {
+            scratch
+        };
+        for (what, expected, actual) in [
+            ("image", w * h, image),
+            ("scratch", scratch_needed, scratch),
+        ] {
+            if expected != actual {
+                return Err(Error::SliceLength {
+                    what,
+                    expected,
+                    actual,
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Errors unless `columns` lies within the frame's and a grid of `len` cells holds them.
-    fn check_columns(&self, columns: &Range<usize>, len: usize) -> Result<(), Error> {
+    pub(crate) fn check_columns(&self, columns: &Range<usize>, len: usize) -> Result<(), Error> {
         if columns.start > columns.end || columns.end > self.grid_columns() {
             return Err(Error::SliceLength {
                 what: "columns",

@@ -6,7 +6,7 @@
 //! a column ([`march`]) → the one column walk (Fig. 4, [`column`](mod@column)) → the per-hit sampler of
 //! each mode (Figs. 4, 8, 12, [`sampler`]; `as2` across the column, [`wedge`], in lanes with a
 //! ray each, [`horizons`]) → the pixel. [`cost`] counts what the walk spends
-//! (Sect. 6), [`visibility`] counts what it should see (`V`), and [`classic`] is the voxel-space
+//! (Sect. 6), [`visibility`] counts what it should see (`V`), and `classic` is the voxel-space
 //! baseline the paper's walk is measured against. The sun on the terrain, which joins both
 //! papers, is a room above this one ([`crate::lit`]).
 
@@ -14,7 +14,7 @@ pub mod baked;
 mod blend;
 pub mod buffers;
 pub mod camera;
-pub mod classic;
+pub(crate) mod classic;
 pub mod column;
 pub mod cost;
 pub mod fan;
@@ -30,6 +30,7 @@ pub mod march;
 pub mod pyramid;
 pub mod ray;
 pub mod sampler;
+pub mod shade;
 pub(crate) mod side;
 pub mod strips;
 pub mod surface;
