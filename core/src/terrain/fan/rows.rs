@@ -124,9 +124,9 @@ impl Fan {
 
     /// One output row with [`Filter::Box`], its first pixel centred at unrolled `x` (fixed
     /// point), at `u` above the grid's lower edge, `g` lines wide: each pixel the box over two
-    /// lines ([`two_cells`], nearly every pixel) or three ([`three_cells`]) where it lies
-    /// inside the grid, else [`Fan::any_lines`], with the box's scales computed once for the
-    /// row. Not inlined, as [`Fan::nearest_row`].
+    /// lines ([`two_cells`], nearly every pixel), one (the line's cell) or three
+    /// ([`three_cells`]) where it lies inside the grid, else [`Fan::any_lines`], with the box's
+    /// scales computed once for the row. Not inlined, as [`Fan::nearest_row`].
     #[inline(never)]
     fn box_row<P: PixelSink>(&self, grid: &[Rgb], x: i64, u: i64, g: i64, sky: Rgb, out: &mut [P]) {
         let rows = self.rows();
@@ -195,6 +195,9 @@ impl Fan {
             let end_in = start + width32;
             let rgb = if end_in > 1 << FRAC && end_in <= 2 << FRAC {
                 two_cells(grid, at, rows, start, scale)
+            } else if end_in <= 1 << FRAC {
+                // Within one line: its cell, as the general box's one share of 256 gives it.
+                grid.get(at).copied()
             } else if end_in > 2 << FRAC && end_in <= 3 << FRAC && j + 2 < self.lines() {
                 three_cells(grid, at, rows, start, scale, whole)
             } else {
