@@ -34,7 +34,8 @@ pub enum Command {
     /// counters.
     Render(Box<RenderArgs>),
     /// Time every mode in the paper's three views and the classic renderer's view, interleaved:
-    /// ms per frame on one thread and on all, ratios to classic and to PS, steps per frame.
+    /// ms per frame and frames per second on one thread and on all, ratios to classic and to
+    /// PS, steps per frame.
     Bench(Box<BenchArgs>),
     /// The paper's Tables 1–5 (coverage, hits, time, error against the ground truth) on any map.
     Table(Box<TableArgs>),

@@ -397,7 +397,9 @@ fn json(args: &[&str]) -> serde_json::Value {
 fn the_help_summaries_of_the_measuring_commands_are_what_they_measure() {
     let small = ["--size", "32x32"];
     // bench: "every mode in the paper's three views and the classic renderer's view: ms per
-    // frame on one thread and on all, ratios to classic and to PS, steps per frame".
+    // frame and frames per second on one thread and on all, ratios to classic and to PS,
+    // steps per frame".
+    assert!(summary("bench").contains("frames per second on one thread and on all"));
     assert!(summary("bench").contains("ratios to classic and to PS"));
     let b = json(&[&["bench", "--repeats", "1", "--json"][..], &small].concat());
     let cases = b["cases"].as_array().unwrap();
@@ -433,12 +435,19 @@ fn the_help_summaries_of_the_measuring_commands_are_what_they_measure() {
             for key in [
                 "ms",
                 "ms_threads",
+                "fps",
+                "fps_threads",
                 "ratio_to_classic",
                 "ratio_to_ps",
                 "steps",
             ] {
                 assert!(m[key].is_number(), "bench: no {key} in {m}");
             }
+            let (ms, fps) = (m["ms"].as_f64().unwrap(), m["fps"].as_f64().unwrap());
+            assert!(
+                (ms * fps - 1000.0).abs() < 1e-6,
+                "bench: fps {fps} for {ms} ms"
+            );
         }
     }
 

@@ -125,10 +125,12 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
             crate::report::number::thousands(case.far_voxels.round() as u64)
         )?;
         crate::outln!(
-            "  {:<8}  {:>17}  {:>8}  {:>7}  {:>9}  {:>7}  {:>10}  {:>8}  {:>10}",
+            "  {:<8}  {:>17}  {:>8}  {:>7}  {:>7}  {:>7}  {:>9}  {:>7}  {:>10}  {:>8}  {:>10}",
             "mode",
             "1 thread ms",
             "all ms",
+            "fps",
+            "fps all",
             "speedup",
             "×classic",
             "×PS",
@@ -139,11 +141,13 @@ pub fn bench(args: &BenchArgs) -> Result<()> {
         let ratio = |r: Option<f64>| r.map_or_else(|| "-".to_owned(), |r| format!("{r:.2}"));
         for m in &case.modes {
             crate::outln!(
-                "  {:<8}  {:7.2} ({:7.2})  {:8.2}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>8}  {:>10}",
+                "  {:<8}  {:7.2} ({:7.2})  {:8.2}  {:7.1}  {:7.1}  {:7.2}  {:9.2}  {:7.2}  {:>10}  {:>8}  {:>10}",
                 m.mode.to_string(),
                 m.ms,
                 m.ms_median,
                 m.ms_threads,
+                m.fps,
+                m.fps_threads,
                 m.speedup,
                 m.ratio_to_classic,
                 m.ratio_to_ps,

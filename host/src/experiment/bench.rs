@@ -1,6 +1,7 @@
 //! `footprint bench`: the three paper cases (pitch 40°, 20°, 5°; 400×400; FOV 10°;
-//! fit-first-hit) and the classic renderer's own setting, in every mode: ms per frame on one
-//! thread and on all, the ratios to `classic` and to PS, and the traversal steps. With rolls
+//! fit-first-hit) and the classic renderer's own setting, in every mode: ms per frame and
+//! frames per second on one thread and on all, the ratios to `classic` and to PS, and the
+//! traversal steps. With rolls
 //! (`--roll`), each paper case is also rendered in the exact projection at each roll, and
 //! timed against the same case in the paper's projection (today's renderer, roll 0).
 
@@ -31,6 +32,11 @@ pub struct ModeTime {
     pub ms_threads: f64,
     /// `ms / ms_threads`: what the other cores add.
     pub speedup: f64,
+    /// Frames per second on one thread, from the fastest frame (`1000 / ms`).
+    pub fps: f64,
+    /// Frames per second on every thread of the pool, from the fastest frame
+    /// (`1000 / ms_threads`).
+    pub fps_threads: f64,
     /// `ms / ms(PS)`, fastest against fastest.
     pub ratio_to_ps: f64,
     /// `ms / ms(classic)`, fastest against fastest.
@@ -186,6 +192,8 @@ pub fn run(
                 ms_median: median(one),
                 ms_threads: min(all),
                 speedup: min(one) / min(all),
+                fps: 1000.0 / min(one),
+                fps_threads: 1000.0 / min(all),
                 ratio_to_ps: min(one) / ps,
                 ratio_to_classic: min(one) / classic,
                 ratio_to_unrolled: against.map(|(u, _)| min(one) / best_in(u, mode)),
