@@ -6,6 +6,8 @@ use std::time::Instant;
 
 use anyhow::Result;
 use footprint_core::color::Color32;
+use footprint_core::lit::{Sun, SunShader};
+use footprint_core::terrain::camera::Camera;
 use footprint_core::terrain::camera::Switch;
 use footprint_core::terrain::cost::NoCost;
 use footprint_core::terrain::frame::Frame;
@@ -121,14 +123,59 @@ pub fn render_timed_parallel(
     best_of(repeats, || render_parallel(frame, terrain, mode))
 }
 
-/// Renders `frame` lit by `sun` (`footprint_scenes::render::render_lit`, one thread: the
-/// shader writes the whole lit image) with cost `cost`, once, and times it, ms.
+/// Renders `frame` lit by `sun` without counting, the frame's columns split over every core
+/// (rayon, [`LIT_COLUMNS`] columns per task, each with its own [`SunShader`]) with
+/// [`Frame::render_columns_shaded`] and the image made once from the whole grid; on one thread
+/// [`render_lit_once`]'s door. The same pixels either way (tests/tests/door.rs), timed, ms.
+pub fn render_lit_parallel(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    camera: &Camera,
+    mode: Mode,
+    sun: &Sun<'_>,
+) -> Result<(Rendered, f64)> {
+    use rayon::prelude::*;
+    if rayon::current_num_threads() == 1 {
+        return render_lit_once(frame, terrain, camera, mode, sun, &mut NoCost);
+    }
+    walked();
+    let t = Instant::now();
+    let p = camera.params();
+    let (eye, pixel) = ([p.x_m, p.y_m, p.eye_m], camera.pixel_angle());
+    let rows = frame.grid_rows().max(1);
+    let mut grid = vec![Rgb::default(); frame.grid_columns() * frame.grid_rows()];
+    grid.par_chunks_mut(rows * LIT_COLUMNS)
+        .enumerate()
+        .try_for_each(|(i, stretch)| -> Result<()> {
+            let start = i * LIT_COLUMNS;
+            let columns = start..start + stretch.len() / rows;
+            let mut shader = SunShader::new(sun, terrain, eye, pixel)?;
+            frame.render_columns_shaded(
+                terrain,
+                &mode,
+                &mut shader,
+                &mut NoCost,
+                columns,
+                stretch,
+            )?;
+            Ok(())
+        })?;
+    let rendered = image_from_grid(frame, &grid, mode)?;
+    Ok((rendered, t.elapsed().as_secs_f64() * 1e3))
+}
+
+/// Columns per task of [`render_lit_parallel`]: enough that a shader's set-up is nothing,
+/// few enough that two cores share a 400-column frame evenly.
+const LIT_COLUMNS: usize = 8;
+
+/// Renders `frame` lit by `sun` (`footprint_scenes::render::render_lit`, one thread) with cost
+/// `cost`, once, and times it, ms.
 pub fn render_lit_once<C: footprint_core::terrain::cost::Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
-    camera: &footprint_core::terrain::camera::Camera,
+    camera: &Camera,
     mode: Mode,
-    sun: &footprint_core::lit::Sun<'_>,
+    sun: &Sun<'_>,
     cost: &mut C,
 ) -> Result<(Rendered, f64)> {
     walked();

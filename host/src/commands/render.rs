@@ -7,12 +7,14 @@ use clap::Args;
 
 use crate::args::{OutputFormat, RenderMode};
 use crate::lighting::{LightArgs, LoadedMaterials};
-use crate::render::{count, render_lit_once, render_timed_parallel, repeat, visible, Tables};
+use crate::render::{
+    count, render_lit_once, render_lit_parallel, render_timed_parallel, repeat, visible, Tables,
+};
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, ViewArg};
 use footprint_core::terrain::camera::{Projection, Switch};
-use footprint_core::terrain::cost::{Counts, NoCost};
+use footprint_core::terrain::cost::Counts;
 
 /// `footprint render`.
 #[derive(Args, Debug)]
@@ -101,10 +103,9 @@ pub fn render(args: &RenderArgs) -> Result<()> {
             (rendered, repeated, rayon::current_num_threads())
         }
         Some(sun) => {
-            // The lit frame is timed (one thread: the shader writes the whole lit image), not
-            // the colour map's.
+            // The lit frame is timed, not the colour map's.
             let (rendered, repeated) = repeat(frames, || {
-                render_lit_once(&frame, &terrain, &view.camera, mode, sun, &mut NoCost)
+                render_lit_parallel(&frame, &terrain, &view.camera, mode, sun)
             })?;
             if args.counts || args.format.json {
                 // Its shading counters, from a second, counting walk, go to stderr.
@@ -118,7 +119,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                     counts.total.shading as f64 / pixels
                 );
             }
-            (rendered, repeated, 1)
+            (rendered, repeated, rayon::current_num_threads())
         }
     };
     let ms = repeated.first_ms;
