@@ -75,6 +75,7 @@ pub mod display {
     /// A `WIDTH × HEIGHT` display of `Rgb565` that stores nothing: each pixel drawn is compared
     /// with the pixel of the `Rgb` render it should show, converted as embedded-graphics
     /// converts `Rgb888` ([`PixelSink::from_rgb`]).
+    #[derive(Debug)]
     pub struct Checking<'a> {
         expected: &'a [Rgb],
         /// Pixels drawn inside the display.
@@ -125,6 +126,7 @@ pub mod display {
 }
 
 /// The display buffer of the embedded-graphics frame ([`display`]), in `.bss`: 2 bytes a pixel.
+#[derive(Debug)]
 pub struct DisplayBuffer {
     /// The frame in the display's colour, row-major from the top.
     pub pixels: &'static mut [embedded_graphics_core::pixelcolor::Rgb565; WIDTH * HEIGHT],
@@ -274,6 +276,7 @@ pub mod stack {
 }
 
 /// Every buffer the core borrows, in `.bss`: the firmware's whole RAM apart from the stack.
+#[derive(Debug)]
 pub struct Buffers {
     /// Heights of pyramid levels 1 and up, built on the chip: three grids per level (for rays
     /// along x and along y, and the conservative maximum for skipping empty air).
@@ -333,6 +336,7 @@ pub struct PlateVertex {
 }
 
 /// The specular plate's buffers, in `.bss`; only `src/main.rs` takes them.
+#[derive(Debug)]
 pub struct PlateBuffers {
     /// The plate's vertices in the core's form, decoded on the chip from `PLATE_VERTICES`;
     /// empty when taken.
@@ -377,6 +381,7 @@ pub fn image_hash(image: &[Rgb]) -> u64 {
 }
 
 /// `num / den` rounded half up to `places` decimals, for `#` lines.
+#[derive(Debug)]
 pub struct Ratio {
     /// Numerator.
     pub num: u64,

@@ -197,7 +197,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         let Ok(mut shader) = SunShader::new(&sun, &terrain, eye, camera.pixel_angle()) else {
             return;
         };
-        let done = if input.mode % 2 == 0 {
+        let done = if input.mode.is_multiple_of(2) {
             frame.render_shaded(
                 &terrain,
                 &ExactArea::new(),

@@ -1675,10 +1675,10 @@ fn analytic_scenes_look_as_designed() {
 /// `None`, and a walk of such a column draws nothing.
 #[test]
 fn a_column_beyond_the_frame_is_none() {
-    let map = common::flat();
+    let map = flat();
     let terrain = map.terrain();
-    let cam = common::camera(common::pose_for(&map), 10.0, 4);
-    common::with_frame(&cam, &terrain, true, |frame| {
+    let cam = camera(pose_for(&map), 10.0, 4);
+    with_frame(&cam, &terrain, true, |frame| {
         assert!(frame.column(3).is_some());
         assert!(frame.column(4).is_none());
         let mut out = [Rgb::new(7, 7, 7); 4];

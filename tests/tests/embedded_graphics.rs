@@ -157,7 +157,7 @@ fn the_embedded_graphics_sink_equals_the_rgb_render_in_both_projections() {
                 assert!(
                     matches!(
                         refused,
-                        Err(RenderError::Core(footprint_core::Error::SliceLength {
+                        Err(RenderError::Core(Error::SliceLength {
                             what: "scratch",
                             ..
                         }))
