@@ -4,7 +4,8 @@
 //! The paper's modes: point sampling (Fig. 4, [`Point`]), linear interpolation (Eq. 4,
 //! [`Linear`]), supersampling at rate `N` (Fig. 8, [`Super`]), area sampling as the paper's
 //! Fig. 12 writes and costs it ([`PaperArea`]) and with the exact ray through each voxel's
-//! top ([`ExactArea`]); and the classic voxel-space renderer (`classic`, [`Mode::Classic`]), the baseline.
+//! top ([`ExactArea`]); and the classic voxel-space renderer ([`Mode::Classic`]), the
+//! baseline.
 //!
 //! A mode is a [`Sampling`]: [`Frame::render`] takes it, or one sampler. A firmware that
 //! renders one mode only links that mode's sampler when it hands [`Frame::render`] the sampler
@@ -224,8 +225,8 @@ impl Mode {
 
 /// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), wrapped in
 /// [`Smooth`] when the frame's surface is continuous ([`Frame::surface`]; `as2` is then
-/// `SmoothWedge`, which reads the surface itself); `classic` walks its own walk (`terrain::classic`),
-/// on flat tops.
+/// `SmoothWedge`, which reads the surface itself); `classic` walks its own walk
+/// (`terrain::classic`), on flat tops.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
         Mode::filter(*self)

@@ -124,7 +124,7 @@ pub fn render_timed_parallel(
 }
 
 /// Renders `frame` lit by `sun` without counting, the frame's columns split over every core
-/// (rayon, [`LIT_COLUMNS`] columns per task, each with its own [`SunShader`]) with
+/// (rayon, eight columns per task, each with its own [`SunShader`]) with
 /// [`Frame::render_columns_shaded`] and the image made once from the whole grid; on one thread
 /// [`render_lit_once`]'s door. The same pixels either way (tests/tests/door.rs), timed, ms.
 pub fn render_lit_parallel(
