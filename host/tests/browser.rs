@@ -16,7 +16,7 @@ use base64::Engine as _;
 mod common;
 
 use common::browser::{chromium, http_get, page_or_warn, Browser, Served};
-use common::{assert_one_line_error, footprint};
+use common::{assert_one_line_error, footprint, write_asc};
 
 /// FNV-1a-64 of a PNG's RGB bytes, row-major from the top.
 fn png_hash(path: &Path) -> String {
@@ -262,15 +262,7 @@ fn the_page_opens_the_map_serve_was_given() {
     let Some(exe) = browser_or_warn() else { return };
     let dir = tempfile::tempdir().unwrap();
     let grid = dir.path().join("ridge.asc");
-    let mut asc = String::from("ncols 40\nnrows 30\nxllcorner 0\nyllcorner 0\ncellsize 10\n");
-    for y in 0..30 {
-        let row: Vec<String> = (0..40)
-            .map(|x| ((x * 5 + y * 2) % 70).to_string())
-            .collect();
-        asc.push_str(&row.join(" "));
-        asc.push('\n');
-    }
-    std::fs::write(&grid, asc).unwrap();
+    write_asc(&grid, (40, 30), 10, |x, y| (x * 5 + y * 2) % 70);
     let served = Served::start(&["--dem", grid.to_str().unwrap()]);
     let url = format!("http://127.0.0.1:{}/?size=120x90&still=1", served.port);
     let mut browser = Browser::open(&exe, &url);

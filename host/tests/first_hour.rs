@@ -4,7 +4,7 @@
 mod common;
 
 use clap::CommandFactory;
-use common::footprint;
+use common::{footprint, write_asc};
 use footprint_host::cli::Cli;
 
 /// The `about` of subcommand `name` in `footprint --help`.
@@ -461,15 +461,7 @@ fn the_help_summaries_of_the_measuring_commands_are_what_they_measure() {
     );
     let dir = tempfile::tempdir().unwrap();
     let asc = dir.path().join("hill.asc");
-    let mut grid = String::from("ncols 48\nnrows 40\nxllcorner 0\nyllcorner 0\ncellsize 10\n");
-    for y in 0..40 {
-        let row: Vec<String> = (0..48)
-            .map(|x| ((x * 7 + y * 5) % 90).to_string())
-            .collect();
-        grid.push_str(&row.join(" "));
-        grid.push('\n');
-    }
-    std::fs::write(&asc, grid).unwrap();
+    write_asc(&asc, (48, 40), 10, |x, y| (x * 7 + y * 5) % 90);
     let t = json(
         &[
             &[

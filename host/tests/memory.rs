@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 mod common;
 
-use common::{assert_one_line_error, footprint};
+use common::{assert_one_line_error, footprint, write_asc};
 
 /// Runs a command that must be refused quickly, naming `names`.
 fn refused(args: &[&str], names: &str) {
@@ -317,15 +317,7 @@ fn an_allocation_past_the_real_memory_is_one_line() {
 fn a_small_address_space_never_panics() {
     let dir = tempfile::tempdir().unwrap();
     let asc = dir.path().join("small.asc");
-    let mut grid = String::from("ncols 32\nnrows 24\nxllcorner 0\nyllcorner 0\ncellsize 30\n");
-    for y in 0..24 {
-        let row: Vec<String> = (0..32)
-            .map(|x| ((x * 3 + y * 7) % 40).to_string())
-            .collect();
-        grid.push_str(&row.join(" "));
-        grid.push('\n');
-    }
-    std::fs::write(&asc, grid).unwrap();
+    write_asc(&asc, (32, 24), 30, |x, y| (x * 3 + y * 7) % 40);
     let out = dir.path().join("o.png");
     let exe = env!("CARGO_BIN_EXE_footprint");
     let mut rendered = false;

@@ -96,3 +96,21 @@ pub fn footprint_bounded(args: &[&str], secs: u64) -> Result<Output, String> {
 pub fn mkfifo(path: &std::path::Path) -> bool {
     matches!(Command::new("mkfifo").arg(path).status(), Ok(s) if s.success())
 }
+
+/// Writes an ESRI ASCII grid `w × h` to `path` (origin 0, 0; `cellsize` metres), the height of
+/// column `x` of row `y` (from the top) given by `height(x, y)`: the small maps the CLI tests
+/// open.
+pub fn write_asc(
+    path: &std::path::Path,
+    (w, h): (usize, usize),
+    cellsize: u32,
+    height: impl Fn(usize, usize) -> usize,
+) {
+    let mut grid = format!("ncols {w}\nnrows {h}\nxllcorner 0\nyllcorner 0\ncellsize {cellsize}\n");
+    for y in 0..h {
+        let row: Vec<String> = (0..w).map(|x| height(x, y).to_string()).collect();
+        grid.push_str(&row.join(" "));
+        grid.push('\n');
+    }
+    std::fs::write(path, grid).unwrap();
+}
