@@ -67,6 +67,21 @@ fn scene() -> (footprint_host::map::Map, Pyramid) {
     (map, pyramid)
 }
 
+/// The paper's camera at `pitch` over `map`, turned by `roll` about its axis.
+fn rolled_camera(
+    map: &footprint_host::map::Map,
+    pyramid: &Pyramid,
+    pitch: f64,
+    roll: f64,
+) -> Camera {
+    let camera = paper_camera(map, pyramid, pitch, SIZE, true).unwrap();
+    Camera::new(CameraParams {
+        roll_deg: roll,
+        ..*camera.params()
+    })
+    .unwrap()
+}
+
 /// The frames' size.
 const SIZE: Size = Size {
     width: 40,
@@ -82,12 +97,7 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
         (40.0, 0.0, Projection::Exact),
         (40.0, 25.0, Projection::Exact),
     ] {
-        let mut camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
-        camera = Camera::new(CameraParams {
-            roll_deg: roll,
-            ..*camera.params()
-        })
-        .unwrap();
+        let camera = rolled_camera(&map, &pyramid, pitch, roll);
         let options = Options {
             projection,
             ..Options::default()
@@ -175,12 +185,7 @@ fn a_lit_frame_split_into_column_ranges_equals_the_whole_frame() {
         (20.0, 0.0, Projection::Paper),
         (20.0, 25.0, Projection::Exact),
     ] {
-        let mut camera = paper_camera(&map, &pyramid, pitch, SIZE, true).unwrap();
-        camera = Camera::new(CameraParams {
-            roll_deg: roll,
-            ..*camera.params()
-        })
-        .unwrap();
+        let camera = rolled_camera(&map, &pyramid, pitch, roll);
         let p = *camera.params();
         let shader = || {
             SunShader::new(

@@ -179,6 +179,54 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
     common::check_pins("paper_cases", &lines);
 }
 
+/// A lit frame split over the pool (`render_lit_parallel`, eight columns a task, each with its
+/// own shader) equals the one-thread door's, byte for byte, in both projections, on a frame
+/// whose width is no multiple of the task's columns.
+#[test]
+fn lit_images_are_the_same_for_any_number_of_threads() {
+    use footprint_core::lit::{Materials, Specular, Sun, AMBIENT_DIFFUSE};
+    use footprint_core::specular::{Clamp, Power};
+    use footprint_core::terrain::camera::Projection;
+    use footprint_core::terrain::cost::NoCost;
+    use footprint_host::render::{render_lit_once, render_lit_parallel};
+    let map = procedural(3, 256);
+    let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
+    let terrain = pyramid.terrain(true).unwrap();
+    let size = Size {
+        width: 93,
+        height: 61,
+    };
+    let clamp99 = Specular::Clamp(Clamp::Aggressive(Power::P99));
+    let materials = Materials::default_by_color();
+    let sun = Sun::new(&terrain, 0.0, 12.0, AMBIENT_DIFFUSE, materials, clamp99).unwrap();
+    let camera = paper_camera(&map, &pyramid, 20.0, size, true).expect("paper camera");
+    for projection in [Projection::Paper, Projection::Exact] {
+        let mut tables = Tables::new(&camera);
+        let options = Options {
+            projection,
+            ..Options::default()
+        };
+        let frame = tables.frame(&camera, &terrain, options).unwrap();
+        for mode in [Mode::Ps, Mode::As, Mode::AsExact] {
+            let (serial, _) =
+                render_lit_once(&frame, &terrain, &camera, mode, &sun, &mut NoCost).unwrap();
+            for threads in [1, 2, 5] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let (lit, _) = pool
+                    .install(|| render_lit_parallel(&frame, &terrain, &camera, mode, &sun))
+                    .unwrap();
+                assert!(
+                    lit.image == serial.image && lit.size == serial.size,
+                    "{mode} lit, {projection:?}, on {threads} threads"
+                );
+            }
+        }
+    }
+}
+
 /// Multi-threaded images (and counts) equal single-threaded ones, byte for byte: columns are
 /// independent, and each column is walked by one thread.
 #[test]

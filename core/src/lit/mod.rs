@@ -482,33 +482,6 @@ impl<'s> SunShader<'s> {
         })
     }
 
-    /// The current pixel's colour ([`Shader::finish_pixel`]), counting the highlight's
-    /// evaluations in `cost`; `None` when it sampled no terrain. Clears the accumulator.
-    fn finish<C: Cost>(&mut self, cost: &mut C) -> Option<Rgb> {
-        let acc = core::mem::take(&mut self.acc);
-        let total = acc.w_terrain.saturating_add(acc.w_sky);
-        if acc.samples == 0 || total <= 0 {
-            // Nothing to write: the lobes are cleared unevaluated.
-            self.discard_lobes();
-            return None;
-        }
-        // The highlight (Q15) as white light over the terrain's share of the pixel, in the
-        // channels' 8.8 × weight.
-        let spec = ((self.highlight(&acc, cost) * 255 * 256) >> 15).saturating_mul(acc.w_terrain);
-        let den = total.saturating_mul(256);
-        let ch = |(color, sky): (i64, i64)| {
-            let c = color
-                .saturating_add(sky)
-                .saturating_add(spec)
-                .saturating_add(total.saturating_mul(128));
-            // Clamped to 0..=255 first: the fallback is never taken.
-            u8::try_from((c / den).clamp(0, 255)).unwrap_or(u8::MAX)
-        };
-        let ([c0, c1, c2], [s0, s1, s2]) = (acc.color, acc.sky);
-        let [r, g, b] = [(c0, s0), (c1, s1), (c2, s2)].map(ch);
-        Some(Rgb::new(r, g, b))
-    }
-
     /// Takes the next lobe samples reached (the lowest octave first), leaving it cleared;
     /// `None` when every one is taken.
     fn next_lobe(&mut self) -> Option<Lobe> {
@@ -689,8 +662,31 @@ impl Shader for SunShader<'_> {
             add(sum, w, i64::from(c));
         }
     }
+    /// The pixel's colour, counting the highlight's evaluations in `cost`; `None` when it
+    /// sampled no terrain. Clears the accumulator.
     fn finish_pixel<C: Cost>(&mut self, cost: &mut C) -> Option<Rgb> {
-        self.finish(cost)
+        let acc = core::mem::take(&mut self.acc);
+        let total = acc.w_terrain.saturating_add(acc.w_sky);
+        if acc.samples == 0 || total <= 0 {
+            // Nothing to write: the lobes are cleared unevaluated.
+            self.discard_lobes();
+            return None;
+        }
+        // The highlight (Q15) as white light over the terrain's share of the pixel, in the
+        // channels' 8.8 × weight.
+        let spec = ((self.highlight(&acc, cost) * 255 * 256) >> 15).saturating_mul(acc.w_terrain);
+        let den = total.saturating_mul(256);
+        let ch = |(color, sky): (i64, i64)| {
+            let c = color
+                .saturating_add(sky)
+                .saturating_add(spec)
+                .saturating_add(total.saturating_mul(128));
+            // Clamped to 0..=255 first: the fallback is never taken.
+            u8::try_from((c / den).clamp(0, 255)).unwrap_or(u8::MAX)
+        };
+        let ([c0, c1, c2], [s0, s1, s2]) = (acc.color, acc.sky);
+        let [r, g, b] = [(c0, s0), (c1, s1), (c2, s2)].map(ch);
+        Some(Rgb::new(r, g, b))
     }
 }
 
