@@ -19,13 +19,12 @@ use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::camera::{Surface, Switch};
 use crate::terrain::classic;
-use crate::terrain::column::{ColumnOut, Unwritten};
+use crate::terrain::column::{self, ColumnOut, Unwritten};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
 use crate::terrain::image::{walk_rows, Sampling};
 use crate::terrain::sampler::{ExactArea, Linear, PaperArea, Point, Sampler, Super};
-use crate::terrain::surface::Smooth;
 use crate::terrain::wedge::{SmoothWedge, Wedge};
 use crate::terrain::Terrain;
 
@@ -223,10 +222,11 @@ impl Mode {
     }
 }
 
-/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]), wrapped in
-/// [`Smooth`] when the frame's surface is continuous ([`Frame::surface`]; `as2` is then
-/// `SmoothWedge`, which reads the surface itself); `classic` walks its own walk
-/// (`terrain::classic`), on flat tops.
+/// A mode samples a frame with a fresh sampler of its type ([`Frame::render`]). When the
+/// frame's surface is continuous ([`Frame::surface`]) the walk meets it, wrapped in
+/// [`crate::terrain::surface::Smooth`], up to where the footprint reaches one voxel and goes
+/// on with the sampler alone beyond (`as2` is then `SmoothWedge`, which reads the surface
+/// itself); `classic` walks its own walk (`terrain::classic`), on flat tops.
 impl Sampling for Mode {
     fn filter(&self) -> Filter {
         Mode::filter(*self)
@@ -277,7 +277,7 @@ impl Sampling for Mode {
         if frame.surface() == Surface::Bilinear && *self == Mode::As2 {
             SmoothWedge::new().walk_image(frame, terrain, cost, image)
         } else if frame.surface() == Surface::Bilinear {
-            with_sampler!(*self, s => Smooth::new(s).walk_image(frame, terrain, cost, image),
+            with_sampler!(*self, s => column::render::<true, _, _, _>(frame, terrain, &s, cost, image),
                 classic => classic::render(frame, terrain, cost, image))
         } else {
             with_sampler!(*self, s => s.walk_image(frame, terrain, cost, image),
@@ -298,12 +298,12 @@ impl Mode {
         out: &mut O,
     ) {
         if frame.surface() == Surface::Bilinear && self == Mode::As2 {
-            walk_rows(&SmoothWedge::new(), frame, terrain, x, cost, out);
+            walk_rows::<false, _, _, _>(&SmoothWedge::new(), frame, terrain, x, cost, out);
         } else if frame.surface() == Surface::Bilinear {
-            with_sampler!(self, s => walk_rows(&Smooth::new(s), frame, terrain, x, cost, out),
+            with_sampler!(self, s => walk_rows::<true, _, _, _>(&s, frame, terrain, x, cost, out),
                 classic => classic::walk_into(frame, terrain, x, cost, out));
         } else {
-            with_sampler!(self, s => walk_rows(&s, frame, terrain, x, cost, out),
+            with_sampler!(self, s => walk_rows::<false, _, _, _>(&s, frame, terrain, x, cost, out),
                 classic => classic::walk_into(frame, terrain, x, cost, out));
         }
     }

@@ -21,6 +21,7 @@ use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
 use crate::terrain::march::{Corners, Flow, Hits, March, Voxel};
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
+use crate::terrain::surface::Smooth;
 use crate::terrain::Terrain;
 
 /// Where a column walk writes its pixels: pixel `k` of the walked rows, counted from the first
@@ -202,7 +203,37 @@ struct Pixels<'w, 'f, S, C, O: ?Sized> {
     finished: bool,
 }
 
-impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
+impl<'w, 'f, S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'w, 'f, S, C, O> {
+    /// The pixels `rows` of `column`, none begun yet; counts the column's first ray.
+    #[inline(always)]
+    fn new(
+        frame: &'w Frame<'f>,
+        column: &'w Column,
+        rows: Range<usize>,
+        sampler: &'w mut S,
+        cost: &'w mut C,
+        out: &'w mut O,
+    ) -> Self {
+        cost.new_ray();
+        Self {
+            frame,
+            column,
+            eye: Eye {
+                h: frame.eye(),
+                n: column.n_eye,
+            },
+            sampler,
+            cost,
+            out,
+            first: rows.start,
+            end: rows.end,
+            i: rows.start,
+            upper: frame.ray(column, rows.start),
+            in_footprint: false,
+            finished: false,
+        }
+    }
+
     /// Pixel `i` begins: it spans `R_i` (the previous pixel's upper ray, `lower`) to
     /// `R_{i+1}`, the one new ray (Eqs. 2–3). Returns `R_i` resumed at the current voxel,
     /// whose centre is `n` (Fig. 3).
@@ -287,6 +318,26 @@ impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'_, '_, S, C, O> {
     #[inline(never)]
     fn next_pixel_out_of_line(&mut self, color: Rgb, voxel: &Voxel<'_>, ray: &mut Ray) -> bool {
         self.next_pixel(color, voxel, ray)
+    }
+}
+
+impl<'w, 'f, S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'w, 'f, Smooth<S>, C, O> {
+    /// The same pixels, from here on sampled by the surface's inner sampler alone.
+    fn into_inner(self) -> Pixels<'w, 'f, S, C, O> {
+        Pixels {
+            frame: self.frame,
+            column: self.column,
+            eye: self.eye,
+            sampler: self.sampler.inner_mut(),
+            cost: self.cost,
+            out: self.out,
+            first: self.first,
+            end: self.end,
+            i: self.i,
+            upper: self.upper,
+            in_footprint: self.in_footprint,
+            finished: self.finished,
+        }
     }
 }
 
@@ -378,106 +429,179 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     cost: &mut C,
     out: &mut O,
 ) {
-    let first = rows.start;
-    let end = rows.end.min(frame.grid_rows()).min(first + out.rows());
-    let Some(column) = frame.column(col) else {
+    let Some((column, rows)) = column_rows(frame, col, rows, out.rows()) else {
         return;
     };
-    if first >= end {
-        return;
-    }
-    let max_h = terrain.max_height();
     cost.begin_column(col);
-
     let mut march =
         March::new(frame, terrain, column, S::SWITCH).with_corners(S::CORNERS != Corners::Off);
-    cost.new_ray();
-    let mut px = Pixels {
-        frame,
-        column,
-        eye: Eye {
-            h: frame.eye(),
-            n: column.n_eye,
-        },
-        sampler,
-        cost,
-        out,
-        first,
-        end,
-        i: first,
-        upper: frame.ray(column, first),
-        in_footprint: false,
-        finished: false,
-    };
-    let mut ray = px.begin(px.upper, march.n());
-    let skips = march.can_skip();
+    let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
+    let ray = px.begin(px.upper, march.n());
+    match ride_column::<false, _, _, _>(terrain, &mut march, &mut px, ray) {
+        Ridden::Done => {}
+        // Without a surface a ride never stops at its end.
+        Ridden::Sky(ray) | Ridden::SurfaceEnd(ray) => px.end_in_sky(ray, march.n()),
+    }
+    px.cost.end_column();
+}
 
-    if march.n() <= column.n_far {
-        loop {
-            // Ride the run while the voxels stay at or below the ray (the inner loop).
-            let rise = Height::from_bits(ray.slope.to_bits() * march.step());
-            // Before the column's first hit, cross empty air a block at a time; the ride then
-            // takes one step between attempts.
-            let limit = if px.in_footprint {
-                u32::MAX
-            } else if out_of_reach(&ray, max_h, march.n(), column.n_far) {
-                // Before the first hit: this ray, and every ray above it, passes at or above
-                // the highest point of the terrain up to the far distance. The column is sky
-                // (exact: a hit needs a top strictly above the ray; `L` counts no step here).
-                break;
-            } else if !skips {
-                u32::MAX
-            } else if march.skip(&mut ray.h, rise, S::WIDE) > 0 {
-                px.cost.step(false);
-                if ray.slope >= 0 && ray.h > max_h {
-                    break;
-                }
-                continue;
-            } else {
-                1
-            };
-            let steps = if ray.slope >= 0 {
-                march.ride::<true, _>(&mut ray, max_h, limit, &mut px)
-            } else {
-                march.ride::<false, _>(&mut ray, max_h, limit, &mut px)
-            };
-            px.cost.steps(steps, px.in_footprint);
-            if px.finished {
+/// [`walk_into`] on the footprint's surface ([`crate::terrain::surface`]): the continuous
+/// surface ([`Smooth`]`<S>`, whose every step tests the cells around it) from the eye to where
+/// the pixel's footprint across reaches one voxel ([`Column::surface_end`]), then `S`'s own
+/// walk, which pays nothing for the surface. The hand-over changes no hit: from that distance
+/// on [`Smooth`] meets the flat tops, as `S` does, and the walk tests the cells entered at a
+/// corner again, as `S`'s walk does everywhere.
+#[inline(never)]
+pub(crate) fn walk_into_surface<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    rows: Range<usize>,
+    sampler: &mut Smooth<S>,
+    cost: &mut C,
+    out: &mut O,
+) {
+    let Some((column, rows)) = column_rows(frame, col, rows, out.rows()) else {
+        return;
+    };
+    cost.begin_column(col);
+    let corners = S::CORNERS != Corners::Off;
+    let until = (column.n_eye.to_bits() >> 24).saturating_add(column.surface_end);
+    let mut march = March::new(frame, terrain, column, S::SWITCH).with_corners(corners);
+    let on_surface = march.n() < until;
+    if on_surface {
+        march = march.on_surface_until(until);
+    }
+    let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
+    let mut ray = px.begin(px.upper, march.n());
+    if on_surface {
+        match ride_column::<true, _, _, _>(terrain, &mut march, &mut px, ray) {
+            Ridden::Done => {
                 px.cost.end_column();
                 return;
             }
-            // The ride ended on a voxel that is done with (the hit it returned on, its run's
-            // last voxel, or the ray above everything): the step out of it.
+            Ridden::Sky(ray) => {
+                px.end_in_sky(ray, march.n());
+                px.cost.end_column();
+                return;
+            }
+            Ridden::SurfaceEnd(at) => ray = at,
+        }
+        march.leave_surface(corners);
+    }
+    let mut px = px.into_inner();
+    match ride_column::<false, _, _, _>(terrain, &mut march, &mut px, ray) {
+        Ridden::Done => {}
+        Ridden::Sky(ray) | Ridden::SurfaceEnd(ray) => px.end_in_sky(ray, march.n()),
+    }
+    px.cost.end_column();
+}
+
+/// Column `col` of `frame` and the rows of it to walk: `rows` within the grid and the `room`
+/// rows of the output; `None` if the column does not exist or no row is left.
+#[inline(always)]
+fn column_rows<'f>(
+    frame: &'f Frame<'_>,
+    col: usize,
+    rows: Range<usize>,
+    room: usize,
+) -> Option<(&'f Column, Range<usize>)> {
+    let end = rows.end.min(frame.grid_rows()).min(rows.start + room);
+    let column = frame.column(col)?;
+    (rows.start < end).then_some((column, rows.start..end))
+}
+
+/// How a column's ride ended.
+enum Ridden {
+    /// Its last pixel is done.
+    Done,
+    /// Its ray left the terrain (beyond the far distance, or above the map's highest point):
+    /// the rest of the column is sky.
+    Sky(Ray),
+    /// It reached the end of the continuous surface, at the voxel the march stands on, not
+    /// yet tested (only a ride `ON_SURFACE`).
+    SurfaceEnd(Ray),
+}
+
+/// The column's ride from `ray` at the march's voxel: runs of voxels at a time while they stay
+/// at or below the ray ([`March::ride`]), empty air a block at a time before the first hit
+/// ([`March::skip`]), each hit to the pixels. `ON_SURFACE`: the ride also ends where the march
+/// leaves the continuous surface ([`March::past_surface`]).
+#[inline(always)]
+fn ride_column<const ON_SURFACE: bool, S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+    terrain: &Terrain<'_>,
+    march: &mut March<'_, '_>,
+    px: &mut Pixels<'_, '_, S, C, O>,
+    mut ray: Ray,
+) -> Ridden {
+    let max_h = terrain.max_height();
+    let skips = march.can_skip();
+    if march.n() > px.column.n_far {
+        return Ridden::Sky(ray);
+    }
+    loop {
+        // Ride the run while the voxels stay at or below the ray (the inner loop).
+        let rise = Height::from_bits(ray.slope.to_bits() * march.step());
+        // Before the column's first hit, cross empty air a block at a time; the ride then
+        // takes one step between attempts.
+        let limit = if px.in_footprint {
+            u32::MAX
+        } else if out_of_reach(&ray, max_h, march.n(), px.column.n_far) {
+            // Before the first hit: this ray, and every ray above it, passes at or above
+            // the highest point of the terrain up to the far distance. The column is sky
+            // (exact: a hit needs a top strictly above the ray; `L` counts no step here).
+            return Ridden::Sky(ray);
+        } else if !skips {
+            u32::MAX
+        } else if march.skip(&mut ray.h, rise, S::WIDE) > 0 {
+            px.cost.step(false);
             if ray.slope >= 0 && ray.h > max_h {
-                break;
+                return Ridden::Sky(ray);
             }
-            // A cell entered at a corner is tested within the step that crosses into the next
-            // row ([`March::on_corner`]): stepping off it is no step of its own.
-            let corner = march.on_corner();
-            let dn = march.advance();
-            if !corner {
-                px.cost.step(px.in_footprint);
-            }
-            if march.n() > column.n_far {
-                break;
-            }
-            ray.h = Height::from_bits(
-                ray.h
-                    .to_bits()
-                    .wrapping_add(ray.slope.to_bits().wrapping_mul(dn)),
-            );
+            continue;
+        } else {
+            1
+        };
+        let steps = if ray.slope >= 0 {
+            march.ride::<true, _>(&mut ray, max_h, limit, px)
+        } else {
+            march.ride::<false, _>(&mut ray, max_h, limit, px)
+        };
+        px.cost.steps(steps, px.in_footprint);
+        if px.finished {
+            return Ridden::Done;
+        }
+        // The ride ended on a voxel that is done with (the hit it returned on, its run's
+        // last voxel, or the ray above everything): the step out of it.
+        if ray.slope >= 0 && ray.h > max_h {
+            return Ridden::Sky(ray);
+        }
+        // A cell entered at a corner is tested within the step that crosses into the next
+        // row ([`March::on_corner`]): stepping off it is no step of its own.
+        let corner = march.on_corner();
+        let dn = march.advance();
+        if !corner {
+            px.cost.step(px.in_footprint);
+        }
+        if march.n() > px.column.n_far {
+            return Ridden::Sky(ray);
+        }
+        ray.h = Height::from_bits(
+            ray.h
+                .to_bits()
+                .wrapping_add(ray.slope.to_bits().wrapping_mul(dn)),
+        );
+        if ON_SURFACE && march.past_surface() {
+            return Ridden::SurfaceEnd(ray);
         }
     }
-
-    px.end_in_sky(ray, march.n());
-    px.cost.end_column();
 }
 
 /// Renders the whole frame of the paper's projection with a fresh copy of `sampler` per
 /// column into `image`, row-major from the top (`image[y·W + x]`), in any pixel format
 /// ([`PixelSink`]: the 3-byte [`Rgb`], or a display's own colour): [`Frame::render`]'s path
 /// when the walk's columns are the image's.
-pub(crate) fn render<S: Sampler + Clone, C: Cost, P: PixelSink>(
+pub(crate) fn render<const SURFACE: bool, S: Sampler + Clone, C: Cost, P: PixelSink>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampler: &S,
@@ -487,9 +611,33 @@ pub(crate) fn render<S: Sampler + Clone, C: Cost, P: PixelSink>(
     render_frame(frame, image, |x, out| {
         let rows = frame.column(x).map_or(0..0, Column::rows);
         out.start_at(rows.start);
-        let mut s = sampler.clone();
-        walk_into(frame, terrain, x, rows, &mut s, cost, out);
+        walk_fresh::<SURFACE, _, _, _>(frame, terrain, x, rows, sampler, cost, out);
     })
+}
+
+/// Walks column `col` with a fresh copy of `sampler`: on the footprint's surface
+/// ([`walk_into_surface`]) if `SURFACE`, else [`walk_into`].
+#[inline(always)]
+pub(crate) fn walk_fresh<
+    const SURFACE: bool,
+    S: Sampler + Clone,
+    C: Cost,
+    O: ColumnOut + ?Sized,
+>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    rows: Range<usize>,
+    sampler: &S,
+    cost: &mut C,
+    out: &mut O,
+) {
+    if SURFACE {
+        let mut s = Smooth::new(sampler.clone());
+        walk_into_surface(frame, terrain, col, rows, &mut s, cost, out);
+    } else {
+        walk_into(frame, terrain, col, rows, &mut sampler.clone(), cost, out);
+    }
 }
 
 /// Runs `walk_column(x, out)` for every column `x` of `frame`, where `out` is column `x` of

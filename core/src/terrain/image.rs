@@ -21,7 +21,7 @@ use core::ops::Range;
 use crate::color::{Color32, Rgb};
 use crate::error::Error;
 use crate::sink::PixelSink;
-use crate::terrain::column::{self, walk_into, ColumnOut, Unwritten};
+use crate::terrain::column::{self, ColumnOut, Unwritten};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
@@ -87,7 +87,7 @@ pub trait Sampling {
 /// bottom, the column's walked rows at their own index): [`Sampling::walk_column`] and
 /// [`Sampling::walk_column_exact`], for 8-bit or full-precision cells.
 #[inline]
-pub(crate) fn walk_rows<S: Sampler + Clone, C: Cost, O: ColumnOut + ?Sized>(
+pub(crate) fn walk_rows<const SURFACE: bool, S: Sampler + Clone, C: Cost, O: ColumnOut + ?Sized>(
     sampler: &S,
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
@@ -97,7 +97,7 @@ pub(crate) fn walk_rows<S: Sampler + Clone, C: Cost, O: ColumnOut + ?Sized>(
 ) {
     let rows = frame.column(x).map_or(0..0, |c| c.rows());
     let rest = out.skip_rows(rows.start);
-    walk_into(frame, terrain, x, rows, &mut sampler.clone(), cost, rest);
+    column::walk_fresh::<SURFACE, _, _, _>(frame, terrain, x, rows, sampler, cost, rest);
 }
 
 impl<S: Sampler + Clone> Sampling for S {
@@ -115,7 +115,7 @@ impl<S: Sampler + Clone> Sampling for S {
         cost: &mut C,
         out: &mut [Rgb],
     ) {
-        walk_rows(self, frame, terrain, x, cost, out);
+        walk_rows::<false, _, _, _>(self, frame, terrain, x, cost, out);
     }
 
     #[inline]
@@ -127,7 +127,7 @@ impl<S: Sampler + Clone> Sampling for S {
         cost: &mut C,
         out: &mut [Color32],
     ) {
-        walk_rows(self, frame, terrain, x, cost, out);
+        walk_rows::<false, _, _, _>(self, frame, terrain, x, cost, out);
     }
 
     #[inline]
@@ -141,7 +141,7 @@ impl<S: Sampler + Clone> Sampling for S {
         let mut out = Unwritten {
             rows: frame.grid_rows(),
         };
-        walk_rows(self, frame, terrain, x, cost, &mut out);
+        walk_rows::<false, _, _, _>(self, frame, terrain, x, cost, &mut out);
     }
 
     #[inline]
@@ -152,7 +152,7 @@ impl<S: Sampler + Clone> Sampling for S {
         cost: &mut C,
         image: &mut [P],
     ) -> Result<(), Error> {
-        column::render(frame, terrain, self, cost, image)
+        column::render::<false, _, _, _>(frame, terrain, self, cost, image)
     }
 }
 

@@ -133,6 +133,10 @@ pub struct March<'a, 't> {
     /// The corner cell the cursor stands on, if any: the cursor's other fields already describe
     /// the voxel after it.
     corner: Option<Corner>,
+    /// Where the continuous surface ends ([`crate::terrain::surface`]): runs that start before
+    /// this `n` end at the last voxel before it, so that a walk on the surface can hand over to
+    /// the flat walk there. `i64::MIN` when the walk meets no surface.
+    surface_until: i64,
 }
 
 /// A cell the ray's ground track enters between two voxels of the sequence, at a corner.
@@ -234,9 +238,36 @@ impl<'a, 't> March<'a, 't> {
             skip_level: 0,
             corners: true,
             corner: None,
+            surface_until: i64::MIN,
         };
         m.enter_level();
         m
+    }
+
+    /// The same cursor on the continuous surface up to `until` (`n`, half-voxels; see
+    /// [`crate::terrain::surface`]): without the cells entered at a corner, and with its runs
+    /// ending at the last voxel before `until`, where [`March::leave_surface`] hands over.
+    #[must_use]
+    pub(crate) fn on_surface_until(mut self, until: i64) -> Self {
+        self.corners = false;
+        self.surface_until = until;
+        self.plan_run();
+        self
+    }
+
+    /// Whether the cursor has left the continuous surface: at or past its end, or on a coarser
+    /// level than 0 (where the surface is the flat tops).
+    #[inline(always)]
+    pub(crate) fn past_surface(&self) -> bool {
+        self.n() >= self.surface_until || self.l > 0
+    }
+
+    /// Leaves the continuous surface for the flat-topped walk: the cells entered at a corner
+    /// are back in the sequence as `corners` says, and runs end where they end for any walk.
+    /// Called between steps, where no corner cell is pending.
+    pub(crate) fn leave_surface(&mut self, corners: bool) {
+        self.corners = corners;
+        self.surface_until = i64::MIN;
     }
 
     /// The same cursor with or without the cells the ground track enters at a corner
@@ -319,6 +350,10 @@ impl<'a, 't> March<'a, 't> {
         } else {
             0
         };
+        if self.n < self.surface_until {
+            // The last step before the surface's end: n + s·dn < until.
+            run = run.min((self.surface_until - self.n - 1) >> (self.l + 1));
+        }
         self.run = u32::try_from(run.min(to_far).max(0)).unwrap_or(u32::MAX);
         self.planned = self.run;
     }

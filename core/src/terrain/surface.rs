@@ -31,8 +31,14 @@
 //! **The walk.** The surface at a centre can be higher than the voxel's flat top (its neighbour
 //! across is higher), so the walk tests the highest of the voxel and the cells around it across,
 //! as it does for `as2` ([`Sampler::WIDE`]), and [`Smooth`] decides the hit on the surface's
-//! height there ([`Hit::Rejected`] when the ray passes above it). `as2` reads the surface itself
-//! where its wedge lies inside one cell ([`crate::terrain::wedge`]).
+//! height there ([`Hit::Rejected`] when the ray passes above it). That wide test is paid only
+//! where the surface is met: a column walks [`Smooth`] up to where its footprint reaches one
+//! voxel (or the walk climbs to level 1), and there hands over to the mode's own sampler and
+//! walk ([`crate::terrain::column`]), which tests one cell per step and the cells the ground
+//! track enters at a corner, as on flat tops. The hand-over changes no hit, since beyond that
+//! distance [`Smooth`] meets the flat tops; a view that never magnifies walks as on flat tops
+//! but for the empty air before its first hit. `as2` reads the surface itself where its wedge
+//! lies inside one cell ([`crate::terrain::wedge`]).
 
 use crate::color::{Color32, Rgb};
 use crate::num::Height;
@@ -94,6 +100,14 @@ impl<S> Smooth<S> {
             n_eye: 0,
             end: 0,
         }
+    }
+}
+
+impl<S> Smooth<S> {
+    /// The sampler inside, which the walk goes on with where the surface ends
+    /// ([`crate::terrain::column`]'s hand-over).
+    pub(crate) fn inner_mut(&mut self) -> &mut S {
+        &mut self.inner
     }
 }
 
