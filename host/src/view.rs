@@ -140,11 +140,16 @@ impl From<GeometryArg> for footprint_scenes::view::Placement {
     }
 }
 
-/// The surface the walk meets (`footprint_core::terrain::camera::Surface`, `--surface`).
+/// The surface the walk meets (`footprint_core::prelude::Surface`, `--surface`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum SurfaceArg {
-    /// Flat-topped voxels, the paper's model.
+    /// The map's own: continuous where a pixel is narrower than a voxel on a survey DEM
+    /// (GeoTIFF, SRTM, ASCII grid, BIL, a mosaic of them), whose heights sample a continuous
+    /// ground; flat-topped voxels on a PNG height map (a game map's model) and on the built-in
+    /// terrains (the paper's). A baked map keeps the choice of the map it was baked from.
     #[default]
+    Auto,
+    /// Flat-topped voxels, the paper's model.
     Flat,
     /// Where a pixel is narrower than a voxel, heights interpolated between the cells'
     /// centres (bilinear) and met exactly by the ray; flat tops where a pixel spans a voxel or
@@ -152,22 +157,22 @@ pub enum SurfaceArg {
     Bilinear,
 }
 
-impl From<SurfaceArg> for Surface {
-    fn from(a: SurfaceArg) -> Self {
-        match a {
+impl SurfaceArg {
+    /// The surface on `map`: `auto` is the map's own ([`Map::surface`]).
+    pub fn on(self, map: &Map) -> Surface {
+        match self {
+            SurfaceArg::Auto => map.surface,
             SurfaceArg::Flat => Surface::Flat,
             SurfaceArg::Bilinear => Surface::Bilinear,
         }
     }
 }
 
-impl SurfaceArg {
-    /// The name, as `--surface` takes it and the JSON says it.
-    pub fn name(self) -> &'static str {
-        match self {
-            SurfaceArg::Flat => "flat",
-            SurfaceArg::Bilinear => "bilinear",
-        }
+/// The name of `surface`, as `--surface` takes it and the JSON says it (`flat`, `bilinear`).
+pub fn surface_name(surface: Surface) -> &'static str {
+    match surface {
+        Surface::Flat => "flat",
+        Surface::Bilinear => "bilinear",
     }
 }
 
@@ -448,9 +453,10 @@ pub struct CameraArgs {
     /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
-    /// The surface: flat-topped voxels (flat, the paper's), or continuous where a pixel is
-    /// narrower than a voxel (bilinear).
-    #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
+    /// The surface: the map's own (auto: bilinear on a survey DEM, flat on a PNG height map
+    /// and the built-in terrains), flat-topped voxels (flat, the paper's), or continuous where a
+    /// pixel is narrower than a voxel (bilinear).
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Auto)]
     pub surface: SurfaceArg,
 }
 
@@ -546,7 +552,7 @@ impl View {
             "the images",
         )?;
         let pyramid = map_args.pyramid()?;
-        let options = cam.options();
+        let options = cam.options(pyramid.map());
         let camera = camera(&pyramid, options)?;
         crate::camera::warn_degenerate(&pyramid, &camera, options);
         Ok(Self {
@@ -558,12 +564,12 @@ impl View {
 }
 
 impl CameraArgs {
-    /// The frame options these arguments give.
-    fn options(&self) -> Options {
+    /// The frame options these arguments give on `map`.
+    fn options(&self, map: &Map) -> Options {
         Options {
             lod: self.lod == OnOff::On,
             projection: self.projection.into(),
-            surface: self.surface.into(),
+            surface: self.surface.on(map),
             ..Options::default()
         }
     }

@@ -52,6 +52,41 @@ fn png_with_header(w: u32, h: u32) -> Vec<u8> {
     png
 }
 
+/// `--surface auto`, the default, is the map's own, and `--json` names the one met: the
+/// continuous surface on a survey DEM (an ASCII grid), flat tops on a PNG height map and on the
+/// built-in terrain (the paper's); `--surface flat` and `bilinear` hold on any map.
+#[test]
+fn render_names_the_surface_auto_chose_for_the_map() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("h.png");
+    write_gray16(&png, 40, 30);
+    let asc = dir.path().join("h.asc");
+    common::write_asc(&asc, (40, 30), 30, |x, y| 100 + x * 3 + y);
+    let (png, asc) = (png.to_str().unwrap(), asc.to_str().unwrap());
+    for (map, surface, expected) in [
+        (&["--terrain-size", "64"][..], None, "flat"),
+        (&["--terrain-size", "64"][..], Some("bilinear"), "bilinear"),
+        (&["--dem", asc][..], None, "bilinear"),
+        (&["--dem", png][..], None, "flat"),
+        (&["--dem", asc][..], Some("flat"), "flat"),
+        (&["--dem", png][..], Some("bilinear"), "bilinear"),
+    ] {
+        let mut args = vec!["render", "--size", "16x12", "--counts", "--json"];
+        args.extend_from_slice(map);
+        if let Some(s) = surface {
+            args.extend(["--surface", s]);
+        }
+        let o = footprint(&args);
+        assert!(
+            o.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+        assert_eq!(v["surface"], expected, "{args:?}");
+    }
+}
+
 #[test]
 fn render_counts_json_has_the_documented_fields() {
     let o = footprint(&[
@@ -65,11 +100,15 @@ fn render_counts_json_has_the_documented_fields() {
         "--mode",
         "as-exact",
         "--counts",
+        // The paper's coverage is counted on its flat-topped voxels.
+        "--surface",
+        "flat",
         "--json",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
     assert_eq!(v["mode"], "as-exact");
+    assert_eq!(v["surface"], "flat");
     assert_eq!(v["width"], 64);
     assert_eq!(v["height"], 48);
     for k in [

@@ -14,6 +14,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use common::footprint;
+use footprint_core::prelude::Surface;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::experiment::claims::{claims, compare, Verdict, MIN_EVENTS};
 use footprint_host::experiment::fly::{self, FlySpec};
@@ -22,7 +23,7 @@ use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::{Mode, Rate};
 use footprint_host::report::tables;
-use footprint_host::view::{Size, SurfaceArg};
+use footprint_host::view::Size;
 use serde_json::Value;
 
 const SIZE: Size = Size {
@@ -106,7 +107,7 @@ fn every_mode_is_divided_by_the_one_v_of_its_case_where_the_walks_differ() {
         &modes,
         SIZE,
         true,
-        SurfaceArg::Flat,
+        Surface::Flat,
         None,
         footprint_host::truth::DEFAULT_SAMPLES,
         |_| {},
@@ -202,7 +203,7 @@ fn a_claim_on_too_few_events_says_so() {
         &[Mode::Ps, Mode::As],
         SIZE,
         true,
-        SurfaceArg::Flat,
+        Surface::Flat,
         None,
         footprint_host::truth::DEFAULT_SAMPLES,
         |_| {},

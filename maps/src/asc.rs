@@ -671,6 +671,7 @@ mod tests {
             source: String::new(),
             known_range: None,
             strips: None,
+            surface: footprint_core::prelude::Surface::Bilinear,
         };
         let mut out = Vec::new();
         write(&map, &mut out, "o").unwrap();

@@ -17,6 +17,7 @@
 use std::fs::File;
 use std::io::{self, Seek, SeekFrom, Write};
 
+use footprint_core::prelude::Surface;
 use footprint_core::terrain::baked::{Header, Layout};
 use footprint_core::terrain::pyramid::{self, HeightFilter, LevelRow, LevelRowMut};
 use footprint_core::terrain::{mirror, Scale, Strips, MAX_LEVELS};
@@ -52,6 +53,8 @@ pub struct Plan {
     pub source: String,
     /// The levels' order: strips of `2^shift` columns, `None` row-major ([`Strips::of`]).
     pub strips: Option<u32>,
+    /// The surface its heights sample (its tiles' format's, [`crate::kind::Format::surface`]).
+    pub surface: Surface,
 }
 
 impl Plan {
@@ -78,6 +81,7 @@ impl Plan {
             range,
             filter,
             source: m.source.clone(),
+            surface: m.format.surface(),
             strips,
         })
     }
@@ -537,6 +541,7 @@ pub fn bake(
         max_height: hi,
         checksums,
         strips,
+        surface: plan.surface,
     };
     let head = footprint_scenes::baked::sealed(&header, &plan.source);
     file.seek(SeekFrom::Start(0)).map_err(write_err)?;

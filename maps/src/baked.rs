@@ -250,6 +250,7 @@ fn lend(
         },
         known_range: Some((header.min_height, header.max_height)),
         strips: header.strips,
+        surface: header.surface,
     };
     Pyramid::from_levels(map, header.filter, pyramid_heights, pyramid_colors)
         .map_err(|e| malformed(e.to_string()))

@@ -833,6 +833,7 @@ fn from_grid(
             source,
             known_range: None,
             strips: None,
+            surface: format.surface(),
         },
         format,
         detail,

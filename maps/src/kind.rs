@@ -3,6 +3,8 @@
 //! first bytes, so that neither imports the loader.
 
 use std::fmt;
+
+use footprint_core::prelude::Surface;
 use std::path::Path;
 
 /// A height map format.
@@ -42,6 +44,17 @@ impl Format {
             "tif" | "tiff" => Some(Format::Tiff),
             "bil" => Some(Format::Bil),
             _ => None,
+        }
+    }
+
+    /// The surface a map in this format samples, which `--surface auto` meets: flat-topped
+    /// voxels for a PNG (a game map's heights, the paper's model), the continuous surface for
+    /// the survey formats (GeoTIFF, SRTM, ASCII grid, BIL), whose heights are samples of the
+    /// ground at the cells' centres.
+    pub fn surface(self) -> Surface {
+        match self {
+            Format::Png => Surface::Flat,
+            Format::Hgt | Format::Asc | Format::Tiff | Format::Bil => Surface::Bilinear,
         }
     }
 

@@ -106,6 +106,7 @@ pub fn load_pair(
             source,
             known_range: None,
             strips: None,
+            surface: footprint_core::prelude::Surface::Flat,
         },
         bit_depth,
     ))

@@ -94,6 +94,7 @@ pub fn write(
         max_height,
         checksums,
         strips,
+        surface: map.surface,
     };
     out.write_all(&sealed(&header, source))?;
     let mut written = HEADER_LEN;

@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use footprint_core::prelude::Surface;
 use footprint_core::terrain::{Level, Strips};
 use footprint_core::{Error, Rgb};
 
@@ -35,6 +36,11 @@ pub struct Map {
     /// memory), or vertical strips of `2^shift` columns (a baked file's, lent in place:
     /// `footprint_core::terrain::Strips`). Read a cell through [`Map::order`].
     pub strips: Option<u32>,
+    /// The surface its heights sample, which `--surface auto` meets: the continuous surface for
+    /// a survey DEM (GeoTIFF, SRTM, ASCII grid, BIL), flat-topped voxels for a game map's
+    /// heights (a PNG) and the built-in terrains, the paper's model, on which its experiments
+    /// are run ([`footprint_core::prelude::Surface`]).
+    pub surface: Surface,
 }
 
 impl Map {
@@ -108,6 +114,7 @@ impl Map {
             source: self.source.clone(),
             known_range: self.known_range,
             strips: None,
+            surface: self.surface,
         }))
     }
 

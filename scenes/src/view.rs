@@ -831,6 +831,7 @@ mod tests {
             source: "wall".into(),
             known_range: None,
             strips: None,
+            surface: footprint_core::prelude::Surface::Flat,
         };
         let p = overview_params(&map, 64, 64);
         let wall_m = 1000.0;

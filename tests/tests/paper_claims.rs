@@ -4,6 +4,7 @@
 
 use std::sync::OnceLock;
 
+use footprint_core::prelude::Surface;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::experiment::claims::{claims, compare, Verdict};
 use footprint_host::experiment::fly::{self, Fly, FlySpec};
@@ -13,7 +14,7 @@ use footprint_host::experiment::table::{self, Tables15};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::{Mode, Rate};
-use footprint_host::view::{Size, SurfaceArg};
+use footprint_host::view::Size;
 
 const SIZE: Size = Size {
     width: 400,
@@ -34,7 +35,7 @@ fn results() -> &'static (Tables15, Fly) {
             &modes,
             SIZE,
             true,
-            SurfaceArg::Flat,
+            Surface::Flat,
             None,
             footprint_host::truth::DEFAULT_SAMPLES,
             |_| {},

@@ -8,6 +8,7 @@
 //! Table 6 claim is not asserted either way: on such smooth maps AS and SS16 both show no
 //! large changes in the flight's column, which the report states with the numbers.
 
+use footprint_core::prelude::Surface;
 use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_host::experiment::claims::{claims, Claim, Verdict};
 use footprint_host::experiment::fly::{self, FlySpec};
@@ -15,7 +16,7 @@ use footprint_host::experiment::paper::PAPER_PITCHES;
 use footprint_host::experiment::table;
 use footprint_host::pyramid::Pyramid;
 use footprint_host::survey::{survey, Kind};
-use footprint_host::view::{Size, SurfaceArg};
+use footprint_host::view::Size;
 
 const SIZE: Size = Size {
     width: 400,
@@ -34,7 +35,7 @@ fn claims_on(kind: Kind) -> Vec<Claim> {
         &modes,
         SIZE,
         true,
-        SurfaceArg::Flat,
+        Surface::Flat,
         None,
         footprint_host::truth::DEFAULT_SAMPLES,
         |_| {},

@@ -161,6 +161,8 @@ impl App {
         let pyramid = build(procedural::procedural(DEFAULT_SEED, DEFAULT_SIZE))?;
         let options = Options {
             projection: Projection::Exact,
+            // `render`'s `--surface auto`: the map's own.
+            surface: pyramid.map().surface,
             ..Options::default()
         };
         let camera = view::paper_camera(&pyramid, 20.0, 400, 400, options)
@@ -258,8 +260,10 @@ impl App {
         Ok(())
     }
 
-    /// Puts the pyramid in place, seen by `camera`.
+    /// Puts the pyramid in place, seen by `camera`, on the map's own surface (`render`'s
+    /// `--surface auto`).
     fn replace(&mut self, pyramid: Pyramid, camera: Camera) {
+        self.options.surface = pyramid.map().surface;
         self.pyramid = pyramid;
         self.params = *camera.params();
         self.forget_frames();

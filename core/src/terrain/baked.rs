@@ -27,6 +27,7 @@ use core::ops::Range;
 
 use crate::color::Rgb;
 use crate::error::Error;
+use crate::terrain::camera::Surface;
 use crate::terrain::map::{next_size, Level, Scale, Terrain, MAX_LEVELS};
 use crate::terrain::pyramid::{self, HeightFilter};
 use crate::terrain::side::cells;
@@ -59,6 +60,9 @@ mod at {
     pub const FILTER: usize = 28;
     /// One byte: the strips' shift, 0 for row-major (version 2).
     pub const STRIPS: usize = 29;
+    /// One byte: the surface the heights sample, 0 flat-topped voxels (every file written
+    /// before it was kept), 1 the continuous surface.
+    pub const SURFACE: usize = 30;
     pub const SPACING: usize = 32;
     pub const HEIGHT_SCALE: usize = 40;
     pub const BASE: usize = 48;
@@ -259,6 +263,9 @@ pub struct Header {
     pub checksums: [u32; MAX_LEVELS],
     /// The levels' order: strips of `2^shift` columns, `None` for row-major ([`Strips`]).
     pub strips: Option<u32>,
+    /// The surface the map's heights sample (`--surface auto`'s choice): the map's, as it was
+    /// read before baking; [`Surface::Flat`] in a file written before it was kept.
+    pub surface: Surface,
 }
 
 impl Header {
@@ -294,6 +301,7 @@ impl Header {
             reason = "a shift is at most 16 (`Strips::new`); a header holding more is refused"
         )]
         put(out, at::STRIPS, &[self.strips.unwrap_or(0).min(255) as u8]);
+        put(out, at::SURFACE, &[surface_code(self.surface)]);
         put(out, at::SPACING, &self.spacing_m.to_le_bytes());
         put(out, at::HEIGHT_SCALE, &self.height_scale_m.to_le_bytes());
         put(out, at::BASE, &self.base_m.to_le_bytes());
@@ -349,6 +357,11 @@ impl Header {
             [1] => HeightFilter::Mean,
             _ => return Err(bad("unknown height filter")),
         };
+        let surface = match field::<1>(bytes, at::SURFACE) {
+            [0] => Surface::Flat,
+            [1] => Surface::Bilinear,
+            _ => return Err(bad("unknown surface")),
+        };
         let (width, height) = (u32_at(at::WIDTH), u32_at(at::HEIGHT));
         Layout::in_strips(width, height, strips)?;
         if u32_at(at::LEVELS) != small(pyramid::levels(width, height)) {
@@ -369,6 +382,7 @@ impl Header {
             max_height: u16_at(at::MAX_HEIGHT),
             checksums,
             strips,
+            surface,
         })
     }
 
@@ -398,6 +412,14 @@ impl Header {
 /// The bytes of a header that its own CRC-32 covers, and where that CRC is stored.
 pub const fn header_checksum_range() -> (Range<usize>, usize) {
     (0..at::HEADER_CHECKSUM, at::HEADER_CHECKSUM)
+}
+
+/// The header's byte for `surface` ([`at::SURFACE`]).
+fn surface_code(surface: Surface) -> u8 {
+    match surface {
+        Surface::Flat => 0,
+        Surface::Bilinear => 1,
+    }
 }
 
 /// The header's code for a height filter.
@@ -567,6 +589,7 @@ mod tests {
             max_height: 900,
             checksums: [7; MAX_LEVELS],
             strips: None,
+            surface: Surface::Bilinear,
         };
         let mut bytes = [0u8; HEADER_LEN];
         header.encode("héllo", &mut bytes);
@@ -614,6 +637,13 @@ mod tests {
         striped.encode("", &mut bytes);
         assert_eq!(Header::decode(&bytes), Ok(striped));
         assert!(Header::decode(&bytes[..100]).is_err());
+        // The surface: 0 (every file before it was kept) is flat; a code it does not know is
+        // refused.
+        assert_eq!(
+            Header::decode(&with_byte(&bytes, at::SURFACE, 0)).map(|h| h.surface),
+            Ok(Surface::Flat)
+        );
+        assert!(Header::decode(&with_byte(&bytes, at::SURFACE, 2)).is_err());
     }
 
     /// `bytes` with byte `at` set to `value`.
@@ -638,6 +668,7 @@ mod tests {
             max_height: 3,
             checksums: [0; MAX_LEVELS],
             strips: None,
+            surface: Surface::Flat,
         };
         let layout = header.layout().unwrap();
         // u16 storage keeps the bytes 2-byte aligned.

@@ -526,7 +526,9 @@ enum Ridden {
 /// The column's ride from `ray` at the march's voxel: runs of voxels at a time while they stay
 /// at or below the ray ([`March::ride`]), empty air a block at a time before the first hit
 /// ([`March::skip`]), each hit to the pixels. `ON_SURFACE`: the ride also ends where the march
-/// leaves the continuous surface ([`March::past_surface`]).
+/// leaves the continuous surface ([`March::past_surface`]). Inlined into both walks: a call
+/// here costs the Cortex-M4's `ps` 7 % (its registers), more than the second copy of the loop
+/// costs in code.
 #[inline(always)]
 fn ride_column<const ON_SURFACE: bool, S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
     terrain: &Terrain<'_>,

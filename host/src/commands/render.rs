@@ -161,6 +161,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 Projection::Exact => "exact",
                 Projection::Paper => "paper",
             },
+            surface: crate::view::surface_name(view.options.surface),
             grid: (frame.grid_columns(), frame.grid_rows()),
             measured: &measured,
             v_case,

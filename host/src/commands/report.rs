@@ -21,7 +21,7 @@ use crate::lighting::MaterialArg;
 use crate::output::Folder;
 use crate::render::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{GeometryArg, HeightFilterArg, MapArgs, OnOff, Size, SurfaceArg};
+use crate::view::{GeometryArg, HeightFilterArg, MapArgs, OnOff, Size};
 
 /// `footprint report`.
 #[derive(Args, Debug)]
@@ -188,7 +188,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         &modes,
         size,
         lod,
-        SurfaceArg::Flat,
+        footprint_core::prelude::Surface::Flat,
         placement,
         args.truth.samples,
         |msg| {

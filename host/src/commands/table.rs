@@ -53,10 +53,11 @@ pub struct TableArgs {
     /// the pyramid's share of the error.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
-    /// The surface the modes and the ground truth meet: flat-topped voxels (flat, the
-    /// paper's), or continuous where a pixel is narrower than a voxel (bilinear; the truth
-    /// meets it everywhere).
-    #[arg(long, value_enum, default_value_t = SurfaceArg::Flat)]
+    /// The surface the modes and the ground truth meet: the map's own (auto: bilinear on a
+    /// survey DEM, flat on a PNG height map and the built-in terrains), flat-topped voxels
+    /// (flat, the paper's), or continuous where a pixel is narrower than a voxel (bilinear;
+    /// the truth meets it everywhere).
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Auto)]
     pub surface: SurfaceArg,
     /// Where the paper's views are placed: paper (its geometry, over the mirrored copies of a
     /// map too small to hold it) or on-map (moved and brought nearer until they show the map)
@@ -99,7 +100,7 @@ pub fn table(args: &TableArgs) -> Result<()> {
         &modes,
         args.size.size,
         lod,
-        args.surface,
+        args.surface.on(map),
         args.geometry.map(Into::into),
         args.truth.samples,
         |msg| {

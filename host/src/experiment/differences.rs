@@ -396,6 +396,7 @@ mod tests {
             source: "test".into(),
             known_range: None,
             strips: None,
+            surface: footprint_core::prelude::Surface::Flat,
         }
     }
 

@@ -189,6 +189,7 @@ pub fn map(kind: Kind, side: u32) -> Map {
         source: format!("synthetic {} ({side}²)", kind.name()),
         known_range: None,
         strips: None,
+        surface: footprint_core::prelude::Surface::Flat,
     }
 }
 

@@ -14,7 +14,7 @@
 //! [`ModeRow::V_walk`]; the case's count at level 0 is [`Case::V_level0`].
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Options, Switch};
+use footprint_core::terrain::camera::{Options, Surface, Switch};
 use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::Terrain;
 use serde::Serialize;
@@ -25,7 +25,7 @@ use crate::pyramid::Pyramid;
 use crate::render::{count, render_timed, visible, Mode, Tables, SS_RATES};
 use crate::truth::reference::{psnr, rmse};
 use crate::truth::Truth;
-use crate::view::{Size, SurfaceArg};
+use crate::view::{surface_name, Size};
 use footprint_scenes::view::Placement;
 
 /// A case is magnified when the pixel's footprint at the first hit is below this many voxels
@@ -203,7 +203,7 @@ pub fn run(
     modes: &[Mode],
     size: Size,
     lod: bool,
-    surface: SurfaceArg,
+    surface: Surface,
     placement: Option<Placement>,
     truth_samples: u32,
     mut progress: impl FnMut(&str),
@@ -212,7 +212,7 @@ pub fn run(
     let terrain = pyramid.terrain(lod)?;
     let options = Options {
         lod,
-        surface: surface.into(),
+        surface,
         ..Options::default()
     };
     let placement = placement.unwrap_or_else(|| Placement::for_map(map));
@@ -340,7 +340,7 @@ pub fn run(
         lod,
         placement,
         v_switch_footprints: Switch::Late.voxels(),
-        surface: surface.name(),
+        surface: surface_name(surface),
         cases,
         table5,
     })

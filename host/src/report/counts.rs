@@ -24,6 +24,8 @@ pub struct RenderSummary<'a> {
     pub lod: bool,
     /// `paper` or `exact`.
     pub projection: &'static str,
+    /// The surface the walk met: `flat` or `bilinear` (`--surface`, `auto` decided for the map).
+    pub surface: &'static str,
     /// The walk's grid: columns and rows (the image's own with the paper's projection, the
     /// fan's with the exact one; the counters count the grid's cells as pixels).
     pub grid: (usize, usize),
@@ -127,6 +129,8 @@ struct RenderJson {
     repeated: Option<RepeatedJson>,
     lod: bool,
     projection: &'static str,
+    /// The surface the walk met: `flat` or `bilinear`.
+    surface: &'static str,
     grid: GridJson,
     camera: CameraJson,
     map: String,
@@ -205,6 +209,7 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
         repeated: RepeatedJson::of(s.repeated),
         lod: s.lod,
         projection: s.projection,
+        surface: s.surface,
         grid: GridJson {
             columns: s.grid.0,
             rows: s.grid.1,
@@ -235,7 +240,7 @@ pub fn text(s: &RenderSummary<'_>) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "mode {}  {}x{}  height {:.1} m  pitch {}°  roll {}°  lod {}  {} projection ({}x{} walked)",
+        "mode {}  {}x{}  height {:.1} m  pitch {}°  roll {}°  lod {}  {} projection ({}x{} walked)  {} surface",
         s.mode,
         p.width,
         p.height,
@@ -245,7 +250,8 @@ pub fn text(s: &RenderSummary<'_>) -> String {
         if s.lod { "on" } else { "off" },
         s.projection,
         s.grid.0,
-        s.grid.1
+        s.grid.1,
+        s.surface
     );
     let walk = if t.v == s.v_case {
         String::new()

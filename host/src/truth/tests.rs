@@ -33,6 +33,7 @@ pub(super) fn map_of(
         source: "test".into(),
         known_range: None,
         strips: None,
+        surface: Surface::Flat,
     }
 }
 

@@ -375,6 +375,7 @@ mod tests {
                 source: String::new(),
                 known_range: None,
                 strips: None,
+                surface: footprint_core::prelude::Surface::Flat,
             };
             let p = crate::pyramid::Pyramid::build(map, Default::default()).unwrap();
             assert_eq!(pyramid_levels(w, h), p.len(), "{w}×{h}");

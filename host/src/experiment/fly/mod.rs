@@ -11,7 +11,7 @@
 
 use anyhow::{bail, Result};
 use footprint_core::color::Color32;
-use footprint_core::terrain::camera::{Camera, Options, Projection};
+use footprint_core::terrain::camera::{Camera, Options, Projection, Surface};
 use footprint_core::Rgb;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -32,7 +32,7 @@ use crate::pyramid::Pyramid;
 use crate::render::{render_column_exact, Mode, Rate, Tables};
 use crate::truth::reference::{box_exact, rmse, supersampled, REFERENCE_COLUMNS};
 use crate::truth::{self, Truth};
-use crate::view::{Size, SurfaceArg};
+use crate::view::{surface_name, Size, SurfaceArg};
 use footprint_scenes::view::Placement;
 
 /// What to fly.
@@ -157,18 +157,18 @@ impl FlySpec {
 
     /// How `m` is rendered: the truth, or a walk with its sampling mode, whether it walks the
     /// pyramid, and its columns per pixel.
-    fn series(&self, m: FlyMode) -> Series {
+    fn series(&self, m: FlyMode, surface: Surface) -> Series {
         match m {
             FlyMode::Mode(mode) => Series::Walk(Setting {
                 mode,
                 lod: self.lod,
-                surface: self.surface,
+                surface,
                 columns: self.columns_per_pixel,
             }),
             FlyMode::Reference => Series::Walk(Setting {
                 mode: Mode::AsExact,
                 lod: false,
-                surface: self.surface,
+                surface,
                 columns: self.reference_columns,
             }),
             FlyMode::Truth => Series::Truth(self.truth_samples),
@@ -242,7 +242,7 @@ struct Setting {
     /// The pyramid (`true`) or level 0.
     lod: bool,
     /// The surface.
-    surface: SurfaceArg,
+    surface: Surface,
     /// Columns walked per pixel, box-filtered to one.
     columns: u32,
 }
@@ -291,7 +291,7 @@ fn shoot(
     };
     let options = Options {
         lod: setting.lod,
-        surface: setting.surface.into(),
+        surface: setting.surface,
         columns_per_pixel: setting.columns,
         projection,
         ..Options::default()
@@ -465,6 +465,7 @@ pub fn run_with_frames(
         bail!("--column {column}: outside the image, which is {w} columns wide");
     }
     spec.check_memory(panels.len())?;
+    let surface = spec.surface.on(map);
     let chunk = 4 * rayon::current_num_threads().max(1);
     // Every frame's camera: the path's, computed up front (it interpolates its key frames),
     // or the paper's straight flight, frame by frame (a long flight holds no list of them).
@@ -479,7 +480,7 @@ pub fn run_with_frames(
     // The series: the truth first (when flown), then every mode that is not it.
     let reference = spec.flies_truth();
     let truth_of_map = if reference {
-        Some(Truth::new(map, spec.surface.into())?)
+        Some(Truth::new(map, surface)?)
     } else {
         None
     };
@@ -516,7 +517,7 @@ pub fn run_with_frames(
                 pyramid,
                 truth_of_map.as_ref(),
                 spec.projection,
-                spec.series(m),
+                spec.series(m, surface),
                 column,
                 spec.all_columns || panel.is_some(),
             )?;
@@ -549,7 +550,7 @@ pub fn run_with_frames(
                     pyramid,
                     None,
                     spec.projection,
-                    spec.series(FlyMode::Mode(mode)),
+                    spec.series(FlyMode::Mode(mode), surface),
                     column,
                     true,
                 )?
@@ -673,7 +674,7 @@ pub fn run_with_frames(
             Projection::Paper => "paper",
         },
         lod: spec.lod,
-        surface: spec.surface.name(),
+        surface: surface_name(surface),
         columns_per_pixel: spec.columns_per_pixel,
         reference_columns: reference.then_some(spec.truth_samples),
         path: spec.path.clone(),
@@ -700,8 +701,8 @@ mod tests {
             height: 18,
         };
         let camera = paper_camera_placed(&map, &pyramid, 20.0, size, true, None).unwrap();
-        for surface in [SurfaceArg::Flat, SurfaceArg::Bilinear] {
-            let truth = Truth::new(&map, surface.into()).unwrap();
+        for surface in [Surface::Flat, Surface::Bilinear] {
+            let truth = Truth::new(&map, surface).unwrap();
             for series in [
                 Series::Walk(Setting {
                     mode: Mode::AsExact,
