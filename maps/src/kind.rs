@@ -3,9 +3,9 @@
 //! first bytes, so that neither imports the loader.
 
 use std::fmt;
+use std::path::Path;
 
 use footprint_core::prelude::Surface;
-use std::path::Path;
 
 /// A height map format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
