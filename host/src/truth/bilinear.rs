@@ -37,6 +37,16 @@ impl Patch {
         self.a + self.b * u + self.c * v + self.e * u * v
     }
 
+    /// The height along the line from `(u0, v0)` moving `(du, dv)` per unit of `τ`, as the
+    /// coefficients `[p₀, p₁, p₂]` of `p₀ + p₁·τ + p₂·τ²`.
+    pub fn along(&self, (u0, v0): (f64, f64), (du, dv): (f64, f64)) -> [f64; 3] {
+        [
+            self.at(u0, v0),
+            self.b * du + self.c * dv + self.e * (u0 * dv + v0 * du),
+            self.e * du * dv,
+        ]
+    }
+
     /// The first `τ` in `[0, span]` where the ray from `(u0, v0)` at height `z0`, moving
     /// `(du, dv)` and rising `s` per unit of `τ`, is at or below the surface; `None` if it
     /// stays above across the patch. A ray that enters below the surface hits at 0.

@@ -48,6 +48,9 @@ pub(super) struct Rays {
     planes: Vec<(f64, f64, f64)>,
     /// The paper's projection's sub-rows (`H·k`, from the top): Eq. 2's slope.
     slopes: Vec<f64>,
+    /// The paper's projection's columns (`W`): the pixel's horizontal angle across,
+    /// `pix·cos² φ` at its centre.
+    across: Vec<f64>,
     /// The eye, cells and height units, and the far distance, cells.
     ox: f64,
     oy: f64,
@@ -74,7 +77,7 @@ impl Rays {
         let (width, height) = (f64::from(p.width), f64::from(p.height));
         // Sub-sample `i` of `n` per pixel, from the image's left (top) edge, pixels.
         let at = |i: usize| (i as f64 + 0.5) / f64::from(k);
-        let (planes, slopes) = if projection == Projection::Paper {
+        let (planes, slopes, across) = if projection == Projection::Paper {
             let planes = (0..p.width as usize * k as usize)
                 .map(|i| {
                     let xc = (at(i) - width / 2.0) * pix;
@@ -89,9 +92,15 @@ impl Rays {
             let slopes = (0..p.height as usize * k as usize)
                 .map(|j| camera.slope_at(height / 2.0 - at(j)))
                 .collect();
-            (planes, slopes)
+            let across = (0..p.width)
+                .map(|c| {
+                    let xc = (f64::from(c) + 0.5 - width / 2.0) * pix;
+                    pix / (1.0 + xc * xc)
+                })
+                .collect();
+            (planes, slopes, across)
         } else {
-            (Vec::new(), Vec::new())
+            (Vec::new(), Vec::new(), Vec::new())
         };
         Ok(Self {
             projection,
@@ -106,6 +115,7 @@ impl Rays {
             to_units: field.spacing_m / field.height_scale_m,
             planes,
             slopes,
+            across,
             ox: p.x_m / field.spacing_m,
             oy: p.y_m / field.spacing_m,
             z0: p.eye_m / field.height_scale_m,
@@ -128,18 +138,11 @@ impl Rays {
                 (dx, dy, self.slopes[r * k + j as usize] * cos)
             }
             Projection::Exact => {
-                // Image coordinates from the centre, pixels, `y` up.
                 let kf = f64::from(self.k);
-                let x = c as f64 + (f64::from(i) + 0.5) / kf - self.width / 2.0;
-                let y = self.height / 2.0 - (r as f64 + (f64::from(j) + 0.5) / kf);
-                let (sr, cr) = self.roll;
-                let (sp, cp) = self.pitch;
-                let (ux, uy) = (x * cr + y * sr, -x * sr + y * cr);
-                let along = cp + uy * self.pix * sp;
-                let across = ux * self.pix;
-                let hx = self.forward.0 * along + self.right.0 * across;
-                let hy = self.forward.1 * along + self.right.1 * across;
-                let up = uy * self.pix * cp - sp;
+                let (hx, hy, up) = self.pinhole(
+                    c as f64 + (f64::from(i) + 0.5) / kf,
+                    r as f64 + (f64::from(j) + 0.5) / kf,
+                );
                 let len = (hx * hx + hy * hy).sqrt();
                 if len <= 1e-12 * up.abs() {
                     (0.0, 0.0, up.signum())
@@ -147,6 +150,14 @@ impl Rays {
                     (hx / len, hy / len, up / len)
                 }
             }
+        };
+        // The footprint across reaches half a voxel and one voxel (cells of horizontal
+        // distance): `t·α` cells at `t`, `α` the pixel's horizontal angle across.
+        let alpha = self.across(c, r);
+        let end = if alpha > 0.0 {
+            1.0 / alpha
+        } else {
+            f64::INFINITY
         };
         Ray {
             ox: self.ox,
@@ -156,6 +167,40 @@ impl Rays {
             z0: self.z0,
             s: slope * self.to_units,
             far: self.far,
+            near: end / 2.0,
+            end,
+        }
+    }
+
+    /// The pinhole's ray through image point `(a, b)` (pixels from the image's left and top
+    /// edges), not normalised: east, south and up.
+    fn pinhole(&self, a: f64, b: f64) -> (f64, f64, f64) {
+        // Image coordinates from the centre, pixels, `y` up.
+        let (x, y) = (a - self.width / 2.0, self.height / 2.0 - b);
+        let (sr, cr) = self.roll;
+        let (sp, cp) = self.pitch;
+        let (ux, uy) = (x * cr + y * sr, -x * sr + y * cr);
+        let along = cp + uy * self.pix * sp;
+        let across = ux * self.pix;
+        let hx = self.forward.0 * along + self.right.0 * across;
+        let hy = self.forward.1 * along + self.right.1 * across;
+        (hx, hy, uy * self.pix * cp - sp)
+    }
+
+    /// Pixel `(c, r)`'s horizontal angle across, radians: between the ground tracks of the
+    /// rays through its centre and through its neighbour's across (the image's `x` axis). In
+    /// the paper's projection `pix·cos² φ`, the column's own width; in the exact one the
+    /// same angle between the pinhole's two rays (near straight down the tracks turn fast,
+    /// the angle is wide, and the surface there is the flat tops).
+    pub fn across(&self, c: usize, r: usize) -> f64 {
+        match self.projection {
+            Projection::Paper => self.across[c],
+            Projection::Exact => {
+                let (a, b) = (c as f64 + 0.5, r as f64 + 0.5);
+                let (x0, y0, _) = self.pinhole(a, b);
+                let (x1, y1, _) = self.pinhole(a + 1.0, b);
+                (x0 * y1 - y0 * x1).abs().atan2(x0 * x1 + y0 * y1)
+            }
         }
     }
 }

@@ -15,15 +15,18 @@
 //! ([`footprint_core::color::mean_to_rgb`]).
 //!
 //! **Surfaces.** [`Surface::Flat`] is the paper's model (Sect. 2: the heights as "voxels
-//! (sticks)", flat-topped columns with vertical faces); [`Surface::Bilinear`] is the continuous
-//! surface through the cells' centres (module `bilinear`), everywhere: the object that
-//! `--surface bilinear` approximates. The modes meet that surface only where a pixel is
-//! narrower than half a voxel and blend into the flat tops between half a voxel and one
-//! (`footprint_core::terrain::surface`); beyond, they integrate the flat tops that the
-//! footprint covers. So against the bilinear truth the modes' distant rows differ by the
-//! surface itself, not only by their sampling. A hit's colour is that of the cell holding the
-//! hit point (a stick's top or face; on the bilinear surface the cell under the point): the
-//! map's colours are per cell.
+//! (sticks)", flat-topped columns with vertical faces). [`Surface::Bilinear`] follows the
+//! footprint, as the modes' walk does (`footprint_core::terrain::surface`): each ray meets the
+//! continuous surface through the cells' centres (module `bilinear`) where its pixel's
+//! footprint across is at most half a voxel, the flat tops beyond one voxel, and between them
+//! the flat tops raised by a share of the continuous surface's height above them that falls
+//! linearly with the distance (`trace::Follow`, a cubic met exactly). The footprint at
+//! horizontal distance `t` is `t·α`, `α` the pixel's horizontal angle across (module
+//! `camera`); the modes take theirs per column of their walk (in the paper's projection the
+//! same angle, in the exact one the fan's lines'). So a view whose first
+//! hits all lie beyond one voxel is the flat tops' image on both surfaces. A hit's colour is
+//! that of the cell holding the hit point (a stick's top or face; on the continuous surface
+//! the cell under the point): the map's colours are per cell.
 //!
 //! **Where it differs from the modes by geometry, not sampling.** The walk tests a voxel where
 //! its column's centre line crosses the voxel's centre along the major axis, and so can step
@@ -61,7 +64,7 @@ use crate::pyramid::Pyramid;
 use camera::Rays;
 use field::Field;
 use maxmip::MaxMip;
-use trace::{trace, Flat, Model, Smooth};
+use trace::{trace, Flat, Follow, Model};
 
 /// Sub-samples per pixel side unless asked (`--truth-samples`): 64 rays a pixel.
 pub const DEFAULT_SAMPLES: u32 = 8;
@@ -82,7 +85,10 @@ pub fn check_samples(flag: &str, k: u32) -> Result<u32> {
 #[derive(Debug)]
 pub struct Truth<'m> {
     field: Field<'m>,
+    /// Over the cells (the flat tops).
     mip: MaxMip,
+    /// Over the bilinear surface's patches, on [`Surface::Bilinear`].
+    patches: Option<MaxMip>,
     surface: Surface,
 }
 
@@ -93,30 +99,27 @@ impl<'m> Truth<'m> {
     /// Errors: a map whose cells cannot be addressed, or a quadtree beyond the memory budget.
     pub fn new(map: &'m Map, surface: Surface) -> Result<Self> {
         let field = Field::new(map)?;
-        let extra = match surface {
-            Surface::Flat => Flat::EXTRA,
-            Surface::Bilinear => Smooth::EXTRA,
+        let (w, h) = (field.width as usize, field.height as usize);
+        let (gw, gh) = (w + Follow::EXTRA as usize, h + Follow::EXTRA as usize);
+        let bytes = match surface {
+            Surface::Flat => MaxMip::bytes(w, h),
+            Surface::Bilinear => MaxMip::bytes(w, h) + MaxMip::bytes(gw, gh),
         };
-        let (gw, gh) = (
-            (field.width + extra) as usize,
-            (field.height + extra) as usize,
-        );
         crate::memory::check(
-            Some(MaxMip::bytes(gw, gh)),
+            Some(bytes),
             "truth",
-            "the max-height quadtree over the map",
+            "the max-height quadtrees over the map",
         )?;
-        let mip = match surface {
-            Surface::Flat => {
-                MaxMip::build(gw, gh, |x, y| Flat::max0(&field, x as i64, y as i64) as u16)
-            }
-            Surface::Bilinear => MaxMip::build(gw, gh, |x, y| {
-                Smooth::max0(&field, x as i64, y as i64) as u16
-            }),
-        };
+        let mip = MaxMip::build(w, h, |x, y| Flat::max0(&field, x as i64, y as i64) as u16);
+        let patches = (surface == Surface::Bilinear).then(|| {
+            MaxMip::build(gw, gh, |x, y| {
+                Follow::max0(&field, x as i64, y as i64) as u16
+            })
+        });
         Ok(Self {
             field,
             mip,
+            patches,
             surface,
         })
     }
@@ -195,12 +198,24 @@ impl<'m> Truth<'m> {
 
     /// The colour sub-sample `(i, j)` of pixel `(c, r)` sees, `None` for the sky.
     fn sample(&self, rays: &Rays, c: usize, r: usize, i: u32, j: u32) -> Option<Rgb> {
-        let ray = rays.ray(c, r, i, j);
-        match self.surface {
-            Surface::Flat => trace::<Flat>(&self.field, &self.mip, &ray),
-            Surface::Bilinear => trace::<Smooth>(&self.field, &self.mip, &ray),
+        self.hit(&rays.ray(c, r, i, j)).map(|(_, color)| color)
+    }
+
+    /// The ray's first hit: its horizontal distance (cells) and colour. On
+    /// [`Surface::Bilinear`] the surface follows the footprint ([`trace::Follow`]) up to where
+    /// it reaches one voxel, then the flat tops.
+    fn hit(&self, ray: &trace::Ray) -> Option<(f64, Rgb)> {
+        match &self.patches {
+            None => trace::<Flat>(&self.field, &self.mip, ray, 0.0),
+            Some(patches) => {
+                let near = trace::Ray {
+                    far: ray.far.min(ray.end),
+                    ..*ray
+                };
+                trace::<Follow>(&self.field, patches, &near, 0.0)
+                    .or_else(|| trace::<Flat>(&self.field, &self.mip, ray, near.far))
+            }
         }
-        .map(|(_, color)| color)
     }
 }
 

@@ -80,11 +80,7 @@ fn each_ray(
             for j in 0..k {
                 for i in 0..k {
                     let ray = rays.ray(c, r, i, j);
-                    let hit = match truth.surface {
-                        Surface::Flat => trace::<Flat>(&truth.field, &truth.mip, &ray),
-                        Surface::Bilinear => trace::<Smooth>(&truth.field, &truth.mip, &ray),
-                    };
-                    f(c, r, &ray, hit);
+                    f(c, r, &ray, truth.hit(&ray));
                 }
             }
         }
@@ -199,7 +195,8 @@ fn a_steps_edges_fall_where_the_pinhole_puts_them() {
 }
 
 /// On the bilinear surface a ramp (heights linear in y) is one plane, the cells' centres on
-/// it: every ray meets it where the line meets the plane, to rounding.
+/// it: every ray that meets it where the footprint is under half a voxel meets it where the
+/// line meets the plane, to rounding.
 #[test]
 fn a_ramp_on_the_bilinear_surface_is_a_plane() {
     let map = map_of(
@@ -210,12 +207,12 @@ fn a_ramp_on_the_bilinear_surface_is_a_plane() {
     let truth = Truth::new(&map, Surface::Bilinear).unwrap();
     // The plane through the centres: h(Y) = 1000 + 40·(Y − ½), Y in cells.
     let plane = |y: f64| 1000.0 + 40.0 * (y - 0.5);
-    let cam = camera((20.0, 50.0, 4500.0), 10.0, 25.0, 0.0, 20, 40.0);
+    let cam = camera((20.0, 50.0, 4500.0), 10.0, 25.0, 0.0, 80, 40.0);
     let mut hits = 0;
     each_ray(&truth, &cam, Projection::Exact, 2, |_, _, ray, hit| {
         if let Some((t, color)) = hit {
             let (x, y) = (ray.ox + ray.dx * t, ray.oy + ray.dy * t);
-            if (1.0..63.0).contains(&y) {
+            if (1.0..63.0).contains(&y) && t <= ray.near {
                 hits += 1;
                 assert!(
                     (ray.z0 + ray.s * t - plane(y)).abs() < 1e-6,
@@ -442,4 +439,130 @@ fn samples_outside_the_range_are_refused() {
         .starts_with("--truth-samples 0: outside 1–32"));
     assert!(check_samples("--truth-samples", 33).is_err());
     assert_eq!(check_samples("--truth-samples", 32).unwrap(), 32);
+}
+
+/// The surface that follows the footprint ([`trace::Follow`]), point by point: the bilinear
+/// surface through the cells' centres, blended into the flat top of the cell under the point
+/// by the share `s(t)`.
+fn followed_height(field: &Field<'_>, ray: &trace::Ray, t: f64) -> f64 {
+    let (x, y) = (ray.ox + ray.dx * t, ray.oy + ray.dy * t);
+    let flat = field.height_world(x.floor() as i64, y.floor() as i64);
+    let (gx, gy) = ((x - 0.5).floor(), (y - 0.5).floor());
+    let (u, v) = (x - 0.5 - gx, y - 0.5 - gy);
+    let h = |dx: i64, dy: i64| field.height_world(gx as i64 + dx, gy as i64 + dy);
+    let bilinear = h(0, 0) * (1.0 - u) * (1.0 - v)
+        + h(1, 0) * u * (1.0 - v)
+        + h(0, 1) * (1.0 - u) * v
+        + h(1, 1) * u * v;
+    let share = ((ray.end - t) / (ray.end - ray.near)).clamp(0.0, 1.0);
+    flat + share * (bilinear - flat)
+}
+
+/// On a rough map seen so that the footprint crosses half a voxel and one within the view,
+/// every ray is above the followed surface at 400 points before its hit, and at or below it
+/// just after (on the surface, or having entered a face); a ray that misses stays above. A
+/// truth that kept the bilinear surface beyond `near`, or the flat tops before `end`, fails
+/// (checked: either breaks the "just after" or the "before").
+#[test]
+fn the_surface_follows_the_footprint_ray_by_ray() {
+    let mut seed = 7u64;
+    let mut rnd = move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 33) as u32
+    };
+    let heights: Vec<u16> = (0..64 * 64).map(|_| 1000 + (rnd() % 3000) as u16).collect();
+    let map = map_of(
+        64,
+        |x, y| heights[(y * 64 + x) as usize],
+        |x, y| Rgb::new(x as u8, y as u8, 0),
+    );
+    let truth = Truth::new(&map, Surface::Bilinear).unwrap();
+    // 30° over 24 pixels: the footprint is half a voxel at about 19 cells, one at 38.
+    let cam = camera((8.3, 9.1, 6000.0), 120.0, 8.0, 0.0, 24, 60.0);
+    let (mut blended, mut hits, mut misses) = (0, 0, 0);
+    each_ray(&truth, &cam, Projection::Exact, 3, |_, _, ray, hit| {
+        let above = |t: f64| ray.z0 + ray.s * t > followed_height(&truth.field, ray, t) - 1e-6;
+        let end = hit.map_or(ray.far, |(t, _)| t);
+        for k in 0..400 {
+            let t = end * f64::from(k) / 400.0;
+            assert!(above(t), "below the surface at {t} before the hit at {end}");
+        }
+        if let Some((t, color)) = hit {
+            hits += 1;
+            let after = t + 1e-7;
+            assert!(
+                ray.z0 + ray.s * after <= followed_height(&truth.field, ray, after) + 1e-4,
+                "above the surface just after the hit at {t}"
+            );
+            let (x, y) = (ray.ox + ray.dx * after, ray.oy + ray.dy * after);
+            assert_eq!(color, Rgb::new(x.floor() as u8, y.floor() as u8, 0));
+            blended += usize::from(t > ray.near && t < ray.end);
+        } else {
+            misses += 1;
+        }
+    });
+    assert!(
+        hits > 1000 && misses > 100 && blended > 300,
+        "{hits} {misses} {blended}"
+    );
+}
+
+/// Where no ray meets the terrain before its footprint reaches one voxel, the followed surface
+/// is the flat tops: a view of the built-in terrain from 2 km above its highest point, 32²
+/// over 30° (every first hit beyond `end`, checked here), is the same image on both surfaces,
+/// in both projections. That also checks the hand-over: the flat tops traced from `end` find
+/// every hit that the trace from the eye finds.
+#[test]
+fn a_view_that_never_magnifies_is_the_flat_tops_image() {
+    let map = crate::map::procedural(1, 256);
+    let top = f64::from(map.height_range().1);
+    let cam = camera((40.0, 200.0, top + 20_000.0), 45.0, 20.0, 0.0, 32, 600.0);
+    let sky = Rgb::new(150, 190, 235);
+    let flat = Truth::new(&map, Surface::Flat).unwrap();
+    let follow = Truth::new(&map, Surface::Bilinear).unwrap();
+    for projection in [Projection::Paper, Projection::Exact] {
+        let mut nearest = f64::INFINITY;
+        each_ray(&flat, &cam, projection, 4, |_, _, ray, hit| {
+            if let Some((t, _)) = hit {
+                nearest = nearest.min(t / ray.end);
+            }
+        });
+        assert!(nearest > 1.0 && nearest < 4.0, "{projection:?}: {nearest}");
+        let a = flat.render(&cam, sky, projection, 4).unwrap();
+        let b = follow.render(&cam, sky, projection, 4).unwrap();
+        assert_eq!(a, b, "{projection:?}");
+        assert!(a.iter().any(|&p| p != sky) && a.contains(&sky));
+    }
+}
+
+/// Up to where the footprint is half a voxel, the followed surface is the bilinear one: with
+/// `near` beyond the far distance (200 pixels over 30°: `near` about 186 cells, far 60) every
+/// ray's hit is [`trace::Smooth`]'s closed-form root to 10⁻⁹, with its colour.
+#[test]
+fn before_near_the_followed_surface_is_the_bilinear_one() {
+    let map = map_of(
+        64,
+        |x, y| 1000 + ((x * 7919 + y * 104_729) % 2500) as u16,
+        |x, y| Rgb::new(x as u8, y as u8, 7),
+    );
+    let truth = Truth::new(&map, Surface::Bilinear).unwrap();
+    let patches = truth.patches.as_ref().unwrap();
+    let cam = camera((9.5, 11.2, 5000.0), 60.0, 12.0, 0.0, 200, 60.0);
+    let mut hits = 0;
+    each_ray(&truth, &cam, Projection::Exact, 1, |_, _, ray, hit| {
+        assert!(ray.near > ray.far);
+        let want = trace::<trace::Smooth>(&truth.field, patches, ray, 0.0);
+        match (hit, want) {
+            (Some((t, color)), Some((w, wc))) => {
+                hits += 1;
+                assert!((t - w).abs() <= 1e-9 * (1.0 + w), "{t} against {w}");
+                assert_eq!(color, wc);
+            }
+            (None, None) => {}
+            other => panic!("{other:?}"),
+        }
+    });
+    assert!(hits > 10_000, "{hits}");
 }

@@ -19,7 +19,8 @@
 //! **Models.** [`Flat`]: the paper's sticks (Sect. 2), a cell a flat-topped column with
 //! vertical faces; the ray hits it if it is at or below the top at the cell's entry or exit,
 //! on the entry face or on the top. [`Smooth`]: the bilinear surface through the cells'
-//! centres, over the dual grid's patches ([`super::bilinear`]).
+//! centres, over the dual grid's patches ([`super::bilinear`]). [`Follow`]: the one, then a
+//! blend, then the other, as the pixel's footprint widens (`--surface bilinear`).
 
 use footprint_core::Rgb;
 
@@ -48,6 +49,11 @@ pub(super) struct Ray {
     pub s: f64,
     /// The far distance, cells of horizontal distance: nothing beyond it is hit.
     pub far: f64,
+    /// Where the pixel's footprint across reaches half a voxel, cells of horizontal distance
+    /// ([`Follow`]: the bilinear surface up to here).
+    pub near: f64,
+    /// Where it reaches one voxel ([`Follow`]: the flat tops from here).
+    pub end: f64,
 }
 
 /// The ray in one copy's grid: the map's coordinates (reflected where the copy is), plus the
@@ -66,6 +72,10 @@ pub(super) struct Local {
     pub z0: f64,
     /// The rise per cell.
     pub s: f64,
+    /// [`Ray::near`].
+    pub near: f64,
+    /// [`Ray::end`].
+    pub end: f64,
 }
 
 impl Local {
@@ -130,8 +140,9 @@ impl Model for Flat {
     }
 }
 
-/// The bilinear surface through the cells' centres: patch `(gx, gy)` spans the centres of
-/// cells `gx − 1 ..= gx` and `gy − 1 ..= gy`.
+/// The bilinear surface through the cells' centres, everywhere: patch `(gx, gy)` spans the
+/// centres of cells `gx − 1 ..= gx` and `gy − 1 ..= gy`. [`Follow`] meets it up to `near`;
+/// its closed-form roots ([`Patch::first_hit`]) check [`Follow`]'s there (the tests).
 #[derive(Debug)]
 pub(super) struct Smooth;
 
@@ -173,6 +184,172 @@ impl Model for Smooth {
     /// modes read each voxel's own colour or Eq. 4's blend of two).
     #[inline(always)]
     fn color(field: &Field<'_>, _: i64, _: i64, ray: &Local, t: f64) -> Rgb {
+        let x = floor(ray.ox + ray.dx * t - Self::OFFSET);
+        let y = floor(ray.oy + ray.dy * t - Self::OFFSET);
+        field.color_at(x, y)
+    }
+}
+
+/// The surface that follows the pixel's footprint, as the modes' walk meets it under
+/// `--surface bilinear` (`footprint_core::terrain::surface`): where the footprint across is
+/// at most half a voxel ([`Ray::near`]) the bilinear surface; from half a voxel to one
+/// ([`Ray::end`]) the flat tops plus the share `s(t) = (end − t)/(end − near)` of the bilinear
+/// surface's height above them, at each point by its own distance `t`; beyond, the flat tops
+/// (the [`Flat`] model: [`super::Truth`] hands the ray over at `end`).
+///
+/// Over the dual grid's patches, as [`Smooth`]: patch `(gx, gy)` lies over four cells, split
+/// at its middle lines, and over each quarter, between `near` and `end` split at those, the
+/// surface less the ray is a cubic in `t` (the share linear, the patch quadratic along the
+/// line). Its first root is found exactly to rounding: the cubic is monotone between its
+/// critical points, and the first of those pieces that ends at or above zero is bisected.
+/// Inside a patch the flat tops step at the middle lines (faces `1 − s` of a stick's height):
+/// a ray below the next quarter's surface where it enters it hits there.
+#[derive(Debug)]
+pub(super) struct Follow;
+
+impl Follow {
+    /// The share of the bilinear surface at horizontal distance `t`.
+    #[inline(always)]
+    fn share(ray: &Local, t: f64) -> f64 {
+        if t <= ray.near {
+            1.0
+        } else if t >= ray.end {
+            0.0
+        } else {
+            (ray.end - t) / (ray.end - ray.near)
+        }
+    }
+
+    /// The first `t` in `[ta, tb]` where the ray meets the surface over one quarter of patch
+    /// `patch`, whose flat top is `top`, the share linear in `t` across it.
+    fn quarter(
+        patch: &Patch,
+        top: f64,
+        ray: &Local,
+        (u, v): (f64, f64),
+        ta: f64,
+        tb: f64,
+    ) -> Option<f64> {
+        let [p0, p1, p2] = patch.along((u, v), (ray.dx, ray.dy));
+        let len = tb - ta;
+        let (s0, s1) = (Self::share(ray, ta), Self::share(ray, tb));
+        let ds = if len > 0.0 { (s1 - s0) / len } else { 0.0 };
+        // g(τ) = top + s(τ)·(P(τ) − top) − z(ta + τ), τ = t − ta.
+        let q0 = p0 - top;
+        let c = [
+            top - ray.z(ta) + s0 * q0,
+            -ray.s + s0 * p1 + ds * q0,
+            s0 * p2 + ds * p1,
+            ds * p2,
+        ];
+        first_root(c, len).map(|tau| ta + tau)
+    }
+}
+
+/// The first `τ` in `[0, len]` at which `c₀ + c₁τ + c₂τ² + c₃τ³ ≥ 0`, to rounding; 0 if it
+/// already is at 0.
+fn first_root(c: [f64; 4], len: f64) -> Option<f64> {
+    let g = |t: f64| ((c[3] * t + c[2]) * t + c[1]) * t + c[0];
+    if g(0.0) >= 0.0 {
+        return Some(0.0);
+    }
+    // The critical points inside (the roots of g′ = c₁ + 2c₂τ + 3c₃τ²), in order.
+    let (a, b, k) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let mut stops = [len; 3];
+    let scale = a.abs() + b.abs() + k.abs();
+    if a.abs() > 1e-14 * scale {
+        let disc = b * b - 4.0 * a * k;
+        if disc >= 0.0 {
+            let q = -0.5 * (b + b.signum() * disc.sqrt());
+            stops[0] = q / a;
+            stops[1] = if q != 0.0 { k / q } else { len };
+        }
+    } else if b != 0.0 {
+        stops[0] = -k / b;
+    }
+    for s in &mut stops {
+        if !(*s > 0.0 && *s < len) {
+            *s = len;
+        }
+    }
+    stops.sort_by(f64::total_cmp);
+    let mut lo = 0.0;
+    for hi in stops {
+        if g(hi) >= 0.0 {
+            // g(lo) < 0 ≤ g(hi), g monotone between: bisect.
+            let mut hi = hi;
+            while hi - lo > 1e-12 * (1.0 + hi) {
+                let mid = 0.5 * (lo + hi);
+                if g(mid) >= 0.0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            return Some(hi);
+        }
+        lo = hi;
+    }
+    None
+}
+
+impl Model for Follow {
+    const OFFSET: f64 = Smooth::OFFSET;
+    const EXTRA: u32 = Smooth::EXTRA;
+    const CORNERS: bool = false;
+
+    /// The patch's corners: the flat tops under it are those four cells, and every blend of
+    /// the two surfaces lies between them.
+    #[inline(always)]
+    fn max0(field: &Field<'_>, gx: i64, gy: i64) -> f64 {
+        Smooth::max0(field, gx, gy)
+    }
+
+    fn hit(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t_in: f64, t_out: f64) -> Option<f64> {
+        let patch = Smooth::patch(field, gx, gy);
+        // Where the line crosses the patch's middle lines, `near` and `end`: the stops.
+        let mut stops = [t_out; 4];
+        let middle = |o: f64, d: f64, g: i64| {
+            if d != 0.0 {
+                (g as f64 + 0.5 - o) / d
+            } else {
+                f64::INFINITY
+            }
+        };
+        for (s, t) in stops.iter_mut().zip([
+            middle(ray.ox, ray.dx, gx),
+            middle(ray.oy, ray.dy, gy),
+            ray.near,
+            ray.end,
+        ]) {
+            if t > t_in && t < t_out {
+                *s = t;
+            }
+        }
+        stops.sort_by(f64::total_cmp);
+        let mut ta = t_in;
+        for tb in stops {
+            if tb <= ta {
+                continue;
+            }
+            // The quarter the piece lies in, by its middle point.
+            let mid = 0.5 * (ta + tb);
+            let (x, y) = (ray.ox + ray.dx * mid, ray.oy + ray.dy * mid);
+            let (cx, cy) = (floor(x - Self::OFFSET), floor(y - Self::OFFSET));
+            let u = (ray.ox + ray.dx * ta - gx as f64).clamp(0.0, 1.0);
+            let v = (ray.oy + ray.dy * ta - gy as f64).clamp(0.0, 1.0);
+            if let Some(t) = Self::quarter(&patch, field.height_at(cx, cy), ray, (u, v), ta, tb) {
+                return Some(t);
+            }
+            ta = tb;
+        }
+        None
+    }
+
+    /// The colour of the cell the ray is in just after the hit (the one it enters, on a face).
+    #[inline(always)]
+    fn color(field: &Field<'_>, _: i64, _: i64, ray: &Local, t: f64) -> Rgb {
+        let t = t + CORNER * (1.0 + t);
         let x = floor(ray.ox + ray.dx * t - Self::OFFSET);
         let y = floor(ray.oy + ray.dy * t - Self::OFFSET);
         field.color_at(x, y)
@@ -341,14 +518,23 @@ pub(super) fn trace_copy<M: Model>(
     }
 }
 
-/// The ray's first hit within the far distance: its horizontal distance (cells) and the colour
-/// seen there; `None` for the sky.
-pub(super) fn trace<M: Model>(field: &Field<'_>, mip: &MaxMip, ray: &Ray) -> Option<(f64, Rgb)> {
+/// The ray's first hit from horizontal distance `from` (cells) to the far distance: its
+/// distance and the colour seen there; `None` for the sky.
+pub(super) fn trace<M: Model>(
+    field: &Field<'_>,
+    mip: &MaxMip,
+    ray: &Ray,
+    from: f64,
+) -> Option<(f64, Rgb)> {
     let (w, h) = (f64::from(field.width), f64::from(field.height));
-    if ray.s >= 0.0 && ray.z0 > field.max {
+    if ray.s >= 0.0 && ray.z0 + ray.s * from > field.max || from >= ray.far {
         return None;
     }
     if ray.dx == 0.0 && ray.dy == 0.0 {
+        if from > 0.0 {
+            // Straight up or down, it never gets that far.
+            return None;
+        }
         // Straight down or up: the cell under the eye, or the sky.
         let (x, y) = (floor(ray.ox), floor(ray.oy));
         return (ray.s < 0.0 && ray.z0 > field.height_world(x, y)).then(|| {
@@ -358,9 +544,9 @@ pub(super) fn trace<M: Model>(field: &Field<'_>, mip: &MaxMip, ray: &Ray) -> Opt
             )
         });
     }
-    let mut cx = cell(ray.ox / w, ray.dx);
-    let mut cy = cell(ray.oy / h, ray.dy);
-    let mut t = 0.0;
+    let mut cx = cell((ray.ox + ray.dx * from) / w, ray.dx);
+    let mut cy = cell((ray.oy + ray.dy * from) / h, ray.dy);
+    let mut t = from;
     loop {
         let (x0, y0) = (cx as f64 * w, cy as f64 * h);
         let tx = Axis::new(ray.ox, ray.dx).exit(x0, x0 + w);
@@ -385,6 +571,8 @@ pub(super) fn trace<M: Model>(field: &Field<'_>, mip: &MaxMip, ray: &Ray) -> Opt
             dy,
             z0: ray.z0,
             s: ray.s,
+            near: ray.near,
+            end: ray.end,
         };
         if t < t_end {
             if let Some(hit) = trace_copy::<M>(field, mip, &local, t, t_end) {
