@@ -3,7 +3,9 @@
 # ("Whole-frame flicker against the truth" in "Current numbers").
 #
 # Usage: FOOTPRINT_BIN=… DEMS=/work/dems OUT=DIR FRAMES=N scripts/flicker-truth.sh [MAP …]
-#   MAP: mountains eroded plains msh tujunga comanche (default: all six, in that order)
+#   MAP: mountains eroded plains msh tujunga comanche (default: these six, in that order), or
+#        one of `footprint map synth`'s kinds (wall wall2 stripes2 stripes4 ridges checker mesas
+#        steep: the generated maps nobody tuned to, written to OUT/KIND.png first)
 #   Runs `footprint fly MAP --frames N --modes ps,ss16,as,as-exact,as2 --causes --json` per map
 #   (the truth, K = 8, is fly's default reference), writes OUT/MAP.json, then prints the
 #   tables from every OUT/MAP.json present (`scripts/flicker-truth.sh --table` prints only).
@@ -21,12 +23,18 @@ declare -A maps=(
   [msh]="--dem $dems/msh_2007_10m.tif"
   [tujunga]="--dem $dems/bigtujunga_srtm30m.tif"
   [comanche]="--dem $dems/D1.png --color $dems/C1W.png")
-order=(mountains eroded plains msh tujunga comanche)
+synth=(wall wall2 stripes2 stripes4 ridges checker mesas steep)
+for k in "${synth[@]}"; do maps[$k]="--dem $out/$k.png"; done
+order=(mountains eroded plains msh tujunga comanche "${synth[@]}")
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=("${order[@]}")
 if [ "${names[0]}" != --table ]; then
   for n in "${names[@]}"; do
+    [ -n "${maps[$n]+set}" ] || { echo "flicker-truth.sh: $n: no such map" >&2; exit 2; }
     start=$(date +%s)
+    if [[ " ${synth[*]} " == *" $n "* ]] && [ ! -e "$out/$n.png" ]; then
+      "$bin" map synth --kind "$n" --out "$out/$n.png"
+    fi
     # shellcheck disable=SC2086 # the map's options are words
     nice -n 10 "$bin" fly ${maps[$n]} --frames "$frames" --modes ps,ss16,as,as-exact,as2 \
       --causes --json > "$out/$n.json.tmp" 2> "$out/$n.err"

@@ -145,8 +145,8 @@ impl From<GeometryArg> for footprint_scenes::view::Placement {
 pub enum SurfaceArg {
     /// The map's own: continuous where a pixel is narrower than a voxel on a survey DEM
     /// (GeoTIFF, SRTM, ASCII grid, BIL, a mosaic of them), whose heights sample a continuous
-    /// ground; flat-topped voxels on a PNG height map (a game map's model) and on the built-in
-    /// terrains (the paper's). A baked map keeps the choice of the map it was baked from.
+    /// ground, and on the built-in terrains; flat-topped voxels on a PNG height map (a game
+    /// map's model). A baked map keeps the choice of the map it was baked from.
     #[default]
     Auto,
     /// Flat-topped voxels, the paper's model.
@@ -453,9 +453,9 @@ pub struct CameraArgs {
     /// Multiresolution traversal (on), or level 0 voxel by voxel (off).
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
-    /// The surface: the map's own (auto: bilinear on a survey DEM, flat on a PNG height map
-    /// and the built-in terrains), flat-topped voxels (flat, the paper's), or continuous where a
-    /// pixel is narrower than a voxel (bilinear).
+    /// The surface: the map's own (auto: bilinear on a survey DEM and the built-in terrains,
+    /// flat on a PNG height map), flat-topped voxels (flat, the paper's), or continuous where
+    /// a pixel is narrower than a voxel (bilinear).
     #[arg(long, value_enum, default_value_t = SurfaceArg::Auto)]
     pub surface: SurfaceArg,
 }

@@ -53,8 +53,8 @@ fn png_with_header(w: u32, h: u32) -> Vec<u8> {
 }
 
 /// `--surface auto`, the default, is the map's own, and `--json` names the one met: the
-/// continuous surface on a survey DEM (an ASCII grid), flat tops on a PNG height map and on the
-/// built-in terrain (the paper's); `--surface flat` and `bilinear` hold on any map.
+/// continuous surface on a survey DEM (an ASCII grid) and on the built-in terrain, flat tops on
+/// a PNG height map; `--surface flat` and `bilinear` hold on any map.
 #[test]
 fn render_names_the_surface_auto_chose_for_the_map() {
     let dir = tempfile::tempdir().unwrap();
@@ -64,8 +64,8 @@ fn render_names_the_surface_auto_chose_for_the_map() {
     common::write_asc(&asc, (40, 30), 30, |x, y| 100 + x * 3 + y);
     let (png, asc) = (png.to_str().unwrap(), asc.to_str().unwrap());
     for (map, surface, expected) in [
-        (&["--terrain-size", "64"][..], None, "flat"),
-        (&["--terrain-size", "64"][..], Some("bilinear"), "bilinear"),
+        (&["--terrain-size", "64"][..], None, "bilinear"),
+        (&["--terrain-size", "64"][..], Some("flat"), "flat"),
         (&["--dem", asc][..], None, "bilinear"),
         (&["--dem", png][..], None, "flat"),
         (&["--dem", asc][..], Some("flat"), "flat"),

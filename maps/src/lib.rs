@@ -398,7 +398,7 @@ mod tests {
 
     /// `--surface auto` meets the map's own surface, which each reader says: flat-topped voxels
     /// for a PNG height map (a game map's model), the continuous surface for the survey formats
-    /// (ASCII grid, GeoTIFF, SRTM, BIL); the built-in terrains keep the paper's flat tops; a
+    /// (ASCII grid, GeoTIFF, SRTM, BIL) and the built-in terrains; a
     /// baked map keeps its source's.
     #[test]
     fn each_reader_says_which_surface_its_map_samples() {
@@ -442,15 +442,15 @@ mod tests {
         )
         .unwrap();
         assert_eq!(read(&bil), Surface::Bilinear, "bil");
-        // The built-in terrains keep the paper's flat tops, on which its experiments are run.
-        assert_eq!(procedural(1, 32).surface, Surface::Flat, "mountains");
+        // The built-in terrains are continuous where magnified, as a survey DEM.
+        assert_eq!(procedural(1, 32).surface, Surface::Bilinear, "mountains");
         for kind in [
             footprint_scenes::survey::Kind::Eroded,
             footprint_scenes::survey::Kind::Plains,
         ] {
             assert_eq!(
                 footprint_scenes::survey::survey(kind, 1, 32).surface,
-                Surface::Flat
+                Surface::Bilinear
             );
         }
         // Baked, the map keeps its source's surface, either one.

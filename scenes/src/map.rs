@@ -36,10 +36,10 @@ pub struct Map {
     /// memory), or vertical strips of `2^shift` columns (a baked file's, lent in place:
     /// `footprint_core::terrain::Strips`). Read a cell through [`Map::order`].
     pub strips: Option<u32>,
-    /// The surface its heights sample, which `--surface auto` meets: the continuous surface for
-    /// a survey DEM (GeoTIFF, SRTM, ASCII grid, BIL), flat-topped voxels for a game map's
-    /// heights (a PNG) and the built-in terrains, the paper's model, on which its experiments
-    /// are run ([`footprint_core::prelude::Surface`]).
+    /// The surface its heights sample, which `--surface auto` meets: the continuous surface
+    /// (where the footprint is narrower than a voxel) for a survey DEM (GeoTIFF, SRTM, ASCII
+    /// grid, BIL) and the built-in terrains, flat-topped voxels for a game map's heights (a
+    /// PNG) ([`footprint_core::prelude::Surface`]).
     pub surface: Surface,
 }
 

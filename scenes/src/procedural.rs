@@ -91,7 +91,7 @@ pub fn procedural(seed: u64, size: u32) -> Map {
         source: format!("built-in (seed {seed})"),
         known_range: None,
         strips: None,
-        surface: footprint_core::prelude::Surface::Flat,
+        surface: footprint_core::prelude::Surface::Bilinear,
     }
 }
 

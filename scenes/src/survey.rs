@@ -95,7 +95,7 @@ pub fn survey(kind: Kind, seed: u64, size: u32) -> Map {
         source: format!("built-in {name} (seed {seed})"),
         known_range: None,
         strips: None,
-        surface: footprint_core::prelude::Surface::Flat,
+        surface: footprint_core::prelude::Surface::Bilinear,
     }
 }
 

@@ -72,9 +72,8 @@ pub struct FlyArgs {
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
     /// The surface every frame meets, the truth's too: the map's own (auto: bilinear on a
-    /// survey DEM, flat on a PNG height map and the built-in terrains), flat-topped voxels
-    /// (flat, the paper's), or continuous where a pixel is narrower than a voxel (bilinear;
-    /// the truth's everywhere).
+    /// survey DEM and the built-in terrains, flat on a PNG height map), flat-topped voxels
+    /// (flat, the paper's), or continuous where a pixel is narrower than a voxel (bilinear).
     #[arg(long, value_enum, default_value_t = SurfaceArg::Auto)]
     pub surface: SurfaceArg,
     /// Where the start view (the paper's pitch-5° view) is placed: paper (its geometry, over

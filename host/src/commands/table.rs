@@ -54,9 +54,8 @@ pub struct TableArgs {
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub lod: OnOff,
     /// The surface the modes and the ground truth meet: the map's own (auto: bilinear on a
-    /// survey DEM, flat on a PNG height map and the built-in terrains), flat-topped voxels
-    /// (flat, the paper's), or continuous where a pixel is narrower than a voxel (bilinear;
-    /// the truth meets it everywhere).
+    /// survey DEM and the built-in terrains, flat on a PNG height map), flat-topped voxels
+    /// (flat, the paper's), or continuous where a pixel is narrower than a voxel (bilinear).
     #[arg(long, value_enum, default_value_t = SurfaceArg::Auto)]
     pub surface: SurfaceArg,
     /// Where the paper's views are placed: paper (its geometry, over the mirrored copies of a
