@@ -16,10 +16,11 @@ use footprint_core::mode::SS_RATES;
 use footprint_core::prelude::*;
 
 /// A cone 24 m high and 20 voxels in radius (a slope of 1.2 m per voxel) on ground at 5 m,
-/// grey, on a 256² map of 1 m voxels.
-fn cone() -> Map {
-    Map::from_fn("cone", 256, 256, |x, y| {
-        let (dx, dy) = (x as f64 + 0.5 - 128.0, y as f64 + 0.5 - 128.0);
+/// grey, in the middle of a `side²` map of 1 m voxels.
+fn cone(side: u32) -> Map {
+    let c = f64::from(side) / 2.0;
+    Map::from_fn("cone", side, side, |x, y| {
+        let (dx, dy) = (x as f64 + 0.5 - c, y as f64 + 0.5 - c);
         let r = (dx * dx + dy * dy).sqrt() / 20.0;
         let h = 50.0 + 240.0 * (1.0 - r).max(0.0);
         (h.round() as u16, Rgb::new(128, 128, 128))
@@ -39,6 +40,24 @@ fn camera(distance_m: f64, size: u32) -> Camera {
         width: size,
         height: size,
         far_m: 400.0,
+    })
+    .unwrap()
+}
+
+/// Looking north and down 8° at a 256² map from 2 km south of its middle row, 300 m up, at
+/// `x_m` east: every pixel spans several voxels.
+fn far_camera(x_m: f64, size: u32) -> Camera {
+    Camera::new(CameraParams {
+        x_m,
+        y_m: 128.0 + 2000.0,
+        eye_m: 300.0,
+        heading_deg: 0.0,
+        pitch_deg: 8.0,
+        roll_deg: 0.0,
+        fov_deg: 20.0,
+        width: size,
+        height: size,
+        far_m: 3000.0,
     })
     .unwrap()
 }
@@ -87,7 +106,7 @@ const SMOOTH_JUMP: usize = 2;
 /// on flat tops).
 #[test]
 fn a_magnified_cone_has_a_continuous_skyline() {
-    let map = cone();
+    let map = cone(256);
     let terrain = map.terrain();
     let camera = camera(60.0, 120);
     for mode in Mode::NAMED
@@ -113,21 +132,9 @@ fn a_magnified_cone_has_a_continuous_skyline() {
 /// tops: the frame is the same, bit for bit, in every mode.
 #[test]
 fn where_pixels_span_voxels_the_surface_is_flat() {
-    let map = cone();
+    let map = cone(256);
     let terrain = map.terrain();
-    let far = Camera::new(CameraParams {
-        x_m: 128.0,
-        y_m: 128.0 + 2000.0,
-        eye_m: 300.0,
-        heading_deg: 0.0,
-        pitch_deg: 8.0,
-        roll_deg: 0.0,
-        fov_deg: 20.0,
-        width: 64,
-        height: 64,
-        far_m: 3000.0,
-    })
-    .unwrap();
+    let far = far_camera(128.0, 64);
     for mode in Mode::NAMED.into_iter().chain(SS_RATES.map(Mode::Ss)) {
         assert_eq!(
             render(&terrain, &far, mode, Surface::Flat),
@@ -155,19 +162,7 @@ fn diagonal_wall() -> Map {
 fn beyond_the_surface_the_walk_tests_corners_as_on_flat_tops() {
     let map = diagonal_wall();
     let terrain = map.terrain();
-    let far = Camera::new(CameraParams {
-        x_m: 60.0,
-        y_m: 128.0 + 2000.0,
-        eye_m: 300.0,
-        heading_deg: 0.0,
-        pitch_deg: 8.0,
-        roll_deg: 0.0,
-        fov_deg: 20.0,
-        width: 96,
-        height: 96,
-        far_m: 3000.0,
-    })
-    .unwrap();
+    let far = far_camera(60.0, 96);
     for mode in Mode::NAMED.into_iter().chain(SS_RATES.map(Mode::Ss)) {
         let flat = render(&terrain, &far, mode, Surface::Flat);
         assert!(
@@ -194,14 +189,9 @@ fn beyond_the_surface_the_walk_tests_corners_as_on_flat_tops() {
 /// whole pixels at the skyline as it moves. Only the rows above the horizon are compared.
 #[test]
 fn a_slow_zoom_across_one_voxel_changes_area_sampled_pixels_gradually() {
-    // The cone of [`cone`] on a map large enough that no mirrored copy of it comes within the
-    // far distance (one popping in there would change whole pixels).
-    let map = Map::from_fn("cone", 1024, 1024, |x, y| {
-        let (dx, dy) = (x as f64 + 0.5 - 512.0, y as f64 + 0.5 - 512.0);
-        let r = (dx * dx + dy * dy).sqrt() / 20.0;
-        let h = 50.0 + 240.0 * (1.0 - r).max(0.0);
-        (h.round() as u16, Rgb::new(128, 128, 128))
-    });
+    // The cone on a map large enough that no mirrored copy of it comes within the far
+    // distance (one popping in there would change whole pixels).
+    let map = cone(1024);
     let terrain = map.terrain();
     let camera = |distance_m: f64| {
         Camera::new(CameraParams {

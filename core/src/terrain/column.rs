@@ -437,12 +437,7 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
         March::new(frame, terrain, column, S::SWITCH).with_corners(S::CORNERS != Corners::Off);
     let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
     let ray = px.begin(px.upper, march.n());
-    match ride_column::<false, _, _, _>(terrain, &mut march, &mut px, ray) {
-        Ridden::Done => {}
-        // Without a surface a ride never stops at its end.
-        Ridden::Sky(ray) | Ridden::SurfaceEnd(ray) => px.end_in_sky(ray, march.n()),
-    }
-    px.cost.end_column();
+    ride_to_the_end(terrain, &mut march, &mut px, ray);
 }
 
 /// [`walk_into`] on the footprint's surface ([`crate::terrain::surface`]): the continuous
@@ -489,9 +484,21 @@ pub(crate) fn walk_into_surface<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
         }
         march.leave_surface(corners);
     }
-    let mut px = px.into_inner();
-    match ride_column::<false, _, _, _>(terrain, &mut march, &mut px, ray) {
+    ride_to_the_end(terrain, &mut march, &mut px.into_inner(), ray);
+}
+
+/// The column's ride from `ray` on the mode's own walk to its last pixel, the rest sky, and
+/// the column's end: the tail both walks share (inlined, as [`ride_column`]).
+#[inline(always)]
+fn ride_to_the_end<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+    terrain: &Terrain<'_>,
+    march: &mut March<'_, '_>,
+    px: &mut Pixels<'_, '_, S, C, O>,
+    ray: Ray,
+) {
+    match ride_column::<false, _, _, _>(terrain, march, px, ray) {
         Ridden::Done => {}
+        // A ride off the surface never stops at the surface's end.
         Ridden::Sky(ray) | Ridden::SurfaceEnd(ray) => px.end_in_sky(ray, march.n()),
     }
     px.cost.end_column();
