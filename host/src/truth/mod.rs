@@ -93,8 +93,9 @@ pub struct Truth<'m> {
 }
 
 impl<'m> Truth<'m> {
-    /// The truth of `map` on `surface`: builds its max-height quadtree (about a third of the
-    /// map's heights in size).
+    /// The truth of `map` on `surface`: builds its max-height quadtree over the cells (about a
+    /// third of the map's heights in size), and on [`Surface::Bilinear`] a second one over the
+    /// continuous surface's patches.
     ///
     /// Errors: a map whose cells cannot be addressed, or a quadtree beyond the memory budget.
     pub fn new(map: &'m Map, surface: Surface) -> Result<Self> {
@@ -208,12 +209,12 @@ impl<'m> Truth<'m> {
         match &self.patches {
             None => trace::<Flat>(&self.field, &self.mip, ray, 0.0),
             Some(patches) => {
-                let near = trace::Ray {
+                let magnified = trace::Ray {
                     far: ray.far.min(ray.end),
                     ..*ray
                 };
-                trace::<Follow>(&self.field, patches, &near, 0.0)
-                    .or_else(|| trace::<Flat>(&self.field, &self.mip, ray, near.far))
+                trace::<Follow>(&self.field, patches, &magnified, 0.0)
+                    .or_else(|| trace::<Flat>(&self.field, &self.mip, ray, magnified.far))
             }
         }
     }
