@@ -25,9 +25,10 @@ declare -A maps=(
   [comanche]="--dem $dems/D1.png --color $dems/C1W.png")
 synth=(wall wall2 stripes2 stripes4 ridges checker mesas steep)
 for k in "${synth[@]}"; do maps[$k]="--dem $out/$k.png"; done
-order=(mountains eroded plains msh tujunga comanche "${synth[@]}")
+six=(mountains eroded plains msh tujunga comanche)
+order=("${six[@]}" "${synth[@]}")
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=("${order[@]}")
+[ ${#names[@]} -gt 0 ] || names=("${six[@]}")
 if [ "${names[0]}" != --table ]; then
   for n in "${names[@]}"; do
     [ -n "${maps[$n]+set}" ] || { echo "flicker-truth.sh: $n: no such map" >&2; exit 2; }
