@@ -343,6 +343,7 @@ impl<'w, 'f, S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'w, 'f, Smooth<S
 
 impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O> {
     const WIDE: bool = S::WIDE;
+    const ACROSS: u32 = S::ACROSS;
     const CORNERS: Corners = S::CORNERS;
 
     /// The hits on one voxel: each sampler call may raise the ray or begin the next pixel,

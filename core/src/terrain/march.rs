@@ -615,7 +615,11 @@ impl<'a, 't> March<'a, 't> {
                     let to_mirror = cross_left + gap;
                     let (a1, a2) = near(to_mirror, dcross);
                     let (b1, b2) = near(last_v.saturating_sub(to_mirror), -dcross);
-                    at(idx).max(at(a1)).max(at(a2)).max(at(b1)).max(at(b2))
+                    if H::ACROSS == 1 {
+                        at(idx).max(at(a1)).max(at(b1))
+                    } else {
+                        at(idx).max(at(a1)).max(at(a2)).max(at(b1)).max(at(b2))
+                    }
                 } else {
                     at(idx)
                 };
@@ -1156,6 +1160,9 @@ pub trait Hits {
     /// planes ([`crate::terrain::sampler::Sampler::WIDE`]), which reaches at most two cells to
     /// either side, and decides the hit itself.
     const WIDE: bool = false;
+    /// With [`Hits::WIDE`], the cells to either side the top reads: two, or one
+    /// ([`crate::terrain::sampler::Sampler::ACROSS`]).
+    const ACROSS: u32 = 2;
     /// Which cells entered at a corner the ride stops on ([`Corners`]): all, by default.
     const CORNERS: Corners = Corners::All;
     /// The ray `ray` passes below the top `top` of `voxel`, `steps` steps after the last

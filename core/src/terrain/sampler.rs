@@ -85,6 +85,10 @@ pub trait Sampler {
     /// `top`), the sampler decides whether the step is a hit ([`Hit::Rejected`] when it is
     /// not), and the walk skips empty air only by blocks that hold the neighbours too.
     const WIDE: bool = false;
+    /// With [`Sampler::WIDE`], how many cells to either side across the walk's test reads:
+    /// two for `as2`'s wedge (the default); one for the continuous surface, whose height at a
+    /// voxel's centre blends its cell with one neighbour across (Eq. 4 on the heights).
+    const ACROSS: u32 = 2;
     /// Which cells that the ray's ground track enters at a corner, between two voxels of the
     /// paper's uniform sequence, the walk tests ([`Corners`]): every one, by default, so that
     /// the walk misses no cell.

@@ -119,6 +119,8 @@ impl<S: Sampler> Sampler for Smooth<S> {
     /// The surface at a centre may rise above the voxel's own top: the walk tests the cells
     /// around it across too.
     const WIDE: bool = true;
+    /// The surface's height at a centre reads the voxel's cell and one neighbour across.
+    const ACROSS: u32 = 1;
     /// The surface between the centres is continuous: no cell stands apart at a corner (and
     /// every step tests the cells on either side across).
     const CORNERS: Corners = Corners::Off;
