@@ -604,9 +604,10 @@ impl<'a, 't> March<'a, 't> {
             let found = loop {
                 let at = |i: usize| heights.get(i).copied().unwrap_or(0);
                 let top = if H::WIDE {
-                    // The two cells to either side across that lie within the mirrored
-                    // stretch (beyond its edge the mirror repeats cells of this side, which
-                    // are among them): a superset of the cells the wedge reaches.
+                    // The `H::ACROSS` cells (two, or one) to either side across that lie
+                    // within the mirrored stretch (beyond its edge the mirror repeats cells of
+                    // this side, which are among them): a superset of the cells the sampler
+                    // reads (the wedge's, or the continuous surface's neighbour across).
                     let near = |n: u32, d: isize| match n {
                         0 => (idx, idx),
                         1 => (idx.wrapping_add_signed(d), idx.wrapping_add_signed(d)),
