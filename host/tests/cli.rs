@@ -52,11 +52,12 @@ fn png_with_header(w: u32, h: u32) -> Vec<u8> {
     png
 }
 
-/// `--surface auto`, the default, is the map's own, and `--json` names the one met: the
-/// continuous surface on a survey DEM (an ASCII grid) and on the built-in terrain, flat tops on
-/// a PNG height map; `--surface flat` and `bilinear` hold on any map.
+/// `--surface auto`, the default, is the map's own, and `render`, `table` and `fly` resolve it
+/// alike (for the modes and the truth), their `--json` naming the one met: the continuous
+/// surface on a survey DEM (an ASCII grid) and on the built-in terrain, flat tops on a PNG
+/// height map; `--surface flat` and `bilinear` hold on any map.
 #[test]
-fn render_names_the_surface_auto_chose_for_the_map() {
+fn every_command_names_the_surface_auto_chose_for_the_map() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("h.png");
     write_gray16(&png, 40, 30);
@@ -71,40 +72,8 @@ fn render_names_the_surface_auto_chose_for_the_map() {
         (&["--dem", asc][..], Some("flat"), "flat"),
         (&["--dem", png][..], Some("bilinear"), "bilinear"),
     ] {
-        let mut args = vec!["render", "--size", "16x12", "--counts", "--json"];
-        args.extend_from_slice(map);
-        if let Some(s) = surface {
-            args.extend(["--surface", s]);
-        }
-        let o = footprint(&args);
-        assert!(
-            o.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
-        assert_eq!(v["surface"], expected, "{args:?}");
-    }
-}
-
-/// `table` and `fly` resolve `--surface auto` through the map as `render` does, for the modes
-/// and the truth alike (their `--json` names the surface): continuous on the built-in terrain
-/// and a survey DEM, flat tops on a PNG height map; `--surface flat` holds on any map.
-#[test]
-fn table_and_fly_resolve_the_surface_through_the_map() {
-    let dir = tempfile::tempdir().unwrap();
-    let png = dir.path().join("h.png");
-    write_gray16(&png, 40, 30);
-    let asc = dir.path().join("h.asc");
-    common::write_asc(&asc, (40, 30), 30, |x, y| 100 + x * 3 + y);
-    let (png, asc) = (png.to_str().unwrap(), asc.to_str().unwrap());
-    for (map, surface, expected) in [
-        (&["--terrain-size", "64"][..], None, "bilinear"),
-        (&["--terrain-size", "64"][..], Some("flat"), "flat"),
-        (&["--dem", asc][..], None, "bilinear"),
-        (&["--dem", png][..], None, "flat"),
-    ] {
         for command in [
+            &["render", "--size", "16x12", "--counts", "--json"][..],
             &["table", "--case", "20", "--modes", "ps", "--json"][..],
             &[
                 "fly", "--frames", "2", "--modes", "ps", "--size", "16x12", "--json",

@@ -38,7 +38,7 @@
 //! level-0 height is at or below the ray: the voxels it passes over are exactly those the walk
 //! would have found below the ray, so the samplers see the same sequence of voxels.
 
-use crate::color::{to_color16, Color16, Rgb};
+use crate::color::{to_color16, to_rgb, Color16, Rgb};
 use crate::num::{height, Height};
 use crate::terrain::camera::{Column, Switch};
 use crate::terrain::frame::Frame;
@@ -1138,6 +1138,7 @@ impl<'a, 't> March<'a, 't> {
             cross_left,
             taken,
             corner: false,
+            paint: None,
         }
     }
 
@@ -1208,6 +1209,9 @@ pub struct Voxel<'v> {
     /// Whether it is a cell the ground track enters at a corner ([`Corner`]), between two
     /// voxels of the uniform sequence.
     corner: bool,
+    /// The colours the continuous surface lays over the voxel's own ([`Voxel::painted`]):
+    /// what [`Voxel::sample_point`] and [`Voxel::sample_linear`] then return.
+    paint: Option<[Color16; 2]>,
 }
 
 impl Voxel<'_> {
@@ -1270,13 +1274,92 @@ impl Voxel<'_> {
     /// Point sampling: the colour of the voxel, `C(x, ⌊y⌋)` (Sect. 4.1).
     #[inline(always)]
     pub fn sample_point(&self) -> Color16 {
-        to_color16(self.color())
+        match self.paint {
+            Some([point, _]) => point,
+            None => to_color16(self.color()),
+        }
     }
 
-    /// The voxel's 8-bit colour, as the map stores it.
+    /// The voxel's 8-bit colour, as the map stores it (rounded from [`Voxel::sample_point`]
+    /// where the continuous surface paints it).
     #[inline(always)]
     pub fn color(&self) -> Rgb {
-        self.march.colors.get(self.idx).copied().unwrap_or_default()
+        match self.paint {
+            Some([point, _]) => to_rgb(point),
+            None => self.color_at(self.idx),
+        }
+    }
+
+    /// This voxel with the colours of the continuous surface at a hit between two centres
+    /// ([`crate::terrain::surface`]): what point sampling and Eq. 4 read on it instead of
+    /// the voxel's own colour and Eq. 4's blend.
+    #[inline(always)]
+    pub(crate) fn painted(&self, point: Color16, linear: Color16) -> Self {
+        Self {
+            paint: Some([point, linear]),
+            ..*self
+        }
+    }
+
+    /// The continuous surface at the previous centre along the ray, one level-0 voxel behind
+    /// this one, on a line `offset` cells across from the column's centre line (32 fractional
+    /// bits, in the direction the ray moves across; 0 for the centre line), for
+    /// [`crate::terrain::surface`]'s colours between two centres: the height of the cell under
+    /// the line there, Eq. 4 on the heights (as [`Voxel::height_linear`]) and Eq. 4 on the
+    /// colours, with 16-bit weights, mirrored at the map's edges as the walk mirrors. Read on
+    /// a hit on the surface only.
+    pub(crate) fn behind(&self, offset: i64) -> Behind {
+        let m = self.march;
+        let (x, y) = self.cell_unmirrored();
+        let (along, across) = match m.axis {
+            Axis::X => (x, y),
+            Axis::Y => (y, x),
+        };
+        let along = if m.forward { along - 1 } else { along + 1 };
+        // The cross coordinate (raw I32F32 voxels) one step (two half-voxels) back.
+        let offset = if m.flip == 0 { offset } else { -offset };
+        let at = (across << 32)
+            .saturating_add(i64::from(self.toward ^ m.flip))
+            .saturating_add(offset)
+            .saturating_sub(m.dv.saturating_mul(2));
+        // Eq. 4's two cells: the centres at `first + ½` and `first + 1 + ½` straddle `at`.
+        let from_first = at.saturating_sub(1 << 31);
+        let first = from_first >> 32;
+        let w = (from_first & 0xFFFF_FFFF) >> 16;
+        let cell = |k: i64| {
+            let c = match m.axis {
+                Axis::X => (along, k),
+                Axis::Y => (k, along),
+            };
+            (
+                m.level.height_at(m.axis, c.0, c.1),
+                m.level.color_at(c.0, c.1),
+            )
+        };
+        let (h0, c0) = cell(first);
+        let (h1, c1) = cell(first + 1);
+        let under = if at >> 32 == first { h0 } else { h1 };
+        // Heights below 2^16 times weights summing to 2^16: below 2^32; 24 − 16 bits more.
+        let mix = i64::from(h0) * ((1 << 16) - w) + i64::from(h1) * w;
+        let mix_channel = |a: u8, b: u8| {
+            let sum = i64::from(a) * ((1 << 16) - w) + i64::from(b) * w;
+            #[allow(
+                clippy::cast_possible_truncation,
+                clippy::cast_sign_loss,
+                reason = "0 ≤ sum ≤ 255·2^16, shifted right by 8: at most 255·256 < 2^16"
+            )]
+            let c = (sum >> 8) as u16;
+            c
+        };
+        Behind {
+            flat: under,
+            smooth: Height::from_bits(mix << 8),
+            color: [
+                mix_channel(c0.r, c1.r),
+                mix_channel(c0.g, c1.g),
+                mix_channel(c0.b, c1.b),
+            ],
+        }
     }
 
     /// The fraction of the ray's cross coordinate in the voxel's cell, 32 bits, measured in
@@ -1406,6 +1489,9 @@ impl Voxel<'_> {
     /// centres straddle the ray's cross-axis position, weighted by distance (8-bit weights).
     #[inline(always)]
     pub fn sample_linear(&self) -> Color16 {
+        if let Some([_, linear]) = self.paint {
+            return linear;
+        }
         let m = self.march;
         // The fraction's top byte `b` (centre at 128): the neighbour across is on the side of
         // the centre the ray is on, and takes the weight |b − 128| of 256 (Eq. 4's distance).
@@ -1448,6 +1534,17 @@ impl Voxel<'_> {
         ];
         mix
     }
+}
+
+/// The continuous surface at a column's previous centre ([`Voxel::behind`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Behind {
+    /// The height of the cell under the column's centre line (map units).
+    pub flat: u16,
+    /// Eq. 4 on the heights across the line.
+    pub smooth: Height,
+    /// Eq. 4 on the colours across the line, 8.8.
+    pub color: Color16,
 }
 
 /// The next finer level's cells under a voxel's cell ([`Voxel::finer`]): its two children

@@ -18,7 +18,21 @@
 //! exactly; every mode then samples the voxel whose centre ends the segment, as the flat walk
 //! does. What is approximated: the bilinear surface restricted to a line crossing cells at an
 //! angle is quadratic between two centres (its twist term), not linear; the walk keeps the
-//! line. Colours stay per voxel (Eq. 4's or the voxel's own, as each mode reads them).
+//! line.
+//!
+//! **Colours.** The surface's colour is continuous as its height is: the bilinear
+//! interpolation of the cells' colours, through their centres. At a hit on the segment between
+//! the previous centre and the voxel's, the sampler is handed the voxel painted
+//! ([`Voxel::painted`]) with the colour at the point where the ray crosses the profile: Eq. 4
+//! at the two centres ([`Voxel::behind`], [`Voxel::sample_linear`]), mixed linearly by where
+//! along the segment the crossing lies (the ray's height above the profile at the centre
+//! behind against its depth below it at the voxel's). In the blend the colour blends as the
+//! height does, between the mode's own colour of the voxel (the flat walk's) and the
+//! surface's, by the share at the crossing; so every mode's colour is continuous where the
+//! surface ends. Approximated: a pixel of an area mode takes the colour at its lower ray's
+//! crossing for the whole of its visible part of a segment (a small part where the pixel is
+//! narrower than a voxel, which is where the surface is met), and Eq. 4 at the centre behind
+//! weights by 16 bits where Eq. 4 at the voxel's weights by 8.
 //!
 //! **Where.** Only where the pixel's footprint across is below one voxel (magnification, level 0
 //! of the pyramid): up to half a voxel the surface is the bilinear one, from half a voxel to one
@@ -40,12 +54,13 @@
 //! but for the empty air before its first hit. `as2` reads the surface itself where its wedge
 //! lies inside one cell ([`crate::terrain::wedge`]).
 
-use crate::color::{Color32, Rgb};
+use crate::color::{Color16, Color32, Rgb};
 use crate::num::Height;
+use crate::terrain::blend::{distance, mix};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
-use crate::terrain::march::{Corners, Voxel};
+use crate::terrain::march::{Behind, Corners, Voxel};
 use crate::terrain::ray::Ray;
 use crate::terrain::sampler::{Hit, Pixel, Sampler};
 
@@ -81,6 +96,50 @@ pub(crate) fn height(voxel: &Voxel<'_>, f: i64) -> Height {
     ))
 }
 
+/// Where a ray crosses the surface's profile between the previous centre along the column
+/// (`behind`, at `d − 2` half-voxels from the eye) and a level-0 voxel's centre (at `d`),
+/// where the surface's height is `h`: the ray's heights at the two centres are `ray_behind`
+/// and `ray_h` (`ray_h < h`). Returns the crossing's place on the segment, from the centre
+/// behind, and the surface's share ([`weight`]) there, both in 16 fractional bits; the place
+/// is 0 if the ray was not above the profile behind (a ray raised to a top).
+#[inline(always)]
+pub(crate) fn crossing(
+    behind: &Behind,
+    d: i64,
+    end: i64,
+    h: Height,
+    ray_behind: Height,
+    ray_h: Height,
+) -> (i64, i64) {
+    let f_behind = weight((d - 2).max(0), end);
+    let flat = Height::from_bits(i64::from(behind.flat) << 24);
+    // As `height`: below 2^57.
+    let h_behind = flat.saturating_add(Height::from_bits(
+        (behind.smooth.to_bits() - flat.to_bits()).saturating_mul(f_behind) >> 16,
+    ));
+    // The ray's heights from the eye on are above −2^62, the surface's below 2^40 (raw): the
+    // differences are clamped to 2^41 before they are scaled.
+    let above = ray_behind
+        .to_bits()
+        .saturating_sub(h_behind.to_bits())
+        .clamp(0, 1 << 41);
+    let below = h
+        .to_bits()
+        .saturating_sub(ray_h.to_bits())
+        .clamp(1, 1 << 41);
+    let t = (above << 16) / (above + below);
+    let f = weight(d, end);
+    (t, f_behind + (((f - f_behind) * t) >> 16))
+}
+
+/// The colour at a crossing ([`crossing`]: `t` along the segment, the share `f` there): the
+/// surface's, Eq. 4 at the centre behind (`behind`) mixed with Eq. 4 at the voxel's
+/// (`here`) by `t`, blended with the mode's own colour of the voxel, `own`, by `f`.
+#[inline(always)]
+pub(crate) fn color(own: Color16, behind: Color16, here: Color16, t: i64, f: i64) -> Color16 {
+    mix(own, mix(behind, here, t), f)
+}
+
 /// A sampler whose walk meets the continuous surface where voxels are magnified (see the module
 /// docs): any mode but `as2` (which reads the surface itself) under `--surface bilinear`.
 #[derive(Clone, Copy, Debug, Default)]
@@ -104,6 +163,25 @@ impl<S> Smooth<S> {
 }
 
 impl<S> Smooth<S> {
+    /// `voxel`, the segment's end, painted with the surface's colours where the ray `ray`
+    /// meets the segment from the previous centre, whose height at the voxel's centre is
+    /// `h` (see the module docs, "Colours"). Kept out of the walk's loop.
+    #[inline(never)]
+    fn paint<'v>(&self, voxel: &Voxel<'v>, d: i64, h: Height, ray: &Ray) -> Voxel<'v> {
+        let behind = voxel.behind(0);
+        let ray_behind = Height::from_bits(
+            ray.h
+                .to_bits()
+                .saturating_sub(ray.slope.to_bits().saturating_mul(2)),
+        );
+        let (t, f) = crossing(&behind, d, self.end, h, ray_behind, ray.h);
+        let linear = voxel.sample_linear();
+        voxel.painted(
+            color(voxel.sample_point(), behind.color, linear, t, f),
+            color(linear, behind.color, linear, t, f),
+        )
+    }
+
     /// The sampler inside, which the walk goes on with where the surface ends
     /// ([`crate::terrain::column`]'s hand-over).
     pub(crate) fn inner_mut(&mut self) -> &mut S {
@@ -148,12 +226,18 @@ impl<S: Sampler> Sampler for Smooth<S> {
         cost: &mut C,
         again: bool,
     ) -> Hit {
-        let f = weight(crate::terrain::blend::distance(voxel, self.n_eye), self.end);
+        let d = distance(voxel, self.n_eye);
+        let f = weight(d, self.end);
         let h = height(voxel, f);
         if h <= ray.h {
             return Hit::Rejected;
         }
-        self.inner.hit_again(voxel, h, ray, cost, again)
+        if f == 0 || voxel.level() > 0 {
+            return self.inner.hit_again(voxel, h, ray, cost, again);
+        }
+        // The colour changes along the segment with the hit point: no colour is reused.
+        let painted = self.paint(voxel, d, h, ray);
+        self.inner.hit_again(&painted, h, ray, cost, false)
     }
 
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {

@@ -38,7 +38,9 @@
 //!
 //! **On the continuous surface** (`--surface bilinear`, [`crate::terrain::surface`]), where the
 //! wedge is narrower than a voxel, the step's height is the surface's at the wedge's centre
-//! line, blended into the cells' mean as the surface blends into the flat tops.
+//! line, blended into the cells' mean as the surface blends into the flat tops; each lane's
+//! colour is the surface's where its ray crosses the profile between two centres, blended
+//! into the lane's own alike ([`WedgeOn::paint`]).
 //!
 //! A cell the ground track enters at a corner between two centres ([`Voxel::is_corner`]) is a
 //! step of its own where it rises above the voxel beside it across ([`Corners::Peaks`]): its
@@ -379,6 +381,11 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
             let part = lane(lo, hi, k);
             let ray_h = self.lanes.ray_at(k, n);
             if let Some((top, color)) = self.step(voxel, d, part, ray_h, cost) {
+                let color = if SMOOTH {
+                    self.paint(voxel, d, part, (top, color), (k, n))
+                } else {
+                    color
+                };
                 seen |= self.lanes.sample(k, voxel, top, color, cost);
             }
         }
@@ -409,6 +416,32 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
 }
 
 impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
+    /// On the continuous surface where it is met (level 0, a share above 0), lane `k`'s
+    /// colour `color` over `part` at `voxel` (centred at `n`, `d` half-voxels from the eye),
+    /// whose step's height is `top`, painted as [`crate::terrain::surface`]'s colours are:
+    /// the surface's colour where the lane's ray crosses the profile between the previous
+    /// centre and the voxel's, Eq. 4 at the lane's middle behind (the profile's heights on the
+    /// centre line, as the step's height is) mixed with the lane's own colour here. Else
+    /// `color`.
+    #[inline(never)]
+    fn paint(
+        &self,
+        voxel: &Voxel<'_>,
+        d: i64,
+        (lo, hi): (i64, i64),
+        (top, color): (Height, Color16),
+        (k, n): (usize, i64),
+    ) -> Color16 {
+        if self.surface <= 0 || voxel.level() > 0 || surface::weight(d, self.surface) == 0 {
+            return color;
+        }
+        let line = voxel.behind(0);
+        let middle = voxel.behind(((lo + hi) >> 1) - i64::from(voxel.fraction_ahead()));
+        let (ray_behind, ray_h) = (self.lanes.ray_at(k, n - 2), self.lanes.ray_at(k, n));
+        let (t, f) = surface::crossing(&line, d, self.surface, top, ray_behind, ray_h);
+        surface::color(color, middle.color, color, t, f)
+    }
+
     /// The step at `voxel`, `d` half-voxels from the eye, over the interval `[lo, hi)` across
     /// (cells of its level from its cell's edge behind, 32 fractional bits): its height (the
     /// cells' exact mean, blended with the finer level's) and its colour (Eq. 4's integral over

@@ -24,9 +24,11 @@
 //! horizontal distance `t` is `t·α`, `α` the pixel's horizontal angle across (module
 //! `camera`); the modes take theirs per column of their walk (in the paper's projection the
 //! same angle, in the exact one the fan's lines'). So a view whose first
-//! hits all lie beyond one voxel is the flat tops' image on both surfaces. A hit's colour is
-//! that of the cell holding the hit point (a stick's top or face; on the continuous surface
-//! the cell under the point): the map's colours are per cell.
+//! hits all lie beyond one voxel is the flat tops' image on both surfaces. A hit's colour on
+//! the flat tops is that of the cell holding the hit point (a stick's top or face); on the
+//! continuous surface it follows the footprint as the height does: the bilinear
+//! interpolation of the cells' colours through their centres, blended with the cell's colour
+//! by the same share (`trace::Follow`), rounded to 8 bits before the `K²` are averaged.
 //!
 //! **Where it differs from the modes by geometry, not sampling.** The walk tests a voxel where
 //! its column's centre line crosses the voxel's centre along the major axis, and so can step

@@ -566,3 +566,40 @@ fn before_near_the_followed_surface_is_the_bilinear_one() {
     });
     assert!(hits > 10_000, "{hits}");
 }
+
+/// Before `near` a hit's colour is the bilinear interpolation of the cells' colours through
+/// their centres: on a plane whose colours are linear in the cell (`4x`, `4y`), that is the
+/// same linear function of the hit point (`4(x − ½)`, `4(y − ½)`, the cells' centres at
+/// `x + ½`), to the rounding to 8 bits. (The cell's own colour, as the truth took before,
+/// is up to 2 levels off; a mix along the wrong axis, more.)
+#[test]
+fn before_near_a_hits_colour_is_the_bilinear_colour() {
+    let map = map_of(
+        64,
+        |_, _| 1000,
+        |x, y| Rgb::new((4 * x) as u8, (4 * y) as u8, 7),
+    );
+    let truth = Truth::new(&map, Surface::Bilinear).unwrap();
+    // Inside the map, looking down at it: every hit lies in the map's interior.
+    let cam = camera((30.2, 40.7, 1600.0), 30.0, 40.0, 0.0, 64, 60.0);
+    let mut checked = 0;
+    each_ray(&truth, &cam, Projection::Exact, 2, |_, _, ray, hit| {
+        let Some((t, color)) = hit else { return };
+        let (x, y) = (ray.ox + ray.dx * t, ray.oy + ray.dy * t);
+        assert!(t <= ray.near, "{t} beyond {}", ray.near);
+        assert!(
+            (1.0..63.0).contains(&x) && (1.0..63.0).contains(&y),
+            "({x}, {y})"
+        );
+        let want = [4.0 * (x - 0.5), 4.0 * (y - 0.5)];
+        for (got, want) in [color.r, color.g].into_iter().zip(want) {
+            assert!(
+                (f64::from(got) - want).abs() <= 0.5 + 1e-6,
+                "at ({x}, {y}): {got} against {want}"
+            );
+        }
+        assert_eq!(color.b, 7);
+        checked += 1;
+    });
+    assert!(checked > 10_000, "{checked}");
+}

@@ -180,13 +180,48 @@ impl Model for Smooth {
             .map(|tau| t_in + tau)
     }
 
-    /// The colour of the cell that holds the hit point (the map's colours are per cell; the
-    /// modes read each voxel's own colour or Eq. 4's blend of two).
+    /// The bilinear interpolation of the colours through the cells' centres (patch
+    /// `(gx, gy)`'s four) at the hit point, rounded to 8 bits.
     #[inline(always)]
-    fn color(field: &Field<'_>, _: i64, _: i64, ray: &Local, t: f64) -> Rgb {
-        let x = floor(ray.ox + ray.dx * t - Self::OFFSET);
-        let y = floor(ray.oy + ray.dy * t - Self::OFFSET);
-        field.color_at(x, y)
+    fn color(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t: f64) -> Rgb {
+        Self::blended_color(field, (gx, gy), ray, t, Rgb::BLACK, 1.0)
+    }
+}
+
+impl Smooth {
+    /// `own` plus the share `s` of the bilinear colour's difference from it, at the point at
+    /// `t` of the ray over patch `(gx, gy)`, rounded to 8 bits (with `s` 1 the bilinear
+    /// colour itself).
+    fn blended_color(
+        field: &Field<'_>,
+        (gx, gy): (i64, i64),
+        ray: &Local,
+        t: f64,
+        own: Rgb,
+        s: f64,
+    ) -> Rgb {
+        let u = (ray.ox + ray.dx * t - gx as f64).clamp(0.0, 1.0);
+        let v = (ray.oy + ray.dy * t - gy as f64).clamp(0.0, 1.0);
+        let corners = [
+            field.color_at(gx - 1, gy - 1),
+            field.color_at(gx, gy - 1),
+            field.color_at(gx - 1, gy),
+            field.color_at(gx, gy),
+        ];
+        let channel = |pick: fn(Rgb) -> u8| {
+            let [c00, c10, c01, c11] = corners.map(|c| f64::from(pick(c)));
+            let bilinear =
+                (c00 * (1.0 - u) + c10 * u) * (1.0 - v) + (c01 * (1.0 - u) + c11 * u) * v;
+            let c = if s >= 1.0 {
+                bilinear
+            } else {
+                let own = f64::from(pick(own));
+                own + s * (bilinear - own)
+            };
+            // Between two 8-bit levels: the cast saturates nothing.
+            c.round().clamp(0.0, 255.0) as u8
+        };
+        Rgb::new(channel(|c| c.r), channel(|c| c.g), channel(|c| c.b))
     }
 }
 
@@ -346,13 +381,21 @@ impl Model for Follow {
         None
     }
 
-    /// The colour of the cell the ray is in just after the hit (the one it enters, on a face).
+    /// The colour follows the footprint as the heights do: the colour of the cell the ray is
+    /// in just after the hit (the one it enters, on a face) plus the share `s(t)` of the
+    /// bilinear colour's difference from it (the colours through the cells' centres, over
+    /// patch `(gx, gy)`), rounded to 8 bits.
     #[inline(always)]
-    fn color(field: &Field<'_>, _: i64, _: i64, ray: &Local, t: f64) -> Rgb {
-        let t = t + CORNER * (1.0 + t);
-        let x = floor(ray.ox + ray.dx * t - Self::OFFSET);
-        let y = floor(ray.oy + ray.dy * t - Self::OFFSET);
-        field.color_at(x, y)
+    fn color(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t: f64) -> Rgb {
+        let after = t + CORNER * (1.0 + t);
+        let x = floor(ray.ox + ray.dx * after - Self::OFFSET);
+        let y = floor(ray.oy + ray.dy * after - Self::OFFSET);
+        let cell = field.color_at(x, y);
+        let s = Self::share(ray, t);
+        if s <= 0.0 {
+            return cell;
+        }
+        Smooth::blended_color(field, (gx, gy), ray, t, cell, s)
     }
 }
 
