@@ -205,6 +205,18 @@ impl<const K: usize> Horizons<K> {
         }
     }
 
+    /// Lane `k`'s carried hit takes `color` if it is the hit at `n`, carried alone: `as2` on
+    /// the continuous surface repaints it for each pixel it enters, with the colour where
+    /// that pixel's lower ray crosses the surface ([`crate::terrain::wedge`]).
+    #[inline(always)]
+    pub(crate) fn repaint(&mut self, k: usize, n: i64, color: Color16) {
+        if let Some(lane) = self.lanes.get_mut(k) {
+            if lane.reached && lane.merged.is_none() && lane.n == n {
+                lane.color = color;
+            }
+        }
+    }
+
     /// Whether every lane has reached the pixel's upper ray: the pixel is finished.
     #[inline(always)]
     pub fn complete(&self) -> bool {

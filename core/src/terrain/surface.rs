@@ -96,43 +96,60 @@ pub(crate) fn height(voxel: &Voxel<'_>, f: i64) -> Height {
     ))
 }
 
-/// Where a ray crosses the surface's profile between the previous centre along the column
-/// (`behind`, at `d − 2` half-voxels from the eye) and a level-0 voxel's centre (at `d`),
-/// where the surface's height is `h`: the ray's heights at the two centres are `ray_behind`
-/// and `ray_h` (`ray_h < h`). Returns the crossing's place on the segment, from the centre
-/// behind, and the surface's share ([`weight`]) there, both in 16 fractional bits; the place
-/// is 0 if the ray was not above the profile behind (a ray raised to a top).
-#[inline(always)]
-pub(crate) fn crossing(
-    behind: &Behind,
-    d: i64,
-    end: i64,
+/// The surface's profile under a line along the column between the previous centre (`d − 2`
+/// half-voxels from the eye) and a level-0 voxel's centre (`d`): its heights and shares
+/// ([`weight`]) at both, for where a ray crosses it ([`Segment::crossing`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Segment {
+    h_behind: Height,
+    f_behind: i64,
     h: Height,
-    ray_behind: Height,
-    ray_h: Height,
-) -> (i64, i64) {
-    let f_behind = weight((d - 2).max(0), end);
-    let flat = Height::from_bits(i64::from(behind.flat) << 24);
-    // As `height`: below 2^57.
-    let h_behind = flat.saturating_add(Height::from_bits(
-        (behind.smooth.to_bits() - flat.to_bits()).saturating_mul(f_behind) >> 16,
-    ));
-    // The ray's heights from the eye on are above −2^62, the surface's below 2^40 (raw): the
-    // differences are clamped to 2^41 before they are scaled.
-    let above = ray_behind
-        .to_bits()
-        .saturating_sub(h_behind.to_bits())
-        .clamp(0, 1 << 41);
-    let below = h
-        .to_bits()
-        .saturating_sub(ray_h.to_bits())
-        .clamp(1, 1 << 41);
-    let t = (above << 16) / (above + below);
-    let f = weight(d, end);
-    (t, f_behind + (((f - f_behind) * t) >> 16))
+    f: i64,
 }
 
-/// The colour at a crossing ([`crossing`]: `t` along the segment, the share `f` there): the
+impl Segment {
+    /// The segment that ends at a voxel `d` half-voxels from the eye, where the surface's
+    /// height is `h`, the surface at the centre behind being `behind` ([`Voxel::behind`]), the
+    /// footprint reaching one voxel at `end`.
+    #[inline(always)]
+    pub(crate) fn new(behind: &Behind, d: i64, end: i64, h: Height) -> Self {
+        let f_behind = weight((d - 2).max(0), end);
+        let flat = Height::from_bits(i64::from(behind.flat) << 24);
+        // As `height`: below 2^57.
+        let h_behind = flat.saturating_add(Height::from_bits(
+            (behind.smooth.to_bits() - flat.to_bits()).saturating_mul(f_behind) >> 16,
+        ));
+        Self {
+            h_behind,
+            f_behind,
+            h,
+            f: weight(d, end),
+        }
+    }
+
+    /// Where a ray at `ray_behind` and `ray_h` over the two centres (`ray_h` below the
+    /// surface) crosses the profile: the place on the segment, from the centre behind, and the
+    /// share there, both in 16 fractional bits; the place is 0 if the ray was not above the
+    /// profile behind (a ray raised to a top).
+    #[inline(always)]
+    pub(crate) fn crossing(&self, ray_behind: Height, ray_h: Height) -> (i64, i64) {
+        // The ray's heights from the eye on are above −2^62, the surface's below 2^40 (raw):
+        // the differences are clamped to 2^41 before they are scaled.
+        let above = ray_behind
+            .to_bits()
+            .saturating_sub(self.h_behind.to_bits())
+            .clamp(0, 1 << 41);
+        let below = self
+            .h
+            .to_bits()
+            .saturating_sub(ray_h.to_bits())
+            .clamp(1, 1 << 41);
+        let t = (above << 16) / (above + below);
+        (t, self.f_behind + (((self.f - self.f_behind) * t) >> 16))
+    }
+}
+
+/// The colour at a crossing ([`Segment::crossing`]: `t` along the segment, the share `f` there): the
 /// surface's, Eq. 4 at the centre behind (`behind`) mixed with Eq. 4 at the voxel's
 /// (`here`) by `t`, blended with the mode's own colour of the voxel, `own`, by `f`.
 #[inline(always)]
@@ -174,7 +191,7 @@ impl<S> Smooth<S> {
                 .to_bits()
                 .saturating_sub(ray.slope.to_bits().saturating_mul(2)),
         );
-        let (t, f) = crossing(&behind, d, self.end, h, ray_behind, ray.h);
+        let (t, f) = Segment::new(&behind, d, self.end, h).crossing(ray_behind, ray.h);
         let linear = voxel.sample_linear();
         voxel.painted(
             color(voxel.sample_point(), behind.color, linear, t, f),

@@ -75,7 +75,7 @@ use crate::terrain::horizons::Horizons;
 use crate::terrain::march::{Corners, Finer, Voxel};
 use crate::terrain::ray::Ray;
 use crate::terrain::sampler::{Hit, Pixel, Sampler};
-use crate::terrain::surface;
+use crate::terrain::surface::{self, Segment};
 
 /// The largest half-width across a step reads, in cells of its level (32 fractional bits):
 /// 1.5 cells, so that the wedge reaches at most two cells to either side of the voxel under
@@ -114,6 +114,20 @@ pub struct WedgeOn<const SMOOTH: bool> {
     /// Where the pixel's footprint reaches one voxel on the continuous surface, 0 on flat
     /// tops ([`Pixel::surface`]).
     surface: i64,
+    /// Each lane's last hit painted on the continuous surface ([`WedgeOn::paint`]), repainted
+    /// for each pixel it is carried into; `None` on flat tops.
+    painted: [Option<Painted>; LANES],
+}
+
+/// A lane's hit on the continuous surface, as [`WedgeOn::begin_pixel`] repaints it for a
+/// pixel it is carried into: the voxel's `n`, the segment of the profile that ends there,
+/// and the surface's colours at its two ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Painted {
+    n: i64,
+    segment: Segment,
+    behind: Color16,
+    here: Color16,
 }
 
 /// `as2` on the flat tops, the paper's voxels.
@@ -138,6 +152,7 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             n_eye: 0,
             climb: 0,
             surface: 0,
+            painted: [None; LANES],
         }
     }
 
@@ -341,6 +356,18 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
 
     #[inline(always)]
     fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+        if SMOOTH {
+            // A hit on the surface carried into this pixel takes the colour where this pixel's
+            // lower ray crosses the surface, as a hit of its own would.
+            for (k, painted) in self.painted.iter().enumerate() {
+                if let Some(p) = painted {
+                    let ray = (pixel.lower.at(p.n - 2), pixel.lower.at(p.n));
+                    let (t, f) = p.segment.crossing(ray.0, ray.1);
+                    let color = surface::color(p.here, p.behind, p.here, t, f);
+                    self.lanes.repaint(k, p.n, color);
+                }
+            }
+        }
         self.lanes.begin_pixel(pixel, cost);
         self.wedge = pixel.wedge.to_bits().max(0);
         self.n_eye = pixel.eye.n.to_bits() >> 24;
@@ -422,10 +449,10 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
     /// the surface's colour where the lane's ray crosses the profile between the previous
     /// centre and the voxel's, Eq. 4 at the lane's middle behind (the profile's heights on the
     /// centre line, as the step's height is) mixed with the lane's own colour here. Else
-    /// `color`.
+    /// `color`. Records what repaints the hit if it is carried ([`Painted`]).
     #[inline(never)]
     fn paint(
-        &self,
+        &mut self,
         voxel: &Voxel<'_>,
         d: i64,
         (lo, hi): (i64, i64),
@@ -433,12 +460,24 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         (k, n): (usize, i64),
     ) -> Color16 {
         if self.surface <= 0 || voxel.level() > 0 || surface::weight(d, self.surface) == 0 {
+            if let Some(slot) = self.painted.get_mut(k) {
+                *slot = None;
+            }
             return color;
         }
         let line = voxel.behind(0);
         let middle = voxel.behind(((lo + hi) >> 1) - i64::from(voxel.fraction_ahead()));
+        let segment = Segment::new(&line, d, self.surface, top);
         let (ray_behind, ray_h) = (self.lanes.ray_at(k, n - 2), self.lanes.ray_at(k, n));
-        let (t, f) = surface::crossing(&line, d, self.surface, top, ray_behind, ray_h);
+        let (t, f) = segment.crossing(ray_behind, ray_h);
+        if let Some(slot) = self.painted.get_mut(k) {
+            *slot = Some(Painted {
+                n,
+                segment,
+                behind: middle.color,
+                here: color,
+            });
+        }
         surface::color(color, middle.color, color, t, f)
     }
 
