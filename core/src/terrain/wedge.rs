@@ -408,7 +408,9 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
             let part = lane(lo, hi, k);
             let ray_h = self.lanes.ray_at(k, n);
             if let Some((top, color)) = self.step(voxel, d, part, ray_h, cost) {
-                let color = if SMOOTH {
+                // Where the continuous surface is met (level 0, a share above 0), the colour
+                // is painted.
+                let color = if SMOOTH && d < self.surface && voxel.level() == 0 {
                     self.paint(voxel, d, part, (top, color), (k, n))
                 } else {
                     color
@@ -443,13 +445,14 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
 }
 
 impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
-    /// On the continuous surface where it is met (level 0, a share above 0), lane `k`'s
-    /// colour `color` over `part` at `voxel` (centred at `n`, `d` half-voxels from the eye),
-    /// whose step's height is `top`, painted as [`crate::terrain::surface`]'s colours are:
-    /// the surface's colour where the lane's ray crosses the profile between the previous
-    /// centre and the voxel's, Eq. 4 at the lane's middle behind (the profile's heights on the
-    /// centre line, as the step's height is) mixed with the lane's own colour here. Else
-    /// `color`. Records what repaints the hit if it is carried ([`Painted`]).
+    /// Lane `k`'s colour `color` over `part` at `voxel` (centred at `n`, `d` half-voxels from
+    /// the eye, level 0, where the continuous surface is met), whose step's height is `top`,
+    /// painted as [`crate::terrain::surface`]'s colours are: the surface's colour where the
+    /// lane's ray crosses the profile between the previous centre and the voxel's, Eq. 4 at
+    /// the lane's middle behind (the profile's heights on the centre line, as the step's
+    /// height is) mixed with the lane's own colour here. Records what repaints the hit if it
+    /// is carried ([`Painted`]: a lane's later hit, unpainted, is further along, so the record
+    /// no longer matches the hit the lane carries).
     #[inline(never)]
     fn paint(
         &mut self,
@@ -459,12 +462,6 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         (top, color): (Height, Color16),
         (k, n): (usize, i64),
     ) -> Color16 {
-        if self.surface <= 0 || voxel.level() > 0 || surface::weight(d, self.surface) == 0 {
-            if let Some(slot) = self.painted.get_mut(k) {
-                *slot = None;
-            }
-            return color;
-        }
         let line = voxel.behind(0);
         let middle = voxel.behind(((lo + hi) >> 1) - i64::from(voxel.fraction_ahead()));
         let segment = Segment::new(&line, d, self.surface, top);
