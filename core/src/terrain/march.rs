@@ -1315,10 +1315,20 @@ impl Voxel<'_> {
             Axis::X => (x, y),
             Axis::Y => (y, x),
         };
-        let along = if m.forward { along - 1 } else { along + 1 };
-        // The cross coordinate (raw I32F32 voxels) one step (two half-voxels) back.
-        let offset = if m.flip == 0 { offset } else { -offset };
-        let at = (across << 32)
+        let along = if m.forward {
+            along.saturating_sub(1)
+        } else {
+            along.saturating_add(1)
+        };
+        // The cross coordinate (raw I32F32 voxels) one step (two half-voxels) back; cell
+        // indices within a walk's far distance are far below 2^31, and saturate beyond.
+        let offset = if m.flip == 0 {
+            offset
+        } else {
+            offset.saturating_neg()
+        };
+        let at = across
+            .saturating_mul(1 << 32)
             .saturating_add(i64::from(self.toward ^ m.flip))
             .saturating_add(offset)
             .saturating_sub(m.dv.saturating_mul(2));
@@ -1337,7 +1347,7 @@ impl Voxel<'_> {
             )
         };
         let (h0, c0) = cell(first);
-        let (h1, c1) = cell(first + 1);
+        let (h1, c1) = cell(first.saturating_add(1));
         let under = if at >> 32 == first { h0 } else { h1 };
         // Heights below 2^16 times weights summing to 2^16: below 2^32; 24 − 16 bits more.
         let mix = i64::from(h0) * ((1 << 16) - w) + i64::from(h1) * w;
