@@ -304,13 +304,8 @@ fn a_checkerboard_seen_close_has_continuous_colours() {
         x_m: 128.3,
         y_m: 140.6,
         eye_m: 8.0,
-        heading_deg: 0.0,
         pitch_deg: 35.0,
-        roll_deg: 0.0,
-        fov_deg: 20.0,
-        width: 64,
-        height: 64,
-        far_m: 400.0,
+        ..*camera(0.0, 64).params()
     })
     .unwrap();
     for mode in Mode::NAMED

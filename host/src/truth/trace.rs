@@ -184,22 +184,15 @@ impl Model for Smooth {
     /// `(gx, gy)`'s four) at the hit point, rounded to 8 bits.
     #[inline(always)]
     fn color(field: &Field<'_>, gx: i64, gy: i64, ray: &Local, t: f64) -> Rgb {
-        Self::blended_color(field, (gx, gy), ray, t, Rgb::BLACK, 1.0)
+        let [r, g, b] = Self::bilinear_color(field, (gx, gy), ray, t);
+        Rgb::new(to_level(r), to_level(g), to_level(b))
     }
 }
 
 impl Smooth {
-    /// `own` plus the share `s` of the bilinear colour's difference from it, at the point at
-    /// `t` of the ray over patch `(gx, gy)`, rounded to 8 bits (with `s` 1 the bilinear
-    /// colour itself).
-    fn blended_color(
-        field: &Field<'_>,
-        (gx, gy): (i64, i64),
-        ray: &Local,
-        t: f64,
-        own: Rgb,
-        s: f64,
-    ) -> Rgb {
+    /// The bilinear interpolation of the colours through the cells' centres (patch
+    /// `(gx, gy)`'s four) at the point at `t` of the ray, per channel, unrounded.
+    fn bilinear_color(field: &Field<'_>, (gx, gy): (i64, i64), ray: &Local, t: f64) -> [f64; 3] {
         let u = (ray.ox + ray.dx * t - gx as f64).clamp(0.0, 1.0);
         let v = (ray.oy + ray.dy * t - gy as f64).clamp(0.0, 1.0);
         let corners = [
@@ -207,22 +200,20 @@ impl Smooth {
             field.color_at(gx, gy - 1),
             field.color_at(gx - 1, gy),
             field.color_at(gx, gy),
-        ];
-        let channel = |pick: fn(Rgb) -> u8| {
-            let [c00, c10, c01, c11] = corners.map(|c| f64::from(pick(c)));
-            let bilinear =
-                (c00 * (1.0 - u) + c10 * u) * (1.0 - v) + (c01 * (1.0 - u) + c11 * u) * v;
-            let c = if s >= 1.0 {
-                bilinear
-            } else {
-                let own = f64::from(pick(own));
-                own + s * (bilinear - own)
-            };
-            // Between two 8-bit levels: the cast saturates nothing.
-            c.round().clamp(0.0, 255.0) as u8
-        };
-        Rgb::new(channel(|c| c.r), channel(|c| c.g), channel(|c| c.b))
+        ]
+        .map(|c| [c.r, c.g, c.b].map(f64::from));
+        let mut out = [0.0; 3];
+        for (ch, o) in out.iter_mut().enumerate() {
+            let [c00, c10, c01, c11] = corners.map(|c| c[ch]);
+            *o = (c00 * (1.0 - u) + c10 * u) * (1.0 - v) + (c01 * (1.0 - u) + c11 * u) * v;
+        }
+        out
     }
+}
+
+/// A channel between two 8-bit levels, rounded to the nearest (the cast saturates nothing).
+fn to_level(c: f64) -> u8 {
+    c.round().clamp(0.0, 255.0) as u8
 }
 
 /// The surface that follows the pixel's footprint, as the modes' walk meets it under
@@ -395,7 +386,15 @@ impl Model for Follow {
         if s <= 0.0 {
             return cell;
         }
-        Smooth::blended_color(field, (gx, gy), ray, t, cell, s)
+        if s >= 1.0 {
+            return Smooth::color(field, gx, gy, ray, t);
+        }
+        let [r, g, b] = Smooth::bilinear_color(field, (gx, gy), ray, t);
+        let blend = |own: u8, bilinear: f64| {
+            let own = f64::from(own);
+            to_level(own + s * (bilinear - own))
+        };
+        Rgb::new(blend(cell.r, r), blend(cell.g, g), blend(cell.b, b))
     }
 }
 
