@@ -72,6 +72,12 @@ pub enum Error {
         /// What is wrong, e.g. `"not a baked map (no FPMAP magic)"`.
         what: &'static str,
     },
+    /// A call that takes frames of the paper's projection only was given one of the exact
+    /// projection ([`crate::terrain::frame::Frame::resample_exact`]).
+    ExactProjection {
+        /// The call, e.g. `"resample_exact"`.
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for Error {
@@ -110,6 +116,9 @@ impl fmt::Display for Error {
                 write!(f, "normal ({x}, {y}, {z}) is zero or not finite")
             }
             Error::Baked { what } => write!(f, "baked map: {what}"),
+            Error::ExactProjection { what } => {
+                write!(f, "{what}: takes frames of the paper's projection only")
+            }
         }
     }
 }

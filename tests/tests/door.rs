@@ -11,7 +11,11 @@
 //!   walk counts;
 //! - the full-precision grid (`Frame::render_columns_exact`, the ground truth's) rounds to the
 //!   8-bit grid bit for bit, in every mode and on both surfaces, and the area modes' cells keep
-//!   their fractions.
+//!   their fractions;
+//! - with the paper's projection and `k` columns per pixel, the door's image (plain or lit) is
+//!   the box filter of the walked columns (`Frame::resample`: the rounded integer mean of 8-bit
+//!   cells, as the host's filter was), and the ground truth's box (`Frame::resample_exact`)
+//!   rounds each pixel's full-precision columns once.
 
 use footprint_core::color::mean_to_rgb;
 use footprint_core::lit::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFUSE};
@@ -60,6 +64,28 @@ fn stretches<'g>(
     out
 }
 
+/// The image `w × h` (row-major from the top) of a paper grid walked with `k` columns per
+/// pixel (column by column, each from the bottom row up): each pixel the rounded integer mean
+/// of its `k` columns' 8-bit cells, `⌊(Σ + k/2) / k⌋`, as the host's box filter was before the
+/// door took it in.
+fn boxed(grid: &[Rgb], w: usize, h: usize, k: usize) -> Vec<Rgb> {
+    let mut image = Vec::with_capacity(w * h);
+    for y in 0..h {
+        for x in 0..w {
+            let cells = (x * k..(x + 1) * k).map(|c| grid[c * h + h - 1 - y]);
+            let mut sum = [0usize; 3];
+            for c in cells {
+                sum[0] += usize::from(c.r);
+                sum[1] += usize::from(c.g);
+                sum[2] += usize::from(c.b);
+            }
+            let mean = |s: usize| ((s + k / 2) / k) as u8;
+            image.push(Rgb::new(mean(sum[0]), mean(sum[1]), mean(sum[2])));
+        }
+    }
+    image
+}
+
 /// The built-in terrain both tests draw, with its pyramid.
 fn scene() -> (footprint_host::map::Map, Pyramid) {
     let map = procedural(4, 256);
@@ -92,14 +118,16 @@ const SIZE: Size = Size {
 fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
     let (map, pyramid) = scene();
     let terrain = pyramid.terrain(true).unwrap();
-    for (pitch, roll, projection) in [
-        (20.0, 0.0, Projection::Paper),
-        (40.0, 0.0, Projection::Exact),
-        (40.0, 25.0, Projection::Exact),
+    for (pitch, roll, projection, per_pixel) in [
+        (20.0, 0.0, Projection::Paper, 1),
+        (20.0, 0.0, Projection::Paper, 3),
+        (40.0, 0.0, Projection::Exact, 1),
+        (40.0, 25.0, Projection::Exact, 1),
     ] {
         let camera = rolled_camera(&map, &pyramid, pitch, roll);
         let options = Options {
             projection,
+            columns_per_pixel: per_pixel,
             ..Options::default()
         };
         let mut tables = Tables::new(&camera);
@@ -127,8 +155,15 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
                 .unwrap();
             assert!(
                 split_image == whole,
-                "{mode} {projection:?} roll {roll}: the split frame differs"
+                "{mode} {projection:?} roll {roll} k {per_pixel}: the split frame differs"
             );
+            if projection == Projection::Paper {
+                assert_eq!(
+                    whole,
+                    boxed(&grid, w, rows, per_pixel as usize),
+                    "{mode} k {per_pixel}: the frame is not the box of its walked columns"
+                );
+            }
             // The same door into a PNG's bytes and a canvas's RGBA.
             let mut png = vec![[0u8; 3]; w * h];
             let mut rgba = vec![[0u8; 4]; w * h];
@@ -156,7 +191,7 @@ fn a_frame_split_into_column_ranges_equals_the_whole_frame() {
                 "{refused:?}"
             );
         }
-        if projection == Projection::Exact {
+        if projection == Projection::Exact || per_pixel > 1 {
             let mut short = vec![Rgb::BLACK; frame.scratch_len() - 1];
             let mut image = vec![Rgb::BLACK; w * h];
             let refused = frame.render(&terrain, &Mode::As, &mut NoCost, &mut short, &mut image);
@@ -181,9 +216,10 @@ fn a_lit_frame_split_into_column_ranges_equals_the_whole_frame() {
     let clamp99 = Specular::Clamp(Clamp::Aggressive(Power::P99));
     let materials = Materials::default_by_color();
     let sun = Sun::new(&terrain, 0.0, 12.0, AMBIENT_DIFFUSE, materials, clamp99).unwrap();
-    for (pitch, roll, projection) in [
-        (20.0, 0.0, Projection::Paper),
-        (20.0, 25.0, Projection::Exact),
+    for (pitch, roll, projection, per_pixel) in [
+        (20.0, 0.0, Projection::Paper, 1),
+        (20.0, 0.0, Projection::Paper, 4),
+        (20.0, 25.0, Projection::Exact, 1),
     ] {
         let camera = rolled_camera(&map, &pyramid, pitch, roll);
         let p = *camera.params();
@@ -197,6 +233,7 @@ fn a_lit_frame_split_into_column_ranges_equals_the_whole_frame() {
         };
         let options = Options {
             projection,
+            columns_per_pixel: per_pixel,
             ..Options::default()
         };
         let mut tables = Tables::new(&camera);
@@ -258,8 +295,15 @@ fn a_lit_frame_split_into_column_ranges_equals_the_whole_frame() {
                 .unwrap();
             assert!(
                 split_image == whole,
-                "{mode} {projection:?}: the split lit frame differs"
+                "{mode} {projection:?} k {per_pixel}: the split lit frame differs"
             );
+            if projection == Projection::Paper {
+                assert_eq!(
+                    whole,
+                    boxed(&grid, w, rows, per_pixel as usize),
+                    "{mode}: the lit frame is not the box of its walked columns"
+                );
+            }
         }
         // A short image or scratch is refused.
         let mut image = vec![Rgb::BLACK; w * h - 1];
@@ -332,4 +376,80 @@ fn the_full_precision_grid_rounds_to_the_8_bit_grid() {
             );
         }
     }
+}
+
+/// The ground truth's box (`Frame::resample_exact`): the mean of each pixel's `k` full-precision
+/// columns, rounded once, for the whole frame and for a stretch of one pixel column; the exact
+/// projection, whose fan is resampled from 8-bit cells, is refused.
+#[test]
+fn the_full_precision_box_rounds_each_pixels_columns_once() {
+    let (map, pyramid) = scene();
+    let terrain = pyramid.terrain(false).unwrap();
+    let camera = paper_camera(&map, &pyramid, 20.0, SIZE, true).unwrap();
+    let k = 5;
+    for surface in [Surface::Flat, Surface::Bilinear] {
+        let options = Options {
+            surface,
+            columns_per_pixel: k,
+            ..Options::default()
+        };
+        let mut tables = Tables::new(&camera);
+        let frame = tables.frame(&camera, &terrain, options).unwrap();
+        let ((w, h), columns) = (frame.image_size(), frame.grid_columns());
+        assert_eq!((w * k as usize, h), (columns, frame.grid_rows()));
+        let mut grid = vec![[7u32; 3]; columns * h];
+        frame
+            .render_columns_exact(&terrain, &Mode::AsExact, &mut NoCost, 0..columns, &mut grid)
+            .unwrap();
+        let mut image = vec![Rgb::BLACK; w * h];
+        frame.resample_exact(&grid, &mut image).unwrap();
+        let k = k as usize;
+        let mut rounded_twice = 0;
+        for y in 0..h {
+            for x in 0..w {
+                let mut sum = [0u64; 3];
+                for c in x * k..(x + 1) * k {
+                    for (s, v) in sum.iter_mut().zip(grid[c * h + h - 1 - y]) {
+                        *s += u64::from(v);
+                    }
+                }
+                assert_eq!(image[y * w + x], mean_to_rgb(sum, k as u64), "({x}, {y})");
+                let cells: Vec<Rgb> = (x * k..(x + 1) * k)
+                    .map(|c| mean_to_rgb(grid[c * h + h - 1 - y].map(u64::from), 1))
+                    .collect();
+                rounded_twice += usize::from(boxed(&cells, 1, 1, k)[0] != image[y * w + x]);
+            }
+        }
+        // Rounding each column first would be another image (the reason for the full cells).
+        assert!(
+            rounded_twice > 0,
+            "{surface:?}: no pixel where rounding once matters"
+        );
+        // One pixel column's stretch of the grid gives that column of the image.
+        let x = w / 2;
+        let mut column = vec![Rgb::BLACK; h];
+        frame
+            .resample_exact(&grid[x * k * h..(x + 1) * k * h], &mut column)
+            .unwrap();
+        let expected: Vec<Rgb> = (0..h).map(|y| image[y * w + x]).collect();
+        assert_eq!(column, expected, "{surface:?}: a stretch's box differs");
+        let refused = frame.resample_exact(&grid[1..], &mut image);
+        assert!(
+            matches!(refused, Err(Error::SliceLength { what: "grid", .. })),
+            "{refused:?}"
+        );
+    }
+    let exact = Options {
+        projection: Projection::Exact,
+        ..Options::default()
+    };
+    let mut tables = Tables::new(&camera);
+    let frame = tables.frame(&camera, &terrain, exact).unwrap();
+    let refused = frame.resample_exact(&[], &mut [Rgb::BLACK; 0]);
+    assert_eq!(
+        refused,
+        Err(Error::ExactProjection {
+            what: "resample_exact"
+        })
+    );
 }

@@ -20,7 +20,6 @@ use footprint_core::terrain::frame::Frame;
 use footprint_core::terrain::sampler::ExactArea;
 use footprint_core::terrain::Terrain;
 use footprint_core::Rgb;
-use footprint_host::truth::reference::box_columns;
 
 const WATER: Rgb = Rgb::new(20, 40, 90);
 const SIZE: u32 = 8;
@@ -94,20 +93,21 @@ fn image(
     let mut counts = Counts::new(&mut []);
     let mut shader = SunShader::new(&sun, terrain, [p.x_m, p.y_m, p.eye_m], cam.pixel_angle())
         .expect("a shader");
-    // The paper's projection: the lit image is the walk's grid, `columns` columns per pixel.
-    let mut lit = vec![Rgb::default(); w * h];
+    // The paper's projection with `columns` columns per pixel, box-filtered to one by the door,
+    // as the colour ground truth is.
+    let mut scratch = vec![Rgb::default(); frame.scratch_len()];
+    let mut lit = vec![Rgb::default(); cam.width() * h];
     frame
         .render_shaded(
             terrain,
             &ExactArea::new(),
             &mut shader,
             &mut counts,
-            &mut [],
+            &mut scratch,
             &mut lit,
         )
         .expect("sized");
-    // Average `columns` columns per pixel, as the colour ground truth is.
-    box_columns(&lit, cam.width(), h, columns as usize)
+    lit
 }
 
 /// The glint's energy (luminance above the plain water, summed over the image), its peak, and

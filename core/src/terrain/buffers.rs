@@ -10,9 +10,10 @@ use crate::terrain::frame::Frame;
 use crate::terrain::Terrain;
 
 /// Everything a [`Frame`] borrows: `EDGES` row slopes (one per row edge, the grid's rows + 1),
-/// `COLUMNS` column tables and, for the exact projection, `CELLS` = `COLUMNS × (EDGES − 1)`
-/// cells of scratch grid ([`Frame::render`]); `CELLS` is 0 for frames of the paper's
-/// projection only.
+/// `COLUMNS` column tables and, for the exact projection (or the paper's with `k > 1` walked
+/// columns per pixel), `CELLS` = `COLUMNS × (EDGES − 1)` cells of scratch grid
+/// ([`Frame::render`]); `CELLS` is 0 for frames of the paper's projection with one column per
+/// pixel only.
 ///
 /// The sizes are checked when the type is used ([`FrameBuffers::new`] fails to compile for
 /// `EDGES < 2`, `COLUMNS < 1`, or a scratch that is neither none nor the whole grid), and each
@@ -71,9 +72,11 @@ impl<const COLUMNS: usize, const EDGES: usize, const CELLS: usize>
         options: Options,
     ) -> Result<(Frame<'_>, &mut [Rgb]), Error> {
         let (columns, rows) = Frame::grid_size(camera, options)?;
+        // The whole grid where the walk's grid is resampled into the image (the exact
+        // projection's fan, the paper's `k > 1` columns per pixel), none where it is the image.
         let cells = match options.projection {
-            Projection::Paper => 0,
-            Projection::Exact => columns * rows,
+            Projection::Paper if options.columns_per_pixel <= 1 => 0,
+            Projection::Paper | Projection::Exact => columns * rows,
         };
         let too_small = |what, expected, actual| Error::SliceLength {
             what,
@@ -115,8 +118,8 @@ impl<const COLUMNS: usize, const EDGES: usize, const CELLS: usize> Default
 
 /// The [`FrameBuffers`] type for frames of the paper's projection `W × H`
 /// (`frame_buffers!(W, H)`), or for fans of the exact projection up to `LINES × ROWS`
-/// (`frame_buffers!(exact LINES, ROWS)`, with the scratch grid). The sizes are constant
-/// expressions.
+/// (`frame_buffers!(exact LINES, ROWS)`, with the scratch grid; also for the paper's projection
+/// with `k` columns per pixel, as `exact W·k, H`). The sizes are constant expressions.
 #[macro_export]
 macro_rules! frame_buffers {
     (exact $lines:expr, $rows:expr) => {

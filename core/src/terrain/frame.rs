@@ -24,6 +24,10 @@ pub struct Frame<'t> {
     lod: bool,
     surface: Surface,
     fan: Option<Fan>,
+    /// Walked columns per image column with the paper's projection (`k`,
+    /// [`Options::columns_per_pixel`]), which the door box-filters to one; 1 with the exact
+    /// projection, whose fan lines take `k` themselves.
+    columns_per_pixel: usize,
     /// Every row slope times every column's `kc` is within [`mul_floor_32`]'s 64-bit bound and
     /// needs no clamp to [`crate::num::MAX_SLOPE`] (proved once, in [`Frame::new`]): [`Frame::ray`] then
     /// takes the products without range tests.
@@ -231,6 +235,11 @@ impl<'t> Frame<'t> {
             sky: options.sky,
             lod: options.lod,
             surface: options.surface,
+            columns_per_pixel: if fan.is_some() {
+                1
+            } else {
+                options.columns_per_pixel as usize
+            },
             fan,
             rays_in_range,
         })
@@ -257,11 +266,24 @@ impl<'t> Frame<'t> {
         self.fan.as_ref()
     }
 
-    /// The image this frame draws, `(W, H)`: the camera's size (with the paper's projection and
-    /// `k` columns per pixel, `W·k` wide, the grid itself).
+    /// The image this frame draws, `(W, H)`: the camera's size, for either projection and any
+    /// number of columns per pixel (the door box-filters the paper's `k` walked columns of a
+    /// pixel to one, and resamples the exact projection's fan).
     pub fn image_size(&self) -> (usize, usize) {
-        self.fan
-            .map_or((self.grid_columns(), self.grid_rows()), |f| f.output_size())
+        self.fan.map_or(
+            (
+                self.grid_columns() / self.columns_per_pixel,
+                self.grid_rows(),
+            ),
+            |f| f.output_size(),
+        )
+    }
+
+    /// The grid's columns walked per image column with the paper's projection
+    /// ([`Options::columns_per_pixel`]); 1 with the exact projection, whose fan lines are
+    /// spaced by `k` themselves.
+    pub(crate) fn columns_per_pixel(&self) -> usize {
+        self.columns_per_pixel
     }
 
     /// The frame's row slopes (`rows + 1` entries, Eq. 2 at each row's lower edge).

@@ -147,8 +147,9 @@ impl Frame<'_> {
     /// walk, sampled by `sampling`, counted by `cost` (with what the shader spends), into
     /// `image` ([`Frame::image_size`], row-major from the top, any pixel format). Pixels that
     /// sample no terrain are the sky. With the exact projection the lit fan is drawn into
-    /// `scratch` ([`Frame::scratch_len`] cells) and resampled with the sampling's filter; with
-    /// the paper's `scratch` is not touched and may be empty.
+    /// `scratch` ([`Frame::scratch_len`] cells) and resampled with the sampling's filter, and
+    /// so is the paper's with `k > 1` columns per pixel (box-filtered, [`Frame::resample`]);
+    /// with the paper's and one column per pixel `scratch` is not touched and may be empty.
     ///
     /// Errors: an `image` or a `scratch` of the wrong length.
     pub fn render_shaded<S: Sampling, Sh: Shader, C: Cost, P: PixelSink>(
@@ -162,7 +163,7 @@ impl Frame<'_> {
     ) -> Result<(), Error> {
         let (w, h) = self.image_size();
         self.check_render(image.len(), scratch.len())?;
-        if self.fan().is_some() {
+        if !self.walks_into_image() {
             let columns = 0..self.grid_columns();
             self.render_columns_shaded(terrain, sampling, shader, cost, columns, scratch)?;
             return self.resample(scratch, sampling.filter(), image);

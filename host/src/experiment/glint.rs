@@ -26,7 +26,7 @@ use crate::lighting::{LoadedMaterials, MaterialArg, Method, AMBIENT_DIFFUSE};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{Mode, Tables};
-use crate::truth::reference::{box_columns, rmse};
+use crate::truth::reference::rmse;
 use crate::view::Size;
 
 /// The methods measured against the reference, in the order tables list them.
@@ -288,19 +288,15 @@ pub fn run(
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &level0, reference_options)?;
         let mut counts = Counts::new(&mut []);
-        let wide = render_lit(
+        let truth = render_lit(
             &frame,
             &level0,
             &camera,
             Mode::AsExact,
             &reference_sun,
             &mut counts,
-        )?;
-        let truth = if wide.image.len() == w * h {
-            wide.image
-        } else {
-            box_columns(&wide.image, w, h, spec.reference_columns as usize)
-        };
+        )?
+        .image;
         let mut out = Vec::with_capacity(runs.len() + 1);
         out.push(FrameRun {
             lum: truth.iter().map(|&p| luminance(p)).collect(),

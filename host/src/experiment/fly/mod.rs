@@ -30,7 +30,7 @@ use crate::flight_path::FlightPath;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
 use crate::render::{render_column_exact, Mode, Rate, Tables};
-use crate::truth::reference::{box_exact, rmse, supersampled, REFERENCE_COLUMNS};
+use crate::truth::reference::{rmse, supersampled, REFERENCE_COLUMNS};
 use crate::truth::{self, Truth};
 use crate::view::{surface_name, Size, SurfaceArg};
 use footprint_scenes::view::Placement;
@@ -316,7 +316,8 @@ fn shoot(
     let walked: Vec<Color32> = (column * k..(column + 1) * k)
         .flat_map(|x| render_column_exact(&frame, &terrain, setting.mode, x))
         .collect();
-    let mut column = box_exact(&walked, 1, h, k);
+    let mut column = vec![Rgb::default(); h];
+    frame.resample_exact(&walked, &mut column)?;
     column.reverse();
     Ok(Shot {
         column,
