@@ -71,7 +71,7 @@ fn main() {
     // map, not the sizes of the buffers built from it.
     writeln!(
         s,
-        "/// Voxels in pyramid levels 1 and up (built on the chip).\npub const PYRAMID_CELLS: usize = footprint_core::terrain::pyramid::cells(MAP_WIDTH, MAP_HEIGHT);"
+        "/// Voxels in pyramid levels 1 and up (built on the chip).\npub const PYRAMID_CELLS: usize = footprint_core::prelude::pyramid::cells(MAP_WIDTH, MAP_HEIGHT);"
     )
     .unwrap();
     writeln!(
@@ -112,13 +112,13 @@ fn main() {
     )
     .unwrap();
     assert!(
-        scene.options == footprint_core::terrain::camera::Options::default(),
+        scene.options == footprint_core::prelude::Options::default(),
         "the firmware renders with Options::default()"
     );
     // The fan buffers hold the larger of the rolled and the level frame's fans.
     let fan = |params| {
-        let camera = footprint_core::terrain::camera::Camera::new(params).expect("a fan camera");
-        footprint_core::terrain::frame::Frame::grid_size(&camera, scene.rolled_options())
+        let camera = footprint_core::prelude::Camera::new(params).expect("a fan camera");
+        footprint_core::prelude::Frame::grid_size(&camera, scene.rolled_options())
             .expect("the frame's fan")
     };
     let ((rolled_lines, rolled_rows), (level_lines, level_rows)) =
@@ -173,7 +173,7 @@ fn main() {
     // the frame of the pyramid it builds on the chip.
     let pyramid = footprint_scenes::Pyramid::build(
         map.clone(),
-        footprint_core::terrain::pyramid::HeightFilter::default(),
+        footprint_core::prelude::HeightFilter::default(),
     )
     .expect("the scene's pyramid");
     let mut baked = Vec::new();

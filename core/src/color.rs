@@ -25,6 +25,19 @@ impl Rgb {
     pub const fn new(r: u8, g: u8, b: u8) -> Self {
         Self { r, g, b }
     }
+
+    /// An 8.8 colour ([`Color16`], Eq. 4's) rounded to 8 bits, half up, as the samplers round.
+    #[inline]
+    pub fn from_color16(c: Color16) -> Self {
+        to_rgb(c)
+    }
+
+    /// The mean of `count` full-precision colours ([`Color32`]) whose channels sum to `sum`,
+    /// rounded to 8 bits once, half up; black for `count` 0.
+    #[inline]
+    pub fn mean(sum: [u64; 3], count: u64) -> Self {
+        mean_to_rgb(sum, count)
+    }
 }
 
 /// A colour with 8 fractional bits per channel (`255 << 8` is full), the result of Eq. 4.
@@ -38,7 +51,7 @@ pub(crate) fn to_color16(c: Rgb) -> Color16 {
 
 /// Rounds an 8.8 colour to 8 bits.
 #[inline]
-pub fn to_rgb(c: Color16) -> Rgb {
+pub(crate) fn to_rgb(c: Color16) -> Rgb {
     let r = |x: u16| ((u32::from(x) + 128) >> 8).min(255) as u8;
     Rgb::new(r(c[0]), r(c[1]), r(c[2]))
 }
@@ -60,7 +73,7 @@ pub(crate) fn to_color32(c: Rgb) -> Color32 {
 /// (truncating to 16 fractional bits first does not change where `x + ½` falls). Black for
 /// `count` 0.
 #[inline]
-pub fn mean_to_rgb(sum: [u64; 3], count: u64) -> Rgb {
+pub(crate) fn mean_to_rgb(sum: [u64; 3], count: u64) -> Rgb {
     let unit = count << 16;
     let r = |s: u64| {
         s.saturating_add(unit / 2)

@@ -29,17 +29,15 @@
 //!
 //! Exact antialiasing for fixed-point renderers, after two papers:
 //!
-//! * D. Cohen-Or, *Exact antialiasing of textured terrain models* ([`terrain`]): a height
-//!   field ray-cast column by column, bottom to top, with vertical coherence and a
-//!   multiresolution pyramid, in four sampling modes — point sampling
-//!   ([`terrain::sampler::Point`]), linear interpolation ([`terrain::sampler::Linear`]),
-//!   supersampling ([`terrain::sampler::Super`]) and area sampling, both as the paper's Fig. 12
-//!   writes it ([`terrain::sampler::PaperArea`]) and with the exact ray through each voxel's
-//!   top ([`terrain::sampler::ExactArea`]) — plus area sampling in both axes, the footprint between
-//!   the column's two planes as well as its two rays (`as2`, [`terrain::wedge::Wedge`]), and
-//!   the paper's cost model ([`terrain::cost`]). The
-//!   classic voxel-space renderer (`Mode::Classic`) is the baseline they are measured
-//!   against.
+//! * D. Cohen-Or, *Exact antialiasing of textured terrain models*: a height field ray-cast
+//!   column by column, bottom to top, with vertical coherence and a multiresolution pyramid,
+//!   in four sampling modes — point sampling ([`extend::Point`]), linear interpolation
+//!   ([`extend::Linear`]), supersampling ([`extend::Super`]) and area sampling, both as the
+//!   paper's Fig. 12 writes it ([`extend::PaperArea`]) and with the exact ray through each
+//!   voxel's top ([`extend::ExactArea`]) — plus area sampling in both axes, the footprint
+//!   between the column's two planes as well as its two rays (`as2`, [`extend::Wedge`]), and
+//!   the paper's cost model ([`prelude::Counts`], [`prelude::Cost`]). The classic voxel-space
+//!   renderer (`Mode::Classic`) is the baseline they are measured against.
 //! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*
 //!   ([`specular`]): the tables, Phong highlight, detection and clamping, drawn by the z-buffer
 //!   tiler [`specular::raster`].
@@ -47,13 +45,16 @@
 //! The crate is `no_std`, allocates nothing, and uses only integer fixed-point arithmetic per
 //! pixel, so it links into firmware. The caller lends every buffer.
 //!
-//! **The house.** Two rooms, one per paper, over a shared floor: [`num`] (the fixed-point types
-//! and their proved ranges), [`color`] (the 8-bit and 8.8 colours), [`trig`] (once-per-frame
-//! trigonometry) and [`error`] (every variant carries the limit it names). The rooms import the
-//! floor and never each other. In the terrain room data flows one way: map
-//! ([`terrain::Level`]) → pyramid ([`terrain::pyramid`], [`terrain::Terrain`]) → camera tables
-//! ([`terrain::frame::Frame`]) → column walk ([`terrain::column::walk()`]) → per-hit sampler
-//! ([`terrain::sampler::Sampler`]) → pixel.
+//! **Three public modules.** [`prelude`] is the door: everything a caller renders, measures
+//! and lights a frame with. [`extend`] is for those who extend the core: the samplers of the
+//! modes, and what the walk hands a sampler, a cost or a shader ([`extend::Voxel`],
+//! [`extend::Pixel`], [`extend::Ray`]). [`specular`] is the second paper's room. Inside, two
+//! rooms, one per paper, stand over a shared floor (the fixed-point types and their proved
+//! ranges, the 8-bit and 8.8 colours, once-per-frame trigonometry, the one error type); the
+//! rooms import the floor and never each other. In the terrain room data flows one way: map
+//! ([`prelude::Level`]) → pyramid ([`prelude::pyramid`], [`prelude::Terrain`]) → camera
+//! tables ([`prelude::Frame`]) → column walk ([`extend::walk()`]) → per-hit sampler
+//! ([`extend::Sampler`]) → pixel.
 //!
 //! **The front door.** [`prelude`] imports what a frame needs. A [`Frame`](terrain::frame::Frame)
 //! renders its image ([`Frame::render`](terrain::frame::Frame::render)) for either projection,
@@ -93,7 +94,7 @@
 //!
 //! ```
 //! use footprint_core::prelude::*;
-//! use footprint_core::terrain::sampler::ExactArea;
+//! use footprint_core::extend::ExactArea;
 //! let heights = [10u16; 16 * 16];
 //! let colors = [Rgb::new(40, 120, 40); 16 * 16];
 //! let terrain = Terrain::new(Level::new(16, 16, &heights, &colors)?, Scale::new(30.0, 0.1)?);
@@ -116,23 +117,24 @@ extern crate std;
 mod testing;
 
 // The shared floor, below both rooms.
-pub mod color;
+pub(crate) mod color;
 mod divide;
-pub mod error;
-pub mod num;
-pub mod trig;
+pub(crate) mod error;
+pub(crate) mod num;
+pub(crate) mod trig;
 
 // The two rooms: one per paper.
 pub mod specular;
-pub mod terrain;
+pub(crate) mod terrain;
 
 // The room above both: the sun on the terrain, its highlight clamped by the visible normals.
-pub mod lit;
+pub(crate) mod lit;
 
 // The front door: the modes by name, the pixel formats, and what an embedder imports.
-pub mod mode;
+pub mod extend;
+pub(crate) mod mode;
 pub mod prelude;
-pub mod sink;
+pub(crate) mod sink;
 
 #[cfg(feature = "embedded-graphics")]
 pub mod embedded;

@@ -1,30 +1,38 @@
-//! What a frame needs, in one import: `use footprint_core::prelude::*;`.
+//! The door: everything a caller renders, measures and lights a frame with, in one import:
+//! `use footprint_core::prelude::*;`.
 //!
-//! The map and its pyramid ([`Level`], [`Scale`], [`Terrain`], [`pyramid`], [`HeightFilter`]),
-//! the camera and its per-frame tables ([`Camera`], [`CameraParams`], [`Frame`], [`Options`],
-//! [`Projection`], [`Column`], [`Coord`]) and the buffers they borrow ([`FrameBuffers`],
-//! [`frame_buffers!`]), the modes ([`Mode`], [`Rate`], any [`Sampling`], the fan's
-//! [`Filter`]; the samplers, each of which links one mode alone, are in
-//! [`crate::terrain::sampler`] and [`crate::terrain::wedge`], so that their names (`Point`)
-//! do not meet an embedded-graphics prelude's), the counters ([`Cost`], [`NoCost`],
-//! [`Counts`], [`Tally`]), the pixel formats ([`Rgb`], [`PixelSink`]) and [`Error`]. The
-//! walk's internals are not here; the modules under [`crate::terrain`] have the rest.
+//! The map and its pyramid ([`Level`], [`Scale`], [`Terrain`], [`pyramid`], [`HeightFilter`],
+//! a baked map's layout in [`baked`]), the camera and its per-frame tables ([`Camera`],
+//! [`CameraParams`], [`Frame`], [`Options`], [`Projection`], [`Surface`], [`Column`],
+//! [`Coord`]) and the buffers they borrow ([`FrameBuffers`], [`frame_buffers!`]), the modes
+//! ([`Mode`], [`Rate`], any [`Sampling`] or [`Sampler`], the fan's [`Filter`]), the counters
+//! ([`Cost`], [`NoCost`], [`Counts`], [`Tally`]), the sun and its shader ([`Sun`],
+//! [`SunShader`]), the pixel formats ([`Rgb`], [`PixelSink`]) and [`Error`].
+//!
+//! The samplers, each of which links one mode alone (`Point`, `ExactArea`, `Wedge`, …), and
+//! what the walk hands a sampler, a cost or a shader of one's own are in [`crate::extend`],
+//! so that their names (`Point`) do not meet an embedded-graphics prelude's. The second
+//! paper's room is [`crate::specular`].
 
 pub use crate::color::Rgb;
-pub use crate::error::Error;
+pub use crate::error::{Error, Shown};
 pub use crate::frame_buffers;
-pub use crate::mode::{Mode, Rate};
-pub use crate::num::Coord;
+pub use crate::lit::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFUSE};
+pub use crate::mode::{Mode, ParseModeError, Rate, SS_RATES};
+pub use crate::num::{Coord, MAX_EYE_HEIGHT, MAX_FAR};
 pub use crate::sink::PixelSink;
+pub use crate::terrain::baked;
 pub use crate::terrain::buffers::FrameBuffers;
-pub use crate::terrain::camera::{Camera, CameraParams, Column, Options, Projection, Surface};
+pub use crate::terrain::camera::{
+    Camera, CameraParams, Column, Options, Projection, Surface, Switch, MAX_IMAGE_SIDE,
+};
 pub use crate::terrain::cost::{Cost, Counts, NoCost, Tally};
 pub use crate::terrain::fan::Filter;
 pub use crate::terrain::frame::Frame;
 pub use crate::terrain::image::Sampling;
 pub use crate::terrain::pyramid::{self, HeightFilter};
 pub use crate::terrain::sampler::Sampler;
-pub use crate::terrain::{Level, Scale, Terrain};
+pub use crate::terrain::{next_size, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
 
 #[cfg(test)]
 mod tests {
@@ -36,7 +44,7 @@ mod tests {
     fn buffer_sizes_are_const() {
         const CELLS: usize = pyramid::cells(128, 128);
         const LEVELS: usize = pyramid::levels(128, 96);
-        const NEXT: Option<(u32, u32)> = crate::terrain::next_size(5, 3);
+        const NEXT: Option<(u32, u32)> = next_size(5, 3);
         static COLUMNS: [Column; 4] = [Column::EMPTY; 4];
         static PYRAMID: [u16; 3 * CELLS] = [0; 3 * CELLS];
         assert_eq!(

@@ -4,12 +4,12 @@
 //! With them, the core's code is in symbols named `footprint_core::…` or
 //! `footprint_firmware::core_calls::…`, which `sizes.sh` counts as the core's.
 
-use footprint_core::lit::{Sun, SunShader};
+use footprint_core::extend;
+use footprint_core::prelude::Switch;
 use footprint_core::prelude::*;
+use footprint_core::prelude::{Sun, SunShader};
 use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
 use footprint_core::specular::{self, Light, Material, Method, Normal};
-use footprint_core::terrain::camera::Switch;
-use footprint_core::terrain::visibility;
 
 use crate::PlateVertex;
 
@@ -93,7 +93,7 @@ pub fn resample(frame: &Frame<'_>, grid: &[Rgb], image: &mut [Rgb]) -> Result<()
     frame.resample(grid, Filter::Box, image)
 }
 
-/// `visibility::count_visible`: the exact visible-voxel count `V` of every column.
+/// `count_visible`: the exact visible-voxel count `V` of every column.
 #[inline(never)]
 pub fn count_visible(
     frame: &Frame<'_>,
@@ -101,7 +101,7 @@ pub fn count_visible(
     switch: Switch,
     counts: &mut Counts<'_>,
 ) {
-    visibility::count_visible(frame, terrain, switch, counts);
+    extend::count_visible(frame, terrain, switch, counts);
 }
 
 /// The terrain over `level0` and the levels above it, which the core's pyramid builder

@@ -30,10 +30,10 @@ pub mod core_calls;
 #[allow(clippy::unreadable_literal, clippy::large_const_arrays, unsafe_code)]
 pub mod scene {
     use crate::PlateVertex;
+    use footprint_core::prelude::CameraParams;
     #[allow(unused_imports)] // used when the plate's mode is an aggressive clamp
     use footprint_core::specular::Power;
     use footprint_core::specular::{Clamp, Method};
-    use footprint_core::terrain::camera::CameraParams;
     use footprint_core::Rgb;
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
@@ -49,7 +49,7 @@ pub struct Aligned<T: ?Sized>(pub T);
 /// `footprint_scenes::firmware::Scene::glint_sun`), the core's `AMBIENT_DIFFUSE`, the paper's
 /// AS and Amanatides' aggressive clamp keeping 99 % of the highlight's power.
 pub mod glint {
-    use footprint_core::lit::Specular;
+    use footprint_core::prelude::Specular;
     use footprint_core::specular::{Clamp, Power};
 
     /// The highlight's antialiasing, `clamp99`: `footprint_scenes::firmware::GLINT_SPECULAR`
@@ -67,7 +67,7 @@ pub mod display {
     use embedded_graphics_core::geometry::{OriginDimensions, Size};
     use embedded_graphics_core::pixelcolor::Rgb565;
     use embedded_graphics_core::Pixel;
-    use footprint_core::sink::PixelSink;
+    use footprint_core::prelude::PixelSink;
     use footprint_core::Rgb;
 
     use crate::scene::{HEIGHT, WIDTH};

@@ -7,20 +7,13 @@
 #![no_main]
 
 use arbitrary::Arbitrary;
-use footprint_core::color::mean_to_rgb;
-use footprint_core::lit::{Materials, Specular, Sun, SunShader};
-use footprint_core::mode::Rate;
-use footprint_core::num::Coord;
+use footprint_core::prelude::{Camera, CameraParams, Column, Options, Projection, Surface};
+use footprint_core::prelude::{Coord, Materials, Rate, Specular, Sun, SunShader};
 use footprint_core::specular::{Clamp, Power};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Projection, Surface};
 use footprint_core::Mode;
 
-use footprint_core::terrain::cost::{Counts, NoCost, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::pyramid::{self, HeightFilter};
-use footprint_core::terrain::sampler::{ExactArea, Point};
-use footprint_core::terrain::visibility::count_visible;
-use footprint_core::terrain::{Level, Scale};
+use footprint_core::extend::{count_visible, ExactArea, Point};
+use footprint_core::prelude::{pyramid, Counts, Frame, HeightFilter, Level, NoCost, Scale, Tally};
 use footprint_core::Rgb;
 
 #[derive(Arbitrary, Debug)]
@@ -175,7 +168,7 @@ libfuzzer_sys::fuzz_target!(|input: Input| {
         "grids sized from the frame"
     );
     for (c, e) in grid.iter().zip(&exact) {
-        assert_eq!(mean_to_rgb(e.map(u64::from), 1), *c, "{mode}");
+        assert_eq!(Rgb::mean(e.map(u64::from), 1), *c, "{mode}");
     }
     // Lit by a sun: the shader over the exact and the point sampler must not panic, and the
     // pixels it writes are the frame's.

@@ -8,9 +8,7 @@
 
 use std::time::Instant;
 
-use footprint_core::terrain::camera::{Camera, Options};
-use footprint_core::terrain::cost::NoCost;
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{Camera, HeightFilter, NoCost, Options};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::{render_with, Mode, Tables};

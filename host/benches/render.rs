@@ -5,9 +5,7 @@
 //! with the ratio of each mode to PS.
 
 use criterion::{criterion_main, BenchmarkId, Criterion};
-use footprint_core::terrain::camera::Options;
-use footprint_core::terrain::cost::NoCost;
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{HeightFilter, NoCost, Options};
 use footprint_host::experiment::paper::{paper_camera, paper_modes, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;

@@ -9,8 +9,8 @@
 
 use std::collections::HashSet;
 
+use footprint_core::extend::visit;
 use footprint_core::prelude::*;
-use footprint_core::terrain::visibility::visit;
 use footprint_scenes::procedural::procedural;
 use footprint_scenes::pyramid::Pyramid;
 use footprint_scenes::view::{default_far_voxels, overview_params, paper_camera, Tables};

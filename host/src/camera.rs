@@ -7,10 +7,7 @@
 //! error here names what the user gave.
 
 use anyhow::{anyhow, Result};
-use footprint_core::error::Shown;
-use footprint_core::num::MAX_FAR;
-use footprint_core::terrain::camera::{Camera, CameraParams, Options};
-use footprint_core::terrain::Terrain;
+use footprint_core::prelude::{Camera, CameraParams, Options, Shown, Terrain, MAX_FAR};
 use footprint_core::Error;
 
 use footprint_scenes::view::{self, FitError, Tables};

@@ -39,14 +39,11 @@
 //! ```
 
 use anyhow::{bail, Result};
-use footprint_core::lit::{Materials, Sun};
-use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column};
-use footprint_core::terrain::cost::{Counts, NoCost, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_core::terrain::sampler::Point;
-use footprint_core::terrain::{Level, Scale, Terrain};
+use footprint_core::extend::Point;
+use footprint_core::prelude::{
+    Camera, CameraParams, Column, Coord, Counts, Frame, HeightFilter, Level, Materials, NoCost,
+    Scale, Sun, Tally, Terrain,
+};
 use footprint_core::{Error, Rgb};
 
 use footprint_core::specular::raster::{self, Target, Triangle};

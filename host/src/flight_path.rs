@@ -11,8 +11,8 @@
 use std::path::Path;
 
 use anyhow::{anyhow, bail, Result};
-use footprint_core::terrain::camera::CameraParams;
-use footprint_core::trig::sin_cos_deg;
+use footprint_core::extend::sin_cos_deg;
+use footprint_core::prelude::CameraParams;
 use serde::{Deserialize, Serialize};
 
 /// One key frame of a path.

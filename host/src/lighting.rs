@@ -8,9 +8,8 @@ use std::str::FromStr;
 use anyhow::{Context, Result};
 use clap::Args;
 
-use footprint_core::lit::{Materials, Specular, Sun};
+use footprint_core::prelude::{Materials, Specular, Sun, Terrain};
 use footprint_core::specular::{Clamp, Phong, Power};
-use footprint_core::terrain::Terrain;
 
 /// A sun direction: azimuth clockwise from north and elevation above the horizon, degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -173,7 +172,7 @@ impl LoadedMaterials {
     }
 }
 
-pub use footprint_core::lit::AMBIENT_DIFFUSE;
+pub use footprint_core::prelude::AMBIENT_DIFFUSE;
 
 /// The surfaces of a `--material` PNG, loaded for a `width × height` map.
 pub fn load_materials(path: &std::path::Path, width: u32, height: u32) -> Result<Vec<Phong>> {

@@ -5,15 +5,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use anyhow::Result;
-use footprint_core::color::Color32;
-use footprint_core::lit::{Sun, SunShader};
-use footprint_core::terrain::camera::Camera;
-use footprint_core::terrain::camera::Switch;
-use footprint_core::terrain::cost::NoCost;
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::image::Sampling;
-use footprint_core::terrain::visibility::visible_voxels;
-use footprint_core::terrain::Terrain;
+use footprint_core::extend::{visit_visible, Color32};
+use footprint_core::prelude::{Camera, Frame, NoCost, Sampling, Sun, SunShader, Switch, Terrain};
 use footprint_core::Rgb;
 
 pub use footprint_scenes::render::{
@@ -170,7 +163,7 @@ const LIT_COLUMNS: usize = 8;
 
 /// Renders `frame` lit by `sun` (`footprint_scenes::render::render_lit`, one thread) with cost
 /// `cost`, once, and times it, ms.
-pub fn render_lit_once<C: footprint_core::terrain::cost::Cost>(
+pub fn render_lit_once<C: footprint_core::prelude::Cost>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     camera: &Camera,
@@ -248,7 +241,11 @@ pub fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 
     use rayon::prelude::*;
     (0..frame.grid_columns())
         .into_par_iter()
-        .map(|x| visible_voxels(frame, terrain, x, switch))
+        .map(|x| {
+            let mut v = 0;
+            visit_visible(frame, terrain, x, switch, |_| v += 1);
+            v
+        })
         .sum()
 }
 

@@ -4,8 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection, Surface};
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{Camera, CameraParams, HeightFilter, Options, Projection, Surface};
 
 use crate::camera::{place, Eye};
 use crate::map::{self, Map};
@@ -25,7 +24,7 @@ pub struct Size {
 impl std::str::FromStr for Size {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        let max = footprint_core::terrain::camera::MAX_IMAGE_SIDE;
+        let max = footprint_core::prelude::MAX_IMAGE_SIDE;
         let err = || format!("size {s:?}: expected WxH with W, H in 1..={max}, e.g. 400x400");
         let (w, h) = s.split_once(['x', 'X']).ok_or_else(err)?;
         let (width, height) = (
@@ -48,7 +47,7 @@ pub enum OnOff {
     Off,
 }
 
-/// How the pyramid's coarse heights are made (`footprint_core::terrain::pyramid::HeightFilter`).
+/// How the pyramid's coarse heights are made (`footprint_core::prelude::HeightFilter`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum HeightFilterArg {
     /// The 2×2 block's silhouette along the ray: the maximum along its major axis, the mean
@@ -86,7 +85,7 @@ impl From<HeightFilterArg> for HeightFilter {
     }
 }
 
-/// How image pixels map to the walk's vertical planes (`footprint_core::terrain::camera::Projection`).
+/// How image pixels map to the walk's vertical planes (`footprint_core::prelude::Projection`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum ProjectionArg {
     /// A pinhole camera at any pitch and roll: the walk runs along the fan of vertical planes

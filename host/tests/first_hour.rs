@@ -159,7 +159,7 @@ fn the_core_front_page_names_as2_and_the_page_asks_for_no_favicon() {
         .collect::<Vec<_>>()
         .join("\n");
     assert!(
-        front.contains("`as2`") && front.contains("terrain::wedge::Wedge"),
+        front.contains("`as2`") && front.contains("extend::Wedge"),
         "the crate's front page lists the modes without as2"
     );
     let page = std::fs::read_to_string(root.join("web/static/index.html")).unwrap();

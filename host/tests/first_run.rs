@@ -6,8 +6,7 @@ mod common;
 
 use clap::CommandFactory;
 use common::footprint;
-use footprint_core::terrain::camera::{Camera, Options, Projection};
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{Camera, HeightFilter, Options, Projection};
 use footprint_host::cli::Cli;
 use footprint_scenes::procedural::{procedural, DEFAULT_SIZE};
 use footprint_scenes::pyramid::Pyramid;

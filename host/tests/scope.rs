@@ -14,8 +14,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use common::footprint;
-use footprint_core::prelude::Surface;
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{HeightFilter, Surface};
 use footprint_host::experiment::claims::{claims, compare, Verdict, MIN_EVENTS};
 use footprint_host::experiment::fly::{self, FlySpec};
 use footprint_host::experiment::table::{self, MAGNIFIED_BELOW};

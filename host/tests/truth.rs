@@ -2,7 +2,7 @@
 //! per step along its major axis shows with gaps; and its command line (`render --mode truth`,
 //! `map synth`).
 
-use footprint_core::terrain::camera::{Camera, CameraParams, Projection, Surface};
+use footprint_core::prelude::{Camera, CameraParams, Projection, Surface};
 use footprint_core::Rgb;
 use footprint_host::experiment::synthetic::{self, Kind};
 use footprint_host::map::Map;

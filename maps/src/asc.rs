@@ -14,7 +14,7 @@ use std::io::{self, BufRead, Write};
 
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
-use footprint_core::error::Shown;
+use footprint_core::prelude::Shown;
 
 use super::input::{is_stdin, Input};
 use super::{validate_memory, validate_size, Map, MapError};

@@ -17,10 +17,10 @@
 use std::fs::File;
 use std::io::{self, Seek, SeekFrom, Write};
 
-use footprint_core::prelude::Surface;
-use footprint_core::terrain::baked::{Header, Layout};
-use footprint_core::terrain::pyramid::{self, HeightFilter, LevelRow, LevelRowMut};
-use footprint_core::terrain::{mirror, Scale, Strips, MAX_LEVELS};
+use footprint_core::extend::{mirror, Strips};
+use footprint_core::prelude::baked::{Header, Layout};
+use footprint_core::prelude::pyramid::{LevelRow, LevelRowMut};
+use footprint_core::prelude::{pyramid, HeightFilter, Scale, Surface, MAX_LEVELS};
 use footprint_core::Rgb;
 use footprint_scenes::tint::TintScale;
 
@@ -415,7 +415,7 @@ pub fn bake(
         let n = (hs.end - hs.start) / 6;
         let (mut lw, mut lh) = (plan.width, plan.height);
         for _ in 0..k {
-            (lw, lh) = footprint_core::terrain::next_size(lw, lh).unwrap_or((1, 1));
+            (lw, lh) = footprint_core::prelude::next_size(lw, lh).unwrap_or((1, 1));
         }
         let grid = |at: usize| Grid::<2>::new(at, lw, lh, strips).map_err(write_err);
         let heights = [

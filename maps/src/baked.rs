@@ -1,7 +1,7 @@
 //! Baked map files (`.fpmap`): a map and its whole pyramid, written once by `footprint map
 //! bake` and memory-mapped by every command after, so that a frame reads only the pages its
 //! rays touch and nothing is rebuilt. The layout is the core's
-//! (`footprint_core::terrain::baked`); this module opens a file, checks its checksums and
+//! (`footprint_core::prelude::baked`); this module opens a file, checks its checksums and
 //! maps it. The writer is the scenes crate's (`footprint_scenes::baked::write`, re-exported
 //! here, which the firmware's build script shares); a mosaic is written as a stream by
 //! [`crate::bake_stream`].
@@ -18,7 +18,7 @@ use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
 
-use footprint_core::terrain::baked::{header_checksum_range, Baked, Header, HEADER_LEN};
+use footprint_core::prelude::baked::{Baked, Header, HEADER_LEN};
 use footprint_core::Rgb;
 pub use footprint_scenes::baked::{crc, write};
 use footprint_scenes::cells::Bytes;
@@ -53,7 +53,7 @@ pub fn is_baked(path: &Path) -> bool {
     let mut head = [0u8; 8];
     File::open(path)
         .and_then(|mut f| io::Read::read_exact(&mut f, &mut head))
-        .is_ok_and(|()| head == footprint_core::terrain::baked::MAGIC)
+        .is_ok_and(|()| head == footprint_core::prelude::baked::MAGIC)
 }
 
 /// Whether bytes already in memory, named `path`, are a baked map: by the extension or the
@@ -61,7 +61,7 @@ pub fn is_baked(path: &Path) -> bool {
 pub fn is_baked_bytes(path: &Path, bytes: &[u8]) -> bool {
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case(EXTENSION))
-        || bytes.starts_with(&footprint_core::terrain::baked::MAGIC)
+        || bytes.starts_with(&footprint_core::prelude::baked::MAGIC)
 }
 
 /// What [`open`] found in a baked file's header.
@@ -186,7 +186,7 @@ impl AsRef<[u8]> for Aligned {
 
 /// The header's complaint about a file shorter than a header.
 fn short_header(bytes: &[u8]) -> String {
-    if bytes.len() >= 8 && bytes[..8] == footprint_core::terrain::baked::MAGIC {
+    if bytes.len() >= 8 && bytes[..8] == footprint_core::prelude::baked::MAGIC {
         format!(
             "the file ends inside its header ({} bytes; truncated)",
             bytes.len()
@@ -308,7 +308,7 @@ fn check(
     level_crc: impl Fn(&[Range<usize>]) -> Result<u32, MapError>,
 ) -> Result<Opened, MapError> {
     let header = Header::decode(bytes).map_err(|e| malformed(without_prefix(e)))?;
-    let (covered, _) = header_checksum_range();
+    let (covered, _) = Header::checksum_range();
     if crc([&bytes[covered]]) != Header::stored_checksum(bytes) {
         return Err(malformed(
             "the header's checksum is wrong (the file is corrupt)".into(),
@@ -381,7 +381,7 @@ fn without_prefix(e: footprint_core::Error) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use footprint_core::terrain::pyramid::HeightFilter;
+    use footprint_core::prelude::HeightFilter;
 
     /// A small map and its pyramid, baked into a temporary folder, its levels in `strips`.
     fn baked(
@@ -461,7 +461,7 @@ mod tests {
     fn corrupt_files_are_refused(dir: &Path, strips: Option<u32>) {
         let (_, path) = baked(dir, HeightFilter::Silhouette, strips);
         let good = std::fs::read(&path).unwrap();
-        let layout = footprint_core::terrain::baked::Layout::in_strips(67, 67, strips).unwrap();
+        let layout = footprint_core::prelude::baked::Layout::in_strips(67, 67, strips).unwrap();
         let bad = dir.join("bad.fpmap");
         let cases: Vec<(Vec<u8>, &str)> = vec![
             (flip(&good, 8), "version"),

@@ -24,7 +24,7 @@
 use std::io::{self, Read};
 use std::path::{Path, PathBuf};
 
-use footprint_core::error::Shown;
+use footprint_core::prelude::Shown;
 
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};

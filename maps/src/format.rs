@@ -3,8 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use footprint_core::error::Shown;
-use footprint_core::terrain::Scale;
+use footprint_core::prelude::{Scale, Shown};
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 

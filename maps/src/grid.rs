@@ -1,7 +1,7 @@
 //! A grid of heights in metres, as the DEM readers produce it, and its mapping into the 16-bit
 //! height units of a [`Map`](super::Map).
 //!
-//! The core stores heights as `u16` height units (`footprint_core::terrain::Scale`), while real
+//! The core stores heights as `u16` height units (`footprint_core::prelude::Scale`), while real
 //! DEMs hold signed metres or floats. [`Grid::into_heights`] fills the voids, then chooses an
 //! offset (the map's minimum, rounded down to a whole height unit) and a height scale that fits
 //! the range: 0.1 m when the heights span less than 6,553.5 m, else the smallest "nice" step

@@ -8,7 +8,7 @@
 //! The built-in procedural terrain comes from `footprint-scenes`, re-exported here.
 //!
 //! Everything here produces a [`Map`]: an owned, row-major height field plus a colour per voxel,
-//! ready to lend to `footprint_core::terrain::Level`. The crate has no command-line or
+//! ready to lend to `footprint_core::prelude::Level`. The crate has no command-line or
 //! terminal dependencies, so the `footprint` CLI and the browser page (`web/`, WebAssembly)
 //! read maps with the same code and the same one-line errors.
 //!
@@ -54,7 +54,7 @@ pub use self::procedural::{procedural, DEFAULT_SIZE, MIN_SIZE};
 pub use self::tint::tint;
 
 /// The largest accepted width or height of a map, in voxels.
-pub const MAX_SIDE: u32 = footprint_core::terrain::MAX_SIDE;
+pub const MAX_SIDE: u32 = footprint_core::prelude::MAX_SIDE;
 
 /// Checks that a `w`×`h` map is acceptable: neither side may be zero or exceed [`MAX_SIDE`].
 ///

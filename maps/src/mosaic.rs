@@ -21,7 +21,7 @@
 
 use std::path::{Path, PathBuf};
 
-use footprint_core::error::Shown;
+use footprint_core::prelude::Shown;
 
 use super::format::{read_grid, Format, GridFile, LoadOptions, Loaded, Sentinel, VerticalUnit};
 use super::georef::{Crs, Georef};
@@ -454,7 +454,7 @@ impl Mosaic {
                 )
             }),
         };
-        let check = footprint_core::terrain::Scale::new(spacing.spacing_m, h.height_scale_m);
+        let check = footprint_core::prelude::Scale::new(spacing.spacing_m, h.height_scale_m);
         if let Err(e) = check {
             return Err(MapError::Invalid {
                 what: what_mosaic,

@@ -4,7 +4,7 @@
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::HeightFilter;
 use footprint_maps::bake_stream;
 use footprint_maps::mosaic::{load_mosaic, Mosaic};
 use footprint_maps::{load, LoadOptions, Map};

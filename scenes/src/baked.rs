@@ -1,5 +1,5 @@
 //! Writing a baked map file (`.fpmap`): a [`Pyramid`] in the core's layout
-//! (`footprint_core::terrain::baked`), with a CRC-32 of every level and of the header. Here,
+//! (`footprint_core::prelude::baked`), with a CRC-32 of every level and of the header. Here,
 //! over the core alone, so that the firmware's build script bakes its scene into flash with the
 //! same code as `footprint map bake`; reading, checking and memory-mapping a file is
 //! `footprint-maps`' `baked` module.
@@ -7,11 +7,9 @@
 use std::io::{self, Write};
 use std::ops::Range;
 
-use footprint_core::terrain::baked::{
-    header_checksum_range, Header, Layout, HEADER_LEN, SECTION_ALIGN,
-};
-use footprint_core::terrain::pyramid;
-use footprint_core::terrain::{next_size, Strips, MAX_LEVELS};
+use footprint_core::extend::Strips;
+use footprint_core::prelude::baked::{Header, Layout, HEADER_LEN, SECTION_ALIGN};
+use footprint_core::prelude::{next_size, pyramid, MAX_LEVELS};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;
@@ -23,7 +21,7 @@ pub const BAKE_SHIFT: u32 = 6;
 
 /// Writes `pyramid` (its map and every level) as a baked file into `out`, with `source` (where
 /// the map came from) in the header, its levels in strips of `2^shift` columns for
-/// `strips: Some(shift)` or row-major for `None` (`footprint_core::terrain::Strips`). Returns
+/// `strips: Some(shift)` or row-major for `None` (`footprint_core::extend::Strips`). Returns
 /// the bytes written.
 ///
 /// Errors: the output's write errors; on a big-endian host, [`io::ErrorKind::Unsupported`]; a
@@ -162,12 +160,12 @@ impl Striped {
 }
 
 /// `header` with `source` as the file's first [`HEADER_LEN`] bytes, its own CRC-32 in its last
-/// four ([`header_checksum_range`]): what both writers, this one and the maps crate's streaming
+/// four ([`Header::checksum_range`]): what both writers, this one and the maps crate's streaming
 /// baker, put at the start of a file.
 pub fn sealed(header: &Header, source: &str) -> [u8; HEADER_LEN] {
     let mut head = [0u8; HEADER_LEN];
     header.encode(source, &mut head);
-    let (covered, at) = header_checksum_range();
+    let (covered, at) = Header::checksum_range();
     let sum = crc([&head[covered]]);
     head[at..at + 4].copy_from_slice(&sum.to_le_bytes());
     head

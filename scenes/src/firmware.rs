@@ -10,11 +10,9 @@
 use std::collections::HashMap;
 use std::fmt;
 
-use footprint_core::lit::Specular;
+use footprint_core::prelude::{CameraParams, HeightFilter, Options, Projection, Specular};
 use footprint_core::specular::raster::Vertex;
 use footprint_core::specular::{Clamp, Normal, Power};
-use footprint_core::terrain::camera::{CameraParams, Options, Projection};
-use footprint_core::terrain::pyramid::HeightFilter;
 use footprint_core::{Error, Rgb};
 
 use crate::plates::{self, SceneName, Shading};

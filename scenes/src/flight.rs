@@ -2,8 +2,8 @@
 //! each frame, and each pixel's change in 8-bit luminance between consecutive frames is binned.
 //! The host's `footprint fly` and the browser page's live flicker meter use the same bins.
 
-use footprint_core::terrain::camera::CameraParams;
-use footprint_core::trig::sin_cos_deg;
+use footprint_core::extend::sin_cos_deg;
+use footprint_core::prelude::CameraParams;
 use footprint_core::Rgb;
 
 /// The bins of Table 6, by the change in 8-bit luminance.

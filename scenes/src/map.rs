@@ -2,13 +2,13 @@
 
 use std::fmt;
 
-use footprint_core::prelude::Surface;
-use footprint_core::terrain::{Level, Strips};
+use footprint_core::extend::Strips;
+use footprint_core::prelude::{Level, Surface};
 use footprint_core::{Error, Rgb};
 
 use crate::cells::Cells;
 
-/// An owned terrain map, ready to lend to `footprint_core::terrain::Level`.
+/// An owned terrain map, ready to lend to `footprint_core::prelude::Level`.
 #[derive(Clone, PartialEq)]
 pub struct Map {
     /// Width in voxels (west to east).
@@ -34,7 +34,7 @@ pub struct Map {
     pub known_range: Option<(u16, u16)>,
     /// The order of `heights` and `colors`: `None` row-major (every map read or made in
     /// memory), or vertical strips of `2^shift` columns (a baked file's, lent in place:
-    /// `footprint_core::terrain::Strips`). Read a cell through [`Map::order`].
+    /// `footprint_core::extend::Strips`). Read a cell through [`Map::order`].
     pub strips: Option<u32>,
     /// The surface its heights sample, which `--surface auto` meets: the continuous surface
     /// (where the footprint is narrower than a voxel) for a survey DEM (GeoTIFF, SRTM, ASCII

@@ -10,7 +10,7 @@
 //! Everything is integer or fixed-point arithmetic on top of a splitmix64 hash, so a seed gives
 //! the same map, bit for bit, on every platform.
 
-use footprint_core::terrain::MAX_SIDE;
+use footprint_core::prelude::MAX_SIDE;
 use footprint_core::Rgb;
 
 use crate::tint::{hillshade_q8, lerp, shade};

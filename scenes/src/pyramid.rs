@@ -1,8 +1,7 @@
 //! The owned multiresolution pyramid that a `std` program lends to `footprint_core::Terrain`,
-//! built by the core's one pyramid builder (`footprint_core::terrain::pyramid::build`).
+//! built by the core's one pyramid builder (`footprint_core::prelude::pyramid::build`).
 
-use footprint_core::terrain::pyramid::{self, HeightFilter};
-use footprint_core::terrain::{Scale, Terrain};
+use footprint_core::prelude::{pyramid, HeightFilter, Scale, Terrain};
 use footprint_core::{Error, Rgb};
 
 use crate::cells::Cells;
@@ -21,7 +20,7 @@ pub struct Pyramid {
 
 impl Pyramid {
     /// Builds all levels of `map` down to 1×1 with `filter` (colours are 2×2 box averages;
-    /// see `footprint_core::terrain::pyramid`). The pyramid keeps the map as its level 0
+    /// see `footprint_core::prelude::pyramid`). The pyramid keeps the map as its level 0
     /// ([`Pyramid::map`]).
     pub fn build(map: Map, filter: HeightFilter) -> Result<Self, Error> {
         let scale = Scale::new(map.spacing_m, map.height_scale_m)?;

@@ -5,19 +5,13 @@
 
 use std::fmt;
 
-use footprint_core::color::Color16;
-use footprint_core::lit::{Sun, SunShader};
-use footprint_core::num::Weight;
-use footprint_core::terrain::camera::Camera;
-use footprint_core::terrain::cost::{Cost, Counts, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::image::Sampling;
-use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::visibility::visit_visible;
-use footprint_core::terrain::Terrain;
+use footprint_core::extend::{visit_visible, Color16, Voxel, Weight};
+use footprint_core::prelude::{
+    Camera, Cost, Counts, Frame, Sampling, Sun, SunShader, Tally, Terrain,
+};
 use footprint_core::{Error, Rgb};
 
-pub use footprint_core::mode::{Mode, ParseModeError, Rate, SS_RATES};
+pub use footprint_core::prelude::{Mode, ParseModeError, Rate, SS_RATES};
 
 /// A rendered frame.
 pub struct Rendered {

@@ -11,17 +11,11 @@
 
 use std::fmt;
 
-use footprint_core::num::Height;
-use footprint_core::num::{Coord, MAX_EYE_HEIGHT, MAX_FAR};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Projection};
-use footprint_core::terrain::column::walk;
-use footprint_core::terrain::cost::{Cost, NoCost};
-use footprint_core::terrain::fan::Fan;
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::mirror;
-use footprint_core::terrain::sampler::{FirstHit, Hit, Pixel, Ray, Sampler};
-use footprint_core::terrain::Terrain;
+use footprint_core::extend::{mirror, walk, Fan, FirstHit, Height, Hit, Pixel, Ray, Voxel};
+use footprint_core::prelude::{
+    Camera, CameraParams, Column, Coord, Cost, Frame, NoCost, Options, Projection, Sampler,
+    Terrain, MAX_EYE_HEIGHT, MAX_FAR,
+};
 use footprint_core::{Error, Rgb};
 
 use crate::map::Map;
@@ -798,7 +792,7 @@ pub fn degenerate(map: &Map, camera: &Camera, options: Options) -> Vec<Degenerat
 mod tests {
     use super::*;
     use crate::procedural::procedural;
-    use footprint_core::terrain::pyramid::HeightFilter;
+    use footprint_core::prelude::HeightFilter;
 
     /// The overview's top row aims at the ground 0.9 of the way north; a wall across the map
     /// 0.4 of the way there, 1 km high, would hide that aim from an eye placed by the

@@ -9,20 +9,13 @@
 mod common;
 
 use common::*;
-use footprint_core::color::to_rgb;
-use footprint_core::num::{Coord, Height};
-use footprint_core::terrain::camera::{
-    Camera, CameraParams, Column, Options, Switch, MAX_IMAGE_SIDE,
+use footprint_core::extend::{
+    count_visible, mirror, walk, Axis, ExactArea, Height, Linear, March, Point, Super,
 };
-use footprint_core::terrain::column;
-use footprint_core::terrain::cost::{Counts, NoCost, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::march::March;
-use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_core::terrain::sampler::{ExactArea, Linear, Point, Sampler, Super};
-use footprint_core::terrain::visibility;
-use footprint_core::terrain::Axis;
-use footprint_core::terrain::{mirror, next_size, Level, Scale, Terrain, MAX_SIDE};
+use footprint_core::prelude::{
+    next_size, Camera, CameraParams, Column, Coord, Counts, Frame, HeightFilter, Level, NoCost,
+    Options, Sampler, Scale, Switch, Tally, Terrain, MAX_IMAGE_SIDE, MAX_SIDE,
+};
 use footprint_core::{Error, Rgb};
 
 const PITCHES: [f64; 3] = [5.0, 20.0, 40.0];
@@ -179,7 +172,7 @@ fn ss_reference(
             for (s, c) in sum.iter_mut().zip([sky.r, sky.g, sky.b]) {
                 *s += (u32::from(c) << 8) * (n_rays - j);
             }
-            out[i] = to_rgb(sum.map(|s| (s >> log2) as u16));
+            out[i] = Rgb::from_color16(sum.map(|s| (s >> log2) as u16));
         }
     }
     (out, hits)
@@ -385,7 +378,7 @@ fn coherent_vs_restart<S: Sampler + Clone>(
         for (i, &px) in col.iter().enumerate() {
             let mut one = [Rgb::default()];
             let mut s = sampler.clone();
-            column::walk(frame, terrain, c, i..i + 1, &mut s, &mut NoCost, &mut one);
+            walk(frame, terrain, c, i..i + 1, &mut s, &mut NoCost, &mut one);
             if one[0] != px {
                 return Some((c, i, px, one[0]));
             }
@@ -584,7 +577,7 @@ fn coverage<S: Sampler + Clone>(
         let mut tallies = vec![Tally::default(); frame.grid_columns()];
         let mut counts = Counts::new(&mut tallies);
         render_columns(frame, &terrain, sampler, &mut counts);
-        visibility::count_visible(frame, &terrain, S::SWITCH, &mut counts);
+        count_visible(frame, &terrain, S::SWITCH, &mut counts);
         let total = counts.total;
         (total, counts.columns().to_vec())
     })
@@ -735,7 +728,7 @@ fn pyramid_levels_average_2x2() {
     assert_eq!((terrain.top().width(), terrain.top().height()), (1, 1));
     assert_eq!(
         terrain.max_height(),
-        footprint_core::num::height(*map.levels[0].heights.iter().max().unwrap())
+        Height::from_num(*map.levels[0].heights.iter().max().unwrap())
     );
 }
 
@@ -851,11 +844,7 @@ fn each_column_reads_the_height_grid_of_its_major_axis() {
             while march.level() == 0 {
                 march.advance();
             }
-            assert_eq!(
-                march.height(),
-                footprint_core::num::height(want),
-                "heading {heading}"
-            );
+            assert_eq!(march.height(), Height::from_num(want), "heading {heading}");
         });
     }
 }
@@ -1172,10 +1161,10 @@ fn constructor_errors() {
     // above every height) must know it.
     let tall = [900u16; 6];
     let mut t2 = Terrain::new(base, scale);
-    assert_eq!(t2.max_height(), footprint_core::num::height(0));
+    assert_eq!(t2.max_height(), Height::from_num(0));
     t2.push_level(Level::directional(3, 2, &h6b, &tall, &c6b).unwrap())
         .unwrap();
-    assert_eq!(t2.max_height(), footprint_core::num::height(900));
+    assert_eq!(t2.max_height(), Height::from_num(900));
 
     // Camera parameters.
     let cam = |p: CameraParams| Camera::new(p).map(|_| ());
@@ -1487,7 +1476,7 @@ fn extreme_valid_inputs_do_not_panic() {
             .render(terrain, &ExactArea::new(), &mut counts, &mut [], &mut image)
             .unwrap();
         for switch in Switch::ALL {
-            visibility::count_visible(frame, terrain, switch, &mut counts);
+            count_visible(frame, terrain, switch, &mut counts);
         }
     }
     for p in cases {
@@ -1519,7 +1508,7 @@ fn extreme_valid_inputs_do_not_panic() {
         let full = render_columns(frame, &terrain, &ExactArea::new(), &mut NoCost);
         let mut out = [SKY; 2];
         // A short output: the first two rows, as in the full walk.
-        column::walk(
+        walk(
             frame,
             &terrain,
             1,
@@ -1531,7 +1520,7 @@ fn extreme_valid_inputs_do_not_panic() {
         assert_eq!(out[..], full[1][..2]);
         // Rows past the image, an empty range, a column past the width: nothing is written.
         let mut untouched = [Rgb::new(7, 7, 7); 4];
-        column::walk(
+        walk(
             frame,
             &terrain,
             0,
@@ -1540,7 +1529,7 @@ fn extreme_valid_inputs_do_not_panic() {
             &mut NoCost,
             &mut untouched,
         );
-        column::walk(
+        walk(
             frame,
             &terrain,
             0,
@@ -1549,7 +1538,7 @@ fn extreme_valid_inputs_do_not_panic() {
             &mut NoCost,
             &mut untouched,
         );
-        column::walk(
+        walk(
             frame,
             &terrain,
             4,
@@ -1558,11 +1547,11 @@ fn extreme_valid_inputs_do_not_panic() {
             &mut NoCost,
             &mut untouched,
         );
-        column::walk(frame, &terrain, 0, 0..4, &mut Point, &mut NoCost, &mut []);
+        walk(frame, &terrain, 0, 0..4, &mut Point, &mut NoCost, &mut []);
         assert_eq!(untouched, [Rgb::new(7, 7, 7); 4]);
         // Rows past the image are clipped: rows 2..9 writes rows 2 and 3 only.
         let mut part = [Rgb::new(7, 7, 7); 7];
-        column::walk(
+        walk(
             frame,
             &terrain,
             3,
@@ -1584,7 +1573,7 @@ fn extreme_valid_inputs_do_not_panic() {
 
 #[test]
 fn analytic_scenes_look_as_designed() {
-    use footprint_core::terrain::sampler::FirstHit;
+    use footprint_core::extend::FirstHit;
     let is_sky = |p: &Rgb| *p == SKY;
     // Flat plane: no sky at 40° (the top row looks 25° down); at 5° the top rows are sky, and
     // in every column the sky, once reached, continues to the top.
@@ -1636,7 +1625,7 @@ fn analytic_scenes_look_as_designed() {
             for i in 0..32 {
                 let mut fh = FirstHit::default();
                 let mut px = [Rgb::default()];
-                column::walk(frame, &t, c, i..i + 1, &mut fh, &mut NoCost, &mut px);
+                walk(frame, &t, c, i..i + 1, &mut fh, &mut NoCost, &mut px);
                 let n = fh.n.expect("every row hits the staircase");
                 let dist = (n as f64 - n_eye).abs();
                 let mut m = March::new(frame, &t, column, Switch::Nearest);
@@ -1682,7 +1671,7 @@ fn a_column_beyond_the_frame_is_none() {
         assert!(frame.column(3).is_some());
         assert!(frame.column(4).is_none());
         let mut out = [Rgb::new(7, 7, 7); 4];
-        column::walk(frame, &terrain, 4, 0..4, &mut Point, &mut NoCost, &mut out);
+        walk(frame, &terrain, 4, 0..4, &mut Point, &mut NoCost, &mut out);
         assert_eq!(out, [Rgb::new(7, 7, 7); 4], "nothing drawn");
     });
 }

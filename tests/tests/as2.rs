@@ -1,4 +1,4 @@
-//! `as2` (area sampling over the wedge between a column's two planes, `footprint_core::terrain::wedge`)
+//! `as2` (area sampling over the wedge between a column's two planes, the core's `terrain::wedge`)
 //! against what a pixel sees in both axes.
 //!
 //! - On a plane striped across the view (stripes one voxel wide, crossing the column planes
@@ -23,13 +23,11 @@
 mod common;
 
 use common::{Map, SKY};
-use footprint_core::num::Height;
+use footprint_core::extend::{
+    ExactArea, Height, Hit, Horizons, PaperArea, Pixel, Point, Ray, Voxel, Wedge,
+};
 use footprint_core::prelude::*;
-use footprint_core::terrain::camera::Switch;
-use footprint_core::terrain::horizons::Horizons;
-use footprint_core::terrain::sampler::{ExactArea, Hit, PaperArea, Pixel, Point, Ray, Sampler};
-use footprint_core::terrain::wedge::Wedge;
-use footprint_core::terrain::Voxel;
+use footprint_core::prelude::{Sampler, Switch};
 
 /// The largest RMS difference, in 8-bit levels over the three channels, allowed between `as2`
 /// and the float integral over each pixel's footprint. Measured 2026-11-26: `as2` 2.05 (2.06

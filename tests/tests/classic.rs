@@ -14,10 +14,7 @@
 mod common;
 
 use common::{camera, pose_for, with_frame, Map, HEIGHT_SCALE_M, SKY, SPACING_M};
-use footprint_core::terrain::camera::Camera;
-use footprint_core::terrain::cost::{Counts, Tally};
-use footprint_core::terrain::image::Sampling;
-use footprint_core::terrain::Terrain;
+use footprint_core::prelude::{Camera, Counts, Sampling, Tally, Terrain};
 use footprint_core::Mode;
 use footprint_core::Rgb;
 
@@ -69,9 +66,9 @@ fn float_reference(
                 let v = (v_eye + (n_int - n_eye) / 2.0 * ratio).floor();
                 let (x, y) = if x_major { (u, v) } else { (v, u) };
                 let axis = if x_major {
-                    footprint_core::terrain::Axis::X
+                    footprint_core::extend::Axis::X
                 } else {
-                    footprint_core::terrain::Axis::Y
+                    footprint_core::extend::Axis::Y
                 };
                 let top_m = f64::from(map.height_at(axis, x as i64, y as i64)) * HEIGHT_SCALE_M;
                 let t_m = (n_int - n_eye) / 2.0 * sec * SPACING_M;
@@ -115,7 +112,7 @@ fn classic_matches_a_float_reference_of_the_classic_algorithm() {
                     frame,
                     &terrain,
                     c,
-                    &mut footprint_core::terrain::cost::NoCost,
+                    &mut footprint_core::prelude::NoCost,
                     &mut got,
                 );
                 total += got.len();

@@ -17,9 +17,8 @@
 //!   cells, as the host's filter was), and the ground truth's box (`Frame::resample_exact`)
 //!   rounds each pixel's full-precision columns once.
 
-use footprint_core::color::mean_to_rgb;
-use footprint_core::lit::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFUSE};
 use footprint_core::prelude::*;
+use footprint_core::prelude::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFUSE};
 use footprint_core::specular::{Clamp, Power};
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::procedural;
@@ -350,7 +349,7 @@ fn the_full_precision_grid_rounds_to_the_8_bit_grid() {
             let mut fractions = 0;
             for (i, (c, e)) in grid.iter().zip(&exact).enumerate() {
                 assert_eq!(
-                    mean_to_rgb(e.map(u64::from), 1),
+                    Rgb::mean(e.map(u64::from), 1),
                     *c,
                     "{mode} {surface:?}: cell {i} rounds to another colour"
                 );
@@ -413,9 +412,9 @@ fn the_full_precision_box_rounds_each_pixels_columns_once() {
                         *s += u64::from(v);
                     }
                 }
-                assert_eq!(image[y * w + x], mean_to_rgb(sum, k as u64), "({x}, {y})");
+                assert_eq!(image[y * w + x], Rgb::mean(sum, k as u64), "({x}, {y})");
                 let cells: Vec<Rgb> = (x * k..(x + 1) * k)
-                    .map(|c| mean_to_rgb(grid[c * h + h - 1 - y].map(u64::from), 1))
+                    .map(|c| Rgb::mean(grid[c * h + h - 1 - y].map(u64::from), 1))
                     .collect();
                 rounded_twice += usize::from(boxed(&cells, 1, 1, k)[0] != image[y * w + x]);
             }

@@ -10,15 +10,13 @@
 mod common;
 
 use common::{Map, SKY};
-use footprint_core::lit::{Materials, Specular, Sun, SunShader};
-use footprint_core::num::Coord;
+use footprint_core::prelude::{
+    Camera, CameraParams, Column, Coord, Materials, Options, Specular, Sun, SunShader,
+};
 use footprint_core::specular::{Clamp, Phong, Power};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
 
-use footprint_core::terrain::cost::Counts;
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::sampler::ExactArea;
-use footprint_core::terrain::Terrain;
+use footprint_core::extend::ExactArea;
+use footprint_core::prelude::{Counts, Frame, Terrain};
 use footprint_core::Rgb;
 
 const WATER: Rgb = Rgb::new(20, 40, 90);

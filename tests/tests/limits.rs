@@ -3,14 +3,10 @@
 //! pitch ±89.9°, FOV 0.01° and 179°. Every mode renders, nothing panics or overflows (the
 //! tests run with overflow checks on), and what can be predicted is checked.
 
-use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
+use footprint_core::prelude::{Camera, CameraParams, Column, Coord, Options};
 
-use footprint_core::terrain::cost::{Counts, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::sampler::{ExactArea, Linear, Point, Sampler, Super};
-use footprint_core::terrain::visibility::count_visible;
-use footprint_core::terrain::{Level, Scale, Terrain, MAX_SIDE};
+use footprint_core::extend::{count_visible, ExactArea, Linear, Point, Super};
+use footprint_core::prelude::{Counts, Frame, Level, Sampler, Scale, Tally, Terrain, MAX_SIDE};
 use footprint_core::Rgb;
 
 const SKY: Rgb = Rgb::new(1, 2, 3);
@@ -190,13 +186,13 @@ fn rays_at_the_height_of_a_flat_map_end_at_once() {
     let heights = [0u16; 4];
     let colors = [Rgb::new(0, 0, 164); 4];
     let level0 = Level::new(4, 1, &heights, &colors).unwrap();
-    let cells = footprint_core::terrain::pyramid::cells(4, 1);
+    let cells = footprint_core::prelude::pyramid::cells(4, 1);
     let (mut grid, mut palette) = (vec![0u16; 3 * cells], vec![Rgb::default(); cells]);
-    let filter = footprint_core::terrain::pyramid::HeightFilter::Mean;
-    footprint_core::terrain::pyramid::build(&level0, filter, &mut grid, &mut palette).unwrap();
+    let filter = footprint_core::prelude::HeightFilter::Mean;
+    footprint_core::prelude::pyramid::build(&level0, filter, &mut grid, &mut palette).unwrap();
     let scale = Scale::new(32.5, 32.5).unwrap();
     let terrain =
-        footprint_core::terrain::pyramid::assemble(level0, scale, &grid, &palette, true).unwrap();
+        footprint_core::prelude::pyramid::assemble(level0, scale, &grid, &palette, true).unwrap();
     let camera = Camera::new(CameraParams {
         x_m: 0.0,
         y_m: 0.0,
@@ -229,13 +225,13 @@ fn pixels_of_zero_height_still_sample_every_visible_voxel() {
     let heights: Vec<u16> = (0..w * h).map(|i| pattern[i as usize % 8]).collect();
     let colors = vec![Rgb::new(0, 0, 0); (w * h) as usize];
     let level0 = Level::new(w, h, &heights, &colors).unwrap();
-    let cells = footprint_core::terrain::pyramid::cells(w, h);
+    let cells = footprint_core::prelude::pyramid::cells(w, h);
     let (mut grid, mut palette) = (vec![0u16; 3 * cells], vec![Rgb::default(); cells]);
-    let filter = footprint_core::terrain::pyramid::HeightFilter::Mean;
-    footprint_core::terrain::pyramid::build(&level0, filter, &mut grid, &mut palette).unwrap();
+    let filter = footprint_core::prelude::HeightFilter::Mean;
+    footprint_core::prelude::pyramid::build(&level0, filter, &mut grid, &mut palette).unwrap();
     let scale = Scale::new(262_144.0, 2_048_321.25).unwrap();
     let terrain =
-        footprint_core::terrain::pyramid::assemble(level0, scale, &grid, &palette, true).unwrap();
+        footprint_core::prelude::pyramid::assemble(level0, scale, &grid, &palette, true).unwrap();
     let camera = Camera::new(CameraParams {
         x_m: 0.0,
         y_m: 7e-9,

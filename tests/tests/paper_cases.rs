@@ -3,9 +3,7 @@
 
 mod common;
 
-use footprint_core::terrain::camera::Options;
-use footprint_core::terrain::cost::Tally;
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{HeightFilter, Options, Tally};
 use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
@@ -99,7 +97,7 @@ fn multiresolution_keeps_the_frame_cost_flat_as_the_footprint_grows() {
     // each column's first hit are skipped through the maximum pyramid, so the total `a` now
     // has almost no constant part to dilute the growth. (Measured: L grows ×5.8 voxel by
     // voxel and ×2.2 with the pyramid; the test before the skip used `a` and a bound of 1.6.)
-    use footprint_core::terrain::camera::{Camera, CameraParams};
+    use footprint_core::prelude::{Camera, CameraParams};
     let map = procedural(7, 512);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let top_m = f64::from(map.height_range().1) * map.height_scale_m;
@@ -184,10 +182,8 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
 /// whose width is no multiple of the task's columns.
 #[test]
 fn lit_images_are_the_same_for_any_number_of_threads() {
-    use footprint_core::lit::{Materials, Specular, Sun, AMBIENT_DIFFUSE};
+    use footprint_core::prelude::{Materials, NoCost, Projection, Specular, Sun, AMBIENT_DIFFUSE};
     use footprint_core::specular::{Clamp, Power};
-    use footprint_core::terrain::camera::Projection;
-    use footprint_core::terrain::cost::NoCost;
     use footprint_host::render::{render_lit_once, render_lit_parallel};
     let map = procedural(3, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
@@ -231,7 +227,7 @@ fn lit_images_are_the_same_for_any_number_of_threads() {
 /// independent, and each column is walked by one thread.
 #[test]
 fn images_and_counts_are_the_same_for_any_number_of_threads() {
-    use footprint_core::terrain::cost::NoCost;
+    use footprint_core::prelude::NoCost;
     use footprint_host::render::{render_parallel, render_with};
     let map = procedural(3, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();

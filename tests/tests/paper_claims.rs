@@ -4,8 +4,7 @@
 
 use std::sync::OnceLock;
 
-use footprint_core::prelude::Surface;
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{HeightFilter, Surface};
 use footprint_host::experiment::claims::{claims, compare, Verdict};
 use footprint_host::experiment::fly::{self, Fly, FlySpec};
 use footprint_host::experiment::heights;

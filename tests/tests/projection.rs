@@ -1,4 +1,4 @@
-//! The exact projection (`Projection::Exact`, `footprint_core::terrain::fan`): a pinhole camera
+//! The exact projection (`Projection::Exact`, the core's `terrain::fan`): a pinhole camera
 //! at any pitch and roll, walked along the fan of vertical planes and resampled.
 //!
 //! - At pitch 0 and roll 0 it is the paper's projection, bit for bit, in every mode.
@@ -13,9 +13,8 @@
 mod common;
 
 use common::{Map, Pose, SKY};
-use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
-use footprint_core::terrain::cost::NoCost;
-use footprint_core::terrain::mirror;
+use footprint_core::extend::mirror;
+use footprint_core::prelude::{Camera, CameraParams, NoCost, Options, Projection};
 use footprint_core::Rgb;
 use footprint_host::render::{render_with, Mode, Tables, SS_RATES};
 
@@ -46,7 +45,7 @@ fn render(map: &Map, camera: &Camera, mode: Mode, projection: Projection, lod: b
     let terrain = if lod {
         map.terrain()
     } else {
-        footprint_core::terrain::Terrain::new(map.level0(), common::scale())
+        footprint_core::prelude::Terrain::new(map.level0(), common::scale())
     };
     let options = Options {
         sky: SKY,

@@ -17,19 +17,14 @@
 mod common;
 
 use common::SKY;
-use footprint_core::color::Color16;
-use footprint_core::num::Height;
-use footprint_core::num::{Coord, Weight};
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options, Switch};
-use footprint_core::terrain::cost::{Cost, Counts, NoCost, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_core::terrain::sampler::{
-    ExactArea, Hit, Linear, PaperArea, Pixel, Point, Ray, Sampler, Super,
+use footprint_core::extend::{
+    count_visible, visit, visit_visible, Color16, ExactArea, Height, Hit, Linear, PaperArea, Pixel,
+    Point, Ray, Super, Voxel, Weight,
 };
-use footprint_core::terrain::visibility::{count_visible, visit, visit_visible};
-use footprint_core::terrain::{Level, Scale, Terrain};
+use footprint_core::prelude::{
+    Camera, CameraParams, Column, Coord, Cost, Counts, Frame, HeightFilter, Level, NoCost, Options,
+    Sampler, Scale, Switch, Tally, Terrain,
+};
 use footprint_core::Rgb;
 use proptest::prelude::*;
 use proptest::test_runner::Config;

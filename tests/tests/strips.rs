@@ -1,12 +1,12 @@
-//! A terrain whose levels are stored in vertical strips (`footprint_core::terrain::strips`)
+//! A terrain whose levels are stored in vertical strips (the core's `terrain::strips`)
 //! renders the row-major terrain's images, with the same cost counters, bit for bit: every
 //! mode, both projections, rays along both axes and both ways, with and without the pyramid,
 //! on the continuous surface, lit by the sun. The strips are narrow (4 and 8 columns) so that
 //! walks change strip often, along and across.
 
-use footprint_core::lit::{Materials, Specular, Sun};
+use footprint_core::extend::{Axis, Strips};
 use footprint_core::prelude::*;
-use footprint_core::terrain::{Axis, Strips};
+use footprint_core::prelude::{Materials, Specular, Sun};
 use footprint_host::map::procedural;
 use footprint_host::pyramid::Pyramid;
 use footprint_host::render::SS_RATES;

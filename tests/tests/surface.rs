@@ -1,5 +1,5 @@
 //! The continuous surface where voxels are magnified (`--surface bilinear`,
-//! `footprint_core::terrain::surface`).
+//! the core's `terrain::surface`).
 //!
 //! - A cone seen from the side, close enough that a pixel is a sixth of a voxel: on flat tops
 //!   its skyline is a staircase (each voxel's top a flat run, then a jump of many rows); on the
@@ -14,7 +14,7 @@
 mod common;
 
 use common::{Map, SKY};
-use footprint_core::mode::SS_RATES;
+use footprint_core::prelude::SS_RATES;
 use footprint_core::prelude::*;
 
 /// A cone 24 m high and 20 voxels in radius (a slope of 1.2 m per voxel) on ground at 5 m,

@@ -8,8 +8,7 @@
 //! Table 6 claim is not asserted either way: on such smooth maps AS and SS16 both show no
 //! large changes in the flight's column, which the report states with the numbers.
 
-use footprint_core::prelude::Surface;
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{HeightFilter, Surface};
 use footprint_host::experiment::claims::{claims, Claim, Verdict};
 use footprint_host::experiment::fly::{self, FlySpec};
 use footprint_host::experiment::paper::PAPER_PITCHES;

@@ -2,11 +2,9 @@
 
 use std::path::Path;
 
-use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
-use footprint_core::terrain::cost::{NoCost, Tally};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::pyramid::HeightFilter;
-use footprint_core::terrain::Terrain;
+use footprint_core::prelude::{
+    Camera, CameraParams, Frame, HeightFilter, NoCost, Options, Projection, Tally, Terrain,
+};
 use footprint_core::Rgb;
 use footprint_maps::{memory, LoadOptions};
 use footprint_scenes::flight::{self, bin, luminance};
@@ -556,7 +554,7 @@ mod tests {
         app.render(0).unwrap();
         let before = app.map().source.clone();
         // The last byte of the coarsest level's colour (the padding after it is no level's).
-        let layout = footprint_core::terrain::baked::Layout::in_strips(64, 64, Some(4)).unwrap();
+        let layout = footprint_core::prelude::baked::Layout::in_strips(64, 64, Some(4)).unwrap();
         bytes[layout.pyramid()[1].end - 1] ^= 1;
         let e = app.load_files("m.fpmap", &bytes, None).unwrap_err();
         assert!(e.contains("m.fpmap") && e.contains("checksum"), "{e}");

@@ -13,7 +13,7 @@
 
 use std::cell::RefCell;
 
-use footprint_core::terrain::camera::CameraParams;
+use footprint_core::prelude::CameraParams;
 
 use crate::app::App;
 

@@ -74,7 +74,7 @@ impl Normal {
 
     /// The unit vector along the integer direction `v` (any scale; `None` for zero), with
     /// multiplies and shifts only: no division and no square root, for the per-sample
-    /// shading of [`crate::lit`] on cores without a fast 64-bit divide.
+    /// shading of [`crate::prelude::Sun`] on cores without a fast 64-bit divide.
     ///
     /// The components are scaled by a power of two so that `s = |v|²` lies in `[2^60, 2^62)`,
     /// `1/√s` comes from a 12-entry table and three Newton steps `r ← r·(3 − s·r²)/2` (relative

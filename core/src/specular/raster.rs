@@ -4,8 +4,8 @@
 //! pixel (for shading) and at its four corners (for detection), and any sub-pixel position
 //! (for supersampling).
 //!
-//! **Coordinates.** Vertices are in pixels, `x` right and `y` down, with [`SUB_BITS`] = 8
-//! fractional bits; `|x|, |y| ≤` [`MAX_COORD`]. Pixel `(x, y)` covers `[x, x+1) × [y, y+1)`, its
+//! **Coordinates.** Vertices are in pixels, `x` right and `y` down, with `SUB_BITS` = 8
+//! fractional bits; `|x|, |y| ≤ MAX_COORD` (8192). Pixel `(x, y)` covers `[x, x+1) × [y, y+1)`, its
 //! centre is `(x + ½, y + ½)`. A pixel belongs to a triangle when its centre is inside, with a
 //! tie-breaking rule on edges (an edge owns its points when it runs down, or left when
 //! horizontal) so that two triangles sharing an edge never both draw a pixel, nor leave a gap.
@@ -19,7 +19,7 @@
 //! in screen space (the scenes are orthographic; Phong shading of the era was too).
 //!
 //! **Ranges.** With `|x|, |y| ≤ 2^13` pixels in Q8 (edge vectors below 2^22), pixel rows and
-//! columns below [`MAX_SIDE`] = 2^12 and sub-pixel denominators up to `2·MAX_GRID = 128`, each
+//! columns below `MAX_SIDE` = 2^12 and sub-pixel denominators up to `2·MAX_GRID = 128`, each
 //! of the two products of an edge function is below 2^22·2^29, so every edge function is below
 //! 2^52, every product with a Q30 normal below 2^82, and every sum fits `i128`; depth sums stay
 //! below 2^63. Nothing can overflow and no input can panic.
@@ -29,13 +29,13 @@ use crate::error::{check, Error};
 use crate::specular::normal::{Normal, Vector};
 
 /// Fractional bits of vertex coordinates.
-pub const SUB_BITS: u32 = 8;
+pub(crate) const SUB_BITS: u32 = 8;
 
 /// The largest `|x|` or `|y|` of a vertex, in pixels.
-pub const MAX_COORD: f64 = 8192.0;
+pub(crate) const MAX_COORD: f64 = 8192.0;
 
 /// The largest width or height of a [`Target`].
-pub const MAX_SIDE: u32 = 4096;
+pub(crate) const MAX_SIDE: u32 = 4096;
 
 /// The largest supersampling grid per pixel side ([`Fragment::grid`]): 64 × 64, the cap of
 /// Crow's method by default (the reference of the plates uses 32 × 32).
@@ -57,7 +57,7 @@ impl Vertex {
     /// nearest 1/256 pixel and 1/65,535 of the depth range.
     ///
     /// Errors: [`Error::OutOfRange`] (`"vertex x"`, `"vertex y"`, `"vertex depth"`) when a
-    /// coordinate is not finite, `|x|` or `|y|` exceeds [`MAX_COORD`], or the depth is outside
+    /// coordinate is not finite, `|x|` or `|y|` exceeds `MAX_COORD` (8192), or the depth is outside
     /// `[0, 1]`.
     pub fn new(x: f64, y: f64, depth: f64, normal: Normal) -> Result<Self, Error> {
         let x = check("vertex x", x, -MAX_COORD, MAX_COORD, false)?;
@@ -113,7 +113,7 @@ impl<'a> Target<'a> {
     /// A target of `width × height` pixels over the two buffers.
     ///
     /// Errors: [`Error::OutOfRange`] (`"raster width"`, `"raster height"`) for a side of 0 or
-    /// above [`MAX_SIDE`]; [`Error::SliceLength`] (`"color"`, `"depth"`) for buffers of the
+    /// above `MAX_SIDE` (4096); [`Error::SliceLength`] (`"color"`, `"depth"`) for buffers of the
     /// wrong length.
     pub fn new(
         width: u32,

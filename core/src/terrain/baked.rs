@@ -39,7 +39,7 @@ pub const MAGIC: [u8; 8] = *b"FPMAP\r\n\x1a";
 
 /// The layout version this core writes. It reads version 1 too (row-major levels only, as
 /// version 2 without strips).
-pub const VERSION: u32 = 2;
+pub(crate) const VERSION: u32 = 2;
 
 /// The header's size in bytes (one page; the first section starts right after it).
 pub const HEADER_LEN: usize = 4096;
@@ -48,7 +48,7 @@ pub const HEADER_LEN: usize = 4096;
 pub const SECTION_ALIGN: usize = 4096;
 
 /// The longest `source` a header keeps, in bytes of UTF-8.
-pub const MAX_SOURCE_LEN: usize = 1024;
+pub(crate) const MAX_SOURCE_LEN: usize = 1024;
 
 /// Byte offsets of the header's fields.
 mod at {
@@ -283,9 +283,9 @@ impl Header {
         Scale::new(self.spacing_m, self.height_scale_m)
     }
 
-    /// Writes the header into `out`, with `source` (cut at [`MAX_SOURCE_LEN`] bytes, on a
+    /// Writes the header into `out`, with `source` (cut at `MAX_SOURCE_LEN` = 1,024 bytes, on a
     /// character boundary) and every byte the fields do not use zero, except the last 4 bytes:
-    /// the caller writes the header's CRC-32 there ([`header_checksum_range`]).
+    /// the caller writes the header's CRC-32 there ([`Header::checksum_range`]).
     pub fn encode(&self, source: &str, out: &mut [u8; HEADER_LEN]) {
         out.fill(0);
         put(out, 0, &MAGIC);
@@ -321,7 +321,7 @@ impl Header {
 
     /// Reads a header from the first [`HEADER_LEN`] bytes of a file.
     ///
-    /// Errors ([`Error::Baked`]): fewer bytes, no [`MAGIC`], another [`VERSION`] or header
+    /// Errors ([`Error::Baked`]): fewer bytes, no [`MAGIC`], another `VERSION` (the core reads version 2) or header
     /// length, an unknown height filter, or sizes out of range ([`Error::MapSize`]). The
     /// checksums are not verified here.
     pub fn decode(bytes: &[u8]) -> Result<Self, Error> {
@@ -408,10 +408,11 @@ impl Header {
             .and_then(|b| b.try_into().ok())
             .map_or(0, u32::from_le_bytes)
     }
-}
-/// The bytes of a header that its own CRC-32 covers, and where that CRC is stored.
-pub const fn header_checksum_range() -> (Range<usize>, usize) {
-    (0..at::HEADER_CHECKSUM, at::HEADER_CHECKSUM)
+
+    /// The bytes of a header that its own CRC-32 covers, and where that CRC is stored.
+    pub const fn checksum_range() -> (Range<usize>, usize) {
+        (0..at::HEADER_CHECKSUM, at::HEADER_CHECKSUM)
+    }
 }
 
 /// The header's byte for `surface` ([`at::SURFACE`]).

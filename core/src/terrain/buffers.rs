@@ -123,10 +123,10 @@ impl<const COLUMNS: usize, const EDGES: usize, const CELLS: usize> Default
 #[macro_export]
 macro_rules! frame_buffers {
     (exact $lines:expr, $rows:expr) => {
-        $crate::terrain::buffers::FrameBuffers<{ $lines }, { $rows + 1 }, { $lines * $rows }>
+        $crate::prelude::FrameBuffers<{ $lines }, { $rows + 1 }, { $lines * $rows }>
     };
     ($width:expr, $height:expr) => {
-        $crate::terrain::buffers::FrameBuffers<{ $width }, { $height + 1 }, 0>
+        $crate::prelude::FrameBuffers<{ $width }, { $height + 1 }, 0>
     };
 }
 

@@ -5,7 +5,7 @@
 //! and the rays of one column differ only in their slope; this is what lets each ray resume
 //! where the one below it hit (Fig. 3). With the paper's projection ([`Projection::Paper`]) the
 //! columns are the image's columns, as in the paper; with [`Projection::Exact`] they are the
-//! fan of vertical planes of a pinhole camera at any pitch and roll ([`crate::terrain::fan`]),
+//! fan of vertical planes of a pinhole camera at any pitch and roll ([`crate::extend::Fan`]),
 //! resampled into the image.
 //!
 //! **Projection.** Let `pix = 2·tan(fov/2)/H` be the pixel size on an image plane at unit
@@ -220,13 +220,13 @@ pub enum Projection {
     #[default]
     Paper,
     /// A pinhole camera at any pitch and roll: the walk runs along the fan of vertical planes
-    /// and the fan is resampled into the image ([`crate::terrain::fan`]). At pitch 0 and roll 0
+    /// and the fan is resampled into the image ([`crate::extend::Fan`]). At pitch 0 and roll 0
     /// the same image as [`Projection::Paper`], bit for bit.
     Exact,
 }
 
 /// The surface the walk meets: the paper's flat-topped voxels, or a continuous surface where a
-/// pixel is narrower than a voxel ([`crate::terrain::surface`]).
+/// pixel is narrower than a voxel ([`crate::extend::Smooth`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Surface {
     /// Each voxel a flat-topped column, its height at its centre (the paper's model, Sect. 2).

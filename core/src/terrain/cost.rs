@@ -72,7 +72,7 @@ pub trait Cost {
     #[inline(always)]
     fn terrain_pixel(&mut self) {}
     /// Shading: `count` samples lit, each with a normal from the level's heights, a view
-    /// direction and the diffuse term ([`crate::lit`]).
+    /// direction and the diffuse term ([`crate::prelude::Sun`]).
     #[inline(always)]
     fn normals(&mut self, _count: u32) {}
     /// Shading: `count` Phong highlight evaluations (`K_spec·cos^n α`).
@@ -172,7 +172,7 @@ pub struct Tally {
     pub p: u64,
     /// `M` (or `M′` for area sampling): distinct voxels sampled.
     pub m: u64,
-    /// `V`: voxels visible in the footprint (filled by [`crate::terrain::visibility`]).
+    /// `V`: voxels visible in the footprint (filled by [`crate::extend::visit_visible`]).
     pub v: u64,
     /// Ray–voxel hits.
     pub hits: u64,
@@ -264,7 +264,7 @@ impl<'a> Counts<'a> {
         self.columns
     }
 
-    /// Records the visible-voxel count `V` of a column (from [`crate::terrain::visibility`]).
+    /// Records the visible-voxel count `V` of a column (from [`crate::extend::visit_visible`]).
     pub fn set_visible(&mut self, column: usize, v: u64) {
         self.total.v = self.total.v.saturating_add(v);
         if let Some(t) = self.columns.get_mut(column) {

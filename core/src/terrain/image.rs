@@ -333,7 +333,7 @@ impl Frame<'_> {
 
     /// [`Frame::resample`] of full-precision cells ([`Frame::render_columns_exact`]), with the
     /// paper's projection: each pixel the mean of its `k` walked columns, rounded to 8 bits
-    /// once ([`mean_to_rgb`]), for a ground truth that averages many columns per pixel. `grid`
+    /// once ([`Rgb::mean`]), for a ground truth that averages many columns per pixel. `grid`
     /// holds the columns of `n` whole pixel columns (`n·k` columns of [`Frame::grid_rows`]
     /// cells, each from the bottom row up, the image's from its first or a stretch of them),
     /// `image` their `n × H` pixels, row-major from the top.

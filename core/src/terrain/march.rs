@@ -271,7 +271,7 @@ impl<'a, 't> March<'a, 't> {
     }
 
     /// The same cursor with or without the cells the ground track enters at a corner
-    /// ([`Corner`]; on by default): a wide sampler's walk, which reads the cells on either side
+    /// (`Corner`; on by default): a wide sampler's walk, which reads the cells on either side
     /// of every step across, has no use for them.
     #[must_use]
     pub fn with_corners(mut self, on: bool) -> Self {
@@ -508,10 +508,10 @@ impl<'a, 't> March<'a, 't> {
     /// The ray is `ray` here (its slope per half-voxel times the step gives the rise per step).
     /// On a hit — a voxel whose top is above the ray — `on_hit.hit(voxel, top, ray, steps)` gets
     /// the voxel, its top, the ray (which it may raise, or replace by the next pixel's) and the
-    /// steps taken since the last report; [`Flow::Continue`] steps on with the ray it leaves
-    /// (its height; [`Flow::NewSlope`] if it may have changed the slope too).
+    /// steps taken since the last report; `Flow::Continue` steps on with the ray it leaves
+    /// (its height; `Flow::NewSlope` if it may have changed the slope too).
     /// The ride returns, the cursor on a voxel that is done with (the caller takes the step out
-    /// of it, [`March::advance`]): the hit voxel when `on_hit` says [`Flow::Stop`], when `limit`
+    /// of it, [`March::advance`]): the hit voxel when `on_hit` says `Flow::Stop`, when `limit`
     /// is finite (the walk is crossing empty air a step at a time) or when the ray's slope
     /// changed sign (`ASCENDING` no longer holds); the run's last voxel, which the ray passes
     /// above; or, with `ASCENDING` (a ray that does not descend), the first voxel where the
@@ -941,7 +941,7 @@ impl<'a, 't> March<'a, 't> {
     }
 
     /// Steps to the next voxel and returns the distance moved, in half-voxels: 0 onto a cell
-    /// entered at a corner behind the next voxel, and from one ahead of it ([`Corner`]).
+    /// entered at a corner behind the next voxel, and from one ahead of it (`Corner`).
     #[inline(always)]
     pub fn advance(&mut self) -> i64 {
         if let Some(corner) = self.corner.take() {
@@ -1104,7 +1104,7 @@ impl<'a, 't> March<'a, 't> {
         frac
     }
 
-    /// The current voxel as a sampler sees it. On a cell entered at a corner ([`Corner`]) the
+    /// The current voxel as a sampler sees it. On a cell entered at a corner (`Corner`) the
     /// ray's cross coordinate lies outside it, at its edge behind (a corner behind the next
     /// voxel) or ahead.
     #[inline(always)]

@@ -22,10 +22,8 @@ pub mod frame;
 pub mod horizons;
 pub mod image;
 pub mod map;
-// The voxel sequence under a column: the walk's internals. Public for the tests and the
-// project's own crates, hidden from the documentation; a `Cost` or `Sampler` sees only
-// [`Voxel`], re-exported below.
-#[doc(hidden)]
+// The voxel sequence under a column: the walk's internals; a `Cost` or `Sampler` sees
+// [`Voxel`], and whoever walks a column of their own the cursor (`crate::extend::March`).
 pub mod march;
 pub mod pyramid;
 pub mod ray;

@@ -90,7 +90,7 @@ pub trait Sampler {
     /// voxel's centre blends its cell with one neighbour across (Eq. 4 on the heights).
     const ACROSS: u32 = 2;
     /// Which cells that the ray's ground track enters at a corner, between two voxels of the
-    /// paper's uniform sequence, the walk tests ([`Corners`]): every one, by default, so that
+    /// paper's uniform sequence, the walk tests (`Corners`): every one, by default, so that
     /// the walk misses no cell.
     const CORNERS: Corners = Corners::All;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
@@ -119,7 +119,7 @@ pub trait Sampler {
     /// pixel's colour if terrain was seen in it, `None` if it is all sky.
     fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
     /// Whether, after [`Sampler::sky`] finished a pixel, the sampler still holds terrain it saw
-    /// above that pixel (`as2`'s lanes, [`crate::terrain::horizons`]): then the walk begins the
+    /// above that pixel (`as2`'s lanes, [`crate::extend::Horizons`]): then the walk begins the
     /// pixels above and asks [`Sampler::sky`] for each, until this is `false`. The default,
     /// for the samplers whose pixel ends at its upper ray, is `false`.
     #[inline(always)]
@@ -387,7 +387,7 @@ impl ExactArea {
     /// Adds `w·c`. No overflow is possible: every weight is a difference of slopes clamped to
     /// ±2^39 (raw), so a pixel's weights sum to at most `s_{i+1} − s_i ≤ 2^40`, and a colour is
     /// below 2^16, so every sum stays below 2^56 (`as2`'s `K` lanes each add that much at
-    /// most, [`crate::terrain::horizons`]: below `K·2^56`).
+    /// most, [`crate::extend::Horizons`]: below `K·2^56`).
     #[inline(always)]
     pub(crate) fn accumulate<C: Cost>(&mut self, w: Weight, c: Color16, cost: &mut C) {
         cost.as_hit();
@@ -399,7 +399,7 @@ impl ExactArea {
     }
 
     /// Adds sums already weighed (`Σ w·c`, `Σ w`): what `as2`'s lanes carried
-    /// ([`crate::terrain::horizons`]).
+    /// ([`crate::extend::Horizons`]).
     #[inline(always)]
     pub(crate) fn add_sums(&mut self, sum: [i64; 3], w: i64) {
         for (s, c) in self.sum.iter_mut().zip(sum) {

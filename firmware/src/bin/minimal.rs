@@ -11,8 +11,8 @@ use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 
+use footprint_core::extend::ExactArea;
 use footprint_core::prelude::*;
-use footprint_core::terrain::sampler::ExactArea;
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
     COLORS, HEIGHT, HEIGHTS, HEIGHT_SCALE_M, MAP_HEIGHT, MAP_WIDTH, PARAMS, SPACING_M, WIDTH,

@@ -11,7 +11,7 @@ use crate::output::Target;
 use crate::render::Mode;
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, ViewArg};
-use footprint_core::terrain::camera::Options;
+use footprint_core::prelude::Options;
 
 /// A pixel `ROW,COL`, counted from the top-left.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

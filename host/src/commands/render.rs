@@ -13,8 +13,7 @@ use crate::render::{
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
 use crate::view::{CameraArgs, MapArgs, ViewArg};
-use footprint_core::terrain::camera::{Projection, Switch};
-use footprint_core::terrain::cost::Counts;
+use footprint_core::prelude::{Counts, Projection, Switch};
 
 /// `footprint render`.
 #[derive(Args, Debug)]

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
-use footprint_core::terrain::camera::{CameraParams, Options};
+use footprint_core::prelude::{CameraParams, Options};
 use serde_json::json;
 
 use crate::args::TruthSamplesArg;
@@ -302,7 +302,7 @@ pub fn report(args: &ReportArgs) -> Result<()> {
         height: 32,
     };
     let small = paper_camera_placed(map, &pyramid, 20.0, window, lod, placement)?;
-    let small = footprint_core::terrain::camera::Camera::new(CameraParams { ..*small.params() })?;
+    let small = footprint_core::prelude::Camera::new(CameraParams { ..*small.params() })?;
     let mut fp_json = Vec::new();
     for mode in [Mode::Ss(Rate::N4), Mode::As] {
         let (counts, pic) = inspect::footprint(&small, &pyramid, options, mode, 600)?;

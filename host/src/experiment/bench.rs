@@ -8,8 +8,7 @@
 use std::time::Instant;
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
-use footprint_core::terrain::cost::NoCost;
+use footprint_core::prelude::{Camera, CameraParams, NoCost, Options, Projection};
 use serde::Serialize;
 
 use super::paper::{paper_camera_placed, PAPER_PITCHES};

@@ -18,12 +18,8 @@
 //! This is an estimate of the footprint, not the exact wedge, and is used only to split counts.
 
 use anyhow::{bail, Result};
-use footprint_core::num::Height;
-use footprint_core::terrain::camera::{Camera, Column, Options, Projection};
-use footprint_core::terrain::column::walk;
-use footprint_core::terrain::cost::{Cost, NoCost};
-use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::sampler::{Hit, Pixel, Ray, Sampler};
+use footprint_core::extend::{walk, Height, Hit, Pixel, Ray, Voxel};
+use footprint_core::prelude::{Camera, Column, Cost, NoCost, Options, Projection, Sampler};
 use footprint_core::Rgb;
 use serde::Serialize;
 

@@ -6,7 +6,7 @@
 //! (`report::document`) only words these numbers.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options};
+use footprint_core::prelude::{Camera, Options};
 use serde::Serialize;
 
 use super::fly::Fly;

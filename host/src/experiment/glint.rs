@@ -11,10 +11,9 @@
 //! and the shading work per pixel; and Fig. 14's cut-in-time image of the middle column.
 
 use anyhow::{bail, Result};
-use footprint_core::lit::{Materials, Specular, Sun};
-use footprint_core::terrain::camera::{Camera, CameraParams, Options, Projection};
-use footprint_core::terrain::cost::Counts;
-use footprint_core::terrain::Terrain;
+use footprint_core::prelude::{
+    Camera, CameraParams, Counts, Materials, Options, Projection, Specular, Sun, Terrain,
+};
 use footprint_core::Rgb;
 use footprint_scenes::render::render_lit;
 use rayon::prelude::*;

@@ -11,8 +11,7 @@
 //! further down to match).
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options, Projection, Surface};
-use footprint_core::terrain::pyramid::HeightFilter;
+use footprint_core::prelude::{Camera, HeightFilter, Options, Projection, Surface};
 use footprint_core::Rgb;
 use footprint_scenes::view::Placement;
 use serde::Serialize;

@@ -5,13 +5,8 @@
 use std::collections::HashSet;
 
 use anyhow::{bail, Result};
-use footprint_core::color::{to_rgb, Color16};
-use footprint_core::num::Weight;
-use footprint_core::terrain::camera::{Camera, CameraParams, Options};
-use footprint_core::terrain::cost::Cost;
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::march::Voxel;
-use footprint_core::terrain::visibility::visit;
+use footprint_core::extend::{visit, Color16, Voxel, Weight};
+use footprint_core::prelude::{Camera, CameraParams, Cost, Frame, Options};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;
@@ -70,12 +65,7 @@ pub fn zoom(
     let (w, h) = (2 * s * k + gap, s * k);
     let mut pixels = vec![Rgb::new(255, 255, 255); w * h];
     for (side, m) in [Mode::Ps, mode].into_iter().enumerate() {
-        let img = render_with(
-            &frame,
-            &terrain,
-            m,
-            &mut footprint_core::terrain::cost::NoCost,
-        )?;
+        let img = render_with(&frame, &terrain, m, &mut footprint_core::prelude::NoCost)?;
         let big = magnify(s, s, &img.image, k);
         for y in 0..h {
             let x0 = side * (s * k + gap);
@@ -130,7 +120,7 @@ impl Cost for Trace {
         if self.at == self.target {
             self.cells.push((voxel.level(), x, y));
             self.samples.push(Sample {
-                color: to_rgb(color),
+                color: Rgb::from_color16(color),
                 weight: weight.to_num::<f64>(),
                 sky: false,
             });
@@ -139,7 +129,7 @@ impl Cost for Trace {
     fn sky_sample(&mut self, color: Color16, weight: Weight) {
         if self.at == self.target {
             self.samples.push(Sample {
-                color: to_rgb(color),
+                color: Rgb::from_color16(color),
                 weight: weight.to_num::<f64>(),
                 sky: true,
             });
@@ -149,7 +139,7 @@ impl Cost for Trace {
 
 /// The walk's cell (grid column, row from the bottom) that stands for image pixel `(row` from
 /// the top, `col)`: the pixel itself with the paper's projection, the fan cell that weighs
-/// most in it with the exact one (`footprint_core::terrain::fan`).
+/// most in it with the exact one (the core's `terrain::fan`).
 fn walked_cell(frame: &Frame<'_>, row: usize, col: usize) -> (usize, usize) {
     let h = frame.image_size().1;
     match frame.fan() {
@@ -169,7 +159,7 @@ fn walked_cell(frame: &Frame<'_>, row: usize, col: usize) -> (usize, usize) {
 /// Fig. 13: the samples of pixel (`row` from the top, `col`) and a `width × height` picture in
 /// which each sample, bottom to top in the order taken, fills a band as tall as its share of
 /// the pixel's weight. With the exact projection the samples are those of the fan cell that
-/// weighs most in the pixel (`footprint_core::terrain::fan`).
+/// weighs most in the pixel (the core's `terrain::fan`).
 pub fn pixel(
     camera: &Camera,
     pyramid: &Pyramid,
@@ -279,13 +269,7 @@ pub fn most_different_pixel(
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
     let image = |m: Mode| -> Result<Vec<Rgb>> {
-        Ok(render_with(
-            &frame,
-            &terrain,
-            m,
-            &mut footprint_core::terrain::cost::NoCost,
-        )?
-        .image)
+        Ok(render_with(&frame, &terrain, m, &mut footprint_core::prelude::NoCost)?.image)
     };
     let (ia, ib) = (image(a)?, image(b)?);
     let w = camera.width();
@@ -800,7 +784,7 @@ mod tests {
     use crate::experiment::paper::paper_camera;
     use crate::render::Rate;
     use crate::view::Size;
-    use footprint_core::terrain::pyramid::HeightFilter;
+    use footprint_core::prelude::HeightFilter;
 
     #[test]
     fn the_most_different_pixel_is_the_first_of_the_largest() {
@@ -834,14 +818,9 @@ mod tests {
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options).unwrap();
         let render = |m: Mode| {
-            render_with(
-                &frame,
-                &terrain,
-                m,
-                &mut footprint_core::terrain::cost::NoCost,
-            )
-            .unwrap()
-            .image
+            render_with(&frame, &terrain, m, &mut footprint_core::prelude::NoCost)
+                .unwrap()
+                .image
         };
         let (ia, ib) = (render(a), render(b));
         let w = camera.width();

@@ -3,7 +3,7 @@
 //! no CLI types.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options};
+use footprint_core::prelude::{Camera, Options};
 use footprint_scenes::view::{self, Placement};
 use serde::Serialize;
 
@@ -212,7 +212,7 @@ fn placed_camera(
 mod tests {
     use super::*;
     use crate::firmware;
-    use footprint_core::terrain::pyramid::HeightFilter;
+    use footprint_core::prelude::HeightFilter;
 
     /// The firmware bakes `footprint_scenes::view::paper_camera`; the CLI places the same view
     /// through `camera::place` (which words its errors for the user). Both must give the same

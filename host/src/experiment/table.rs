@@ -14,9 +14,7 @@
 //! [`ModeRow::V_walk`]; the case's count at level 0 is [`Case::V_level0`].
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Options, Surface, Switch};
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::Terrain;
+use footprint_core::prelude::{Frame, Options, Surface, Switch, Terrain};
 use serde::Serialize;
 
 use super::paper::{paper_view_placed, ViewPlacement};
@@ -355,7 +353,7 @@ fn spread(
     switch: Switch,
     pixel_angle: f64,
 ) -> (f64, f64) {
-    use footprint_core::terrain::visibility::visit_visible;
+    use footprint_core::extend::visit_visible;
     use rayon::prelude::*;
     let (far, near, all) = (0..frame.grid_columns())
         .into_par_iter()

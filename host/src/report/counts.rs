@@ -4,8 +4,7 @@
 use std::fmt::Write as _;
 
 use anyhow::Result;
-use footprint_core::terrain::camera::CameraParams;
-use footprint_core::terrain::cost::Tally;
+use footprint_core::prelude::{CameraParams, Tally};
 use serde::Serialize;
 
 use crate::render::{Measured, Mode, Repeated};
@@ -32,7 +31,7 @@ pub struct RenderSummary<'a> {
     /// The counters, per frame and per column.
     pub measured: &'a Measured,
     /// The visible voxels of the area modes' walk (`render::visible` at
-    /// [`Switch::Late`](footprint_core::terrain::camera::Switch::Late)): the one denominator of
+    /// [`Switch::Late`](footprint_core::prelude::Switch::Late)): the one denominator of
     /// `coverage`, as `table` divides; the counters' own `V` is this mode's walk's.
     pub v_case: u64,
     /// Include every column's counters in the JSON.

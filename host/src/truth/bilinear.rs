@@ -8,7 +8,7 @@
 //! `B = b·du + c·dv + e·(u₀·dv + v₀·du) − s` and `C = f(u₀, v₀) − z₀`: the ray meets the
 //! surface at the first root of `g` in the patch (the twist term `e` is what a line through
 //! the patch at an angle sees, which the walk's linear profile leaves out,
-//! `footprint_core::terrain::surface`).
+//! the core's `terrain::surface`).
 
 /// One patch: `f(u, v) = a + b·u + c·v + e·u·v`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -7,7 +7,7 @@
 //! **The paper's projection** ([`Projection::Paper`], Sect. 3): image column coordinate `a`
 //! is the vertical plane at azimuth `φ = atan(x)` from the heading, `x = (a − W/2)·pix`
 //! (`pix` = [`Camera::pixel_angle`]); within it the ray at `y` pixels above the image's centre
-//! has Eq. 2's slope times `cos φ` ([`Camera::slope_at`]), as `footprint_core::terrain::frame`
+//! has Eq. 2's slope times `cos φ` ([`Camera::slope_at`]), as the core's `terrain::frame`
 //! builds its columns and rows (there at the pixels' centres across and their edges up; here at
 //! every sub-sample).
 //!
@@ -16,12 +16,12 @@
 //! `x = X·cos ρ + Y·sin ρ`, `y = −X·sin ρ + Y·cos ρ` (the roll `ρ` positive banks right), and
 //! its ray is `forward·(cos p + y·pix·sin p) + right·x·pix` horizontally and `y·pix·cos p −
 //! sin p` vertically (pitch `p` positive down): the pinhole the fan
-//! (`footprint_core::terrain::fan`) resamples its walk into. Where the fan clamps rays past the
+//! (the core's `terrain::fan`) resamples its walk into. Where the fan clamps rays past the
 //! vertical (the nadir in view), the truth keeps the pinhole's own ray.
 
 use anyhow::{bail, Result};
-use footprint_core::terrain::camera::{Camera, Projection};
-use footprint_core::trig::sin_cos_deg;
+use footprint_core::extend::sin_cos_deg;
+use footprint_core::prelude::{Camera, Projection};
 
 use super::field::Field;
 use super::trace::Ray;

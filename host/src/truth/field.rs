@@ -2,7 +2,7 @@
 //! folded into the map by the paper's mirror (Sect. 7).
 
 use anyhow::Result;
-use footprint_core::terrain::Strips;
+use footprint_core::extend::Strips;
 use footprint_core::Rgb;
 
 use crate::map::Map;
@@ -27,11 +27,11 @@ pub(super) struct Field<'m> {
     pub max: f64,
 }
 
-/// Folds cell index `i` into `0..len` as the core's [`footprint_core::terrain::mirror`]
+/// Folds cell index `i` into `0..len` as the core's [`footprint_core::extend::mirror`]
 /// does (period `2·len`: `…, 1, 0, 0, 1, …, len−1, len−1, …`).
 #[inline]
 pub(super) fn mirror(i: i64, len: u32) -> u32 {
-    footprint_core::terrain::mirror(i, len)
+    footprint_core::extend::mirror(i, len)
 }
 
 impl<'m> Field<'m> {

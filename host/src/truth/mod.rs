@@ -10,13 +10,13 @@
 //! `K²` exact point samples. Each sub-sample is its own ray, met exactly with the height field
 //! (module `trace`): every cell its ground track enters is visited in order (a 2D DDA, corners
 //! included), and the first hit's colour is the sample's; a ray that meets nothing within the
-//! far distance sees the sky ([`footprint_core::terrain::camera::Options::sky`]). The `K²`
+//! far distance sees the sky ([`footprint_core::prelude::Options::sky`]). The `K²`
 //! colours are averaged in integers and rounded once to 8 bits, half up
-//! ([`footprint_core::color::mean_to_rgb`]).
+//! ([`footprint_core::prelude::Rgb::mean`]).
 //!
 //! **Surfaces.** [`Surface::Flat`] is the paper's model (Sect. 2: the heights as "voxels
 //! (sticks)", flat-topped columns with vertical faces). [`Surface::Bilinear`] follows the
-//! footprint, as the modes' walk does (`footprint_core::terrain::surface`): each ray meets the
+//! footprint, as the modes' walk does (the core's `terrain::surface`): each ray meets the
 //! continuous surface through the cells' centres (module `bilinear`) where its pixel's
 //! footprint across is at most half a voxel, the flat tops beyond one voxel, and between them
 //! the flat tops raised by a share of the continuous surface's height above them that falls
@@ -34,7 +34,7 @@
 //! its column's centre line crosses the voxel's centre along the major axis, and so can step
 //! past a cell whose corner the line crosses (Sect. 8's naive horizontal sampling, and the gap
 //! in a one-voxel diagonal wall); the truth tests every cell entered. The far distance is
-//! horizontal, as the core's ([`footprint_core::terrain::camera::CameraParams::far_m`]): the
+//! horizontal, as the core's ([`footprint_core::prelude::CameraParams::far_m`]): the
 //! walk takes a voxel whose centre crossing is within it, the truth a hit point within it
 //! (they differ by at most half a cell along the track, at the far edge). A camera inside its
 //! own stick sees out of it, as the walk (which starts a cell ahead). The paper's
@@ -56,8 +56,7 @@ pub mod reference;
 mod trace;
 
 use anyhow::{bail, Result};
-use footprint_core::color::mean_to_rgb;
-use footprint_core::terrain::camera::{Camera, Projection, Surface};
+use footprint_core::prelude::{Camera, Projection, Surface};
 use footprint_core::Rgb;
 use rayon::prelude::*;
 
@@ -196,7 +195,7 @@ impl<'m> Truth<'m> {
                 }
             }
         }
-        mean_to_rgb(sum, u64::from(k * k))
+        Rgb::mean(sum, u64::from(k * k))
     }
 
     /// The colour sub-sample `(i, j)` of pixel `(c, r)` sees, `None` for the sky.

@@ -4,8 +4,8 @@
 //! pixel, box-filtered horizontally: area sampling is exact along each column, and 16
 //! columns per pixel make the naive horizontal sampling the paper leaves (Sect. 8) negligible.
 //! The box filter averages the columns' colours before they are rounded
-//! ([`footprint_core::terrain::frame::Frame::render_columns_exact`],
-//! [`footprint_core::terrain::frame::Frame::resample_exact`]) and rounds once: rounded
+//! ([`footprint_core::prelude::Frame::render_columns_exact`],
+//! [`footprint_core::prelude::Frame::resample_exact`]) and rounds once: rounded
 //! column by column, the truth was up to half a level off wherever a pixel's colour changes by
 //! less than a level across it (most of a magnified view), always on the side that
 //! `as-exact`'s one column rounds to (docs/measurements.md, "A ground truth rounded once").
@@ -16,7 +16,7 @@
 //! columns together.
 
 use anyhow::Result;
-use footprint_core::terrain::camera::{Camera, Options, Projection, Surface};
+use footprint_core::prelude::{Camera, Options, Projection, Surface};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;

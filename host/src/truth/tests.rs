@@ -3,7 +3,7 @@
 //! The diagonal walls are in `host/tests/truth.rs`.
 
 use super::*;
-use footprint_core::terrain::camera::CameraParams;
+use footprint_core::prelude::CameraParams;
 
 /// A `side × side` map with `height(x, y)` and `color(x, y)`, 30 m cells of 0.1 m units.
 pub(super) fn map_of(

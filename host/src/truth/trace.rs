@@ -2,7 +2,7 @@
 //! exactly.
 //!
 //! **Copies.** The terrain beyond the map is the map mirrored about its edges (Sect. 7,
-//! `footprint_core::terrain::mirror`), so the plane is tiled by copies of the map, every
+//! `footprint_core::extend::mirror`), so the plane is tiled by copies of the map, every
 //! other one reflected. The ray crosses them in order; inside one it is carried into the map's
 //! own coordinates (reflected where the copy is), where the cells and the max-height hierarchy
 //! ([`super::maxmip`]) are. An index one beyond a copy's edge folds onto the edge, which is
@@ -217,7 +217,7 @@ fn to_level(c: f64) -> u8 {
 }
 
 /// The surface that follows the pixel's footprint, as the modes' walk meets it under
-/// `--surface bilinear` (`footprint_core::terrain::surface`): where the footprint across is
+/// `--surface bilinear` (the core's `terrain::surface`): where the footprint across is
 /// at most half a voxel ([`Ray::near`]) the bilinear surface; from half a voxel to one
 /// ([`Ray::end`]) the flat tops plus the share `s(t) = (end − t)/(end − near)` of the bilinear
 /// surface's height above them, at each point by its own distance `t`; beyond, the flat tops

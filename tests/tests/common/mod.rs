@@ -7,14 +7,11 @@
 
 #![allow(dead_code)]
 
-use footprint_core::num::Coord;
-use footprint_core::terrain::camera::{Camera, CameraParams, Column, Options};
-use footprint_core::terrain::column;
-use footprint_core::terrain::cost::Cost;
-use footprint_core::terrain::frame::Frame;
-use footprint_core::terrain::pyramid::{self, HeightFilter};
-use footprint_core::terrain::sampler::Sampler;
-use footprint_core::terrain::{next_size, Level, Scale, Terrain};
+use footprint_core::extend::walk;
+use footprint_core::prelude::{
+    next_size, pyramid, Camera, CameraParams, Column, Coord, Cost, Frame, HeightFilter, Level,
+    Options, Sampler, Scale, Terrain,
+};
 use footprint_core::Rgb;
 
 /// Metres per voxel.
@@ -283,7 +280,7 @@ pub fn render_columns<S: Sampler + Clone, C: Cost>(
         .map(|c| {
             let mut out = vec![Rgb::default(); h];
             let mut s = sampler.clone();
-            column::walk(frame, terrain, c, 0..h, &mut s, cost, &mut out);
+            walk(frame, terrain, c, 0..h, &mut s, cost, &mut out);
             out
         })
         .collect()
@@ -304,7 +301,7 @@ pub fn image_hash<'a>(pixels: impl IntoIterator<Item = &'a Rgb>) -> u64 {
 /// One pinned line per frame: the image's hash and the counters the samplers decide (`P`,
 /// `L`, `M`, hits, `c`, `b`, `V`). The traversal steps `a` are not pinned: skipping empty
 /// air changes how many steps reach a column's first hit, and nothing the samplers see.
-pub fn pin_line(name: &str, image_hash: u64, t: &footprint_core::terrain::cost::Tally) -> String {
+pub fn pin_line(name: &str, image_hash: u64, t: &footprint_core::prelude::Tally) -> String {
     format!(
         "{name} {image_hash:016x} P={} L={} M={} hits={} c={} b={} V={}",
         t.p, t.l, t.m, t.hits, t.c, t.b, t.v

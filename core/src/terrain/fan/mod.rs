@@ -69,7 +69,7 @@ const TILE_ROWS: usize = 2 * TILE;
 /// The smallest `k̂` kept, as a fraction of the largest in the image (see the module's limits).
 const K_RATIO: f64 = 16.0;
 /// The most fan lines a frame may have: 16 times the widest image, at 64 columns per pixel.
-pub const MAX_FAN_LINES: u32 = 1 << 24;
+pub(crate) const MAX_FAN_LINES: u32 = 1 << 24;
 /// A bound on a pixel's width in fan lines (fixed point), which keeps `x·g` within 64 bits.
 const MAX_WIDTH: i64 = 1 << 27;
 
@@ -135,7 +135,7 @@ impl Fan {
     /// supersampled reference walks `k` times as many). At pitch 0 and roll 0 the fan is the
     /// image's own grid: `W·k` lines and `H` rows.
     ///
-    /// Errors: a frame that would need more than [`MAX_FAN_LINES`] lines.
+    /// Errors: a frame that would need more than `MAX_FAN_LINES` (2^24) lines.
     pub fn new(camera: &Camera, columns_per_pixel: u32) -> Result<Self, Error> {
         let p = camera.params();
         let (w, h) = (f64::from(p.width), f64::from(p.height));

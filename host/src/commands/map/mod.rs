@@ -180,7 +180,7 @@ struct InfoJson {
 /// The number of pyramid levels of a `width`×`height` map (level 0 down to 1×1), as the
 /// core's pyramid builder makes them.
 pub fn pyramid_levels(width: u32, height: u32) -> usize {
-    footprint_core::terrain::pyramid::levels(width, height)
+    footprint_core::prelude::pyramid::levels(width, height)
 }
 
 /// Runs `footprint map …`.

@@ -10,8 +10,8 @@
 //! against the truth's frame.
 
 use anyhow::{bail, Result};
-use footprint_core::color::Color32;
-use footprint_core::terrain::camera::{Camera, Options, Projection, Surface};
+use footprint_core::extend::Color32;
+use footprint_core::prelude::{Camera, Options, Projection, Surface};
 use footprint_core::Rgb;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -202,7 +202,7 @@ impl FlySpec {
         // A path's cameras are computed up front; the straight flight's frame by frame.
         let cameras = if self.path.is_some() {
             (self.frames as u64)
-                .checked_mul(size_of::<footprint_core::terrain::camera::CameraParams>() as u64)
+                .checked_mul(size_of::<footprint_core::prelude::CameraParams>() as u64)
         } else {
             Some(0)
         };
@@ -688,7 +688,7 @@ pub fn run_with_frames(
 mod tests {
     use super::*;
     use crate::map::procedural;
-    use footprint_core::terrain::pyramid::HeightFilter;
+    use footprint_core::prelude::HeightFilter;
 
     /// A shot of one column (the column's `k` walked columns, boxed and rounded once; the
     /// truth's one column of pixels) is that column of the whole image, for the walked
