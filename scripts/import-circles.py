@@ -124,7 +124,8 @@ def expand_use(tree):
 
 USE = re.compile(r"\buse\s+([^;]+);")
 RENAME = re.compile(r"\s+as\s+\w+")
-PATH = re.compile(r"(?<![\w:])((?:crate|super|self)(?:::[A-Za-z_]\w*)+)")
+# `$crate::…` in a macro body is resolved where the macro expands, not imported here.
+PATH = re.compile(r"(?<![\w:$])((?:crate|super|self)(?:::[A-Za-z_]\w*)+)")
 
 
 class Crate:
