@@ -11,16 +11,78 @@
 //! at the grid's centre latitude.
 
 use std::io::{self, BufRead, Write};
+use std::path::Path;
 
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
-use footprint_core::prelude::Shown;
+use footprint_core::prelude::{Shown, Surface};
 
 use super::input::{is_stdin, Input};
+use super::kind::Format;
+use super::options::LoadOptions;
+use super::reader::{always_writable, hint, Evidence, FileUnit, Opened, RawGrid, Reader};
 use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "ESRI ASCII grid";
+
+/// The ASCII grid's reader, its line in the table of readers.
+pub(crate) const READER: Reader = Reader {
+    format: Format::Asc,
+    name: "asc",
+    extensions: &["asc"],
+    description: "an ESRI ASCII grid",
+    surface: Surface::Bilinear,
+    sniff,
+    open,
+    write,
+    check_writable: always_writable,
+    height_units: false,
+    tile: true,
+    side_file: None,
+};
+
+/// A grid starts with one of its header keys, in any case, after any white space.
+fn sniff(head: &[u8], _len: u64) -> Option<Evidence> {
+    const KEYS: [&[u8]; 8] = [
+        b"ncols",
+        b"nrows",
+        b"xllcorner",
+        b"yllcorner",
+        b"xllcenter",
+        b"yllcenter",
+        b"cellsize",
+        b"nodata_value",
+    ];
+    let text = head.trim_ascii_start();
+    let starts_ci =
+        |word: &[u8]| text.len() > word.len() && text[..word.len()].eq_ignore_ascii_case(word);
+    KEYS.iter()
+        .any(|k| starts_ci(k))
+        .then_some(Evidence::Content)
+}
+
+/// Opens a grid: its heights, its spacing and place from its header, its void value.
+fn open(
+    input: Input,
+    _path: &Path,
+    _what: &str,
+    _opts: &LoadOptions<'_>,
+) -> Result<Opened, MapError> {
+    let looks = input.looks_like();
+    let (grid, header, spacing, georef) = read(input).map_err(|e| hint(e, looks))?;
+    Ok(Opened::Grid(Box::new(RawGrid {
+        grid,
+        detail: FORMAT.to_owned(),
+        spacing: Some(spacing),
+        georef: Some(georef),
+        scan: true,
+        declared: header.nodata.map(f64::from),
+        unit: FileUnit::Unspecified(String::new(), None),
+        depth: false,
+        warnings: Vec::new(),
+    })))
+}
 
 /// The longest header line, or value, accepted, in bytes.
 const MAX_TOKEN: usize = 256;
@@ -671,7 +733,7 @@ mod tests {
             source: String::new(),
             known_range: None,
             strips: None,
-            surface: footprint_core::prelude::Surface::Bilinear,
+            surface: Surface::Bilinear,
         };
         let mut out = Vec::new();
         write(&map, &mut out, "o").unwrap();

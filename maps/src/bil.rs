@@ -21,18 +21,84 @@
 //! `|ULYMAP| ≤ 90` and `XDIM`, `YDIM` under 1), converted to metres at the grid's centre
 //! latitude ([`Spacing::geographic`]); else metres.
 
-use std::io::{self, Read};
+use std::io::{self, Read, Write};
 use std::path::{Path, PathBuf};
 
-use footprint_core::prelude::Shown;
+use footprint_core::prelude::{Shown, Surface};
 
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::{is_stdin, read_side_file, InMemory, Input};
-use super::{validate_memory, validate_size, MapError};
+use super::kind::Format;
+use super::options::LoadOptions;
+use super::reader::{no_sniff, FileUnit, Opened, RawGrid, Reader, SideFile};
+use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "ESRI BIL";
+
+/// The BIL's reader, its line in the table of readers. Its raw samples say nothing of their
+/// format: a `.bil` is known by its extension (or `--format bil`) only.
+pub(crate) const READER: Reader = Reader {
+    format: Format::Bil,
+    name: "bil",
+    extensions: &["bil"],
+    description: "an ESRI BIL file",
+    surface: Surface::Bilinear,
+    sniff: no_sniff,
+    open,
+    write,
+    check_writable,
+    height_units: false,
+    tile: true,
+    side_file: Some(SideFile {
+        extension: "hdr",
+        description: "an ESRI BIL's header side file",
+    }),
+};
+
+/// Opens a `.bil` with its `.hdr`: its heights, and from its header its spacing, place and
+/// void value.
+fn open(
+    input: Input,
+    _path: &Path,
+    _what: &str,
+    opts: &LoadOptions<'_>,
+) -> Result<Opened, MapError> {
+    let (grid, info) = read(input, opts.in_memory)?;
+    Ok(Opened::Grid(Box::new(RawGrid {
+        grid,
+        detail: info.detail,
+        spacing: info.spacing,
+        georef: info.georef,
+        scan: true,
+        declared: info.nodata,
+        unit: FileUnit::Unspecified(String::new(), None),
+        depth: false,
+        warnings: Vec::new(),
+    })))
+}
+
+/// Refuses to write a `.bil` ([`unwritable`]).
+fn write(_map: &Map, _out: &mut dyn Write, what: &str) -> Result<(), MapError> {
+    Err(unwritable(what))
+}
+
+/// Refuses any map ([`unwritable`]), before anything is written.
+fn check_writable(_map: &Map, what: &str) -> Result<(), MapError> {
+    Err(unwritable(what))
+}
+
+/// The error for writing a `.bil`: it would need its `.hdr` beside it, which a single output
+/// cannot be.
+fn unwritable(what: &str) -> MapError {
+    MapError::Unsupported {
+        what: what.to_owned(),
+        detail: "writing ESRI BIL (a .bil needs a .hdr beside it): write .tif, .asc, .hgt or \
+                 .png instead"
+            .to_owned(),
+    }
+}
 
 /// The largest `.hdr` read, in bytes (as [`read_side_file`] reads).
 const MAX_HEADER: usize = 1 << 16;

@@ -15,15 +15,88 @@
 use std::io::{self, Read, Write};
 use std::path::Path;
 
+use footprint_core::prelude::Surface;
+
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::Input;
-use super::kind::{hgt_side_from_len, HGT_SIDES};
+use super::kind::Format;
 use super::numbers::grouped;
+use super::options::LoadOptions;
+use super::reader::{hint, Evidence, FileUnit, Opened, RawGrid, Reader};
 use super::{validate_memory, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "SRTM .hgt";
+
+/// The SRTM tile's reader, its line in the table of readers.
+pub(crate) const READER: Reader = Reader {
+    format: Format::Hgt,
+    name: "hgt",
+    extensions: &["hgt"],
+    description: "an SRTM .hgt tile",
+    surface: Surface::Bilinear,
+    sniff,
+    open,
+    write,
+    check_writable,
+    height_units: false,
+    tile: true,
+    side_file: None,
+};
+
+/// The SRTM `.hgt` tile sides and their cell size in arc-seconds.
+pub const HGT_SIDES: [(u32, u32); 2] = [(1201, 3), (3601, 1)];
+
+/// The side of an SRTM tile from the file's length in bytes, if it is one of [`HGT_SIDES`] (the
+/// tile has no header: its length is all that says what it is).
+pub fn hgt_side_from_len(len: u64) -> Option<u32> {
+    HGT_SIDES
+        .iter()
+        .map(|s| s.0)
+        .find(|&side| u64::from(side) * u64::from(side) * 2 == len)
+}
+
+/// A file is a tile by its length alone, the exact length of one ([`hgt_side_from_len`]).
+fn sniff(_head: &[u8], len: u64) -> Option<Evidence> {
+    hgt_side_from_len(len).map(|_| Evidence::Length)
+}
+
+/// Opens a tile: its spacing and place from its name (the spacing checked before the data is
+/// read), its heights in metres with SRTM's void.
+fn open(input: Input, path: &Path, what: &str, opts: &LoadOptions<'_>) -> Result<Opened, MapError> {
+    // The spacing comes from the name: check it before reading the data.
+    let side = hgt_side_from_len(input.len()).unwrap_or(0);
+    let named_spacing = match opts.spacing_m {
+        Some(_) => None,
+        None => match spacing(path, side) {
+            Some(s) => Some(s),
+            None if side == 0 => None, // the reader reports the odd size
+            None => {
+                return Err(MapError::Invalid {
+                    what: what.to_owned(),
+                    detail: "cannot tell the tile's latitude from its name (expected \
+                             e.g. N46E008.hgt): rename it or give --spacing"
+                        .to_owned(),
+                })
+            }
+        },
+    };
+    let looks = input.looks_like();
+    let place = georef(path, side);
+    let (grid, detail) = read(input).map_err(|e| hint(e, looks))?;
+    Ok(Opened::Grid(Box::new(RawGrid {
+        grid,
+        detail,
+        spacing: named_spacing,
+        georef: place,
+        scan: true,
+        declared: Some(f64::from(VOID)),
+        unit: FileUnit::Metres("SRTM heights are metres"),
+        depth: false,
+        warnings: Vec::new(),
+    })))
+}
 
 /// The void value.
 pub const VOID: i16 = i16::MIN;

@@ -18,7 +18,6 @@ use std::io::{self, BufRead, BufReader, Cursor, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use super::kind::Format;
 use super::MapError;
 
 /// How long a FIFO or device given as an input may take to start giving bytes (a writer that
@@ -208,53 +207,6 @@ impl Input {
             }
         }
         Ok(head)
-    }
-
-    /// The format the first bytes show ([`sniff`]), if any.
-    pub fn format(&self) -> Option<Format> {
-        sniff(&self.head, self.len)
-    }
-
-    /// What the first bytes look like, for messages: `a PNG file`, `a TIFF file`,
-    /// `an ESRI ASCII grid`, `an SRTM .hgt tile` (from its length alone), or `None`.
-    pub fn looks_like(&self) -> Option<&'static str> {
-        self.format().map(|f| match f {
-            Format::Png => "a PNG file",
-            Format::Tiff => "a TIFF file",
-            Format::Asc => "an ESRI ASCII grid",
-            Format::Hgt => "an SRTM .hgt tile",
-            Format::Bil => "an ESRI BIL file",
-        })
-    }
-}
-
-/// The format of a file with these first bytes and this length: a PNG or TIFF signature, an
-/// ASCII grid's header key, or the exact length of an SRTM tile.
-pub fn sniff(head: &[u8], len: u64) -> Option<Format> {
-    // An ASCII grid starts with one of its header keys, in any order and case.
-    const ASC_KEYS: [&[u8]; 8] = [
-        b"ncols",
-        b"nrows",
-        b"xllcorner",
-        b"yllcorner",
-        b"xllcenter",
-        b"yllcenter",
-        b"cellsize",
-        b"nodata_value",
-    ];
-    let text = head.trim_ascii_start();
-    let starts_ci =
-        |word: &[u8]| text.len() > word.len() && text[..word.len()].eq_ignore_ascii_case(word);
-    if head.starts_with(b"\x89PNG") {
-        Some(Format::Png)
-    } else if head.starts_with(b"II*\0") || head.starts_with(b"MM\0*") {
-        Some(Format::Tiff)
-    } else if ASC_KEYS.iter().any(|k| starts_ci(k)) {
-        Some(Format::Asc)
-    } else if super::kind::hgt_side_from_len(len).is_some() {
-        Some(Format::Hgt)
-    } else {
-        None
     }
 }
 

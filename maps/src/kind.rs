@@ -1,13 +1,12 @@
-//! Which format a height map is in ([`Format`]), by name and by extension, and an SRTM tile by
-//! its length ([`hgt_side_from_len`]): below the readers and the input that sniffs a stream's
-//! first bytes, so that neither imports the loader.
+//! Which format a height map is in ([`Format`]) and the unit of its heights
+//! ([`VerticalUnit`]): below the readers, which each name their format, and the table of
+//! readers, which says everything else about a format (its name, extensions, first bytes,
+//! surface) and gives `Format` its methods.
 
 use std::fmt;
-use std::path::Path;
 
-use footprint_core::prelude::Surface;
-
-/// A height map format.
+/// A height map format. Each has its reader, in its own file, and one line in the table of
+/// readers, in this order (the order `--format` lists them in, and messages too).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
@@ -22,58 +21,6 @@ pub enum Format {
     /// ESRI BIL (`.bil`) with its `.hdr` side file: one band of 8-, 16- or 32-bit integers or
     /// 32- or 64-bit floats, in the byte order the header gives.
     Bil,
-}
-
-impl Format {
-    /// Every format.
-    pub const ALL: [Format; 5] = [
-        Format::Png,
-        Format::Hgt,
-        Format::Asc,
-        Format::Tiff,
-        Format::Bil,
-    ];
-
-    /// The format of a file with this extension (case-insensitive), if known.
-    pub fn from_path(path: &Path) -> Option<Format> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        match ext.as_str() {
-            "png" => Some(Format::Png),
-            "hgt" => Some(Format::Hgt),
-            "asc" => Some(Format::Asc),
-            "tif" | "tiff" => Some(Format::Tiff),
-            "bil" => Some(Format::Bil),
-            _ => None,
-        }
-    }
-
-    /// The surface a map in this format samples, which `--surface auto` meets: flat-topped
-    /// voxels for a PNG (a game map's heights, the paper's model), the continuous surface for
-    /// the survey formats (GeoTIFF, SRTM, ASCII grid, BIL), whose heights are samples of the
-    /// ground at the cells' centres.
-    pub fn surface(self) -> Surface {
-        match self {
-            Format::Png => Surface::Flat,
-            Format::Hgt | Format::Asc | Format::Tiff | Format::Bil => Surface::Bilinear,
-        }
-    }
-
-    /// The name used by `--format`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Format::Png => "png",
-            Format::Hgt => "hgt",
-            Format::Asc => "asc",
-            Format::Tiff => "tiff",
-            Format::Bil => "bil",
-        }
-    }
-}
-
-impl fmt::Display for Format {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
 }
 
 /// The unit of a map's heights: read from the file where it says (a GeoTIFF's
@@ -113,6 +60,15 @@ impl VerticalUnit {
         }
     }
 
+    /// The unit's name in the plural, for notes: `metres`, `feet`, `US survey feet`.
+    pub(crate) fn plural(self) -> &'static str {
+        match self {
+            VerticalUnit::Metre => "metres",
+            VerticalUnit::Foot => "feet",
+            VerticalUnit::UsSurveyFoot => "US survey feet",
+        }
+    }
+
     /// The name used by `--vertical-unit`: `metre`, `foot`, `us-foot`.
     pub fn name(self) -> &'static str {
         match self {
@@ -129,21 +85,10 @@ impl fmt::Display for VerticalUnit {
     }
 }
 
-/// The SRTM `.hgt` tile sides and their cell size in arc-seconds.
-pub const HGT_SIDES: [(u32, u32); 2] = [(1201, 3), (3601, 1)];
-
-/// The side of an SRTM tile from the file's length in bytes, if it is one of [`HGT_SIDES`] (the
-/// tile has no header: its length is all that says what it is).
-pub fn hgt_side_from_len(len: u64) -> Option<u32> {
-    HGT_SIDES
-        .iter()
-        .map(|s| s.0)
-        .find(|&side| u64::from(side) * u64::from(side) * 2 == len)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path;
 
     #[test]
     fn vertical_units() {
@@ -174,5 +119,17 @@ mod tests {
             Ok(VerticalUnit::Metre)
         );
         assert_eq!(Format::from_str("bil", false), Ok(Format::Bil));
+    }
+
+    /// `--format` takes the names the readers give, and lists the formats in the table's order
+    /// (every variant has its reader).
+    #[cfg(feature = "cli")]
+    #[test]
+    fn format_names_on_the_command_line() {
+        use clap::ValueEnum;
+        assert_eq!(Format::value_variants(), Format::ALL.as_slice());
+        for f in Format::value_variants() {
+            assert_eq!(Format::from_str(f.name(), false), Ok(*f));
+        }
     }
 }

@@ -26,11 +26,9 @@ use footprint_core::prelude::Shown;
 use super::format::{read_grid, Format, GridFile, LoadOptions, Loaded, Sentinel, VerticalUnit};
 use super::georef::{Crs, Georef};
 use super::grid::{to_unit, to_units, Grid, Spacing};
+use super::readers::extension_list;
 use super::voids::fill_voids;
 use super::{describe, tint, validate_memory, validate_size, vrt, Map, MapError};
-
-/// The formats a folder's tiles are taken from (a PNG has no georeferencing).
-const TILE_FORMATS: [Format; 4] = [Format::Hgt, Format::Asc, Format::Tiff, Format::Bil];
 
 /// A tile's cell size may differ from the first tile's by this fraction.
 const CELL_TOLERANCE: f64 = 1e-6;
@@ -174,7 +172,8 @@ fn expand(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Option<vrt::Vrt>), MapErro
                 error,
             })?;
             let path = e.path();
-            let is_tile = Format::from_path(&path).is_some_and(|f| TILE_FORMATS.contains(&f));
+            // The formats whose readers take tiles (a PNG has no georeferencing).
+            let is_tile = Format::from_path(&path).is_some_and(|f| f.reader().tile);
             if is_tile && path.is_file() {
                 files.push(path);
             }
@@ -182,9 +181,10 @@ fn expand(paths: &[PathBuf]) -> Result<(Vec<PathBuf>, Option<vrt::Vrt>), MapErro
         if files.is_empty() {
             return Err(MapError::Invalid {
                 what: describe("height map", p),
-                detail: "is a directory with no map tiles in it (.hgt, .asc, .tif, .tiff or \
-                         .bil) to read as a mosaic"
-                    .to_owned(),
+                detail: format!(
+                    "is a directory with no map tiles in it ({}) to read as a mosaic",
+                    extension_list(|r| r.tile)
+                ),
             });
         }
         files.sort();

@@ -1,17 +1,155 @@
 //! Loading a map from a PNG height map and an optional PNG colour map.
 
-use std::io::{self, Read, Seek, SeekFrom};
+use std::io::{self, Read, Seek, SeekFrom, Write};
 use std::path::Path;
 
+use footprint_core::prelude::{Shown, Surface};
 use footprint_core::Rgb;
-use image::codecs::png::PngDecoder;
-use image::{ColorType, DynamicImage, ImageDecoder, Limits};
+use image::codecs::png::{PngDecoder, PngEncoder};
+use image::{ColorType, DynamicImage, ExtendedColorType, ImageDecoder, ImageEncoder, Limits};
 
 use super::input::{InMemory, Input};
+use super::kind::{Format, VerticalUnit};
+use super::loaded::Loaded;
+use super::options::{check_scale, LoadOptions, DEFAULT_SPACING_M};
+use super::reader::{always_writable, Evidence, Opened, Reader};
 use super::{describe, tint::tint, validate_memory, validate_size, Map, MapError};
 
 /// The eight bytes every PNG file starts with.
 const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
+
+/// The PNG height map's reader, its line in the table of readers.
+pub(crate) const READER: Reader = Reader {
+    format: Format::Png,
+    name: "png",
+    extensions: &["png"],
+    description: "a PNG file",
+    surface: Surface::Flat,
+    sniff,
+    open,
+    write,
+    check_writable: always_writable,
+    height_units: true,
+    tile: false,
+    side_file: None,
+};
+
+/// A PNG starts with its signature (its first four bytes suffice).
+fn sniff(head: &[u8], _len: u64) -> Option<Evidence> {
+    head.starts_with(&SIGNATURE[..4])
+        .then_some(Evidence::Content)
+}
+
+/// Opens a PNG height map, with its colour map if `opts` gives one: a map of height units at
+/// `--spacing` (else [`DEFAULT_SPACING_M`]), `--height-scale` (else
+/// [`default_height_scale`]) taken in `--vertical-unit`; `--nodata` is refused.
+fn open(
+    input: Input,
+    _path: &Path,
+    what: &str,
+    opts: &LoadOptions<'_>,
+) -> Result<Opened, MapError> {
+    if let Some(v) = opts.nodata {
+        return Err(MapError::Invalid {
+            what: what.to_owned(),
+            detail: format!(
+                "--nodata {}: a PNG holds height units, not heights with a void value; \
+                 --nodata is for .hgt, .asc, TIFF and .bil files",
+                Shown(v)
+            ),
+        });
+    }
+    let spacing = opts.spacing_m.unwrap_or(DEFAULT_SPACING_M);
+    let spacing_from = spacing_note(
+        opts.spacing_m,
+        "the default for PNG; give --spacing for the map's own",
+    );
+    if let Some(scale) = opts.height_scale_m {
+        check_scale(what, spacing, &spacing_from, scale)?;
+    }
+    let (mut map, bits) = load_pair(
+        input,
+        opts.color,
+        opts.in_memory,
+        spacing,
+        opts.height_scale_m,
+    )?;
+    let unit = opts.vertical_unit.unwrap_or(VerticalUnit::Metre);
+    let vertical_note = match opts.vertical_unit {
+        Some(u) => format!(
+            "--vertical-unit {u}: the PNG's height scale is taken in {}",
+            u.plural()
+        ),
+        None => "a PNG's height scale is metres per height unit".to_owned(),
+    };
+    if unit != VerticalUnit::Metre {
+        map.height_scale_m *= unit.metres();
+        map.base_m *= unit.metres();
+        if opts.color.is_none() {
+            map.colors = tint(
+                map.width,
+                map.height,
+                &map.heights,
+                map.spacing_m,
+                map.height_scale_m,
+            )
+            .into();
+        }
+    }
+    let scale = map.height_scale_m;
+    check_scale(what, spacing, &spacing_from, scale)?;
+    let height_note = match (opts.height_scale_m, bits <= 8) {
+        (Some(_), _) => "--height-scale".to_owned(),
+        (None, true) => format!(
+            "voxel-space units, one height unit per voxel spacing: the default for an \
+             {bits}-bit PNG, as game height maps are drawn; give --height-scale to change it"
+        ),
+        (None, false) => {
+            format!("the default for a {bits}-bit PNG; give --height-scale to change it")
+        }
+    };
+    let (lo, hi) = map.height_range();
+    let range_m = (f64::from(lo) * scale, f64::from(hi) * scale);
+    Ok(Opened::Map(Box::new(Loaded {
+        map,
+        format: Format::Png,
+        detail: format!("PNG {bits}-bit greyscale height units"),
+        spacing_note: spacing_from,
+        height_note,
+        voids_filled: 0,
+        range_m,
+        sentinel: None,
+        vertical_unit: unit,
+        vertical_note,
+        warnings: Vec::new(),
+    })))
+}
+
+/// The note for a spacing that is either `--spacing` or a default.
+fn spacing_note(given: Option<f64>, default: &str) -> String {
+    match given {
+        Some(_) => "--spacing".to_owned(),
+        None => default.to_owned(),
+    }
+}
+
+/// Writes `map` as a 16-bit greyscale PNG of its height units (render it with `--spacing` and
+/// `--height-scale` set to the map's); `what` names the output in errors.
+pub fn write(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError> {
+    // The encoder takes 16-bit samples in native byte order.
+    let bytes: Vec<u8> = map.heights.iter().flat_map(|h| h.to_ne_bytes()).collect();
+    let mut buf = Vec::new();
+    PngEncoder::new(&mut buf)
+        .write_image(&bytes, map.width, map.height, ExtendedColorType::L16)
+        .map_err(|e| MapError::Invalid {
+            what: what.to_owned(),
+            detail: format!("cannot encode the PNG: {e}"),
+        })?;
+    out.write_all(&buf).map_err(|error| MapError::Write {
+        what: what.to_owned(),
+        error,
+    })
+}
 
 /// Loads a map from a greyscale PNG height map `dem` and an optional colour PNG `color`.
 ///
@@ -106,7 +244,7 @@ pub fn load_pair(
             source,
             known_range: None,
             strips: None,
-            surface: footprint_core::prelude::Surface::Flat,
+            surface: READER.surface,
         },
         bit_depth,
     ))

@@ -18,15 +18,129 @@ use tiff::decoder::{ChunkType, Decoder, DecodingResult, Limits};
 use tiff::tags::{ByteOrder, SampleFormat, Tag};
 use tiff::{ColorType, TiffError, TiffFormatError};
 
+use std::path::Path;
+
+use footprint_core::prelude::Surface;
+
 use super::epsg;
 use super::georef::{Crs, Georef};
 use super::grid::{Grid, Spacing};
 use super::input::Input;
+use super::kind::{Format, VerticalUnit};
+use super::options::LoadOptions;
+use super::reader::{always_writable, hint, Evidence, FileUnit, Opened, RawGrid, Reader};
 use super::tiff_lzw::{self, Chunks, Sample};
 use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
 pub const FORMAT: &str = "TIFF";
+
+/// The TIFF's reader, its line in the table of readers.
+pub(crate) const READER: Reader = Reader {
+    format: Format::Tiff,
+    name: "tiff",
+    extensions: &["tif", "tiff"],
+    description: "a TIFF file",
+    surface: Surface::Bilinear,
+    sniff,
+    open,
+    write,
+    check_writable: always_writable,
+    height_units: false,
+    tile: true,
+    side_file: None,
+};
+
+/// A TIFF starts with its byte order and 42: `II*\0` or `MM\0*`.
+fn sniff(head: &[u8], _len: u64) -> Option<Evidence> {
+    (head.starts_with(b"II*\0") || head.starts_with(b"MM\0*")).then_some(Evidence::Content)
+}
+
+/// Opens a TIFF: its heights, and from its tags its spacing, place, void value and vertical
+/// unit (a warning when the unit of its pixel size is unknown and `--spacing` is not given).
+fn open(
+    input: Input,
+    _path: &Path,
+    _what: &str,
+    opts: &LoadOptions<'_>,
+) -> Result<Opened, MapError> {
+    let looks = input.looks_like();
+    let (grid, info) = read(input).map_err(|e| hint(e, looks))?;
+    let (unit, depth) = tiff_unit(&info);
+    let warnings = match (&info.spacing_unknown, opts.spacing_m) {
+        (Some(w), None) => vec![w.clone()],
+        _ => Vec::new(),
+    };
+    Ok(Opened::Grid(Box::new(RawGrid {
+        grid,
+        detail: info.detail,
+        spacing: info.spacing,
+        georef: info.georef,
+        scan: true,
+        declared: info.nodata,
+        unit,
+        depth,
+        warnings,
+    })))
+}
+
+/// The unit of a TIFF's heights: `VerticalUnitsGeoKey` if present, else the unit of its
+/// `VerticalCSTypeGeoKey` in the EPSG registry ([`epsg::vertical_crs`]), else unspecified
+/// (with a warning when its horizontal unit is feet, or its vertical CRS one the reader does
+/// not know); and whether the vertical CRS is a depth.
+fn tiff_unit(info: &TiffInfo) -> (FileUnit, bool) {
+    let vertical = info.vertical_cs.and_then(epsg::vertical_crs);
+    let depth = vertical.is_some_and(|v| v.depth);
+    if let Some(code) = info.vertical_units {
+        let unit = match VerticalUnit::from_epsg(code) {
+            Some(u) => FileUnit::Declared(u, format!("VerticalUnitsGeoKey {code} ({u})")),
+            None => FileUnit::Unknown("VerticalUnitsGeoKey", code),
+        };
+        return (unit, depth);
+    }
+    if let (Some(cs), Some(v)) = (info.vertical_cs, vertical) {
+        if let Some(u) = VerticalUnit::from_epsg(v.unit) {
+            let note = format!("VerticalCSTypeGeoKey {cs}, whose unit in the EPSG registry is {u}");
+            return (FileUnit::Declared(u, note), depth);
+        }
+    }
+    // The horizontal unit, as the file gives it or as its projected CRS implies.
+    let linear = info
+        .linear_units
+        .or_else(|| info.projected_cs.and_then(epsg::projected_unit));
+    let hint = feet_hint(linear, info.linear_units.is_none());
+    let warning = match info.vertical_cs {
+        Some(cs) => Some(format!(
+            "VerticalCSTypeGeoKey {cs} is not a vertical CRS whose unit the reader knows: the \
+             heights are read as metres; give --vertical-unit metre|foot|us-foot"
+        )),
+        None if !hint.is_empty() => Some(format!(
+            "the file declares no vertical unit{hint}; the heights are read as metres"
+        )),
+        None => None,
+    };
+    (FileUnit::Unspecified(hint, warning), false)
+}
+
+/// A hint for a TIFF that gives no vertical unit: if its horizontal unit (the EPSG code of
+/// `ProjLinearUnitsGeoKey`, or of its projected CRS's unit when `implied`) is feet, its
+/// heights may be too.
+fn feet_hint(linear_units: Option<u16>, implied: bool) -> String {
+    let unit = linear_units.and_then(VerticalUnit::from_epsg);
+    let key = if implied {
+        "the unit of its ProjectedCSTypeGeoKey"
+    } else {
+        "ProjLinearUnitsGeoKey"
+    };
+    match (linear_units, unit) {
+        (Some(code), Some(u)) if u != VerticalUnit::Metre => format!(
+            ", though its horizontal unit is {} ({key} {code}): give --vertical-unit {u} if \
+             its heights are too",
+            u.plural()
+        ),
+        _ => String::new(),
+    }
+}
 
 /// TIFF's code for LZW compression.
 const LZW: u16 = 5;
