@@ -19,7 +19,7 @@ use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
-use crate::terrain::image::Sampling;
+use crate::terrain::sampling::Sampling;
 use crate::terrain::Terrain;
 use crate::Rgb;
 

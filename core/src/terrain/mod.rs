@@ -28,6 +28,7 @@ pub mod march;
 pub mod pyramid;
 pub mod ray;
 pub mod sampler;
+pub mod sampling;
 pub mod shade;
 pub(crate) mod side;
 pub mod strips;

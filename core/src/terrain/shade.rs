@@ -16,7 +16,7 @@ use crate::num::Weight;
 use crate::sink::PixelSink;
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
-use crate::terrain::image::Sampling;
+use crate::terrain::sampling::Sampling;
 use crate::terrain::march::Voxel;
 use crate::terrain::Terrain;
 

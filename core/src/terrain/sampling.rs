@@ -1,0 +1,141 @@
+//! How a frame is sampled ([`Sampling`]): by one [`Sampler`] type, which links that mode
+//! alone, or by a run-time [`crate::Mode`], which links them all. The door
+//! ([`crate::terrain::frame::Frame::render`]) takes either, and walks each column through it.
+
+use crate::color::{Color32, Rgb};
+use crate::error::Error;
+use crate::sink::PixelSink;
+use crate::terrain::column::{self, ColumnOut, Unwritten};
+use crate::terrain::cost::Cost;
+use crate::terrain::fan::Filter;
+use crate::terrain::frame::Frame;
+use crate::terrain::sampler::Sampler;
+use crate::terrain::Terrain;
+
+/// A way to sample a frame: a [`Sampler`] (which links that mode alone) or a run-time
+/// [`crate::Mode`] (which links them all). [`Frame::render`] and [`Frame::render_columns`]
+/// take either.
+pub trait Sampling {
+    /// How the exact projection's fan is resampled for this sampling ([`Sampler::FILTER`]).
+    fn filter(&self) -> Filter;
+
+    /// Walks column `x` of `frame` with a fresh sampler, counting with `cost`, into `out`,
+    /// rows from the bottom (the rows the column walks, [`crate::terrain::camera::Column::rows`],
+    /// land at their own index; the others are left as they are).
+    fn walk_column<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [Rgb],
+    );
+
+    /// [`Sampling::walk_column`] into full-precision cells: each pixel's colour before it is
+    /// rounded to 8 bits where the sampler keeps it ([`Sampler::exact`]), else its 8-bit
+    /// colour.
+    fn walk_column_exact<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [Color32],
+    );
+
+    /// Walks column `x` of `frame` as [`Sampling::walk_column`] does, for its events alone:
+    /// `cost` hears every hook, no pixel is written ([`Frame::render_shaded`], whose shader
+    /// writes them).
+    fn walk_column_events<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+    );
+
+    /// Walks every column of a frame of the paper's projection straight into its image `W × H`
+    /// (row-major from the top), in any pixel format.
+    ///
+    /// Errors: an image of the wrong length.
+    fn walk_image<C: Cost, P: PixelSink>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        cost: &mut C,
+        image: &mut [P],
+    ) -> Result<(), Error>;
+}
+
+/// Walks column `x` of `frame` with a fresh copy of `sampler` into `out` (rows from the
+/// bottom, the column's walked rows at their own index): [`Sampling::walk_column`] and
+/// [`Sampling::walk_column_exact`], for 8-bit or full-precision cells.
+#[inline]
+pub(crate) fn walk_rows<const SURFACE: bool, S: Sampler + Clone, C: Cost, O: ColumnOut + ?Sized>(
+    sampler: &S,
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    x: usize,
+    cost: &mut C,
+    out: &mut O,
+) {
+    let rows = frame.column(x).map_or(0..0, |c| c.rows());
+    let rest = out.skip_rows(rows.start);
+    column::walk_fresh::<SURFACE, _, _, _>(frame, terrain, x, rows, sampler, cost, rest);
+}
+
+impl<S: Sampler + Clone> Sampling for S {
+    #[inline]
+    fn filter(&self) -> Filter {
+        S::FILTER
+    }
+
+    #[inline]
+    fn walk_column<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [Rgb],
+    ) {
+        walk_rows::<false, _, _, _>(self, frame, terrain, x, cost, out);
+    }
+
+    #[inline]
+    fn walk_column_exact<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+        out: &mut [Color32],
+    ) {
+        walk_rows::<false, _, _, _>(self, frame, terrain, x, cost, out);
+    }
+
+    #[inline]
+    fn walk_column_events<C: Cost>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        x: usize,
+        cost: &mut C,
+    ) {
+        let mut out = Unwritten {
+            rows: frame.grid_rows(),
+        };
+        walk_rows::<false, _, _, _>(self, frame, terrain, x, cost, &mut out);
+    }
+
+    #[inline]
+    fn walk_image<C: Cost, P: PixelSink>(
+        &self,
+        frame: &Frame<'_>,
+        terrain: &Terrain<'_>,
+        cost: &mut C,
+        image: &mut [P],
+    ) -> Result<(), Error> {
+        column::render::<false, _, _, _>(frame, terrain, self, cost, image)
+    }
+}
