@@ -32,8 +32,8 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     let Ok(camera) = Camera::new(params) else {
         return;
     };
-    let mut tables = footprint_host::render::Tables::new(&camera);
+    let mut tables = footprint_host::parallel::Tables::new(&camera);
     if let Ok(frame) = tables.frame(&camera, &terrain, Options::default()) {
-        let _ = footprint_host::render::render_with(&frame, &terrain, Mode::As, &mut NoCost);
+        let _ = footprint_host::parallel::render_with(&frame, &terrain, Mode::As, &mut NoCost);
     }
 });

@@ -12,8 +12,8 @@
 
 use arbitrary::Arbitrary;
 use footprint_host::cli::{parse, Command};
-use footprint_host::render::Tables;
-use footprint_host::view::View;
+use footprint_host::parallel::Tables;
+use footprint_host::view_args::View;
 
 const COMMANDS: [&[&str]; 9] = [
     &["render"],

@@ -9,8 +9,8 @@ use footprint_core::prelude::{HeightFilter, NoCost, Options};
 use footprint_host::experiment::paper::{paper_camera, paper_modes, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{render_with, Tables};
-use footprint_host::view::Size;
+use footprint_host::parallel::{render_with, Tables};
+use footprint_host::view_args::Size;
 
 fn paper_cases(c: &mut Criterion) {
     let pyramid = Pyramid::build(procedural(1, DEFAULT_SIZE), HeightFilter::default())

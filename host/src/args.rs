@@ -10,9 +10,9 @@ use anyhow::{bail, Result};
 use clap::Args;
 
 use crate::experiment::fly::FlyMode;
-use crate::render::Mode;
+use crate::parallel::Mode;
 use crate::truth;
-use crate::view::Size;
+use crate::view_args::Size;
 
 /// The default of a command's `--modes`: the modes it compares when none are given.
 pub trait DefaultModes: Clone + Send + Sync + 'static {

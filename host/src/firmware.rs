@@ -60,8 +60,8 @@ pub use footprint_scenes::render::{fnv1a64, image_hash};
 
 use crate::lighting::AMBIENT_DIFFUSE;
 use crate::pyramid::Pyramid;
-use crate::render::{count, Mode, Rate, Tables};
-use crate::view::Size;
+use crate::parallel::{count, Mode, Rate, Tables};
+use crate::view_args::Size;
 
 /// The firmware's image size ([`WIDTH`]×[`HEIGHT`]).
 pub const SIZE: Size = Size {
@@ -244,7 +244,7 @@ pub fn fan_line(
     let camera = Camera::new(params)?;
     let mut tables = Tables::new(&camera);
     let frame = tables.frame(&camera, terrain, scene.rolled_options())?;
-    let rendered = crate::render::render_with(&frame, terrain, Mode::As, &mut NoCost)?;
+    let rendered = crate::parallel::render_with(&frame, terrain, Mode::As, &mut NoCost)?;
     Ok(format!(
         "frame {name} {}x{} fnv1a={:016x} lines={} rows={}",
         SIZE.width,

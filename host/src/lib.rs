@@ -20,12 +20,12 @@ pub use footprint_maps as map;
 pub use footprint_maps::memory;
 pub mod output;
 pub use footprint_scenes::pyramid;
-pub mod render;
+pub mod parallel;
 pub mod report;
 pub use footprint_scenes::plates as scene;
 pub use footprint_scenes::survey;
 pub mod truth;
-pub mod view;
+pub mod view_args;
 #[cfg(test)]
 #[path = "../build/wasm_target.rs"]
 mod wasm_target;

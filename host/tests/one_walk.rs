@@ -6,7 +6,7 @@
 
 use footprint_host::cli::{parse, Command};
 use footprint_host::commands;
-use footprint_host::render::frame_walks;
+use footprint_host::parallel::frame_walks;
 
 /// The walks that `footprint render ARGS…` makes, with its output in a temporary folder.
 fn walks(args: &[&str]) -> u64 {

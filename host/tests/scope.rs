@@ -20,9 +20,9 @@ use footprint_host::experiment::fly::{self, FlySpec};
 use footprint_host::experiment::table::{self, MAGNIFIED_BELOW};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{Mode, Rate};
+use footprint_host::parallel::{Mode, Rate};
 use footprint_host::report::tables;
-use footprint_host::view::Size;
+use footprint_host::view_args::Size;
 use serde_json::Value;
 
 const SIZE: Size = Size {

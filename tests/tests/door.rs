@@ -23,8 +23,8 @@ use footprint_core::specular::{Clamp, Power};
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::procedural;
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{Tables, SS_RATES};
-use footprint_host::view::Size;
+use footprint_host::parallel::{Tables, SS_RATES};
+use footprint_host::view_args::Size;
 
 fn modes() -> Vec<Mode> {
     let mut modes = vec![Mode::Ps, Mode::Li, Mode::As, Mode::AsExact, Mode::Classic];

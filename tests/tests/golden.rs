@@ -27,10 +27,10 @@ use footprint_core::Rgb;
 use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::procedural;
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{render_lit_once, render_with, Mode, Tables, SS_RATES};
+use footprint_host::parallel::{render_lit_once, render_with, Mode, Tables, SS_RATES};
 use footprint_host::report::png::write_png;
 use footprint_host::scene::{self, Scene, SceneName};
-use footprint_host::view::Size;
+use footprint_host::view_args::Size;
 
 fn golden_dir(room: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

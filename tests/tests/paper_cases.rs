@@ -7,8 +7,8 @@ use footprint_core::prelude::{HeightFilter, Options, Tally};
 use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::{count, first_hit_distance, Mode, Rate, Tables};
-use footprint_host::view::Size;
+use footprint_host::parallel::{count, first_hit_distance, Mode, Rate, Tables};
+use footprint_host::view_args::Size;
 
 const SIZE: Size = Size {
     width: 400,
@@ -184,7 +184,7 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
 fn lit_images_are_the_same_for_any_number_of_threads() {
     use footprint_core::prelude::{Materials, NoCost, Projection, Specular, Sun, AMBIENT_DIFFUSE};
     use footprint_core::specular::{Clamp, Power};
-    use footprint_host::render::{render_lit_once, render_lit_parallel};
+    use footprint_host::parallel::{render_lit_once, render_lit_parallel};
     let map = procedural(3, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let terrain = pyramid.terrain(true).unwrap();
@@ -228,7 +228,7 @@ fn lit_images_are_the_same_for_any_number_of_threads() {
 #[test]
 fn images_and_counts_are_the_same_for_any_number_of_threads() {
     use footprint_core::prelude::NoCost;
-    use footprint_host::render::{render_parallel, render_with};
+    use footprint_host::parallel::{render_parallel, render_with};
     let map = procedural(3, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let terrain = pyramid.terrain(true).unwrap();

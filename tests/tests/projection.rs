@@ -16,7 +16,7 @@ use common::{Map, Pose, SKY};
 use footprint_core::extend::mirror;
 use footprint_core::prelude::{Camera, CameraParams, NoCost, Options, Projection};
 use footprint_core::Rgb;
-use footprint_host::render::{render_with, Mode, Tables, SS_RATES};
+use footprint_host::parallel::{render_with, Mode, Tables, SS_RATES};
 
 /// The largest root-mean-square difference, in 8-bit levels over every channel, allowed
 /// between the exact projection's `as-exact` image at level 0 and the float caster. The
@@ -375,7 +375,7 @@ fn exact_area_sampling_samples_every_visible_voxel_of_the_fan() {
         };
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options).expect("frame");
-        let (_, m) = footprint_host::render::count(&frame, &terrain, Mode::AsExact).expect("count");
+        let (_, m) = footprint_host::parallel::count(&frame, &terrain, Mode::AsExact).expect("count");
         assert!(m.total.v > 0, "pitch {pitch} roll {roll}");
         assert_eq!(
             (m.total.m, m.hidden, m.missed),

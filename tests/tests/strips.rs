@@ -9,8 +9,8 @@ use footprint_core::prelude::*;
 use footprint_core::prelude::{Materials, Specular, Sun};
 use footprint_host::map::procedural;
 use footprint_host::pyramid::Pyramid;
-use footprint_host::render::SS_RATES;
-use footprint_host::render::{count, render_lit_once, Tables};
+use footprint_host::parallel::SS_RATES;
+use footprint_host::parallel::{count, render_lit_once, Tables};
 
 /// Every named mode and two supersampling rates.
 fn modes() -> Vec<Mode> {

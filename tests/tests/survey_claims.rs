@@ -15,7 +15,7 @@ use footprint_host::experiment::paper::PAPER_PITCHES;
 use footprint_host::experiment::table;
 use footprint_host::pyramid::Pyramid;
 use footprint_host::survey::{survey, Kind};
-use footprint_host::view::Size;
+use footprint_host::view_args::Size;
 
 const SIZE: Size = Size {
     width: 400,

@@ -8,8 +8,8 @@ use clap::Args;
 
 use crate::args::{BenchModes, ModesArg, OutputFormat, SizeArg};
 use crate::experiment::bench;
-use crate::render::Mode;
-use crate::view::{GeometryArg, MapArgs, OnOff};
+use crate::parallel::Mode;
+use crate::view_args::{GeometryArg, MapArgs, OnOff};
 
 /// `footprint bench`.
 #[derive(Args, Debug)]

@@ -10,12 +10,12 @@ use crate::args::{FlyModes, ModesArg, OutputFormat, SizeArg, TruthSamplesArg};
 use crate::experiment::fly::{self, FlyMode, FlySpec};
 use crate::flight_path::FlightPath;
 use crate::output::Folder;
-use crate::render::Mode;
+use crate::parallel::Mode;
 use crate::report::apng::Animation;
 use crate::report::flight;
 use crate::report::png::write_png;
 use crate::truth::reference::REFERENCE_COLUMNS;
-use crate::view::{GeometryArg, MapArgs, OnOff, ProjectionArg, SurfaceArg};
+use crate::view_args::{GeometryArg, MapArgs, OnOff, ProjectionArg, SurfaceArg};
 
 /// The modes of `--animation`, left to right.
 const PANELS: [Mode; 2] = [Mode::Ps, Mode::As];

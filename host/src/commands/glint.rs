@@ -9,10 +9,10 @@ use clap::Args;
 use crate::args::OutputFormat;
 use crate::experiment::glint::{self, GlintSpec, METHODS};
 use crate::lighting::MaterialArg;
-use crate::render::Mode;
+use crate::parallel::Mode;
 use crate::report::glint as writer;
 use crate::report::png::write_png;
-use crate::view::{MapArgs, OnOff, Size};
+use crate::view_args::{MapArgs, OnOff, Size};
 
 /// What `footprint glint` does without `--measure`.
 const ABOUT: &str = "footprint glint: the flight of Sect. 5 with a low sun straight ahead over \

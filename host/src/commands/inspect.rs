@@ -8,9 +8,9 @@ use clap::Args;
 use crate::args::OutputFormat;
 use crate::experiment::inspect;
 use crate::output::Target;
-use crate::render::Mode;
+use crate::parallel::Mode;
 use crate::report::png::write_png;
-use crate::view::{CameraArgs, MapArgs, ViewArg};
+use crate::view_args::{CameraArgs, MapArgs, ViewArg};
 use footprint_core::prelude::Options;
 
 /// A pixel `ROW,COL`, counted from the top-left.

@@ -7,12 +7,12 @@ use clap::Args;
 
 use crate::args::{OutputFormat, RenderMode};
 use crate::lighting::{LightArgs, LoadedMaterials};
-use crate::render::{
+use crate::parallel::{
     count, render_lit_once, render_lit_parallel, render_timed_parallel, repeat, visible, Tables,
 };
 use crate::report::counts::{self, RenderSummary};
 use crate::report::png::write_png;
-use crate::view::{CameraArgs, MapArgs, ViewArg};
+use crate::view_args::{CameraArgs, MapArgs, ViewArg};
 use footprint_core::prelude::{Counts, Projection, Switch};
 
 /// `footprint render`.
@@ -160,7 +160,7 @@ pub fn render(args: &RenderArgs) -> Result<()> {
                 Projection::Exact => "exact",
                 Projection::Paper => "paper",
             },
-            surface: crate::view::surface_name(view.options.surface),
+            surface: crate::view_args::surface_name(view.options.surface),
             grid: (frame.grid_columns(), frame.grid_rows()),
             measured: &measured,
             v_case,

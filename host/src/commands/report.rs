@@ -19,9 +19,9 @@ use crate::experiment::paper::{paper_camera_placed, PAPER_PITCHES};
 use crate::experiment::table;
 use crate::lighting::MaterialArg;
 use crate::output::Folder;
-use crate::render::{render_parallel, Mode, Rate, Tables};
+use crate::parallel::{render_parallel, Mode, Rate, Tables};
 use crate::report::{document, html, plot, png::write_png, shell, write_atomic};
-use crate::view::{GeometryArg, HeightFilterArg, MapArgs, OnOff, Size};
+use crate::view_args::{GeometryArg, HeightFilterArg, MapArgs, OnOff, Size};
 
 /// `footprint report`.
 #[derive(Args, Debug)]

@@ -7,7 +7,7 @@ use crate::args::{ModesArg, OutputFormat, SizeArg, TableModes, TruthSamplesArg};
 use crate::experiment::paper::PAPER_PITCHES;
 use crate::experiment::table;
 use crate::report::tables;
-use crate::view::{GeometryArg, MapArgs, OnOff, SurfaceArg};
+use crate::view_args::{GeometryArg, MapArgs, OnOff, SurfaceArg};
 
 /// Which case(s) of Table 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

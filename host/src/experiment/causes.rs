@@ -24,7 +24,7 @@ use footprint_core::Rgb;
 use serde::Serialize;
 
 use crate::pyramid::Pyramid;
-use crate::render::Tables;
+use crate::parallel::Tables;
 
 /// The names of the classes, in order of precedence; a pixel's class is an index into it.
 pub const CLASSES: [&str; 3] = ["seam", "magnified", "rest"];

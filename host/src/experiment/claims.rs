@@ -21,7 +21,7 @@ use serde::Serialize;
 
 use super::fly::Fly;
 use super::table::{Case, Tables15};
-use crate::render::{Mode, Rate};
+use crate::parallel::{Mode, Rate};
 use crate::report::tables::coverage as cov;
 
 /// The fewest events a count claim is judged on: a count below 10 is within about a third of

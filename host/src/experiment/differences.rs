@@ -15,8 +15,8 @@ use super::paper::paper_camera_placed;
 use super::table::Tables15;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{first_hit_distance, Mode, Rate, Tables};
-use crate::view::Size;
+use crate::parallel::{first_hit_distance, Mode, Rate, Tables};
+use crate::view_args::Size;
 
 /// The paper's Table 1 at pitch 5°: visible voxels `V` and steps `L` per column.
 pub const PAPER_V_L_5: (f64, f64) = (4217.0, 4555.0);

@@ -24,9 +24,9 @@ use super::paper::paper_camera;
 use crate::lighting::{LoadedMaterials, MaterialArg, Method, AMBIENT_DIFFUSE};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{Mode, Tables};
+use crate::parallel::{Mode, Tables};
 use crate::truth::reference::rmse;
-use crate::view::Size;
+use crate::view_args::Size;
 
 /// The methods measured against the reference, in the order tables list them.
 pub const METHODS: [Method; 5] = [

@@ -19,9 +19,9 @@ use serde::Serialize;
 use super::paper::paper_camera_placed;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{render_parallel, Mode, Tables};
+use crate::parallel::{render_parallel, Mode, Tables};
 use crate::truth::reference::rmse;
-use crate::view::Size;
+use crate::view_args::Size;
 
 /// The pitch shifts tried, in pixels.
 pub const SHIFTS_PX: [f64; 9] = [

@@ -10,7 +10,7 @@ use footprint_core::prelude::{Camera, CameraParams, Cost, Frame, Options};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;
-use crate::render::{render_with, Mode, Tables};
+use crate::parallel::{render_with, Mode, Tables};
 
 /// An image, row-major from the top.
 #[derive(Clone, Debug)]
@@ -782,8 +782,8 @@ pub fn wedge(
 mod tests {
     use super::*;
     use crate::experiment::paper::paper_camera;
-    use crate::render::Rate;
-    use crate::view::Size;
+    use crate::parallel::Rate;
+    use crate::view_args::Size;
     use footprint_core::prelude::HeightFilter;
 
     #[test]

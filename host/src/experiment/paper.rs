@@ -10,8 +10,8 @@ use serde::Serialize;
 use crate::camera::{default_far_voxels, mirrored_warning, place, placement_note, Eye, Why};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{Mode, Rate};
-use crate::view::Size;
+use crate::parallel::{Mode, Rate};
+use crate::view_args::Size;
 
 /// The paper's three pitches (Table 1).
 pub const PAPER_PITCHES: [f64; 3] = [40.0, 20.0, 5.0];

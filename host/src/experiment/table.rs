@@ -20,10 +20,10 @@ use serde::Serialize;
 use super::paper::{paper_view_placed, ViewPlacement};
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{count, render_timed, visible, Mode, Tables, SS_RATES};
+use crate::parallel::{count, render_timed, visible, Mode, Tables, SS_RATES};
 use crate::truth::reference::{psnr, rmse};
 use crate::truth::Truth;
-use crate::view::{surface_name, Size};
+use crate::view_args::{surface_name, Size};
 use footprint_scenes::view::Placement;
 
 /// A case is magnified when the pixel's footprint at the first hit is below this many voxels

@@ -7,7 +7,7 @@ use anyhow::Result;
 use footprint_core::prelude::{CameraParams, Tally};
 use serde::Serialize;
 
-use crate::render::{Measured, Mode, Repeated};
+use crate::parallel::{Measured, Mode, Repeated};
 use crate::report::number::thousands;
 
 /// One measured frame: what `render --counts` prints.

@@ -291,7 +291,7 @@ pub struct Document<'a> {
     /// The numbers of "where our numbers differ".
     pub differences: &'a Differences,
     /// The size of the views, pixels.
-    pub size: crate::view::Size,
+    pub size: crate::view_args::Size,
 }
 
 /// A distance or height in metres, in km from 1 km up.
@@ -694,7 +694,7 @@ fn order_words(fl: &crate::experiment::differences::FlightFacts, order: &str) ->
 /// The report's first paragraph: the map, the image `size`, how the views of `t` were placed
 /// and how wide a pixel is at each first hit ([`crate::report::tables::views_words`]), the
 /// walk, and the `command` that regenerates the report.
-fn intro(source: &str, command: &str, t: &Tables15, size: crate::view::Size) -> String {
+fn intro(source: &str, command: &str, t: &Tables15, size: crate::view_args::Size) -> String {
     let walk = if t.lod {
         "the multiresolution pyramid (`--lod on`)"
     } else {
@@ -775,7 +775,7 @@ pub fn markdown(doc: &Document<'_>) -> String {
 mod tests {
     use super::*;
     use crate::report::fixture;
-    use crate::view::Size;
+    use crate::view_args::Size;
 
     const SIZE: Size = Size {
         width: 400,

@@ -7,7 +7,7 @@ use crate::experiment::fly::{Excess, Fly, FlyMode, Histogram, ModeFly};
 use crate::experiment::heights::{Changed, Variant};
 use crate::experiment::paper::ViewPlacement;
 use crate::experiment::table::{Case, ModeRow, Tables15};
-use crate::render::Mode;
+use crate::parallel::Mode;
 use footprint_scenes::view::Placement;
 
 /// A mode's row of Tables 2–4 with `coverage` (`M = coverage · v`) and `rmse`.

@@ -20,7 +20,7 @@ use footprint_core::prelude::{Camera, Options, Projection, Surface};
 use footprint_core::Rgb;
 
 use crate::pyramid::Pyramid;
-use crate::render::{render_exact_parallel, render_parallel, Mode, Tables};
+use crate::parallel::{render_exact_parallel, render_parallel, Mode, Tables};
 
 /// Columns walked per pixel in the reference.
 pub const REFERENCE_COLUMNS: u32 = 16;

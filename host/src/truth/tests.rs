@@ -394,7 +394,7 @@ fn a_boxs_area_per_pixel_is_its_outlines_share() {
 /// 64², on `surface`.
 fn k_against_2k(map: &Map, surface: Surface, pitch: f64) -> f64 {
     let pyramid = Pyramid::build(map.clone(), Default::default()).unwrap();
-    let size = crate::view::Size {
+    let size = crate::view_args::Size {
         width: 64,
         height: 64,
     };

@@ -14,7 +14,7 @@ use super::{InfoArgs, ReadArgs};
 use crate::args::OutputFormat;
 use crate::map::{self, LoadOptions};
 use crate::report::write_atomic;
-use crate::view::{HeightFilterArg, MapArgs, TerrainArg};
+use crate::view_args::{HeightFilterArg, MapArgs, TerrainArg};
 
 /// `footprint map bake`.
 #[derive(Args, Debug)]

@@ -309,7 +309,7 @@ fn convert(args: &ConvertArgs) -> Result<()> {
     let (loaded, baked);
     let (m, range_m, voids_filled) = if map::baked::is_baked(&args.input) {
         let r = &args.read;
-        crate::view::refuse_for_baked(
+        crate::view_args::refuse_for_baked(
             &args.input,
             r.format.is_some(),
             r.nodata.is_some(),

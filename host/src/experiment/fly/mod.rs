@@ -29,10 +29,10 @@ use crate::experiment::paper::paper_camera_placed;
 use crate::flight_path::FlightPath;
 use crate::map::Map;
 use crate::pyramid::Pyramid;
-use crate::render::{render_column_exact, Mode, Rate, Tables};
+use crate::parallel::{render_column_exact, Mode, Rate, Tables};
 use crate::truth::reference::{rmse, supersampled, REFERENCE_COLUMNS};
 use crate::truth::{self, Truth};
-use crate::view::{surface_name, Size, SurfaceArg};
+use crate::view_args::{surface_name, Size, SurfaceArg};
 use footprint_scenes::view::Placement;
 
 /// What to fly.

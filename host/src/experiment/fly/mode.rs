@@ -7,7 +7,7 @@ use std::str::FromStr;
 
 use serde::Serialize;
 
-use crate::render::Mode;
+use crate::parallel::Mode;
 
 /// What a flight flies: one of the core's sampling modes, the truth's flight (`truth`), or the
 /// old walked reference (`walked-reference`), each listed with the same fields.
