@@ -20,7 +20,7 @@
 use core::ops::Range;
 
 use crate::color::{mean_to_rgb, to_color32, Color32, Rgb};
-use crate::error::Error;
+use crate::error::{check_len, Error};
 use crate::sink::PixelSink;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
@@ -127,19 +127,8 @@ impl Frame<'_> {
         } else {
             self.scratch_len()
         };
-        for (what, expected, actual) in [
-            ("image", w * h, image),
-            ("scratch", scratch_needed, scratch),
-        ] {
-            if expected != actual {
-                return Err(Error::SliceLength {
-                    what,
-                    expected,
-                    actual,
-                });
-            }
-        }
-        Ok(())
+        check_len("image", w * h, image)?;
+        check_len("scratch", scratch_needed, scratch)
     }
 
     /// Errors unless `columns` lies within the frame's and a grid of `len` cells holds them.
@@ -187,7 +176,8 @@ impl Frame<'_> {
             );
         }
         let ((w, h), k) = (self.image_size(), self.columns_per_pixel());
-        check_boxed(w * k * h, grid.len(), w * h, image.len())?;
+        check_len("grid", w * k * h, grid.len())?;
+        check_len("image", w * h, image.len())?;
         if k == 1 {
             // Column x's cell r (from the bottom) is pixel (x, h − 1 − r).
             for (x, column) in grid.chunks_exact(h).enumerate() {
@@ -224,33 +214,11 @@ impl Frame<'_> {
         }
         let (h, k) = (self.grid_rows(), self.columns_per_pixel());
         let n = grid.len() / (k * h);
-        check_boxed(n * k * h, grid.len(), n * h, image.len())?;
+        check_len("grid", n * k * h, grid.len())?;
+        check_len("image", n * h, image.len())?;
         box_columns(grid, h, k, image, |cell| *cell);
         Ok(())
     }
-}
-
-/// Errors unless a grid of `grid` cells and an image of `image` pixels have the lengths
-/// expected.
-fn check_boxed(
-    grid_expected: usize,
-    grid: usize,
-    image_expected: usize,
-    image: usize,
-) -> Result<(), Error> {
-    for (what, expected, actual) in [
-        ("grid", grid_expected, grid),
-        ("image", image_expected, image),
-    ] {
-        if expected != actual {
-            return Err(Error::SliceLength {
-                what,
-                expected,
-                actual,
-            });
-        }
-    }
-    Ok(())
 }
 
 /// The box filter of Sect. 8's horizontal supersampling: each pixel of `image` (row-major from
