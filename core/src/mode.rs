@@ -23,8 +23,8 @@ use crate::terrain::column::{self, ColumnOut, Unwritten};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
-use crate::terrain::sampling::{walk_rows, Sampling};
 use crate::terrain::sampler::{ExactArea, Linear, PaperArea, Point, Sampler, Super};
+use crate::terrain::sampling::{walk_rows, Sampling};
 use crate::terrain::wedge::{SmoothWedge, Wedge};
 use crate::terrain::Terrain;
 

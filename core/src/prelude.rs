@@ -29,9 +29,9 @@ pub use crate::terrain::camera::{
 pub use crate::terrain::cost::{Cost, Counts, NoCost, Tally};
 pub use crate::terrain::fan::Filter;
 pub use crate::terrain::frame::Frame;
-pub use crate::terrain::sampling::Sampling;
 pub use crate::terrain::pyramid::{self, HeightFilter};
 pub use crate::terrain::sampler::Sampler;
+pub use crate::terrain::sampling::Sampling;
 pub use crate::terrain::{next_size, Level, Scale, Terrain, MAX_LEVELS, MAX_SIDE};
 
 #[cfg(test)]

@@ -10,8 +10,8 @@ use std::time::Instant;
 
 use footprint_core::prelude::{Camera, HeightFilter, NoCost, Options};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::{render_with, Mode, Tables};
+use footprint_host::pyramid::Pyramid;
 use footprint_scenes::{flight, view};
 
 #[path = "../tests/common/browser.rs"]

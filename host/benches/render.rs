@@ -8,8 +8,8 @@ use criterion::{criterion_main, BenchmarkId, Criterion};
 use footprint_core::prelude::{HeightFilter, NoCost, Options};
 use footprint_host::experiment::paper::{paper_camera, paper_modes, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::{render_with, Tables};
+use footprint_host::pyramid::Pyramid;
 use footprint_host::view_args::Size;
 
 fn paper_cases(c: &mut Criterion) {

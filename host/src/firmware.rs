@@ -59,8 +59,8 @@ use footprint_scenes::render::render_lit;
 pub use footprint_scenes::render::{fnv1a64, image_hash};
 
 use crate::lighting::AMBIENT_DIFFUSE;
-use crate::pyramid::Pyramid;
 use crate::parallel::{count, Mode, Rate, Tables};
+use crate::pyramid::Pyramid;
 use crate::view_args::Size;
 
 /// The firmware's image size ([`WIDTH`]×[`HEIGHT`]).

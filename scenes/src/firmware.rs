@@ -16,7 +16,7 @@ use footprint_core::specular::{Clamp, Normal, Power};
 use footprint_core::{Error, Rgb};
 
 use crate::plates::{self, SceneName, Shading};
-use crate::view_args::{self, FitError};
+use crate::view::{self, FitError};
 use crate::{procedural, Map, Pyramid};
 
 /// The seed of the firmware's built-in terrain.

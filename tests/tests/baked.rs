@@ -6,9 +6,9 @@
 use footprint_core::prelude::*;
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::{baked, procedural};
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::SS_RATES;
 use footprint_host::parallel::{render_with, Tables};
+use footprint_host::pyramid::Pyramid;
 use footprint_host::view_args::Size;
 
 /// Every named mode and two supersampling rates.

@@ -22,8 +22,8 @@ use footprint_core::prelude::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFU
 use footprint_core::specular::{Clamp, Power};
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::procedural;
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::{Tables, SS_RATES};
+use footprint_host::pyramid::Pyramid;
 use footprint_host::view_args::Size;
 
 fn modes() -> Vec<Mode> {

@@ -9,8 +9,8 @@ use footprint_core::embedded::{self, RenderError};
 use footprint_core::prelude::*;
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::procedural;
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::{render_with, Tables, SS_RATES};
+use footprint_host::pyramid::Pyramid;
 use footprint_host::view_args::Size as ImageSize;
 
 /// A display of any size: a framebuffer of `C` the test can read back.

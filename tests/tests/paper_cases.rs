@@ -6,8 +6,8 @@ mod common;
 use footprint_core::prelude::{HeightFilter, Options, Tally};
 use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::{count, first_hit_distance, Mode, Rate, Tables};
+use footprint_host::pyramid::Pyramid;
 use footprint_host::view_args::Size;
 
 const SIZE: Size = Size {

@@ -11,8 +11,8 @@ use footprint_host::experiment::heights;
 use footprint_host::experiment::paper::PAPER_PITCHES;
 use footprint_host::experiment::table::{self, Tables15};
 use footprint_host::map::{procedural, DEFAULT_SIZE};
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::{Mode, Rate};
+use footprint_host::pyramid::Pyramid;
 use footprint_host::view_args::Size;
 
 const SIZE: Size = Size {

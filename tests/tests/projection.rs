@@ -375,7 +375,8 @@ fn exact_area_sampling_samples_every_visible_voxel_of_the_fan() {
         };
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options).expect("frame");
-        let (_, m) = footprint_host::parallel::count(&frame, &terrain, Mode::AsExact).expect("count");
+        let (_, m) =
+            footprint_host::parallel::count(&frame, &terrain, Mode::AsExact).expect("count");
         assert!(m.total.v > 0, "pitch {pitch} roll {roll}");
         assert_eq!(
             (m.total.m, m.hidden, m.missed),

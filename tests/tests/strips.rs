@@ -8,9 +8,9 @@ use footprint_core::extend::{Axis, Strips};
 use footprint_core::prelude::*;
 use footprint_core::prelude::{Materials, Specular, Sun};
 use footprint_host::map::procedural;
-use footprint_host::pyramid::Pyramid;
 use footprint_host::parallel::SS_RATES;
 use footprint_host::parallel::{count, render_lit_once, Tables};
+use footprint_host::pyramid::Pyramid;
 
 /// Every named mode and two supersampling rates.
 fn modes() -> Vec<Mode> {

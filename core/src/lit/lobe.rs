@@ -3,21 +3,8 @@
 
 use fixed::types::U2F30;
 
-use crate::color::{Color16, Rgb};
-use crate::error::{check, Error};
-use crate::num::Weight;
 use crate::specular::clamp::clamp_at;
-use crate::specular::detect::PI_Q30;
-use crate::specular::normal::sqrt_q30;
-use crate::specular::{Clamp, Light, Normal, Phong, N_MAX};
-use crate::terrain::camera::floor_i64;
-use crate::terrain::cost::Cost;
-use crate::terrain::map::{Axis, Terrain};
-use crate::terrain::march::Voxel;
-use crate::terrain::shade::Shader;
-use crate::terrain::side::mirror;
-use crate::trig::sin_cos_deg;
-
+use crate::specular::{Clamp, Normal, Phong, N_MAX};
 
 /// One sample, lit: what a pixel accumulates from it.
 pub(super) struct Lit {
@@ -110,4 +97,3 @@ pub(super) fn terrain_clamp(phong: &Phong, f: u16, policy: Clamp) -> Phong {
         U2F30::from_bits(u32::try_from(k2).unwrap_or(u32::MAX)),
     )
 }
-

@@ -60,7 +60,6 @@ mod lobe;
 mod shader;
 mod sun;
 
-pub(crate) use lobe::LOBES;
 pub use shader::SunShader;
 pub use sun::{Materials, Sun};
 /// The default ambient and diffuse light, `(ambient, diffuse)`: `0.35 + 0.65·max(N·L, 0)`
@@ -83,8 +82,14 @@ pub enum Specular {
 
 #[cfg(test)]
 mod tests {
+    use super::shader::fold3;
     use super::*;
+    use crate::color::Rgb;
+    use crate::specular::Phong;
+    use crate::terrain::map::Terrain;
     use crate::terrain::map::{Level, Scale};
+    use crate::terrain::side::mirror;
+    use fixed::types::U2F30;
 
     #[test]
     fn bad_suns_and_shaders_are_errors() {
@@ -141,4 +146,3 @@ mod tests {
         }
     }
 }
-

@@ -4,23 +4,20 @@
 use fixed::types::U2F30;
 
 use super::lobe::{add, octave, terrain_clamp, Acc, Lit, Lobe, LOBES, MAX_WEIGHT};
-use super::{Specular, Sun};
+use super::{Materials, Specular, Sun};
 
 use crate::color::{Color16, Rgb};
 use crate::error::{check, Error};
 use crate::num::Weight;
-use crate::specular::clamp::clamp_at;
 use crate::specular::detect::PI_Q30;
 use crate::specular::normal::sqrt_q30;
-use crate::specular::{Clamp, Light, Normal, Phong, N_MAX};
+use crate::specular::{Light, Normal, Phong, N_MAX};
 use crate::terrain::camera::floor_i64;
 use crate::terrain::cost::Cost;
 use crate::terrain::map::{Axis, Terrain};
 use crate::terrain::march::Voxel;
 use crate::terrain::shade::Shader;
 use crate::terrain::side::mirror;
-use crate::trig::sin_cos_deg;
-
 
 /// `i` folded into `0..len` by the map's mirroring, with no division when it is inside.
 #[inline(always)]
@@ -394,4 +391,3 @@ impl Shader for SunShader<'_> {
         Some(Rgb::new(r, g, b))
     }
 }
-

@@ -3,23 +3,13 @@
 
 use fixed::types::U2F30;
 
-use super::{Specular, AMBIENT_DIFFUSE};
+use super::Specular;
 
-use crate::color::{Color16, Rgb};
 use crate::error::{check, Error};
-use crate::num::Weight;
-use crate::specular::clamp::clamp_at;
-use crate::specular::detect::PI_Q30;
-use crate::specular::normal::sqrt_q30;
-use crate::specular::{Clamp, Light, Normal, Phong, N_MAX};
+use crate::specular::{Normal, Phong};
 use crate::terrain::camera::floor_i64;
-use crate::terrain::cost::Cost;
 use crate::terrain::map::{Axis, Terrain};
-use crate::terrain::march::Voxel;
-use crate::terrain::shade::Shader;
-use crate::terrain::side::mirror;
 use crate::trig::sin_cos_deg;
-
 
 /// Where each voxel's specular material comes from: its [`Phong`] `n` and `K_spec`.
 #[derive(Clone, Copy, Debug)]
@@ -160,4 +150,3 @@ impl<'a> Sun<'a> {
         self.specular
     }
 }
-

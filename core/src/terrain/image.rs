@@ -48,7 +48,7 @@ impl Frame<'_> {
     }
 
     /// Renders the frame's image ([`Frame::image_size`], row-major from the top) into `image`
-    /// in any pixel format, sampled by `sampling` (a [`crate::Mode`] or a [`Sampler`]) and
+    /// in any pixel format, sampled by `sampling` (a [`crate::Mode`] or a [`crate::extend::Sampler`]) and
     /// counted by `cost` ([`crate::terrain::cost::NoCost`] counts nothing), for either
     /// projection and any number of columns per pixel. The walk draws its grid into `scratch`
     /// ([`Frame::scratch_len`] cells: the exact projection's fan, or the paper's `k` columns
@@ -96,7 +96,7 @@ impl Frame<'_> {
     }
 
     /// [`Frame::render_columns`] into full-precision cells: each pixel's colour before it is
-    /// rounded to 8 bits ([`Sampler::exact`]: `Σc/Σw` for the area samplers; the 8-bit colour
+    /// rounded to 8 bits ([`crate::extend::Sampler::exact`]: `Σc/Σw` for the area samplers; the 8-bit colour
     /// for the others and for the sky). For a ground truth that averages many columns per
     /// pixel: rounding each column to 8 bits first would leave it up to half a level off,
     /// always on the side its own columns round to. The image's layout, not its pixels: with

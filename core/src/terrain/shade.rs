@@ -16,8 +16,8 @@ use crate::num::Weight;
 use crate::sink::PixelSink;
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
-use crate::terrain::sampling::Sampling;
 use crate::terrain::march::Voxel;
+use crate::terrain::sampling::Sampling;
 use crate::terrain::Terrain;
 
 /// What lights a pixel from the samples the walk takes of it ([`crate::lit::SunShader`]

@@ -13,8 +13,8 @@ use serde::Serialize;
 
 use super::paper::{paper_camera_placed, PAPER_PITCHES};
 use crate::map::Map;
-use crate::pyramid::Pyramid;
 use crate::parallel::{count, render_parallel, render_with, Mode, Tables};
+use crate::pyramid::Pyramid;
 use crate::view_args::Size;
 use footprint_scenes::view::Placement;
 

@@ -23,8 +23,8 @@ use footprint_core::prelude::{Camera, Column, Cost, NoCost, Options, Projection,
 use footprint_core::Rgb;
 use serde::Serialize;
 
-use crate::pyramid::Pyramid;
 use crate::parallel::Tables;
+use crate::pyramid::Pyramid;
 
 /// The names of the classes, in order of precedence; a pixel's class is an index into it.
 pub const CLASSES: [&str; 3] = ["seam", "magnified", "rest"];

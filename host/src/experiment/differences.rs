@@ -14,8 +14,8 @@ use super::heights::{Changed, Variant};
 use super::paper::paper_camera_placed;
 use super::table::Tables15;
 use crate::map::Map;
-use crate::pyramid::Pyramid;
 use crate::parallel::{first_hit_distance, Mode, Rate, Tables};
+use crate::pyramid::Pyramid;
 use crate::view_args::Size;
 
 /// The paper's Table 1 at pitch 5°: visible voxels `V` and steps `L` per column.

@@ -23,8 +23,8 @@ use super::fly::{flight, large_changes, luminance, Histogram};
 use super::paper::paper_camera;
 use crate::lighting::{LoadedMaterials, MaterialArg, Method, AMBIENT_DIFFUSE};
 use crate::map::Map;
-use crate::pyramid::Pyramid;
 use crate::parallel::{Mode, Tables};
+use crate::pyramid::Pyramid;
 use crate::truth::reference::rmse;
 use crate::view_args::Size;
 

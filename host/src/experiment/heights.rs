@@ -18,8 +18,8 @@ use serde::Serialize;
 
 use super::paper::paper_camera_placed;
 use crate::map::Map;
-use crate::pyramid::Pyramid;
 use crate::parallel::{render_parallel, Mode, Tables};
+use crate::pyramid::Pyramid;
 use crate::truth::reference::rmse;
 use crate::view_args::Size;
 

@@ -9,8 +9,8 @@ use footprint_core::extend::{visit, Color16, Voxel, Weight};
 use footprint_core::prelude::{Camera, CameraParams, Cost, Frame, Options};
 use footprint_core::Rgb;
 
-use crate::pyramid::Pyramid;
 use crate::parallel::{render_with, Mode, Tables};
+use crate::pyramid::Pyramid;
 
 /// An image, row-major from the top.
 #[derive(Clone, Debug)]

@@ -9,8 +9,8 @@ use serde::Serialize;
 
 use crate::camera::{default_far_voxels, mirrored_warning, place, placement_note, Eye, Why};
 use crate::map::Map;
-use crate::pyramid::Pyramid;
 use crate::parallel::{Mode, Rate};
+use crate::pyramid::Pyramid;
 use crate::view_args::Size;
 
 /// The paper's three pitches (Table 1).

@@ -19,8 +19,8 @@ use serde::Serialize;
 
 use super::paper::{paper_view_placed, ViewPlacement};
 use crate::map::Map;
-use crate::pyramid::Pyramid;
 use crate::parallel::{count, render_timed, visible, Mode, Tables, SS_RATES};
+use crate::pyramid::Pyramid;
 use crate::truth::reference::{psnr, rmse};
 use crate::truth::Truth;
 use crate::view_args::{surface_name, Size};

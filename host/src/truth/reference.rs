@@ -19,8 +19,8 @@ use anyhow::Result;
 use footprint_core::prelude::{Camera, Options, Projection, Surface};
 use footprint_core::Rgb;
 
-use crate::pyramid::Pyramid;
 use crate::parallel::{render_exact_parallel, render_parallel, Mode, Tables};
+use crate::pyramid::Pyramid;
 
 /// Columns walked per pixel in the reference.
 pub const REFERENCE_COLUMNS: u32 = 16;

@@ -38,7 +38,7 @@
 //! level-0 height is at or below the ray: the voxels it passes over are exactly those the walk
 //! would have found below the ray, so the samplers see the same sequence of voxels.
 
-use crate::color::{to_color16, to_rgb, Color16, Rgb};
+use crate::color::{Color16, Rgb};
 use crate::num::{height, Height};
 use crate::terrain::camera::{Column, Switch};
 use crate::terrain::frame::Frame;

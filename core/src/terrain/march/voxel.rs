@@ -4,16 +4,12 @@
 //! [`Finer`]). The cursor that makes them is the parent module's [`March`].
 
 use crate::color::{to_color16, to_rgb, Color16, Rgb};
-use crate::num::{height, Height};
-use crate::terrain::camera::{Column, Switch};
-use crate::terrain::frame::Frame;
+use crate::num::Height;
 use crate::terrain::map::Axis;
-use crate::terrain::map::{Level, Terrain};
-use crate::terrain::ray::Ray;
-use crate::terrain::side::{fold, mirror, period};
-use crate::terrain::strips::Strips;
+use crate::terrain::map::Level;
+use crate::terrain::side::mirror;
 
-use super::{Corner, March};
+use super::March;
 
 /// The voxel the walk stands on, as a sampler sees it (Sect. 4): where its colour is, the
 /// ray's cross-axis position over it, and its place in the voxel sequence. Built from a ride's
