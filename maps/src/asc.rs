@@ -20,7 +20,7 @@ use footprint_core::prelude::{Shown, Surface};
 use super::input::{is_stdin, Input};
 use super::kind::Format;
 use super::options::LoadOptions;
-use super::reader::{always_writable, hint, Evidence, FileUnit, Opened, RawGrid, Reader};
+use super::reader::{always_writable, hint, Evidence, FileUnit, Opened, RawGrid, Reader, Writer};
 use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
@@ -35,11 +35,16 @@ pub(crate) const READER: Reader = Reader {
     surface: Surface::Bilinear,
     sniff,
     open,
-    write,
-    check_writable: always_writable,
     height_units: false,
     tile: true,
     side_file: None,
+};
+
+/// How a map is written as an ASC file (its line of `readers::WRITERS`).
+pub(crate) const WRITER: Writer = Writer {
+    format: Format::Asc,
+    write,
+    check_writable: always_writable,
 };
 
 /// A grid starts with one of its header keys, in any case, after any white space.

@@ -31,7 +31,7 @@ use super::grid::{Grid, Spacing};
 use super::input::{is_stdin, read_side_file, InMemory, Input};
 use super::kind::Format;
 use super::options::LoadOptions;
-use super::reader::{no_sniff, FileUnit, Opened, RawGrid, Reader, SideFile};
+use super::reader::{no_sniff, FileUnit, Opened, RawGrid, Reader, SideFile, Writer};
 use super::{validate_memory, validate_size, Map, MapError};
 
 /// The format's name in errors.
@@ -47,14 +47,19 @@ pub(crate) const READER: Reader = Reader {
     surface: Surface::Bilinear,
     sniff: no_sniff,
     open,
-    write,
-    check_writable,
     height_units: false,
     tile: true,
     side_file: Some(SideFile {
         extension: "hdr",
         description: "an ESRI BIL's header side file",
     }),
+};
+
+/// How a map is written as a BIL file (its line of `readers::WRITERS`).
+pub(crate) const WRITER: Writer = Writer {
+    format: Format::Bil,
+    write,
+    check_writable,
 };
 
 /// Opens a `.bil` with its `.hdr`: its heights, and from its header its spacing, place and

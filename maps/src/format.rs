@@ -312,13 +312,13 @@ pub fn write(map: &Map, format: Format, out: &mut dyn Write, what: &str) -> Resu
         what: what.to_owned(),
         detail: e.to_string(),
     })?;
-    (format.reader().write)(map, out, what)
+    (format.writer().write)(map, out, what)
 }
 
 /// Checks, before anything is written, that `map` can be written in `format` (`.hgt` needs a
 /// 1201² or 3601² map with heights in ±32767 m).
 pub fn check_writable(map: &Map, format: Format, what: &str) -> Result<(), MapError> {
-    (format.reader().check_writable)(map, what)
+    (format.writer().check_writable)(map, what)
 }
 
 /// `x` to four significant digits, trailing zeros dropped (`83.09`, `0.001`, `30`), for a

@@ -23,7 +23,7 @@ use super::input::Input;
 use super::kind::Format;
 use super::numbers::grouped;
 use super::options::LoadOptions;
-use super::reader::{hint, Evidence, FileUnit, Opened, RawGrid, Reader};
+use super::reader::{hint, Evidence, FileUnit, Opened, RawGrid, Reader, Writer};
 use super::{validate_memory, Map, MapError};
 
 /// The format's name in errors.
@@ -38,11 +38,16 @@ pub(crate) const READER: Reader = Reader {
     surface: Surface::Bilinear,
     sniff,
     open,
-    write,
-    check_writable,
     height_units: false,
     tile: true,
     side_file: None,
+};
+
+/// How a map is written as an HGT file (its line of `readers::WRITERS`).
+pub(crate) const WRITER: Writer = Writer {
+    format: Format::Hgt,
+    write,
+    check_writable,
 };
 
 /// The SRTM `.hgt` tile sides and their cell size in arc-seconds.

@@ -12,7 +12,7 @@ use super::input::{InMemory, Input};
 use super::kind::{Format, VerticalUnit};
 use super::loaded::Loaded;
 use super::options::{check_scale, LoadOptions, DEFAULT_SPACING_M};
-use super::reader::{always_writable, Evidence, Opened, Reader};
+use super::reader::{always_writable, Evidence, Opened, Reader, Writer};
 use super::{describe, tint::tint, validate_memory, validate_size, Map, MapError};
 
 /// The eight bytes every PNG file starts with.
@@ -27,11 +27,16 @@ pub(crate) const READER: Reader = Reader {
     surface: Surface::Flat,
     sniff,
     open,
-    write,
-    check_writable: always_writable,
     height_units: true,
     tile: false,
     side_file: None,
+};
+
+/// How a map is written as a PNG file (its line of `readers::WRITERS`).
+pub(crate) const WRITER: Writer = Writer {
+    format: Format::Png,
+    write,
+    check_writable: always_writable,
 };
 
 /// A PNG starts with its signature (its first four bytes suffice).

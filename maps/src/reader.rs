@@ -1,7 +1,7 @@
-//! What a map format is to the loader ([`Reader`]): its name, extensions, first bytes, surface
-//! and description, and how it opens, writes and checks a map. Each format gives its `Reader`
-//! in its own file (`png.rs`, `hgt.rs`, …), and the table of readers (`readers.rs`) lists them
-//! once; everything that picks or names a format goes through that table.
+//! What a map format is to the loader ([`Reader`]: its name, extensions, first bytes, surface
+//! and description, and how it opens a map) and to a converter ([`Writer`]: how it writes and
+//! checks one). Each format gives both in its own file (`png.rs`, `hgt.rs`, …), and the tables
+//! (`readers.rs`) list them once; everything that picks or names a format goes through them.
 
 use std::io::Write;
 use std::path::Path;
@@ -41,10 +41,6 @@ pub struct Reader {
         what: &str,
         opts: &LoadOptions<'_>,
     ) -> Result<Opened, MapError>,
-    /// Writes a map (row-major) in this format; `what` names the output in errors.
-    pub write: fn(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>,
-    /// Checks, before anything is written, that a map can be written in this format.
-    pub check_writable: fn(map: &Map, what: &str) -> Result<(), MapError>,
     /// Its heights are height units that `--height-scale` scales (a PNG), not metres: the hint
     /// of a flat relief names `--height-scale` besides `--spacing`.
     pub height_units: bool,
@@ -52,6 +48,19 @@ pub struct Reader {
     pub tile: bool,
     /// The side file that holds its header, if it has one (a BIL's `.hdr`).
     pub side_file: Option<SideFile>,
+}
+
+/// How one map format is written (`map convert`, `map write`): a table of its own
+/// ([`crate::readers::WRITERS`]), apart from the readers, so that a program that only loads maps
+/// (the browser page) links no encoder.
+#[derive(Clone, Copy, Debug)]
+pub struct Writer {
+    /// The format it writes.
+    pub format: Format,
+    /// Writes a map (row-major) in this format; `what` names the output in errors.
+    pub write: fn(map: &Map, out: &mut dyn Write, what: &str) -> Result<(), MapError>,
+    /// Checks, before anything is written, that a map can be written in this format.
+    pub check_writable: fn(map: &Map, what: &str) -> Result<(), MapError>,
 }
 
 /// How a sniff knows a file's format. Content (a signature, a header key) beats length (an SRTM

@@ -28,7 +28,7 @@ use super::grid::{Grid, Spacing};
 use super::input::Input;
 use super::kind::{Format, VerticalUnit};
 use super::options::LoadOptions;
-use super::reader::{always_writable, hint, Evidence, FileUnit, Opened, RawGrid, Reader};
+use super::reader::{always_writable, hint, Evidence, FileUnit, Opened, RawGrid, Reader, Writer};
 use super::tiff_lzw::{self, Chunks, Sample};
 use super::{validate_memory, validate_size, Map, MapError};
 
@@ -44,11 +44,16 @@ pub(crate) const READER: Reader = Reader {
     surface: Surface::Bilinear,
     sniff,
     open,
-    write,
-    check_writable: always_writable,
     height_units: false,
     tile: true,
     side_file: None,
+};
+
+/// How a map is written as a TIFF file (its line of `readers::WRITERS`).
+pub(crate) const WRITER: Writer = Writer {
+    format: Format::Tiff,
+    write,
+    check_writable: always_writable,
 };
 
 /// A TIFF starts with its byte order and 42: `II*\0` or `MM\0*`.
