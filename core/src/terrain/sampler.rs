@@ -216,10 +216,10 @@ impl<const N: u32> Super<N> {
     /// a power of two in `2..=256` does not build.
     ///
     /// ```compile_fail
-    /// let _ = footprint_core::terrain::sampler::Super::<3>::new();
+    /// let _ = footprint_core::extend::Super::<3>::new();
     /// ```
     /// ```
-    /// let _ = footprint_core::terrain::sampler::Super::<4>::new();
+    /// let _ = footprint_core::extend::Super::<4>::new();
     /// ```
     pub fn new() -> Self {
         const {
