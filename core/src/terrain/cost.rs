@@ -80,81 +80,96 @@ pub trait Cost {
     fn shading(&mut self, _count: u32) {}
 }
 
+/// The body of a [`Cost`] that forwards every hook to each of `$target`s, in order (written
+/// once for the borrowed cost and the pair below).
+macro_rules! forward_hooks {
+    ($self:ident => $($target:expr),+) => {
+        #[inline(always)]
+        fn begin_column(&mut $self, column: usize) {
+            $($target.begin_column(column);)+
+        }
+        #[inline(always)]
+        fn end_column(&mut $self) {
+            $($target.end_column();)+
+        }
+        #[inline(always)]
+        fn step(&mut $self, in_footprint: bool) {
+            $($target.step(in_footprint);)+
+        }
+        #[inline(always)]
+        fn steps(&mut $self, count: u32, in_footprint: bool) {
+            $($target.steps(count, in_footprint);)+
+        }
+        #[inline(always)]
+        fn new_ray(&mut $self) {
+            $($target.new_ray();)+
+        }
+        #[inline(always)]
+        fn begin_pixel(&mut $self, row: usize) {
+            $($target.begin_pixel(row);)+
+        }
+        #[inline(always)]
+        fn sample(&mut $self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
+            $($target.sample(voxel, color, weight);)+
+        }
+        #[inline(always)]
+        fn sky_sample(&mut $self, color: Color16, weight: Weight) {
+            $($target.sky_sample(color, weight);)+
+        }
+        #[inline(always)]
+        fn hit(&mut $self) {
+            $($target.hit();)+
+        }
+        #[inline(always)]
+        fn ss_hit(&mut $self) {
+            $($target.ss_hit();)+
+        }
+        #[inline(always)]
+        fn as_hit(&mut $self) {
+            $($target.as_hit();)+
+        }
+        #[inline(always)]
+        fn top_division(&mut $self) {
+            $($target.top_division();)+
+        }
+        #[inline(always)]
+        fn wedge(&mut $self, cells: u32) {
+            $($target.wedge(cells);)+
+        }
+        #[inline(always)]
+        fn shifts(&mut $self, count: u32) {
+            $($target.shifts(count);)+
+        }
+        #[inline(always)]
+        fn divisions(&mut $self, count: u32) {
+            $($target.divisions(count);)+
+        }
+        #[inline(always)]
+        fn terrain_pixel(&mut $self) {
+            $($target.terrain_pixel();)+
+        }
+        #[inline(always)]
+        fn normals(&mut $self, count: u32) {
+            $($target.normals(count);)+
+        }
+        #[inline(always)]
+        fn shading(&mut $self, count: u32) {
+            $($target.shading(count);)+
+        }
+    };
+}
+
 /// A borrowed cost counts into what it borrows (so that the door's shading,
 /// [`crate::terrain::frame::Frame::render_shaded`], can forward to a caller's counters).
 impl<C: Cost + ?Sized> Cost for &mut C {
-    #[inline(always)]
-    fn begin_column(&mut self, column: usize) {
-        (**self).begin_column(column);
-    }
-    #[inline(always)]
-    fn end_column(&mut self) {
-        (**self).end_column();
-    }
-    #[inline(always)]
-    fn step(&mut self, in_footprint: bool) {
-        (**self).step(in_footprint);
-    }
-    #[inline(always)]
-    fn steps(&mut self, count: u32, in_footprint: bool) {
-        (**self).steps(count, in_footprint);
-    }
-    #[inline(always)]
-    fn new_ray(&mut self) {
-        (**self).new_ray();
-    }
-    #[inline(always)]
-    fn begin_pixel(&mut self, row: usize) {
-        (**self).begin_pixel(row);
-    }
-    #[inline(always)]
-    fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
-        (**self).sample(voxel, color, weight);
-    }
-    #[inline(always)]
-    fn sky_sample(&mut self, color: Color16, weight: Weight) {
-        (**self).sky_sample(color, weight);
-    }
-    #[inline(always)]
-    fn hit(&mut self) {
-        (**self).hit();
-    }
-    #[inline(always)]
-    fn ss_hit(&mut self) {
-        (**self).ss_hit();
-    }
-    #[inline(always)]
-    fn as_hit(&mut self) {
-        (**self).as_hit();
-    }
-    #[inline(always)]
-    fn top_division(&mut self) {
-        (**self).top_division();
-    }
-    #[inline(always)]
-    fn wedge(&mut self, cells: u32) {
-        (**self).wedge(cells);
-    }
-    #[inline(always)]
-    fn shifts(&mut self, count: u32) {
-        (**self).shifts(count);
-    }
-    #[inline(always)]
-    fn divisions(&mut self, count: u32) {
-        (**self).divisions(count);
-    }
-    #[inline(always)]
-    fn terrain_pixel(&mut self) {
-        (**self).terrain_pixel();
-    }
-    #[inline(always)]
-    fn normals(&mut self, count: u32) {
-        (**self).normals(count);
-    }
-    #[inline(always)]
-    fn shading(&mut self, count: u32) {
-        (**self).shading(count);
-    }
+    forward_hooks!(self => (**self));
+}
+
+/// Two costs hear one walk: every hook goes to the first, then to the second. A listener of
+/// its own (the voxels a mode samples, the samples of one pixel) rides beside the counters
+/// without forwarding each of their hooks by hand: `(Counts, Listener)`.
+impl<A: Cost, B: Cost> Cost for (A, B) {
+    forward_hooks!(self => self.0, self.1);
 }
 
 /// No counting: zero-sized, and the walk compiles as if the calls were not there.
