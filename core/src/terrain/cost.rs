@@ -354,3 +354,42 @@ impl Cost for Counts<'_> {
         self.current.shading += u64::from(count);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pair of costs hears every hook in both: two `Counts` driven as a pair count alike,
+    /// and as one `Counts` driven alone does.
+    #[test]
+    fn a_pair_of_costs_hears_every_hook_in_both() {
+        fn drive<C: Cost>(c: &mut C) {
+            c.begin_column(0);
+            c.step(true);
+            c.steps(3, false);
+            c.new_ray();
+            c.begin_pixel(1);
+            c.hit();
+            c.ss_hit();
+            c.as_hit();
+            c.top_division();
+            c.wedge(2);
+            c.shifts(4);
+            c.divisions(5);
+            c.terrain_pixel();
+            c.normals(6);
+            c.shading(7);
+            c.sky_sample([0; 3], Weight::ONE);
+            c.end_column();
+        }
+        let (mut a, mut b, mut alone) = ([Tally::default()], [Tally::default()], [Tally::default()]);
+        let mut pair = (Counts::new(&mut a), Counts::new(&mut b));
+        drive(&mut pair);
+        let mut one = Counts::new(&mut alone);
+        drive(&mut one);
+        assert_ne!(one.total, Tally::default());
+        assert_eq!(pair.0.total, one.total);
+        assert_eq!(pair.1.total, one.total);
+        assert_eq!(pair.0.columns(), one.columns());
+    }
+}
