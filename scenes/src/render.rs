@@ -117,18 +117,16 @@ pub struct ColumnCount {
 /// sequence for `V` and for the hidden and missed voxels. One walk per column and mode.
 pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> ColumnCount {
     let mut pixels = vec![Rgb::default(); frame.grid_rows()];
-    let mut counts = Recorded {
-        counts: Counts::new(&mut []),
-        sampled: Vec::new(),
-    };
+    let mut counts = (Counts::new(&mut []), Sampled::default());
     mode.walk_column(frame, terrain, x, &mut counts, &mut pixels);
     let mut visible = Vec::new();
     visit_visible(frame, terrain, x, mode.switch(), |march| {
         visible.push(march.sequence_index());
     });
-    let mut tally = counts.counts.total;
+    let (counts, sampled) = counts;
+    let mut tally = counts.total;
     tally.v = visible.len() as u64;
-    let (hidden, missed) = hidden_and_missed(&counts.sampled, &visible);
+    let (hidden, missed) = hidden_and_missed(&sampled.0, &visible);
     ColumnCount {
         pixels,
         tally,
@@ -180,64 +178,17 @@ pub fn count(
     assemble(frame, mode, columns)
 }
 
-/// Every counter of [`Counts`], and the step index of every voxel a sampler samples.
-struct Recorded<'a> {
-    counts: Counts<'a>,
-    sampled: Vec<u64>,
-}
+/// The step index of every voxel a sampler samples, once each, in order: a listener that rides
+/// beside [`Counts`] (a pair of costs hears the walk together).
+#[derive(Default)]
+struct Sampled(Vec<u64>);
 
-impl Cost for Recorded<'_> {
-    fn begin_column(&mut self, column: usize) {
-        self.counts.begin_column(column);
-    }
-    fn end_column(&mut self) {
-        self.counts.end_column();
-    }
-    fn step(&mut self, in_footprint: bool) {
-        self.counts.step(in_footprint);
-    }
-    fn steps(&mut self, count: u32, in_footprint: bool) {
-        self.counts.steps(count, in_footprint);
-    }
-    fn new_ray(&mut self) {
-        self.counts.new_ray();
-    }
-    fn begin_pixel(&mut self, row: usize) {
-        self.counts.begin_pixel(row);
-    }
-    fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
-        self.counts.sample(voxel, color, weight);
+impl Cost for Sampled {
+    fn sample(&mut self, voxel: &Voxel<'_>, _color: Color16, _weight: Weight) {
         let k = voxel.sequence_index();
-        if self.sampled.last() != Some(&k) {
-            self.sampled.push(k);
+        if self.0.last() != Some(&k) {
+            self.0.push(k);
         }
-    }
-    fn sky_sample(&mut self, color: Color16, weight: Weight) {
-        self.counts.sky_sample(color, weight);
-    }
-    fn hit(&mut self) {
-        self.counts.hit();
-    }
-    fn ss_hit(&mut self) {
-        self.counts.ss_hit();
-    }
-    fn as_hit(&mut self) {
-        self.counts.as_hit();
-    }
-    fn top_division(&mut self) {
-        self.counts.top_division();
-    }
-    fn wedge(&mut self, cells: u32) {
-        self.counts.wedge(cells);
-    }
-    fn shifts(&mut self, count: u32) {
-        self.counts.shifts(count);
-    }
-    fn divisions(&mut self, count: u32) {
-        self.counts.divisions(count);
-    }
-    fn terrain_pixel(&mut self) {
-        self.counts.terrain_pixel();
     }
 }
 

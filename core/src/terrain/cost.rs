@@ -80,81 +80,96 @@ pub trait Cost {
     fn shading(&mut self, _count: u32) {}
 }
 
+/// The body of a [`Cost`] that forwards every hook to each of `$target`s, in order (written
+/// once for the borrowed cost and the pair below).
+macro_rules! forward_hooks {
+    ($self:ident => $($target:expr),+) => {
+        #[inline(always)]
+        fn begin_column(&mut $self, column: usize) {
+            $($target.begin_column(column);)+
+        }
+        #[inline(always)]
+        fn end_column(&mut $self) {
+            $($target.end_column();)+
+        }
+        #[inline(always)]
+        fn step(&mut $self, in_footprint: bool) {
+            $($target.step(in_footprint);)+
+        }
+        #[inline(always)]
+        fn steps(&mut $self, count: u32, in_footprint: bool) {
+            $($target.steps(count, in_footprint);)+
+        }
+        #[inline(always)]
+        fn new_ray(&mut $self) {
+            $($target.new_ray();)+
+        }
+        #[inline(always)]
+        fn begin_pixel(&mut $self, row: usize) {
+            $($target.begin_pixel(row);)+
+        }
+        #[inline(always)]
+        fn sample(&mut $self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
+            $($target.sample(voxel, color, weight);)+
+        }
+        #[inline(always)]
+        fn sky_sample(&mut $self, color: Color16, weight: Weight) {
+            $($target.sky_sample(color, weight);)+
+        }
+        #[inline(always)]
+        fn hit(&mut $self) {
+            $($target.hit();)+
+        }
+        #[inline(always)]
+        fn ss_hit(&mut $self) {
+            $($target.ss_hit();)+
+        }
+        #[inline(always)]
+        fn as_hit(&mut $self) {
+            $($target.as_hit();)+
+        }
+        #[inline(always)]
+        fn top_division(&mut $self) {
+            $($target.top_division();)+
+        }
+        #[inline(always)]
+        fn wedge(&mut $self, cells: u32) {
+            $($target.wedge(cells);)+
+        }
+        #[inline(always)]
+        fn shifts(&mut $self, count: u32) {
+            $($target.shifts(count);)+
+        }
+        #[inline(always)]
+        fn divisions(&mut $self, count: u32) {
+            $($target.divisions(count);)+
+        }
+        #[inline(always)]
+        fn terrain_pixel(&mut $self) {
+            $($target.terrain_pixel();)+
+        }
+        #[inline(always)]
+        fn normals(&mut $self, count: u32) {
+            $($target.normals(count);)+
+        }
+        #[inline(always)]
+        fn shading(&mut $self, count: u32) {
+            $($target.shading(count);)+
+        }
+    };
+}
+
 /// A borrowed cost counts into what it borrows (so that the door's shading,
 /// [`crate::terrain::frame::Frame::render_shaded`], can forward to a caller's counters).
 impl<C: Cost + ?Sized> Cost for &mut C {
-    #[inline(always)]
-    fn begin_column(&mut self, column: usize) {
-        (**self).begin_column(column);
-    }
-    #[inline(always)]
-    fn end_column(&mut self) {
-        (**self).end_column();
-    }
-    #[inline(always)]
-    fn step(&mut self, in_footprint: bool) {
-        (**self).step(in_footprint);
-    }
-    #[inline(always)]
-    fn steps(&mut self, count: u32, in_footprint: bool) {
-        (**self).steps(count, in_footprint);
-    }
-    #[inline(always)]
-    fn new_ray(&mut self) {
-        (**self).new_ray();
-    }
-    #[inline(always)]
-    fn begin_pixel(&mut self, row: usize) {
-        (**self).begin_pixel(row);
-    }
-    #[inline(always)]
-    fn sample(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
-        (**self).sample(voxel, color, weight);
-    }
-    #[inline(always)]
-    fn sky_sample(&mut self, color: Color16, weight: Weight) {
-        (**self).sky_sample(color, weight);
-    }
-    #[inline(always)]
-    fn hit(&mut self) {
-        (**self).hit();
-    }
-    #[inline(always)]
-    fn ss_hit(&mut self) {
-        (**self).ss_hit();
-    }
-    #[inline(always)]
-    fn as_hit(&mut self) {
-        (**self).as_hit();
-    }
-    #[inline(always)]
-    fn top_division(&mut self) {
-        (**self).top_division();
-    }
-    #[inline(always)]
-    fn wedge(&mut self, cells: u32) {
-        (**self).wedge(cells);
-    }
-    #[inline(always)]
-    fn shifts(&mut self, count: u32) {
-        (**self).shifts(count);
-    }
-    #[inline(always)]
-    fn divisions(&mut self, count: u32) {
-        (**self).divisions(count);
-    }
-    #[inline(always)]
-    fn terrain_pixel(&mut self) {
-        (**self).terrain_pixel();
-    }
-    #[inline(always)]
-    fn normals(&mut self, count: u32) {
-        (**self).normals(count);
-    }
-    #[inline(always)]
-    fn shading(&mut self, count: u32) {
-        (**self).shading(count);
-    }
+    forward_hooks!(self => (**self));
+}
+
+/// Two costs hear one walk: every hook goes to the first, then to the second. A listener of
+/// its own (the voxels a mode samples, the samples of one pixel) rides beside the counters
+/// without forwarding each of their hooks by hand: `(Counts, Listener)`.
+impl<A: Cost, B: Cost> Cost for (A, B) {
+    forward_hooks!(self => self.0, self.1);
 }
 
 /// No counting: zero-sized, and the walk compiles as if the calls were not there.
@@ -337,5 +352,44 @@ impl Cost for Counts<'_> {
     }
     fn shading(&mut self, count: u32) {
         self.current.shading += u64::from(count);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pair of costs hears every hook in both: two `Counts` driven as a pair count alike,
+    /// and as one `Counts` driven alone does.
+    #[test]
+    fn a_pair_of_costs_hears_every_hook_in_both() {
+        fn drive<C: Cost>(c: &mut C) {
+            c.begin_column(0);
+            c.step(true);
+            c.steps(3, false);
+            c.new_ray();
+            c.begin_pixel(1);
+            c.hit();
+            c.ss_hit();
+            c.as_hit();
+            c.top_division();
+            c.wedge(2);
+            c.shifts(4);
+            c.divisions(5);
+            c.terrain_pixel();
+            c.normals(6);
+            c.shading(7);
+            c.sky_sample([0; 3], Weight::ONE);
+            c.end_column();
+        }
+        let (mut a, mut b, mut alone) = ([Tally::default()], [Tally::default()], [Tally::default()]);
+        let mut pair = (Counts::new(&mut a), Counts::new(&mut b));
+        drive(&mut pair);
+        let mut one = Counts::new(&mut alone);
+        drive(&mut one);
+        assert_ne!(one.total, Tally::default());
+        assert_eq!(pair.0.total, one.total);
+        assert_eq!(pair.1.total, one.total);
+        assert_eq!(pair.0.columns(), one.columns());
     }
 }
