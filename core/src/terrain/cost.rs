@@ -382,7 +382,8 @@ mod tests {
             c.sky_sample([0; 3], Weight::ONE);
             c.end_column();
         }
-        let (mut a, mut b, mut alone) = ([Tally::default()], [Tally::default()], [Tally::default()]);
+        let (mut a, mut b, mut alone) =
+            ([Tally::default()], [Tally::default()], [Tally::default()]);
         let mut pair = (Counts::new(&mut a), Counts::new(&mut b));
         drive(&mut pair);
         let mut one = Counts::new(&mut alone);
