@@ -321,9 +321,9 @@ impl Header {
 
     /// Reads a header from the first [`HEADER_LEN`] bytes of a file.
     ///
-    /// Errors ([`Error::Baked`]): fewer bytes, no [`MAGIC`], another `VERSION` (the core reads version 2) or header
-    /// length, an unknown height filter, or sizes out of range ([`Error::MapSize`]). The
-    /// checksums are not verified here.
+    /// Errors ([`Error::Baked`]): fewer bytes, no [`MAGIC`], another `VERSION` (the core reads
+    /// version 2) or header length, an unknown height filter, or sizes out of range
+    /// ([`Error::MapSize`]). The checksums are not verified here.
     pub fn decode(bytes: &[u8]) -> Result<Self, Error> {
         let bad = |what| Error::Baked { what };
         if bytes.get(..MAGIC.len()) != Some(&MAGIC[..]) {

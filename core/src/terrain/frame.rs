@@ -41,8 +41,9 @@ impl<'t> Frame<'t> {
     /// lent).
     ///
     /// Errors: buffers of the wrong length, a roll with the paper's projection, or a camera
-    /// outside the core's fixed-point range for this terrain (see [`crate::prelude::MAX_EYE_HEIGHT`], [`crate::prelude::MAX_FAR`]):
-    /// `|x|, |y| ≤ 2^21` voxels, `|eye| ≤ 2^22` height units, `far ≤ 2^21` voxels.
+    /// outside the core's fixed-point range for this terrain (see
+    /// [`crate::prelude::MAX_EYE_HEIGHT`], [`crate::prelude::MAX_FAR`]): `|x|, |y| ≤ 2^21`
+    /// voxels, `|eye| ≤ 2^22` height units, `far ≤ 2^21` voxels.
     pub fn new(
         camera: &Camera,
         terrain: &Terrain<'_>,

@@ -48,8 +48,9 @@ impl Frame<'_> {
     }
 
     /// Renders the frame's image ([`Frame::image_size`], row-major from the top) into `image`
-    /// in any pixel format, sampled by `sampling` (a [`crate::Mode`] or a [`crate::extend::Sampler`]) and
-    /// counted by `cost` ([`crate::terrain::cost::NoCost`] counts nothing), for either
+    /// in any pixel format, sampled by `sampling` (a [`crate::Mode`] or a
+    /// [`crate::extend::Sampler`]) and counted by `cost` ([`crate::prelude::NoCost`] counts
+    /// nothing), for either
     /// projection and any number of columns per pixel. The walk draws its grid into `scratch`
     /// ([`Frame::scratch_len`] cells: the exact projection's fan, or the paper's `k` columns
     /// per pixel), which is then resampled into the image ([`Frame::resample`]); with the
@@ -96,8 +97,8 @@ impl Frame<'_> {
     }
 
     /// [`Frame::render_columns`] into full-precision cells: each pixel's colour before it is
-    /// rounded to 8 bits ([`crate::extend::Sampler::exact`]: `Σc/Σw` for the area samplers; the 8-bit colour
-    /// for the others and for the sky). For a ground truth that averages many columns per
+    /// rounded to 8 bits ([`crate::extend::Sampler::exact`]: `Σc/Σw` for the area samplers;
+    /// the 8-bit colour for the others and for the sky). For a ground truth that averages many columns per
     /// pixel: rounding each column to 8 bits first would leave it up to half a level off,
     /// always on the side its own columns round to. The image's layout, not its pixels: with
     /// the exact projection the caller resamples the fan.
@@ -232,7 +233,9 @@ fn box_columns<T, P: PixelSink>(
     image: &mut [P],
     full: impl Fn(&T) -> Color32,
 ) {
-    let w = image.len() / h.max(1);
+    // At least 1: `rchunks_exact_mut(0)` would panic (only an empty image has no width, and
+    // then `grid` holds no pixel column either).
+    let w = (image.len() / h.max(1)).max(1);
     for (x, columns) in grid.chunks_exact(k * h).enumerate() {
         for (r, row) in image.rchunks_exact_mut(w).enumerate() {
             let mut sum = [0u64; 3];
