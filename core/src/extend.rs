@@ -11,6 +11,11 @@
 //! samplers: [`Point`] (PS), [`Linear`] (LI), [`Super`] (SS_N), [`PaperArea`] (the paper's
 //! `as`, Fig. 12), [`ExactArea`] (`as-exact`), [`Wedge`] (`as2`, in lanes: [`Horizons`]) and
 //! [`FirstHit`]; [`Smooth`] wraps any of them to meet the continuous surface.
+//!
+//! Also here: what the hooks carry ([`Height`], [`Weight`], [`Color16`], [`Color32`], a ray's
+//! slope bound [`MAX_SLOPE`], the climb rule [`Switch`]), the map's geometry for those who
+//! read it cell by cell ([`Axis`], a level's layout [`Strips`], the mirrored map [`mirror`],
+//! the exact projection's planes [`Fan`]) and the core's deterministic [`sin_cos_deg`].
 
 pub use crate::color::{Color16, Color32};
 pub use crate::num::{Height, Weight, MAX_SLOPE};

@@ -62,6 +62,7 @@ mod sun;
 
 pub use shader::SunShader;
 pub use sun::{Materials, Sun};
+
 /// The default ambient and diffuse light, `(ambient, diffuse)`: `0.35 + 0.65·max(N·L, 0)`
 /// times the colour (the CLI's `--sun` and the firmware's glint frame).
 pub const AMBIENT_DIFFUSE: (f64, f64) = (0.35, 0.65);

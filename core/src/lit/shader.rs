@@ -21,7 +21,7 @@ use crate::terrain::side::mirror;
 
 /// `i` folded into `0..len` by the map's mirroring, with no division when it is inside.
 #[inline(always)]
-pub(super) fn fold(i: i64, len: u32) -> usize {
+fn fold(i: i64, len: u32) -> usize {
     if (0..i64::from(len)).contains(&i) {
         // 0 ≤ i < len ≤ u32::MAX.
         usize::try_from(i).unwrap_or(0)
