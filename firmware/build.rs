@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::PathBuf;
 
-use footprint_core::specular::{Clamp, Method};
+use footprint_core::prelude::{Clamp, Method};
 use footprint_scenes::firmware::{plate, plate_mode_name, scene, PLATE_MODE, PLATE_SIZE};
 
 fn f64_const(v: f64) -> String {

@@ -1,10 +1,9 @@
 #!/usr/bin/env python3
 """No crate outside footprint-core names a core module but its public ones (issue 53, item 2).
 
-The core's public API is three modules: `prelude` (the door), `extend` (the samplers, and what
-the walk hands a sampler, a cost or a shader) and `specular` (the second paper's room, with its
-rasterizer `specular::raster`), plus `embedded` behind its feature and the crate root's `Rgb`,
-`Error` and `Mode`. Every other module is `pub(crate)`, so the compiler already refuses a path
+The core's public API is two modules: `prelude` (the door, the second paper's tables, clamp
+and tiler included) and `extend` (the samplers, and what the walk hands a sampler, a cost or a
+shader), plus `embedded` behind its feature and the crate root's `Rgb`, `Error` and `Mode`. Every other module is `pub(crate)`, so the compiler already refuses a path
 into it; this check also catches a module made public again and then named from outside.
 
     scripts/core-paths.py              # every .rs file outside core/src; exit 1 on a stray path
@@ -16,7 +15,7 @@ import re
 import sys
 import tempfile
 
-ALLOWED = {"prelude", "extend", "specular", "embedded", "Rgb", "Error", "Mode"}
+ALLOWED = {"prelude", "extend", "embedded", "Rgb", "Error", "Mode"}
 ROOTS = ["host", "scenes", "maps", "web", "firmware", "tests", "fuzz", "core/examples", "core/benches"]
 PATH = re.compile(r"\bfootprint_core::(\w+)")
 COMMENT = re.compile(r"//[^\n]*")

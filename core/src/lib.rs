@@ -39,16 +39,17 @@
 //!   the paper's cost model ([`prelude::Counts`], [`prelude::Cost`]). The classic voxel-space
 //!   renderer (`Mode::Classic`) is the baseline they are measured against.
 //! * J. Amanatides, *Algorithms for the detection and elimination of specular aliasing*
-//!   ([`specular`]): the tables, Phong highlight, detection and clamping, drawn by the z-buffer
-//!   tiler [`specular::raster`].
+//!   (its items in [`prelude`]: [`prelude::maxn_allowed`], [`prelude::clamp()`],
+//!   [`prelude::shade()`], …): the tables, Phong highlight, detection and clamping, drawn by the
+//!   z-buffer tiler ([`prelude::draw_triangle`]).
 //!
 //! The crate is `no_std`, allocates nothing, and uses only integer fixed-point arithmetic per
 //! pixel, so it links into firmware. The caller lends every buffer.
 //!
-//! **Three public modules.** [`prelude`] is the door: everything a caller renders, measures
-//! and lights a frame with. [`extend`] is for those who extend the core: the samplers of the
-//! modes, and what the walk hands a sampler, a cost or a shader ([`extend::Voxel`],
-//! [`extend::Pixel`], [`extend::Ray`]). [`specular`] is the second paper's room. Inside, two
+//! **Two public modules.** [`prelude`] is the door: everything a caller renders, measures
+//! and lights a frame with, and the second paper's tables, clamp and tiler. [`extend`] is for
+//! those who extend the core: the samplers of the modes, and what the walk hands a sampler, a
+//! cost or a shader ([`extend::Voxel`], [`extend::Pixel`], [`extend::Ray`]). Inside, two
 //! rooms, one per paper, stand over a shared floor (the fixed-point types and their proved
 //! ranges, the 8-bit and 8.8 colours, once-per-frame trigonometry, the one error type); the
 //! rooms import the floor and never each other. In the terrain room data flows one way: map
@@ -124,7 +125,7 @@ pub(crate) mod num;
 pub(crate) mod trig;
 
 // The two rooms: one per paper.
-pub mod specular;
+pub(crate) mod specular;
 pub(crate) mod terrain;
 
 // The room above both: the sun on the terrain, its highlight clamped by the visible normals.

@@ -9,10 +9,16 @@
 //! ([`Cost`], [`NoCost`], [`Counts`], [`Tally`]), the sun and its shader ([`Sun`],
 //! [`SunShader`]), the pixel formats ([`Rgb`], [`PixelSink`]) and [`Error`].
 //!
+//! The second paper's door is here too (Amanatides): the integer tables of cos^n
+//! ([`coefficient`], [`min_dot`], [`maximum`], [`cutoff`], [`min_dot_p`], [`maxn_allowed`]),
+//! the highlight ([`Phong`], [`Light`], [`Normal`]), the detection ([`Spread`]) and the clamp
+//! ([`clamp()`], [`Clamp`]), one pixel by each method ([`shade()`], [`highlight()`],
+//! [`Method`], [`Material`]) and the z-buffer tiler that draws the plates
+//! ([`draw_triangle`], [`Target`], [`Triangle`], [`Vertex`], [`Fragment`]).
+//!
 //! The samplers, each of which links one mode alone (`Point`, `ExactArea`, `Wedge`, …), and
 //! what the walk hands a sampler, a cost or a shader of one's own are in [`crate::extend`],
-//! so that their names (`Point`) do not meet an embedded-graphics prelude's. The second
-//! paper's room is [`crate::specular`].
+//! so that their names (`Point`) do not meet an embedded-graphics prelude's.
 
 pub use crate::color::Rgb;
 pub use crate::error::{Error, Shown};
@@ -21,6 +27,14 @@ pub use crate::lit::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFUSE};
 pub use crate::mode::{Mode, ParseModeError, Rate, SS_RATES};
 pub use crate::num::{Coord, MAX_EYE_HEIGHT, MAX_FAR};
 pub use crate::sink::PixelSink;
+pub use crate::specular::raster::{
+    draw_triangle, Fragment, FragmentShader, Target, Triangle, Vertex, MAX_GRID,
+};
+pub use crate::specular::{
+    clamp, coefficient, coefficients, cutoff, highlight, maximum, maxn_allowed, min_dot, min_dot_p,
+    shade, table_sizes, Clamp, Clamped, Highlight, Light, Material, Method, Normal, Phong, Power,
+    Spread, I2F30, N_MAX, U16F16, U1F31, U2F30,
+};
 pub use crate::terrain::baked;
 pub use crate::terrain::buffers::FrameBuffers;
 pub use crate::terrain::camera::{

@@ -5,11 +5,7 @@
 //! `footprint_firmware::core_calls::…`, which `sizes.sh` counts as the core's.
 
 use footprint_core::extend;
-use footprint_core::prelude::Switch;
 use footprint_core::prelude::*;
-use footprint_core::prelude::{Sun, SunShader};
-use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
-use footprint_core::specular::{self, Light, Material, Method, Normal};
 
 use crate::PlateVertex;
 
@@ -142,7 +138,7 @@ pub struct PlateCounts {
     pub shades: u64,
 }
 
-/// `raster::draw` of every triangle (`[a, b, c, object]` into `vertices`) with
+/// `draw_triangle` of every triangle (`[a, b, c, object]` into `vertices`) with
 /// `specular::shade` by `method`, the object's material from `materials`; records per pixel
 /// whether detection flagged the last fragment drawn there.
 #[inline(never)]
@@ -160,7 +156,7 @@ pub fn draw_plate(
     for &[a, b, c, id] in triangles {
         let material = &materials[usize::from(id)];
         let mut shader = |f: &Fragment<'_>| {
-            let (rgb, spec) = specular::shade(f, light, material, method);
+            let (rgb, spec) = shade(f, light, material, method);
             flagged[(f.y() * width + f.x()) as usize] = spec.aliased;
             counts.shades += u64::from(spec.shades);
             rgb
@@ -169,7 +165,7 @@ pub fn draw_plate(
             v: [a, b, c].map(|i| vertices[usize::from(i)]),
             id,
         };
-        counts.fragments += u64::from(raster::draw(target, &triangle, &mut shader));
+        counts.fragments += u64::from(draw_triangle(target, &triangle, &mut shader));
     }
     counts
 }

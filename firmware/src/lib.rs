@@ -20,7 +20,7 @@ use core::fmt;
 use footprint_core::prelude::{frame_buffers, FrameBuffers};
 use footprint_core::Rgb;
 
-use footprint_core::specular::raster::Vertex;
+use footprint_core::prelude::Vertex;
 use scene::{FAN_LINES, FAN_ROWS, HEIGHT, PLATE_PIXELS, PLATE_VERTEX_COUNT, PYRAMID_CELLS, WIDTH};
 
 pub mod core_calls;
@@ -32,8 +32,8 @@ pub mod scene {
     use crate::PlateVertex;
     use footprint_core::prelude::CameraParams;
     #[allow(unused_imports)] // used when the plate's mode is an aggressive clamp
-    use footprint_core::specular::Power;
-    use footprint_core::specular::{Clamp, Method};
+    use footprint_core::prelude::Power;
+    use footprint_core::prelude::{Clamp, Method};
     use footprint_core::Rgb;
     include!(concat!(env!("OUT_DIR"), "/scene.rs"));
 }
@@ -49,8 +49,7 @@ pub struct Aligned<T: ?Sized>(pub T);
 /// `footprint_scenes::firmware::Scene::glint_sun`), the core's `AMBIENT_DIFFUSE`, the paper's
 /// AS and Amanatides' aggressive clamp keeping 99 % of the highlight's power.
 pub mod glint {
-    use footprint_core::prelude::Specular;
-    use footprint_core::specular::{Clamp, Power};
+    use footprint_core::prelude::{Clamp, Power, Specular};
 
     /// The highlight's antialiasing, `clamp99`: `footprint_scenes::firmware::GLINT_SPECULAR`
     /// (an enum the build script does not bake); the bit-exactness test fails if they differ.

@@ -43,10 +43,10 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use footprint_core::embedded::{self, RenderError};
 use footprint_core::extend::{ExactArea, PaperArea, Point, Super, Wedge};
 use footprint_core::prelude::baked::Baked;
+use footprint_core::prelude::Target;
 use footprint_core::prelude::*;
+use footprint_core::prelude::{Light, Material, Normal, Phong};
 use footprint_core::prelude::{Materials, Sun, AMBIENT_DIFFUSE};
-use footprint_core::specular::raster::Target;
-use footprint_core::specular::{Light, Material, Normal, Phong};
 use footprint_firmware::clock::{self, instructions};
 use footprint_firmware::scene::{
     BAKED, COLORS, FAN_LINES, FAN_ROWS, GLINT_AZIMUTH, GLINT_ELEVATION, GLINT_NAME, HEIGHT,

@@ -7,9 +7,10 @@
 #![no_main]
 
 use arbitrary::Arbitrary;
-use footprint_core::prelude::{Camera, CameraParams, Column, Options, Projection, Surface};
-use footprint_core::prelude::{Coord, Materials, Rate, Specular, Sun, SunShader};
-use footprint_core::specular::{Clamp, Power};
+use footprint_core::prelude::{Camera, CameraParams, Clamp, Column, Coord, Materials};
+use footprint_core::prelude::{
+    Options, Power, Projection, Rate, Specular, Sun, SunShader, Surface,
+};
 use footprint_core::Mode;
 
 use footprint_core::extend::{count_visible, ExactArea, Point};

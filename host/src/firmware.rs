@@ -46,8 +46,8 @@ use footprint_core::prelude::{
 };
 use footprint_core::{Error, Rgb};
 
-use footprint_core::specular::raster::{self, Target, Triangle};
-use footprint_core::specular::{self, Light, Material, Normal, Phong};
+use footprint_core::prelude::{draw_triangle, shade, Fragment, Light, Material, Normal, Phong};
+use footprint_core::prelude::{Target, Triangle};
 
 pub use footprint_scenes::firmware::{
     plate, plate_mode_name, scene, Plate, PlateVertex, Scene, GLINT_NAME, GLINT_SPECULAR, HEIGHT,
@@ -302,8 +302,8 @@ pub fn plate_reference_line() -> Result<String> {
     let (mut fragments, mut shades) = (0u64, 0u64);
     for &([a, b, c], id) in &plate.triangles {
         let material = &materials[usize::from(id)];
-        let mut shader = |f: &raster::Fragment<'_>| {
-            let (rgb, spec) = specular::shade(f, &light, material, method);
+        let mut shader = |f: &Fragment<'_>| {
+            let (rgb, spec) = shade(f, &light, material, method);
             flagged[(f.y() * PLATE_SIZE + f.x()) as usize] = spec.aliased;
             shades += u64::from(spec.shades);
             rgb
@@ -312,7 +312,7 @@ pub fn plate_reference_line() -> Result<String> {
             v: [a, b, c].map(|i| vertices[usize::from(i)]),
             id,
         };
-        fragments += u64::from(raster::draw(&mut target, &tri, &mut shader));
+        fragments += u64::from(draw_triangle(&mut target, &tri, &mut shader));
     }
     let flagged = flagged.iter().filter(|&&f| f).count() as u64;
     let hash = image_hash(&color);

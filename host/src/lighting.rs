@@ -8,8 +8,8 @@ use std::str::FromStr;
 use anyhow::{Context, Result};
 use clap::Args;
 
+use footprint_core::prelude::{Clamp, Phong, Power};
 use footprint_core::prelude::{Materials, Specular, Sun, Terrain};
-use footprint_core::specular::{Clamp, Phong, Power};
 
 /// A sun direction: azimuth clockwise from north and elevation above the horizon, degrees.
 #[derive(Clone, Copy, Debug, PartialEq)]

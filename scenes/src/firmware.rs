@@ -10,9 +10,9 @@
 use std::collections::HashMap;
 use std::fmt;
 
+use footprint_core::prelude::Vertex;
 use footprint_core::prelude::{CameraParams, HeightFilter, Options, Projection, Specular};
-use footprint_core::specular::raster::Vertex;
-use footprint_core::specular::{Clamp, Normal, Power};
+use footprint_core::prelude::{Clamp, Normal, Power};
 use footprint_core::{Error, Rgb};
 
 use crate::plates::{self, SceneName, Shading};

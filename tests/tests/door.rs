@@ -18,8 +18,8 @@
 //!   rounds each pixel's full-precision columns once.
 
 use footprint_core::prelude::*;
+use footprint_core::prelude::{Clamp, Power};
 use footprint_core::prelude::{Materials, Specular, Sun, SunShader, AMBIENT_DIFFUSE};
-use footprint_core::specular::{Clamp, Power};
 use footprint_host::experiment::paper::paper_camera;
 use footprint_host::map::procedural;
 use footprint_host::parallel::{Tables, SS_RATES};

@@ -13,7 +13,7 @@ use common::{Map, SKY};
 use footprint_core::prelude::{
     Camera, CameraParams, Column, Coord, Materials, Options, Specular, Sun, SunShader,
 };
-use footprint_core::specular::{Clamp, Phong, Power};
+use footprint_core::prelude::{Clamp, Phong, Power};
 
 use footprint_core::extend::ExactArea;
 use footprint_core::prelude::{Counts, Frame, Terrain};

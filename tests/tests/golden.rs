@@ -19,10 +19,10 @@
 
 use std::path::{Path, PathBuf};
 
+use footprint_core::prelude::{Clamp, Power};
 use footprint_core::prelude::{
     HeightFilter, Materials, NoCost, Options, Projection, Specular, Sun, AMBIENT_DIFFUSE,
 };
-use footprint_core::specular::{Clamp, Power};
 use footprint_core::Rgb;
 use footprint_host::experiment::paper::{paper_camera, PAPER_PITCHES};
 use footprint_host::map::procedural;

@@ -182,8 +182,8 @@ fn every_mode_draws_the_pinned_images_in_the_paper_cases() {
 /// whose width is no multiple of the task's columns.
 #[test]
 fn lit_images_are_the_same_for_any_number_of_threads() {
+    use footprint_core::prelude::{Clamp, Power};
     use footprint_core::prelude::{Materials, NoCost, Projection, Specular, Sun, AMBIENT_DIFFUSE};
-    use footprint_core::specular::{Clamp, Power};
     use footprint_host::parallel::{render_lit_once, render_lit_parallel};
     let map = procedural(3, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();

@@ -2,8 +2,7 @@
 //! computations, the paper's numbers, detection on curved and flat surfaces (corners, bump map,
 //! curvature), the clamp's guarantees, and the plates measured against the reference.
 
-use footprint_core::specular::raster::{self, Fragment, Target, Triangle, Vertex};
-use footprint_core::specular::*;
+use footprint_core::prelude::*;
 use footprint_core::{Error, Rgb};
 use footprint_host::experiment::specular::{self as exp, MeasureConfig};
 use footprint_host::scene::{self, SceneName};
@@ -314,13 +313,13 @@ fn detect_image(
         let mut shader = |f: &Fragment<'_>| {
             let spread = Spread::from_corners(&f.corners());
             let detected = spread.aliases(phong.n(), Clamp::Conservative);
-            let r = specular(f, light, phong, Method::Supersample(16))
+            let r = highlight(f, light, phong, Method::Supersample(16))
                 .value
                 .to_num::<f64>();
             out[(f.y() * size + f.x()) as usize] = Some((detected, r, spread.sample_frequency()));
             Rgb::default()
         };
-        raster::draw(&mut target, &Triangle { v, id: 0 }, &mut shader);
+        draw_triangle(&mut target, &Triangle { v, id: 0 }, &mut shader);
     }
     out
 }

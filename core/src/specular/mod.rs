@@ -28,7 +28,7 @@ pub(crate) mod detect;
 pub(crate) mod normal;
 mod phong;
 mod policy;
-pub mod raster;
+pub(crate) mod raster;
 mod shade;
 mod tables;
 
@@ -41,7 +41,7 @@ pub use detect::Spread;
 pub use normal::Normal;
 pub use phong::{Light, Phong};
 pub use policy::Clamp;
-pub use shade::{shade, specular, Material, Method, Specular};
+pub use shade::{highlight, shade, Highlight, Material, Method};
 pub use tables::{
     coefficient, coefficients, cutoff, maximum, maxn_allowed, min_dot, min_dot_p, table_sizes,
     Power, N_MAX,

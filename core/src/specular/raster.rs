@@ -234,7 +234,7 @@ fn sub3([a0, a1, a2]: [i128; 3], [b0, b1, b2]: [i128; 3]) -> [i128; 3] {
     [a0 - b0, a1 - b1, a2 - b2]
 }
 
-/// One pixel of one triangle, handed to the [`Shader`]: its position, the triangle's tag, and
+/// One pixel of one triangle, handed to the [`FragmentShader`]: its position, the triangle's tag, and
 /// the interpolated normal anywhere in the pixel.
 #[derive(Clone, Copy, Debug)]
 pub struct Fragment<'a> {
@@ -311,12 +311,12 @@ impl Fragment<'_> {
 }
 
 /// Computes a pixel's colour from its [`Fragment`].
-pub trait Shader {
+pub trait FragmentShader {
     /// The colour of the fragment.
     fn shade(&mut self, fragment: &Fragment<'_>) -> Rgb;
 }
 
-impl<F: FnMut(&Fragment<'_>) -> Rgb> Shader for F {
+impl<F: FnMut(&Fragment<'_>) -> Rgb> FragmentShader for F {
     fn shade(&mut self, fragment: &Fragment<'_>) -> Rgb {
         self(fragment)
     }
@@ -325,7 +325,11 @@ impl<F: FnMut(&Fragment<'_>) -> Rgb> Shader for F {
 /// Rasterises one triangle into `target`: every pixel whose centre it covers (the tie rule
 /// above) and where it is nearer than the depth buffer is shaded and written. Returns the
 /// number of fragments shaded. Degenerate (zero-area) triangles draw nothing.
-pub fn draw(target: &mut Target<'_>, triangle: &Triangle, shader: &mut impl Shader) -> u32 {
+pub fn draw_triangle(
+    target: &mut Target<'_>,
+    triangle: &Triangle,
+    shader: &mut impl FragmentShader,
+) -> u32 {
     let mut v = triangle.v;
     let area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x);
     if area == 0 {
@@ -429,7 +433,7 @@ mod tests {
             };
             // Depth 0.5 for both: the second must not be rejected by the first, they never
             // share a pixel.
-            draw(&mut t, &Triangle { v: tri, id: 0 }, &mut shader);
+            draw_triangle(&mut t, &Triangle { v: tri, id: 0 }, &mut shader);
         }
         assert!(count.iter().all(|&c| c <= 1));
         // Every pixel whose centre is inside the quad a-b-d-c is drawn.
@@ -476,7 +480,7 @@ mod tests {
             Rgb::new(1, 1, 1)
         };
         assert_eq!(
-            draw(
+            draw_triangle(
                 &mut t,
                 &Triangle {
                     v: [a, b, c],
@@ -491,7 +495,7 @@ mod tests {
         let far = [a, b, c]
             .map(|v| Vertex::new(v.x as f64 / 256.0, v.y as f64 / 256.0, 0.9, v.normal).unwrap());
         assert_eq!(
-            draw(&mut t, &Triangle { v: far, id: 1 }, &mut |_: &Fragment<
+            draw_triangle(&mut t, &Triangle { v: far, id: 1 }, &mut |_: &Fragment<
                 '_,
             >| {
                 Rgb::new(9, 9, 9)
@@ -501,7 +505,7 @@ mod tests {
         let near = [a, c, b]
             .map(|v| Vertex::new(v.x as f64 / 256.0, v.y as f64 / 256.0, 0.1, v.normal).unwrap());
         assert_eq!(
-            draw(&mut t, &Triangle { v: near, id: 1 }, &mut |_: &Fragment<
+            draw_triangle(&mut t, &Triangle { v: near, id: 1 }, &mut |_: &Fragment<
                 '_,
             >| {
                 Rgb::new(9, 9, 9)

@@ -35,7 +35,7 @@ pub enum Method {
 
 /// The specular term of one pixel and what it cost.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Specular {
+pub struct Highlight {
     /// `K_spec·cos^n α`, averaged over the pixel's samples.
     pub value: U2F30,
     /// Evaluations of the highlight spent on this pixel.
@@ -45,17 +45,22 @@ pub struct Specular {
 }
 
 /// The specular term of `fragment` for `phong` under `light`, by `method`.
-pub fn specular(fragment: &Fragment<'_>, light: &Light, phong: &Phong, method: Method) -> Specular {
+pub fn highlight(
+    fragment: &Fragment<'_>,
+    light: &Light,
+    phong: &Phong,
+    method: Method,
+) -> Highlight {
     let centre = |p: &Phong| p.highlight(light.cos_alpha(&fragment.centre()));
     match method {
-        Method::Point => Specular {
+        Method::Point => Highlight {
             value: centre(phong),
             shades: 1,
             aliased: false,
         },
         Method::Clamp(policy) => {
             let c = clamp(phong, Spread::from_corners(&fragment.corners()), policy);
-            Specular {
+            Highlight {
                 value: centre(&c.phong),
                 shades: 1,
                 aliased: c.aliased,
@@ -64,14 +69,14 @@ pub fn specular(fragment: &Fragment<'_>, light: &Light, phong: &Phong, method: M
         Method::Crow(max) => {
             let spread = Spread::from_corners(&fragment.corners());
             match crow_grid(spread, phong.n(), max) {
-                None => Specular {
+                None => Highlight {
                     value: centre(phong),
                     shades: 1,
                     aliased: false,
                 },
                 Some(side) => {
                     let s = grid_average(fragment, light, phong, side);
-                    Specular { aliased: true, ..s }
+                    Highlight { aliased: true, ..s }
                 }
             }
         }
@@ -93,12 +98,12 @@ pub(crate) fn crow_grid(spread: Spread, n: u16, max: u8) -> Option<u32> {
     Some(rate.clamp(2, cap))
 }
 
-fn grid_average(fragment: &Fragment<'_>, light: &Light, phong: &Phong, s: u32) -> Specular {
+fn grid_average(fragment: &Fragment<'_>, light: &Light, phong: &Phong, s: u32) -> Highlight {
     let mut sum: u64 = 0;
     let shades = fragment.grid(s, |v| {
         sum += u64::from(phong.highlight(light.cos_alpha(&v)).to_bits());
     });
-    Specular {
+    Highlight {
         // The mean of `shades` values that are each a U2F30: the fallback is never taken.
         value: U2F30::from_bits(
             u32::try_from((sum + u64::from(shades) / 2) / u64::from(shades.max(1)))
@@ -153,8 +158,8 @@ pub fn shade(
     light: &Light,
     material: &Material,
     method: Method,
-) -> (Rgb, Specular) {
-    let spec = specular(fragment, light, &material.phong, method);
+) -> (Rgb, Highlight) {
+    let spec = highlight(fragment, light, &material.phong, method);
     let lambert = u64::from(light.lambert(&fragment.centre()).to_bits());
     let base = u64::from(material.ambient.to_bits())
         + ((u64::from(material.diffuse.to_bits()) * lambert) >> 30);

@@ -134,7 +134,7 @@ fn plate(args: &SpecularArgs, name: SceneName, mode: Shading) -> Result<()> {
         write_png(out, frame.size, frame.size, &frame.image)?;
     }
     if let Some(out) = &args.rate_out {
-        let max = footprint_core::specular::raster::MAX_GRID;
+        let max = footprint_core::prelude::MAX_GRID;
         let grey: Vec<Rgb> = frame
             .grid
             .iter()

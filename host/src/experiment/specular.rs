@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use anyhow::Result;
-use footprint_core::specular::{cutoff, Power};
+use footprint_core::prelude::{cutoff, Power};
 use serde::Serialize;
 
 use crate::scene::{self, Scene, SceneName, Shading};

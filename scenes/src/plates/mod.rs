@@ -1,6 +1,6 @@
 //! The scenes of Amanatides' plates: shiny cylinders and cones, tessellated into triangles with
 //! per-vertex normals, projected orthographically and handed to the core's z-buffer tiler
-//! ([`footprint_core::specular::raster`]).
+//! ([`footprint_core::prelude::draw_triangle`]).
 //!
 //! World coordinates: the image spans `x, y ∈ [−1, 1]` (x right, y up), `z` points at the
 //! viewer, and depth runs over `z ∈ [−2, 2]`. The eye looks down −z from infinity (`E = +z`),
@@ -23,8 +23,10 @@
 
 pub mod mesh;
 
-use footprint_core::specular::raster::{self, Target, Triangle, Vertex};
-use footprint_core::specular::{self, Light, Material, Method, Normal, Phong};
+use footprint_core::prelude::{
+    draw_triangle, shade, Fragment, Light, Material, Method, Normal, Phong, Target, Triangle,
+    Vertex,
+};
 use footprint_core::{Error, Rgb};
 
 pub use mesh::{cone, cylinder, Tri, Vert};
@@ -148,7 +150,7 @@ impl Shading {
 
     /// The core's method, with the grids of `grids`.
     pub fn method_with(self, grids: Grids) -> Method {
-        use footprint_core::specular::{Clamp, Power};
+        use footprint_core::prelude::{Clamp, Power};
         match self {
             Shading::None => Method::Point,
             Shading::Clamp => Method::Clamp(Clamp::Conservative),
@@ -161,7 +163,7 @@ impl Shading {
 }
 
 /// Crow's default cap on the grid side: the detected rate is used up to 64 × 64 samples
-/// ([`footprint_core::specular::raster::MAX_GRID`]).
+/// ([`footprint_core::prelude::MAX_GRID`]).
 pub const CROW_MAX: u8 = 64;
 
 /// The reference's default grid side: 32 × 32 samples in every pixel.
@@ -383,8 +385,8 @@ pub fn render_with(
         } else {
             mode.method_with(grids)
         };
-        let mut shader = |f: &raster::Fragment<'_>| {
-            let (rgb, spec) = specular::shade(f, &light, &material, method);
+        let mut shader = |f: &Fragment<'_>| {
+            let (rgb, spec) = shade(f, &light, &material, method);
             let i = (f.y() * size + f.x()) as usize;
             flagged[i] = spec.aliased;
             covered[i] = true;
@@ -411,7 +413,7 @@ pub fn render_with(
                 v: [vertex(&tri[0])?, vertex(&tri[1])?, vertex(&tri[2])?],
                 id: id as u16,
             };
-            fragments += u64::from(raster::draw(&mut target, &tri, &mut shader));
+            fragments += u64::from(draw_triangle(&mut target, &tri, &mut shader));
         }
     }
     Ok(PlateImage {
