@@ -451,4 +451,9 @@ fn the_full_precision_box_rounds_each_pixels_columns_once() {
             what: "resample_exact"
         })
     );
+    // …in a one-line message that names the call and what it takes.
+    assert_eq!(
+        refused.unwrap_err().to_string(),
+        "resample_exact: takes frames of the paper's projection only"
+    );
 }
