@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use anyhow::Result;
 use footprint_core::extend::{visit_visible, Color32};
-use footprint_core::prelude::{Camera, Frame, NoCost, Sampling, Sun, SunShader, Switch, Terrain};
+use footprint_core::prelude::{Camera, Frame, NoCost, Sun, SunShader, Switch, Terrain};
 use footprint_core::Rgb;
 
 pub use footprint_scenes::render::{
@@ -69,26 +69,6 @@ pub fn render_exact_parallel(
             frame.render_columns_exact(terrain, &mode, &mut NoCost, x..x + 1, column)
         })?;
     Ok(grid)
-}
-
-/// Walks one column of the grid (rows from the bottom) without counting: column `x` of
-/// [`Frame::render_columns`]' layout.
-pub fn render_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> Vec<Rgb> {
-    let mut out = vec![Rgb::default(); frame.grid_rows()];
-    mode.walk_column(frame, terrain, x, &mut NoCost, &mut out);
-    out
-}
-
-/// [`render_column`] at full precision ([`render_exact_parallel`]'s cells).
-pub fn render_column_exact(
-    frame: &Frame<'_>,
-    terrain: &Terrain<'_>,
-    mode: Mode,
-    x: usize,
-) -> Vec<Color32> {
-    let mut out = vec![Color32::default(); frame.grid_rows()];
-    mode.walk_column_exact(frame, terrain, x, &mut NoCost, &mut out);
-    out
 }
 
 /// Renders without counting and returns the image and the wall time of the render alone, in
@@ -258,6 +238,6 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
     let columns: Vec<ColumnCount> = (0..frame.grid_columns())
         .into_par_iter()
         .map(|x| count_column(frame, terrain, mode, x))
-        .collect();
+        .collect::<Result<_, _>>()?;
     Ok(footprint_scenes::render::assemble(frame, mode, columns)?)
 }

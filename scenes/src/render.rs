@@ -6,9 +6,7 @@
 use std::fmt;
 
 use footprint_core::extend::{visit_visible, Color16, Voxel, Weight};
-use footprint_core::prelude::{
-    Camera, Cost, Counts, Frame, Sampling, Sun, SunShader, Tally, Terrain,
-};
+use footprint_core::prelude::{Camera, Cost, Counts, Frame, Sun, SunShader, Tally, Terrain};
 use footprint_core::{Error, Rgb};
 
 pub use footprint_core::prelude::{Mode, ParseModeError, Rate, SS_RATES};
@@ -114,11 +112,19 @@ pub struct ColumnCount {
 }
 
 /// Renders column `x` with every counter on, then walks the visibility pass over the same voxel
-/// sequence for `V` and for the hidden and missed voxels. One walk per column and mode.
-pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usize) -> ColumnCount {
+/// sequence for `V` and for the hidden and missed voxels. One walk per column and mode, through
+/// the door ([`Frame::render_columns`]).
+///
+/// Errors: a column beyond the frame's.
+pub fn count_column(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    mode: Mode,
+    x: usize,
+) -> Result<ColumnCount, Error> {
     let mut pixels = vec![Rgb::default(); frame.grid_rows()];
     let mut counts = (Counts::new(&mut []), Sampled::default());
-    mode.walk_column(frame, terrain, x, &mut counts, &mut pixels);
+    frame.render_columns(terrain, &mode, &mut counts, x..x + 1, &mut pixels)?;
     let mut visible = Vec::new();
     visit_visible(frame, terrain, x, mode.switch(), |march| {
         visible.push(march.sequence_index());
@@ -127,12 +133,12 @@ pub fn count_column(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode, x: usi
     let mut tally = counts.total;
     tally.v = visible.len() as u64;
     let (hidden, missed) = hidden_and_missed(&sampled.0, &visible);
-    ColumnCount {
+    Ok(ColumnCount {
         pixels,
         tally,
         hidden,
         missed,
-    }
+    })
 }
 
 /// The frame from its counted columns, in order (`columns[x]` is column `x`): the image (the
@@ -174,7 +180,7 @@ pub fn count(
 ) -> Result<(Rendered, Measured), Error> {
     let columns = (0..frame.grid_columns())
         .map(|x| count_column(frame, terrain, mode, x))
-        .collect();
+        .collect::<Result<_, _>>()?;
     assemble(frame, mode, columns)
 }
 

@@ -14,7 +14,7 @@
 mod common;
 
 use common::{camera, pose_for, with_frame, Map, HEIGHT_SCALE_M, SKY, SPACING_M};
-use footprint_core::prelude::{Camera, Counts, Sampling, Tally, Terrain};
+use footprint_core::prelude::{Camera, Counts, Tally, Terrain};
 use footprint_core::Mode;
 use footprint_core::Rgb;
 
@@ -108,13 +108,15 @@ fn classic_matches_a_float_reference_of_the_classic_algorithm() {
             let reference = float_reference(&cam, &terrain, &starts);
             for (c, want) in reference.iter().enumerate() {
                 let mut got = vec![Rgb::default(); frame.grid_rows()];
-                Mode::Classic.walk_column(
-                    frame,
-                    &terrain,
-                    c,
-                    &mut footprint_core::prelude::NoCost,
-                    &mut got,
-                );
+                frame
+                    .render_columns(
+                        &terrain,
+                        &Mode::Classic,
+                        &mut footprint_core::prelude::NoCost,
+                        c..c + 1,
+                        &mut got,
+                    )
+                    .unwrap();
                 total += got.len();
                 differ += got.iter().zip(want).filter(|(a, b)| a != b).count();
             }

@@ -11,7 +11,7 @@
 
 use anyhow::{bail, Result};
 use footprint_core::extend::Color32;
-use footprint_core::prelude::{Camera, Options, Projection, Surface};
+use footprint_core::prelude::{Camera, NoCost, Options, Projection, Surface};
 use footprint_core::Rgb;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -28,7 +28,7 @@ use crate::experiment::causes::{classify, ClassFlicker, CLASSES};
 use crate::experiment::paper::paper_camera_placed;
 use crate::flight_path::FlightPath;
 use crate::map::Map;
-use crate::parallel::{render_column_exact, Mode, Rate, Tables};
+use crate::parallel::{Mode, Rate, Tables};
 use crate::pyramid::Pyramid;
 use crate::truth::reference::{rmse, supersampled, REFERENCE_COLUMNS};
 use crate::truth::{self, Truth};
@@ -313,9 +313,9 @@ fn shoot(
     // The `k` walked columns at full precision, box-filtered to one and rounded once, as the
     // whole image is ([`supersampled`]); the box gives rows from the top, the shot from the
     // bottom.
-    let walked: Vec<Color32> = (column * k..(column + 1) * k)
-        .flat_map(|x| render_column_exact(&frame, &terrain, setting.mode, x))
-        .collect();
+    let mut walked = vec![Color32::default(); k * frame.grid_rows()];
+    let columns = column * k..(column + 1) * k;
+    frame.render_columns_exact(&terrain, &setting.mode, &mut NoCost, columns, &mut walked)?;
     let mut column = vec![Rgb::default(); h];
     frame.resample_exact(&walked, &mut column)?;
     column.reverse();
