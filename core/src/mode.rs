@@ -24,7 +24,7 @@ use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
 use crate::terrain::sampler::{ExactArea, Linear, PaperArea, Point, Sampler, Super};
-use crate::terrain::sampling::{walk_rows, Sampling};
+use crate::terrain::sampling::{walk_rows, Sampling, Walk};
 use crate::terrain::wedge::{SmoothWedge, Wedge};
 use crate::terrain::Terrain;
 
@@ -231,7 +231,9 @@ impl Sampling for Mode {
     fn filter(&self) -> Filter {
         Mode::filter(*self)
     }
+}
 
+impl Walk for Mode {
     fn walk_column<C: Cost>(
         &self,
         frame: &Frame<'_>,
@@ -287,8 +289,8 @@ impl Sampling for Mode {
 }
 
 impl Mode {
-    /// Column `x` into 8-bit or full-precision cells ([`Sampling::walk_column`],
-    /// [`Sampling::walk_column_exact`]): the sampler chosen as the impl above says.
+    /// Column `x` into 8-bit or full-precision cells ([`Walk::walk_column`],
+    /// [`Walk::walk_column_exact`]): the sampler chosen as the impl above says.
     fn walk_rows<C: Cost, O: ColumnOut + ?Sized>(
         self,
         frame: &Frame<'_>,

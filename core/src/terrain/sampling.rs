@@ -14,11 +14,27 @@ use crate::terrain::Terrain;
 
 /// A way to sample a frame: a [`Sampler`] (which links that mode alone) or a run-time
 /// [`crate::Mode`] (which links them all). [`Frame::render`] and [`Frame::render_columns`]
-/// take either.
-pub trait Sampling {
+/// take either. Sealed: it is implemented for every sampler and for `Mode`, and the walks
+/// behind it (`Walk`) are the core's own, so that a frame is walked through the door alone.
+///
+/// A column is walked through the door ([`Frame::render_columns`]); outside the core a
+/// sampling's own walk cannot be called:
+///
+/// ```compile_fail
+/// use footprint_core::prelude::*;
+/// fn walk_one(mode: Mode, frame: &Frame<'_>, terrain: &Terrain<'_>, out: &mut [Rgb]) {
+///     mode.walk_column(frame, terrain, 0, &mut NoCost, out);
+/// }
+/// ```
+pub trait Sampling: Walk {
     /// How the exact projection's fan is resampled for this sampling ([`Sampler::FILTER`]).
     fn filter(&self) -> Filter;
+}
 
+/// The column walks behind [`Sampling`], one per kind of output. Public in name only: this
+/// module is private, so no caller outside the core can name the trait, call its methods or
+/// implement it (the seal).
+pub trait Walk {
     /// Walks column `x` of `frame` with a fresh sampler, counting with `cost`, into `out`,
     /// rows from the bottom (the rows the column walks, [`crate::terrain::camera::Column::rows`],
     /// land at their own index; the others are left as they are).
@@ -31,7 +47,7 @@ pub trait Sampling {
         out: &mut [Rgb],
     );
 
-    /// [`Sampling::walk_column`] into full-precision cells: each pixel's colour before it is
+    /// [`Walk::walk_column`] into full-precision cells: each pixel's colour before it is
     /// rounded to 8 bits where the sampler keeps it ([`Sampler::exact`]), else its 8-bit
     /// colour.
     fn walk_column_exact<C: Cost>(
@@ -43,7 +59,7 @@ pub trait Sampling {
         out: &mut [Color32],
     );
 
-    /// Walks column `x` of `frame` as [`Sampling::walk_column`] does, for its events alone:
+    /// Walks column `x` of `frame` as [`Walk::walk_column`] does, for its events alone:
     /// `cost` hears every hook, no pixel is written ([`Frame::render_shaded`], whose shader
     /// writes them).
     fn walk_column_events<C: Cost>(
@@ -68,8 +84,8 @@ pub trait Sampling {
 }
 
 /// Walks column `x` of `frame` with a fresh copy of `sampler` into `out` (rows from the
-/// bottom, the column's walked rows at their own index): [`Sampling::walk_column`] and
-/// [`Sampling::walk_column_exact`], for 8-bit or full-precision cells.
+/// bottom, the column's walked rows at their own index): [`Walk::walk_column`] and
+/// [`Walk::walk_column_exact`], for 8-bit or full-precision cells.
 #[inline]
 pub(crate) fn walk_rows<const SURFACE: bool, S: Sampler + Clone, C: Cost, O: ColumnOut + ?Sized>(
     sampler: &S,
@@ -89,7 +105,9 @@ impl<S: Sampler + Clone> Sampling for S {
     fn filter(&self) -> Filter {
         S::FILTER
     }
+}
 
+impl<S: Sampler + Clone> Walk for S {
     #[inline]
     fn walk_column<C: Cost>(
         &self,

@@ -220,7 +220,7 @@ impl Frame<'_> {
 }
 
 impl<Sh: Shader, C: Cost, P: PixelSink> Shading<'_, Sh, C, P> {
-    /// Walks `columns` of `frame` for their events alone ([`Sampling::walk_column_events`]),
+    /// Walks `columns` of `frame` for their events alone ([`Walk::walk_column_events`]),
     /// writing the lit pixels, and finishes the last one.
     fn walk<S: Sampling>(
         mut self,
