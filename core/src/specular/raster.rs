@@ -234,8 +234,8 @@ fn sub3([a0, a1, a2]: [i128; 3], [b0, b1, b2]: [i128; 3]) -> [i128; 3] {
     [a0 - b0, a1 - b1, a2 - b2]
 }
 
-/// One pixel of one triangle, handed to the [`FragmentShader`]: its position, the triangle's tag, and
-/// the interpolated normal anywhere in the pixel.
+/// One pixel of one triangle, handed to the [`FragmentShader`]: its position, the triangle's
+/// tag, and the interpolated normal anywhere in the pixel.
 #[derive(Clone, Copy, Debug)]
 pub struct Fragment<'a> {
     x: u32,
