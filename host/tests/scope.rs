@@ -6,7 +6,8 @@
 //! The CLI tests share one `footprint report` on the built-in eroded hills at 128² (1.28 km on
 //! a side, 10 m voxels), 3 frames: the paper's views are placed on that small map, their first
 //! hits brought near, so every case is magnified, and 3 frames give too few changes for
-//! Table 6.
+//! Table 6. That report keeps the default truth (8×8 rays a pixel): REPORT.md's numbers, which
+//! one test checks against report.json, are the truth's RMSEs and their ratios.
 
 mod common;
 
@@ -192,7 +193,8 @@ fn a_claim_on_too_few_events_says_so() {
         "an excess below the reference's is 0 events"
     );
 
-    // A three-frame flight in the library: too few changes in the column.
+    // A three-frame flight in the library: too few changes in the column. Table 6's claim
+    // counts the modes' own changes, so one truth ray a pixel does for the table and the flight.
     let map = procedural(1, 256);
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
     let t = table::run(
@@ -204,13 +206,14 @@ fn a_claim_on_too_few_events_says_so() {
         true,
         Surface::Flat,
         None,
-        footprint_host::truth::DEFAULT_SAMPLES,
+        1,
         |_| {},
     )
     .unwrap();
     let spec = FlySpec {
         size: SIZE,
         all_columns: false,
+        truth_samples: 1,
         ..FlySpec::paper(3)
     };
     let f = fly::run(&map, &pyramid, &spec, || {}).unwrap();
@@ -290,7 +293,7 @@ fn a_magnified_case_is_labelled_as_such() {
         ps["scope"].as_str().unwrap().contains(": magnified"),
         "{ps}"
     );
-    // `footprint table` says it too.
+    // `footprint table` says it too (its truth labels nothing: one ray a pixel).
     let o = footprint(&[
         "table",
         "--terrain",
@@ -301,6 +304,8 @@ fn a_magnified_case_is_labelled_as_such() {
         "5",
         "--modes",
         "ps,as",
+        "--truth-samples",
+        "1",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let md = String::from_utf8_lossy(&o.stdout);
@@ -512,10 +517,12 @@ fn the_papers_geometry_over_the_mirrored_map_is_an_option() {
 
 /// `report --geometry paper` places every section's views as the paper does, over the mirrored
 /// copies of the small map: Tables 1–5, the views and the flight are minification, the claims
-/// are judged, and the regenerating command keeps the option.
+/// are judged, and the regenerating command keeps the option. The truth, which places no view
+/// and counts no coverage, has one ray a pixel (`--truth-samples 1`; 8×8 took most of the
+/// test's time).
 #[test]
 fn report_takes_the_papers_geometry_on_request() {
-    let r = report(&["--geometry", "paper"]);
+    let r = report(&["--geometry", "paper", "--truth-samples", "1"]);
     assert!(r.stderr.contains("--geometry paper keeps"), "{}", r.stderr);
     let (json, md) = (&r.json, &r.md);
     let cases = json["tables"]["cases"].as_array().unwrap();
