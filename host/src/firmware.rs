@@ -46,8 +46,9 @@ use footprint_core::prelude::{
 };
 use footprint_core::{Error, Rgb};
 
-use footprint_core::prelude::{draw_triangle, shade, Fragment, Light, Material, Normal, Phong};
-use footprint_core::prelude::{Target, Triangle};
+use footprint_core::prelude::{
+    draw_triangle, shade, Fragment, Light, Material, Normal, Phong, Target, Triangle,
+};
 
 pub use footprint_scenes::firmware::{
     plate, plate_mode_name, scene, Plate, PlateVertex, Scene, GLINT_NAME, GLINT_SPECULAR, HEIGHT,

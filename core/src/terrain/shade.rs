@@ -220,8 +220,9 @@ impl Frame<'_> {
 }
 
 impl<Sh: Shader, C: Cost, P: PixelSink> Shading<'_, Sh, C, P> {
-    /// Walks `columns` of `frame` for their events alone ([`Walk::walk_column_events`]),
-    /// writing the lit pixels, and finishes the last one.
+    /// Walks `columns` of `frame` for their events alone
+    /// ([`crate::terrain::sampling::Walk::walk_column_events`]), writing the lit pixels, and
+    /// finishes the last one.
     fn walk<S: Sampling>(
         mut self,
         frame: &Frame<'_>,
