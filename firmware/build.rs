@@ -1,9 +1,10 @@
 //! Bakes the firmware's scene into `$OUT_DIR/scene.rs`, and puts `memory.x` on the linker's
 //! search path.
 //!
-//! The scene comes from `footprint_scenes::firmware::scene()` (a std crate over the core alone,
-//! shared with the host): the procedural map (integer-only, deterministic) and the camera whose
-//! eye height is fitted by the paper's rule (a bisection that needs `std`). Every `f64` is written as its bit pattern, so the
+//! The scene comes from `footprint_scenes::firmware::scene()` (std crates over the core alone:
+//! scenes, and the maps without their file formats, shared with the host): the procedural map
+//! (integer-only, deterministic) and the camera whose eye height is fitted by the paper's rule
+//! (a bisection that needs `std`). Every `f64` is written as its bit pattern, so the
 //! firmware's `CameraParams` are the host's, bit for bit. The tables are regenerated on every
 //! build whose generator changed (cargo reruns a build script when its dependencies change),
 //! so they cannot go stale.
@@ -168,17 +169,17 @@ fn main() {
         write!(s, " Rgb::new({}, {}, {}),", c.r, c.g, c.b).unwrap();
     }
     s.push_str("\n];\n");
-    // The same map baked as `footprint map bake` bakes it (`footprint_scenes::baked::write`, in
+    // The same map baked as `footprint map bake` bakes it (`footprint_maps::baked::write`, in
     // strips of 64 columns): the firmware lends the file's bytes, in flash, to a terrain and checks that it renders
     // the frame of the pyramid it builds on the chip.
-    let pyramid = footprint_scenes::Pyramid::build(
+    let pyramid = footprint_maps::Pyramid::build(
         map.clone(),
         footprint_core::prelude::HeightFilter::default(),
     )
     .expect("the scene's pyramid");
     let mut baked = Vec::new();
-    let strips = Some(footprint_scenes::baked::BAKE_SHIFT);
-    footprint_scenes::baked::write(&pyramid, &map.source, strips, &mut baked)
+    let strips = Some(footprint_maps::baked::BAKE_SHIFT);
+    footprint_maps::baked::write(&pyramid, &map.source, strips, &mut baked)
         .expect("bake the scene");
     fs::write(out.join("scene.fpmap"), &baked).expect("write scene.fpmap");
     writeln!(

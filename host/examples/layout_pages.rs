@@ -11,8 +11,8 @@ use std::collections::HashSet;
 
 use footprint_core::extend::visit;
 use footprint_core::prelude::*;
-use footprint_scenes::procedural::procedural;
-use footprint_scenes::pyramid::Pyramid;
+use footprint_maps::procedural::procedural;
+use footprint_maps::pyramid::Pyramid;
 use footprint_scenes::view::{default_far_voxels, overview_params, paper_camera, Tables};
 
 /// A page.

@@ -1,11 +1,11 @@
 //! One frame of the built-in terrain to a PNG, from a host program: the map and its pyramid
-//! from `footprint-scenes`, the CLI's first view (the overview: the whole map from above its
+//! from `footprint-maps`, the CLI's first view (the overview: the whole map from above its
 //! south edge) in the exact projection (the CLI's default), the paper's area sampling,
 //! rendered through the core's one door straight into the PNG's bytes.
 //! `cargo run -p footprint-host --example png -- frame.png`
 use footprint_core::prelude::*;
-use footprint_scenes::procedural::procedural;
-use footprint_scenes::pyramid::Pyramid;
+use footprint_maps::procedural::procedural;
+use footprint_maps::pyramid::Pyramid;
 use footprint_scenes::view::{default_far_voxels, overview_params, Tables};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

@@ -10,8 +10,8 @@ use anyhow::{anyhow, Result};
 use footprint_core::prelude::{Camera, CameraParams, Options, Shown, Terrain, MAX_FAR};
 use footprint_core::Error;
 
+use footprint_maps::{Map, Pyramid};
 use footprint_scenes::view::{self, FitError, Tables};
-use footprint_scenes::{Map, Pyramid};
 
 /// Where the eye height comes from.
 #[derive(Clone, Copy, Debug)]

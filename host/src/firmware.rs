@@ -1,11 +1,11 @@
 //! The host's reference for the firmware's scenes.
 //!
 //! `firmware/` runs `footprint-core` on an emulated Cortex-M4F (QEMU `mps2-an386`). Its
-//! `build.rs` calls [`scene`] (from `footprint-scenes`, which builds over the core alone) to
-//! bake the level-0 map and the camera into the firmware, so the chip and the host render the
-//! same [`CameraParams`], bit for bit (the eye height comes from the paper's fit-first-hit
-//! bisection, which needs `std`). [`reference_lines`] renders that
-//! scene here through the same core API and returns the lines the firmware prints over
+//! `build.rs` calls [`scene`] (from `footprint-scenes`, which builds over the core and the maps
+//! without their file formats) to bake the level-0 map and the camera into the firmware, so
+//! the chip and the host render the same [`CameraParams`], bit for bit (the eye height comes
+//! from the paper's fit-first-hit bisection, which needs `std`). [`reference_lines`] renders
+//! that scene here through the same core API and returns the lines the firmware prints over
 //! semihosting; `tests/tests/firmware.rs` asserts that the two agree byte for byte.
 //!
 //! Line formats (the firmware's `firmware/src/main.rs` writes the same):

@@ -9,7 +9,7 @@ use footprint_core::prelude::{Camera, CameraParams, HeightFilter, Options, Proje
 use crate::camera::{place, Eye};
 use crate::map::{self, Map};
 use crate::pyramid::Pyramid;
-use footprint_scenes::survey::{survey, Kind};
+use footprint_maps::survey::{survey, Kind};
 use footprint_scenes::view::{overview_params, overview_place, PAPER_FOV_DEG};
 
 /// An image size `WxH`.

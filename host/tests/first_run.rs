@@ -8,8 +8,8 @@ use clap::CommandFactory;
 use common::footprint;
 use footprint_core::prelude::{Camera, HeightFilter, Options, Projection};
 use footprint_host::cli::Cli;
-use footprint_scenes::procedural::{procedural, DEFAULT_SIZE};
-use footprint_scenes::pyramid::Pyramid;
+use footprint_maps::procedural::{procedural, DEFAULT_SIZE};
+use footprint_maps::pyramid::Pyramid;
 use footprint_scenes::view::{coverage, default_far_voxels, overview_params, Tables};
 
 /// `footprint render --out terrain.png`: one line on stdout, `wrote FILE: WxH, MODE, N ms`,

@@ -2,65 +2,109 @@
 #![deny(unsafe_code)]
 //! # footprint-maps
 //!
-//! Terrain map files: reading and writing height/colour PNG pairs, SRTM `.hgt` tiles, ESRI
-//! ASCII grids and GeoTIFFs, with the limits that keep a bad file from crashing anything
-//! ([`memory`]: the memory budget every reader checks a header against before it allocates).
-//! The built-in procedural terrain comes from `footprint-scenes`, re-exported here.
+//! Every height map footprint draws, and its files:
 //!
-//! Everything here produces a [`Map`]: an owned, row-major height field plus a colour per voxel,
-//! ready to lend to `footprint_core::prelude::Level`. The crate has no command-line or
-//! terminal dependencies, so the `footprint` CLI and the browser page (`web/`, WebAssembly)
-//! read maps with the same code and the same one-line errors.
+//! * the owned map ([`Map`]: heights, colours, scale, origin; its cells in memory or in a
+//!   mapped file, [`Cells`]) and its pyramid ([`Pyramid`], built by the core's one builder);
+//! * the built-in terrains ([`procedural()`], and the survey-like maps of [`survey`]) and the
+//!   colours of a bare height field ([`tint()`]);
+//! * baked map files ([`baked`]: the whole `.fpmap` format on the host's side, the core
+//!   holding its layout);
+//! * with the default feature `files`: reading and writing height/colour PNG pairs, SRTM
+//!   `.hgt` tiles, ESRI ASCII grids, BIL and GeoTIFFs and mosaics of them, with the limits that
+//!   keep a bad file from crashing anything ([`memory`]: the memory budget every reader checks
+//!   a header against before it allocates). Real elevation data is read by [`load`]: one
+//!   reader per format gives a [`Grid`] of metres, whose voids are filled ([`voids`]) and whose
+//!   heights are mapped into 16-bit height units above [`Map::base_m`].
 //!
-//! Real elevation data (SRTM `.hgt`, ESRI ASCII grids, GeoTIFF) is read by [`load`]: one reader
-//! per format ([`hgt`], [`asc`], [`tiff`]) gives a [`Grid`] of metres, whose voids are filled
-//! ([`voids`]) and whose heights are mapped into 16-bit height units above [`Map::base_m`].
+//! Without `files` the crate builds over the core, `bytemuck` and `crc32fast` alone: the
+//! firmware's build script bakes its scene with it. The crate has no command-line or terminal
+//! dependencies (`clap` only under the feature `cli`), so the `footprint` CLI and the browser
+//! page (`web/`, WebAssembly) read maps with the same code and the same one-line errors.
 
+#[cfg(feature = "files")]
 use std::fmt;
+#[cfg(feature = "files")]
 use std::io;
+#[cfg(feature = "files")]
 use std::path::Path;
 
-pub mod asc;
-pub mod bake_stream;
 pub mod baked;
-pub mod bil;
-pub mod epsg;
-mod epsg_units;
-pub mod format;
-pub mod georef;
-pub mod grid;
-pub mod hgt;
-pub mod input;
-pub mod kind;
-mod loaded;
-pub mod memory;
-pub mod mosaic;
-pub mod numbers;
-mod options;
-pub mod png;
-mod reader;
-mod readers;
-mod sentinel;
-pub mod tiff;
-mod tiff_lzw;
-pub mod voids;
-pub mod vrt;
+pub mod cells;
+pub mod map;
+pub mod procedural;
+pub mod pyramid;
+pub mod survey;
+pub mod tint;
 
-pub use footprint_scenes::Map;
-/// The built-in terrain and the height tint live in the scenes crate (the firmware bakes them
-/// too); re-exported here, where the loaders and the CLI look for them.
-pub use footprint_scenes::{procedural, tint};
-
-pub use self::format::{load, relief_hint, Format, LoadOptions, Loaded};
-pub use self::format::{Sentinel, VerticalUnit};
-pub use self::grid::Grid;
-pub use self::png::load_png_pair;
+pub use self::cells::Cells;
+pub use self::map::Map;
 pub use self::procedural::{procedural, DEFAULT_SIZE, MIN_SIZE};
+pub use self::pyramid::Pyramid;
 pub use self::tint::tint;
 
+// The file formats: behind the default feature `files`.
+#[cfg(feature = "files")]
+pub mod asc;
+#[cfg(feature = "files")]
+pub mod bil;
+#[cfg(feature = "files")]
+pub mod epsg;
+#[cfg(feature = "files")]
+mod epsg_units;
+#[cfg(feature = "files")]
+pub mod format;
+#[cfg(feature = "files")]
+pub mod georef;
+#[cfg(feature = "files")]
+pub mod grid;
+#[cfg(feature = "files")]
+pub mod hgt;
+#[cfg(feature = "files")]
+pub mod input;
+#[cfg(feature = "files")]
+pub mod kind;
+#[cfg(feature = "files")]
+mod loaded;
+#[cfg(feature = "files")]
+pub mod memory;
+#[cfg(feature = "files")]
+pub mod mosaic;
+#[cfg(feature = "files")]
+pub mod numbers;
+#[cfg(feature = "files")]
+mod options;
+#[cfg(feature = "files")]
+pub mod png;
+#[cfg(feature = "files")]
+mod reader;
+#[cfg(feature = "files")]
+mod readers;
+#[cfg(feature = "files")]
+mod sentinel;
+#[cfg(feature = "files")]
+pub mod tiff;
+#[cfg(feature = "files")]
+mod tiff_lzw;
+#[cfg(feature = "files")]
+pub mod voids;
+#[cfg(feature = "files")]
+pub mod vrt;
+
+#[cfg(feature = "files")]
+pub use self::format::{load, relief_hint, Format, LoadOptions, Loaded};
+#[cfg(feature = "files")]
+pub use self::format::{Sentinel, VerticalUnit};
+#[cfg(feature = "files")]
+pub use self::grid::Grid;
+#[cfg(feature = "files")]
+pub use self::png::load_png_pair;
+
+#[cfg(feature = "files")]
 /// The largest accepted width or height of a map, in voxels.
 pub const MAX_SIDE: u32 = footprint_core::prelude::MAX_SIDE;
 
+#[cfg(feature = "files")]
 /// Checks that a `w`×`h` map is acceptable: neither side may be zero or exceed [`MAX_SIDE`].
 ///
 /// `what` names the map in the error, e.g. `height map "dem.png"` (see [`describe`]).
@@ -80,6 +124,7 @@ pub fn validate_size(w: u32, h: u32, what: &str) -> Result<(), MapError> {
     Ok(())
 }
 
+#[cfg(feature = "files")]
 /// Checks that a `w`×`h` map and its pyramid fit in the memory budget
 /// ([`crate::memory`]); the loaders call it once the header is known to be plausible,
 /// before they allocate the cells.
@@ -93,11 +138,13 @@ pub fn validate_memory(w: u32, h: u32, what: &str) -> Result<(), MapError> {
     Ok(())
 }
 
+#[cfg(feature = "files")]
 /// Names a map file for error messages: `describe("height map", "h.png")` is `height map "h.png"`.
 pub fn describe(kind: &str, path: &Path) -> String {
     format!("{kind} \"{}\"", path.display())
 }
 
+#[cfg(feature = "files")]
 /// Why a map could not be loaded. Every message is a single line that names the offending file
 /// (or command-line option), so it can be shown to the user as is.
 ///
@@ -248,6 +295,7 @@ pub enum MapError {
     },
 }
 
+#[cfg(feature = "files")]
 impl fmt::Display for MapError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -340,8 +388,10 @@ impl fmt::Display for MapError {
     }
 }
 
+#[cfg(feature = "files")]
 impl std::error::Error for MapError {}
 
+#[cfg(feature = "files")]
 /// An I/O error's message without the trailing " (os error N)".
 fn io_message(error: &io::Error) -> String {
     let text = one_line(&error.to_string());
@@ -351,12 +401,13 @@ fn io_message(error: &io::Error) -> String {
     }
 }
 
+#[cfg(feature = "files")]
 /// Collapses any line breaks so that a message stays on one line.
 fn one_line(text: &str) -> String {
     text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "files"))]
 mod tests {
     use super::*;
 
@@ -449,19 +500,13 @@ mod tests {
         assert_eq!(read(&bil), Surface::Bilinear, "bil");
         // The built-in terrains are continuous where magnified, as a survey DEM.
         assert_eq!(procedural(1, 32).surface, Surface::Bilinear, "mountains");
-        for kind in [
-            footprint_scenes::survey::Kind::Eroded,
-            footprint_scenes::survey::Kind::Plains,
-        ] {
-            assert_eq!(
-                footprint_scenes::survey::survey(kind, 1, 32).surface,
-                Surface::Bilinear
-            );
+        for kind in [survey::Kind::Eroded, survey::Kind::Plains] {
+            assert_eq!(survey::survey(kind, 1, 32).surface, Surface::Bilinear);
         }
         // Baked, the map keeps its source's surface, either one.
         for surface in [Surface::Flat, Surface::Bilinear] {
             let path = dir.path().join("m.fpmap");
-            let pyramid = footprint_scenes::pyramid::Pyramid::build(
+            let pyramid = Pyramid::build(
                 Map {
                     surface,
                     ..map.clone()
@@ -470,7 +515,7 @@ mod tests {
             )
             .unwrap();
             let mut file = std::fs::File::create(&path).unwrap();
-            footprint_scenes::baked::write(&pyramid, "m", None, &mut file).unwrap();
+            baked::write(&pyramid, "m", None, &mut file).unwrap();
             drop(file);
             let (back, _) = baked::open(&path, None, None).unwrap();
             assert_eq!(back.map().surface, surface, "baked");

@@ -17,7 +17,7 @@
 //! find the lowest and highest heights, which fix the height units ([`crate::Grid::into_heights`]'s
 //! rules) for the whole mosaic. [`Mosaic::rows`] then reads the tiles again, in row order,
 //! holding only the tiles that the current row crosses, as 16-bit height units: what
-//! [`load_mosaic`] assembles in memory and [`crate::bake_stream`] streams into a baked file.
+//! [`load_mosaic`] assembles in memory and [`crate::baked::stream`] streams into a baked file.
 
 use std::path::{Path, PathBuf};
 
@@ -733,7 +733,7 @@ impl Rows<'_> {
 
 /// Loads the mosaic `paths` (several files, a folder, a `.vrt`) into memory as one map,
 /// coloured by [`tint()`]: for rendering a mosaic that fits the memory budget (a large one is
-/// baked instead, `crate::bake_stream`). See [`Mosaic::survey`] for `opts` and the errors.
+/// baked instead, `crate::baked::stream`). See [`Mosaic::survey`] for `opts` and the errors.
 pub fn load_mosaic(paths: &[PathBuf], opts: &LoadOptions<'_>) -> Result<Loaded, MapError> {
     let m = Mosaic::survey(paths, opts)?;
     let what = describe("mosaic", Path::new(&m.source));

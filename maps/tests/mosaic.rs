@@ -5,10 +5,10 @@ use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use footprint_core::prelude::HeightFilter;
-use footprint_maps::bake_stream;
+use footprint_maps::baked::stream as bake_stream;
 use footprint_maps::mosaic::{load_mosaic, Mosaic};
+use footprint_maps::Pyramid;
 use footprint_maps::{load, LoadOptions, Map};
-use footprint_scenes::Pyramid;
 use tiff::encoder::colortype::Gray32Float;
 use tiff::encoder::TiffEncoder;
 use tiff::tags::Tag;

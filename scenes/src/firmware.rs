@@ -17,7 +17,7 @@ use footprint_core::{Error, Rgb};
 
 use crate::plates::{self, SceneName, Shading};
 use crate::view::{self, FitError};
-use crate::{procedural, Map, Pyramid};
+use footprint_maps::{procedural, Map, Pyramid};
 
 /// The seed of the firmware's built-in terrain.
 pub const SEED: u64 = 1;
@@ -69,7 +69,7 @@ pub struct Scene {
 /// Builds the firmware's scene: `procedural(SEED, MAP_SIDE)` seen from its centre by the
 /// paper's camera ([`view::paper_camera`], the rule of Table 1).
 pub fn scene() -> Result<Scene, FitError> {
-    let map = procedural::procedural(SEED, MAP_SIDE);
+    let map = procedural(SEED, MAP_SIDE);
     let options = Options::default();
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default())?;
     let camera = view::paper_camera(&pyramid, PITCH_DEG, WIDTH, HEIGHT, options)?;

@@ -18,8 +18,8 @@ use footprint_core::prelude::{
 };
 use footprint_core::{Error, Rgb};
 
-use crate::map::Map;
-use crate::pyramid::Pyramid;
+use footprint_maps::map::Map;
+use footprint_maps::pyramid::Pyramid;
 
 /// The paper's field of view, degrees (Table 1).
 pub const PAPER_FOV_DEG: f64 = 10.0;
@@ -791,8 +791,8 @@ pub fn degenerate(map: &Map, camera: &Camera, options: Options) -> Vec<Degenerat
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::procedural::procedural;
     use footprint_core::prelude::HeightFilter;
+    use footprint_maps::procedural::procedural;
 
     /// The overview's top row aims at the ground 0.9 of the way north; a wall across the map
     /// 0.4 of the way there, 1 km high, would hide that aim from an eye placed by the

@@ -7,10 +7,10 @@ use footprint_core::prelude::{
 };
 use footprint_core::Rgb;
 use footprint_maps::{memory, LoadOptions};
+use footprint_maps::{procedural, Map, Pyramid};
 use footprint_scenes::flight::{self, bin, luminance};
 use footprint_scenes::render::{count, image_hash, render_with, Mode, ParseModeError};
 use footprint_scenes::view::{self, Tables};
-use footprint_scenes::{procedural, Map, Pyramid};
 
 /// The memory budget in the browser: a 32-bit WebAssembly memory holds at most 4 GiB, and a
 /// tab gets less. A map and its pyramid above it are refused with the CLI's one-line error.
@@ -156,7 +156,7 @@ impl App {
     /// defaults), PS left and AS right.
     pub fn new() -> Result<Self, String> {
         memory::set_budget(BUDGET_BYTES);
-        let pyramid = build(procedural::procedural(DEFAULT_SEED, DEFAULT_SIZE))?;
+        let pyramid = build(procedural(DEFAULT_SEED, DEFAULT_SIZE))?;
         let options = Options {
             projection: Projection::Exact,
             // `render`'s `--surface auto`: the map's own.
@@ -199,7 +199,7 @@ impl App {
             "the map and its pyramid",
         )
         .map_err(|e| e.to_string())?;
-        let pyramid = build(procedural::procedural(seed, size))?;
+        let pyramid = build(procedural(seed, size))?;
         let camera = view::paper_camera(
             &pyramid,
             self.params.pitch_deg,
@@ -541,7 +541,7 @@ mod tests {
     /// is one line that leaves the map as it was.
     #[test]
     fn a_baked_map_loads_and_a_corrupt_one_is_refused() {
-        let map = procedural::procedural(2, 64);
+        let map = procedural(2, 64);
         let pyramid = Pyramid::build(map.clone(), HeightFilter::default()).unwrap();
         let mut bytes = Vec::new();
         // In strips of 16 columns, as `map bake` writes a file by default (of 64).

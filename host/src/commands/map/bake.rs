@@ -55,7 +55,7 @@ pub struct BakeArgs {
     #[arg(
         long = "strip-width",
         value_name = "COLUMNS",
-        default_value_t = 1 << footprint_scenes::baked::BAKE_SHIFT,
+        default_value_t = 1 << footprint_maps::baked::BAKE_SHIFT,
         value_parser = strip_width
     )]
     pub strip_width: u32,
@@ -254,7 +254,7 @@ pub(super) fn bake(args: &BakeArgs) -> Result<()> {
 }
 
 /// `map bake` of a mosaic: surveyed (every tile read once), then streamed into the file row by
-/// row ([`map::bake_stream`]), never whole in memory.
+/// row ([`map::baked::stream`]), never whole in memory.
 fn bake_mosaic(args: &BakeArgs) -> Result<()> {
     let opts = LoadOptions {
         format: args.read.format,
@@ -292,7 +292,7 @@ fn bake_mosaic(args: &BakeArgs) -> Result<()> {
              a stream or a device"
         );
     }
-    let bytes = map::bake_stream::bake_mosaic(
+    let bytes = map::baked::stream::bake_mosaic(
         &mosaic,
         args.height_filter.into(),
         args.strips(),

@@ -1,5 +1,5 @@
 //! Baking a map into a `.fpmap` file row by row, without holding the map or its pyramid:
-//! the bytes [`crate::baked::write`] writes for the whole pyramid in memory, from a few rows of
+//! the bytes [`crate::baked::write()`] writes for the whole pyramid in memory, from a few rows of
 //! each level.
 //!
 //! Level 0's rows come from a source in order, north first ([`crate::mosaic::Rows`], or any
@@ -17,15 +17,15 @@
 use std::fs::File;
 use std::io::{self, Seek, SeekFrom, Write};
 
+use crate::tint::TintScale;
 use footprint_core::extend::{mirror, Strips};
 use footprint_core::prelude::baked::{Header, Layout};
 use footprint_core::prelude::pyramid::{LevelRow, LevelRowMut};
 use footprint_core::prelude::{pyramid, HeightFilter, Scale, Surface, MAX_LEVELS};
 use footprint_core::Rgb;
-use footprint_scenes::tint::TintScale;
 
-use super::mosaic::{Mosaic, Tile};
-use super::MapError;
+use crate::mosaic::{Mosaic, Tile};
+use crate::MapError;
 
 /// Bytes gathered per section before they are written.
 pub const BUFFER: usize = 1 << 20;
@@ -366,8 +366,8 @@ impl Levels {
 /// length first), reading level 0's rows in order from `next_row`, which fills the row it is
 /// given (`plan.width` long). Returns the bytes of the file.
 ///
-/// The file equals, byte for byte, [`crate::baked::write`] of the pyramid
-/// (`footprint_scenes::Pyramid::build`) of the same map coloured by [`crate::tint()`], with the
+/// The file equals, byte for byte, [`crate::baked::write()`] of the pyramid
+/// ([`crate::Pyramid::build`]) of the same map coloured by [`crate::tint()`], with the
 /// same source and the same strips ([`Plan::strips`]).
 ///
 /// Errors: `next_row`'s, the file's (as [`MapError::Write`] naming `what`), a plan out of
@@ -543,7 +543,7 @@ pub fn bake(
         strips,
         surface: plan.surface,
     };
-    let head = footprint_scenes::baked::sealed(&header, &plan.source);
+    let head = super::sealed(&header, &plan.source);
     file.seek(SeekFrom::Start(0)).map_err(write_err)?;
     file.write_all(&head).map_err(write_err)?;
     file.flush().map_err(write_err)?;

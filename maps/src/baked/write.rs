@@ -1,8 +1,7 @@
 //! Writing a baked map file (`.fpmap`): a [`Pyramid`] in the core's layout
-//! (`footprint_core::prelude::baked`), with a CRC-32 of every level and of the header. Here,
-//! over the core alone, so that the firmware's build script bakes its scene into flash with the
-//! same code as `footprint map bake`; reading, checking and memory-mapping a file is
-//! `footprint-maps`' `baked` module.
+//! (`footprint_core::prelude::baked`), with a CRC-32 of every level and of the header. Without
+//! the `files` feature, so that the firmware's build script bakes its scene into flash with the
+//! same code as `footprint map bake`.
 
 use std::io::{self, Write};
 use std::ops::Range;

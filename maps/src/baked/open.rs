@@ -1,10 +1,4 @@
-//! Baked map files (`.fpmap`): a map and its whole pyramid, written once by `footprint map
-//! bake` and memory-mapped by every command after, so that a frame reads only the pages its
-//! rays touch and nothing is rebuilt. The layout is the core's
-//! (`footprint_core::prelude::baked`); this module opens a file, checks its checksums and
-//! maps it. The writer is the scenes crate's (`footprint_scenes::baked::write`, re-exported
-//! here, which the firmware's build script shares); a mosaic is written as a stream by
-//! [`crate::bake_stream`].
+//! Opening a baked map file: its checks, and its bytes mapped in place.
 //!
 //! Each level has a CRC-32 in the header, and the header has one of its own. Opening a file
 //! checks the header, the file's length and the level checksums from the coarsest level down
@@ -18,13 +12,11 @@ use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
 
+use super::crc;
+use crate::cells::Bytes;
+use crate::{describe, Cells, Map, MapError, Pyramid};
 use footprint_core::prelude::baked::{Baked, Header, HEADER_LEN};
 use footprint_core::Rgb;
-pub use footprint_scenes::baked::{crc, write};
-use footprint_scenes::cells::Bytes;
-use footprint_scenes::{Cells, Map, Pyramid};
-
-use super::{describe, MapError};
 
 /// The file extension of a baked map.
 pub const EXTENSION: &str = "fpmap";
@@ -381,6 +373,7 @@ fn without_prefix(e: footprint_core::Error) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::baked::write;
     use footprint_core::prelude::HeightFilter;
 
     /// A small map and its pyramid, baked into a temporary folder, its levels in `strips`.
