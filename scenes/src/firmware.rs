@@ -1,7 +1,7 @@
 //! The firmware's scenes (`firmware/`, a Cortex-M4F under QEMU): what its `build.rs` bakes into
 //! flash, and what the host renders as the reference that the firmware must match bit for bit.
 //!
-//! * the terrain: the built-in procedural map ([`procedural`]) seen by the paper's camera
+//! * the terrain: the built-in procedural map ([`procedural()`]) seen by the paper's camera
 //!   ([`view::paper_camera`]), whose eye height the bisection of `fit_first_hit` finds (it
 //!   needs `std`, hence a build script); every `f64` is baked as its bit pattern;
 //! * the specular plate: Plate 2's triangles as [`plates::render`] hands them to the core's
