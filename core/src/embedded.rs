@@ -19,6 +19,7 @@ use crate::error::Error;
 use crate::sink::PixelSink;
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
+use crate::terrain::listen::Listen;
 use crate::terrain::sampling::Sampling;
 use crate::terrain::Terrain;
 use crate::Rgb;
@@ -99,7 +100,7 @@ where
     D: DrawTarget,
     D::Color: PixelSink,
     S: Sampling,
-    C: Cost,
+    C: Cost + Listen,
 {
     frame
         .render(terrain, sampling, cost, scratch, buffer)

@@ -23,6 +23,7 @@ use crate::terrain::column::{self, ColumnOut, Unwritten};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
+use crate::terrain::listen::Listen;
 use crate::terrain::sampler::{ExactArea, Linear, PaperArea, Point, Sampler, Super};
 use crate::terrain::sampling::{walk_rows, Sampling, Walk};
 use crate::terrain::wedge::{SmoothWedge, Wedge};
@@ -234,7 +235,7 @@ impl Sampling for Mode {
 }
 
 impl Walk for Mode {
-    fn walk_column<C: Cost>(
+    fn walk_column<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -245,7 +246,7 @@ impl Walk for Mode {
         self.walk_rows(frame, terrain, x, cost, out);
     }
 
-    fn walk_column_exact<C: Cost>(
+    fn walk_column_exact<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -256,7 +257,7 @@ impl Walk for Mode {
         self.walk_rows(frame, terrain, x, cost, out);
     }
 
-    fn walk_column_events<C: Cost>(
+    fn walk_column_events<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -269,7 +270,7 @@ impl Walk for Mode {
         self.walk_rows(frame, terrain, x, cost, &mut out);
     }
 
-    fn walk_image<C: Cost, P: PixelSink>(
+    fn walk_image<C: Cost + Listen, P: PixelSink>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -291,7 +292,7 @@ impl Walk for Mode {
 impl Mode {
     /// Column `x` into 8-bit or full-precision cells ([`Walk::walk_column`],
     /// [`Walk::walk_column_exact`]): the sampler chosen as the impl above says.
-    fn walk_rows<C: Cost, O: ColumnOut + ?Sized>(
+    fn walk_rows<C: Cost + Listen, O: ColumnOut + ?Sized>(
         self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,

@@ -5,6 +5,7 @@
 //! `footprint_firmware::core_calls::…`, which `sizes.sh` counts as the core's.
 
 use footprint_core::extend;
+use footprint_core::extend::Listen;
 use footprint_core::prelude::*;
 
 use crate::PlateVertex;
@@ -12,7 +13,7 @@ use crate::PlateVertex;
 /// `Frame::render`: one frame in one mode (a sampler, or a `Mode`), with one kind of cost
 /// counter; `scratch` is the exact projection's grid (empty for the paper's).
 #[inline(never)]
-pub fn render<S: Sampling, C: Cost>(
+pub fn render<S: Sampling, C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampling: &S,
@@ -26,7 +27,7 @@ pub fn render<S: Sampling, C: Cost>(
 /// `Frame::render_columns` over the whole frame: the walk alone, into the grid `grid` (the
 /// exact projection's fan, before [`resample`] makes it the image).
 #[inline(never)]
-pub fn walk<S: Sampling, C: Cost>(
+pub fn walk<S: Sampling, C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampling: &S,
@@ -43,7 +44,7 @@ pub fn walk<S: Sampling, C: Cost>(
 /// cost `cost` with everything the walk and the shader counted.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-pub fn render_lit<'s, S: Sampling, C: Cost>(
+pub fn render_lit<'s, S: Sampling, C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &'s Terrain<'s>,
     sampling: &S,

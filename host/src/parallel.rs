@@ -5,8 +5,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use anyhow::Result;
+use footprint_core::extend::Listen;
 use footprint_core::extend::{visit_visible, Color32};
-use footprint_core::prelude::{Camera, Frame, NoCost, Sun, SunShader, Switch, Terrain};
+use footprint_core::prelude::{Camera, Cost, Frame, NoCost, Sun, SunShader, Switch, Terrain};
 use footprint_core::Rgb;
 
 pub use footprint_scenes::render::{
@@ -143,7 +144,7 @@ const LIT_COLUMNS: usize = 8;
 
 /// Renders `frame` lit by `sun` (`footprint_scenes::render::render_lit`, one thread) with cost
 /// `cost`, once, and times it, ms.
-pub fn render_lit_once<C: footprint_core::prelude::Cost>(
+pub fn render_lit_once<C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     camera: &Camera,

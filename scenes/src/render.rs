@@ -5,7 +5,7 @@
 
 use std::fmt;
 
-use footprint_core::extend::{visit_visible, Color16, Voxel, Weight};
+use footprint_core::extend::{visit_visible, Color16, Listen, Voxel, Weight};
 use footprint_core::prelude::{Camera, Cost, Counts, Frame, Sun, SunShader, Tally, Terrain};
 use footprint_core::{Error, Rgb};
 
@@ -31,7 +31,7 @@ impl fmt::Debug for Rendered {
 /// Renders one frame lit by `sun` ([`Frame::render_shaded`] with a [`SunShader`]): the walk's
 /// samples lit, the sky where no terrain was sampled. The eye and the pixel's angle come from
 /// `camera`.
-pub fn render_lit<C: Cost>(
+pub fn render_lit<C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     camera: &Camera,
@@ -52,7 +52,7 @@ pub fn render_lit<C: Cost>(
 }
 
 /// Renders one frame with cost `cost` into a new image ([`Frame::render`]).
-pub fn render_with<C: Cost>(
+pub fn render_with<C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     mode: Mode,
@@ -185,11 +185,11 @@ pub fn count(
 }
 
 /// The step index of every voxel a sampler samples, once each, in order: a listener that rides
-/// beside [`Counts`] (a pair of costs hears the walk together).
+/// beside [`Counts`] (the pair `(counter, listener)`).
 #[derive(Default)]
 struct Sampled(Vec<u64>);
 
-impl Cost for Sampled {
+impl Listen for Sampled {
     fn sample(&mut self, voxel: &Voxel<'_>, _color: Color16, _weight: Weight) {
         let k = voxel.sequence_index();
         if self.0.last() != Some(&k) {

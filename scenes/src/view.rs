@@ -11,7 +11,7 @@
 
 use std::fmt;
 
-use footprint_core::extend::{mirror, walk, Fan, FirstHit, Height, Hit, Pixel, Ray, Voxel};
+use footprint_core::extend::{mirror, walk, Fan, FirstHit, Height, Hit, Listen, Pixel, Ray, Voxel};
 use footprint_core::prelude::{
     Camera, CameraParams, Column, Coord, Cost, Frame, NoCost, Options, Projection, Sampler,
     Terrain, MAX_EYE_HEIGHT, MAX_FAR,
@@ -294,8 +294,14 @@ impl WhereHit {
 }
 
 impl Sampler for WhereHit {
-    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
+    fn begin_pixel<C: Cost + Listen>(&mut self, _: &Pixel, _: &mut C) {}
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        _: Height,
+        _: &mut Ray,
+        _: &mut C,
+    ) -> Hit {
         // A level-L voxel covers level-0 cells x·2^L .. (x+1)·2^L: take its middle one.
         let l = voxel.level().min(31);
         let (x, y) = voxel.cell_unmirrored();
@@ -309,7 +315,7 @@ impl Sampler for WhereHit {
         }
         Hit::Done(Rgb::default())
     }
-    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
         None
     }
 }

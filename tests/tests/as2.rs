@@ -24,7 +24,7 @@ mod common;
 
 use common::{Map, SKY};
 use footprint_core::extend::{
-    ExactArea, Height, Hit, Horizons, PaperArea, Pixel, Point, Ray, Voxel, Wedge,
+    ExactArea, Height, Hit, Horizons, Listen, PaperArea, Pixel, Point, Ray, Voxel, Wedge,
 };
 use footprint_core::prelude::*;
 use footprint_core::prelude::{Sampler, Switch};
@@ -534,11 +534,17 @@ struct OneLane(Horizons<1>);
 impl Sampler for OneLane {
     const SWITCH: Switch = Switch::Late;
 
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
         self.0.begin_pixel(pixel, cost);
     }
 
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         let n = voxel.n();
         if !self.0.complete() && top > self.0.ray_at(0, n) {
             self.0.sample(0, voxel, top, voxel.sample_linear(), cost);
@@ -550,7 +556,7 @@ impl Sampler for OneLane {
         Hit::Next
     }
 
-    fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         self.0.sky(sky, cost)
     }
 }

@@ -18,8 +18,8 @@ mod common;
 
 use common::SKY;
 use footprint_core::extend::{
-    count_visible, visit, visit_visible, Color16, ExactArea, Height, Hit, Linear, PaperArea, Pixel,
-    Point, Ray, Super, Voxel, Weight,
+    count_visible, visit, visit_visible, Color16, ExactArea, Height, Hit, Linear, Listen,
+    PaperArea, Pixel, Point, Ray, Super, Voxel, Weight,
 };
 use footprint_core::prelude::{
     Camera, CameraParams, Column, Coord, Cost, Counts, Frame, HeightFilter, Level, NoCost, Options,
@@ -154,7 +154,7 @@ fn with_case<R>(case: &Case, f: impl FnOnce(&Terrain<'_>, &Frame<'_>) -> R) -> O
 }
 
 /// Renders every column with a fresh sampler; returns the columns, each bottom to top.
-fn columns<S: Sampler + Clone, C: Cost>(
+fn columns<S: Sampler + Clone, C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampler: &S,
@@ -227,7 +227,7 @@ impl Ranges {
     }
 }
 
-impl Cost for Ranges {
+impl Listen for Ranges {
     fn begin_column(&mut self, column: usize) {
         self.col = column;
     }
@@ -374,7 +374,7 @@ struct Spans {
     pixels: Vec<(usize, usize, i64, i64)>,
 }
 
-impl Cost for Spans {
+impl Listen for Spans {
     fn begin_column(&mut self, column: usize) {
         self.col = column;
     }
@@ -418,13 +418,19 @@ impl<S: Sampler> Sampler for Fresh<S> {
     const SWITCH: Switch = S::SWITCH;
     const KEEPS_SLOPE: bool = S::KEEPS_SLOPE;
     const ONE_HIT_PER_PIXEL: bool = S::ONE_HIT_PER_PIXEL;
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
         self.0.begin_pixel(pixel, cost);
     }
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         self.0.hit(voxel, top, ray, cost)
     }
-    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         self.0.sky(ray, sky, cost)
     }
 }
@@ -452,13 +458,13 @@ proptest! {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
             let (w, h) = (frame.grid_columns(), frame.grid_rows());
             let mut r = Ranges::new(w, h);
-            let img = columns(frame, terrain, &ExactArea::new(), &mut r);
+            let img = columns(frame, terrain, &ExactArea::new(), &mut (NoCost, &mut r));
             r.check(&img, "AS")?;
             let mut r = Ranges::new(w, h);
-            let img = columns(frame, terrain, &PaperArea::new(), &mut r);
+            let img = columns(frame, terrain, &PaperArea::new(), &mut (NoCost, &mut r));
             r.check(&img, "AS (paper)")?;
             let mut r = Ranges::new(w, h);
-            let img = columns(frame, terrain, &Linear, &mut r);
+            let img = columns(frame, terrain, &Linear, &mut (NoCost, &mut r));
             r.check(&img, "LI")
         })
         .unwrap_or(Ok(()))?;
@@ -567,7 +573,7 @@ proptest! {
     fn parallel_area_weights_sum_to_the_pixel_span(case in case()) {
         with_case(&case, |terrain, frame| -> Result<(), TestCaseError> {
             let mut spans = Spans::default();
-            columns(frame, terrain, &PaperArea::new(), &mut spans);
+            columns(frame, terrain, &PaperArea::new(), &mut (NoCost, &mut spans));
             for &(c, i, n, sum) in &spans.pixels {
                 let column = frame.column(c).expect("a column of the frame");
                 let span = (frame.ray(column, i + 1).at(n) - frame.ray(column, i).at(n))

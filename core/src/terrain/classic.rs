@@ -24,6 +24,7 @@ use crate::sink::PixelSink;
 use crate::terrain::column::{render_frame, ColumnOut};
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
+use crate::terrain::listen::Listen;
 use crate::terrain::map::Axis;
 use crate::terrain::side::mirror_side;
 use crate::terrain::Terrain;
@@ -34,7 +35,7 @@ const FIFTHS: i64 = 5;
 
 /// Draws column `col` of `frame` into `out` (rows from the bottom, at least `H` of them); rows
 /// no sample reaches are the sky.
-pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
+pub(crate) fn walk_into<C: Cost + Listen, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
@@ -56,7 +57,7 @@ pub(crate) fn walk_into<C: Cost, O: ColumnOut + ?Sized>(
 
 /// [`walk_into`] with the map's cell `(x, y)` at `index(x, y)` in its slices.
 #[inline(always)]
-fn walk_indexed<C: Cost, O: ColumnOut + ?Sized>(
+fn walk_indexed<C: Cost + Listen, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
@@ -124,7 +125,7 @@ fn walk_indexed<C: Cost, O: ColumnOut + ?Sized>(
 
 /// Renders the whole frame of the paper's projection into `image`, row-major from the top: the
 /// classic counterpart of `column::render`, in any pixel format ([`PixelSink`]).
-pub(crate) fn render<C: Cost, P: PixelSink>(
+pub(crate) fn render<C: Cost + Listen, P: PixelSink>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     cost: &mut C,

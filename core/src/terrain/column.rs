@@ -19,6 +19,7 @@ use crate::sink::PixelSink;
 use crate::terrain::camera::Column;
 use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
+use crate::terrain::listen::Listen;
 use crate::terrain::march::{Corners, Flow, Hits, March, Voxel};
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::surface::Smooth;
@@ -169,7 +170,7 @@ impl<P: PixelSink> ColumnOut for ImageColumn<'_, P> {
 ///
 /// The walk starts from the eye at `rows.start`, so a walk of one row is the paper's
 /// "restart every ray" reference. Rows beyond the image or beyond `out` are not drawn.
-pub fn walk<S: Sampler, C: Cost>(
+pub fn walk<S: Sampler, C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
@@ -203,7 +204,7 @@ struct Pixels<'w, 'f, S, C, O: ?Sized> {
     finished: bool,
 }
 
-impl<'w, 'f, S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'w, 'f, S, C, O> {
+impl<'w, 'f, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f, S, C, O> {
     /// The pixels `rows` of `column`, none begun yet; counts the column's first ray.
     #[inline(always)]
     fn new(
@@ -321,7 +322,7 @@ impl<'w, 'f, S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'w, 'f, S, C, O>
     }
 }
 
-impl<'w, 'f, S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'w, 'f, Smooth<S>, C, O> {
+impl<'w, 'f, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f, Smooth<S>, C, O> {
     /// The same pixels, from here on sampled by the surface's inner sampler alone.
     fn into_inner(self) -> Pixels<'w, 'f, S, C, O> {
         Pixels {
@@ -341,7 +342,7 @@ impl<'w, 'f, S: Sampler, C: Cost, O: ColumnOut + ?Sized> Pixels<'w, 'f, Smooth<S
     }
 }
 
-impl<S: Sampler, C: Cost, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O> {
+impl<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_, S, C, O> {
     const WIDE: bool = S::WIDE;
     const ACROSS: u32 = S::ACROSS;
     const CORNERS: Corners = S::CORNERS;
@@ -421,7 +422,7 @@ fn out_of_reach(ray: &Ray, max_h: Height, n: i64, n_far: i64) -> bool {
 /// allocated for the walk alone; inlined into the frame loop, its step loop gains register
 /// moves (docs/measurements.md, "Where the walk's calls are inlined").
 #[inline(never)]
-pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+pub(crate) fn walk_into<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
@@ -448,7 +449,7 @@ pub(crate) fn walk_into<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
 /// on [`Smooth`] meets the flat tops, as `S` does, and the walk tests the cells entered at a
 /// corner again, as `S`'s walk does everywhere.
 #[inline(never)]
-pub(crate) fn walk_into_surface<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+pub(crate) fn walk_into_surface<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
@@ -491,7 +492,7 @@ pub(crate) fn walk_into_surface<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
 /// The column's ride from `ray` on the mode's own walk to its last pixel, the rest sky, and
 /// the column's end: the tail both walks share (inlined, as [`ride_column`]).
 #[inline(always)]
-fn ride_to_the_end<S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+fn ride_to_the_end<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
     terrain: &Terrain<'_>,
     march: &mut March<'_, '_>,
     px: &mut Pixels<'_, '_, S, C, O>,
@@ -538,7 +539,7 @@ enum Ridden {
 /// here costs the Cortex-M4's `ps` 7 % (its registers), more than the second copy of the loop
 /// costs in code.
 #[inline(always)]
-fn ride_column<const ON_SURFACE: bool, S: Sampler, C: Cost, O: ColumnOut + ?Sized>(
+fn ride_column<const ON_SURFACE: bool, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
     terrain: &Terrain<'_>,
     march: &mut March<'_, '_>,
     px: &mut Pixels<'_, '_, S, C, O>,
@@ -611,7 +612,7 @@ fn ride_column<const ON_SURFACE: bool, S: Sampler, C: Cost, O: ColumnOut + ?Size
 /// column into `image`, row-major from the top (`image[y·W + x]`), in any pixel format
 /// ([`PixelSink`]: the 3-byte [`Rgb`], or a display's own colour): [`Frame::render`]'s path
 /// when the walk's columns are the image's.
-pub(crate) fn render<const SURFACE: bool, S: Sampler + Clone, C: Cost, P: PixelSink>(
+pub(crate) fn render<const SURFACE: bool, S: Sampler + Clone, C: Cost + Listen, P: PixelSink>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampler: &S,
@@ -631,7 +632,7 @@ pub(crate) fn render<const SURFACE: bool, S: Sampler + Clone, C: Cost, P: PixelS
 pub(crate) fn walk_fresh<
     const SURFACE: bool,
     S: Sampler + Clone,
-    C: Cost,
+    C: Cost + Listen,
     O: ColumnOut + ?Sized,
 >(
     frame: &Frame<'_>,

@@ -4,23 +4,19 @@
 //! `aL + bP + cM' + d'(M' + P)` for area sampling. The walk calls a [`Cost`] at exactly the
 //! places where those terms are spent. [`NoCost`] is zero-sized and every method is empty, so
 //! with it the counting compiles away and a benchmark measures the renderer alone; [`Counts`]
-//! records every term, per frame and per column.
-//!
-//! The hooks also carry what a sample was (its voxel, colour and weight), so that a host can
-//! draw the paper's diagnostic pictures (Figs. 9 and 13) from the renderer itself.
+//! records every term, per frame and per column. The walk's events (columns, pixels, samples)
+//! are not counters: they go to a [`Listen`]er, and the walk takes one value that is both.
 
 use crate::color::Color16;
 use crate::num::Weight;
+use crate::terrain::listen::Listen;
 use crate::terrain::march::Voxel;
 
-/// The per-event hooks of the walk. Every method defaults to doing nothing.
+/// The walk's counters: each method is called where the paper's cost model (Sect. 6) spends
+/// one of its terms. Every method defaults to counting nothing. What the walk samples, and
+/// where its columns and pixels begin, is told to a [`Listen`]er; a counter that needs those
+/// ([`Counts`]: per-column tallies, and terms `c` and `M`) listens as well.
 pub trait Cost {
-    /// A column begins.
-    #[inline(always)]
-    fn begin_column(&mut self, _column: usize) {}
-    /// The column is finished.
-    #[inline(always)]
-    fn end_column(&mut self) {}
     /// Term `a`: one traversal step. `in_footprint` is false before the column's first hit
     /// (the paper's `L` ignores those steps).
     #[inline(always)]
@@ -35,17 +31,6 @@ pub trait Cost {
     /// Term `b`: one new ray, Eqs. 2–3.
     #[inline(always)]
     fn new_ray(&mut self) {}
-    /// A pixel (row `row`, from the bottom) begins.
-    #[inline(always)]
-    fn begin_pixel(&mut self, _row: usize) {}
-    /// Term `c`: one voxel sample (with its interpolation) of the current voxel, `voxel`,
-    /// which gave `color` and enters its pixel with `weight` (1 per sample for PS, LI and
-    /// SS_N; the subtended slope for AS).
-    #[inline(always)]
-    fn sample(&mut self, _voxel: &Voxel<'_>, _color: Color16, _weight: Weight) {}
-    /// The sky fills the rest of a pixel that saw terrain, with `weight`.
-    #[inline(always)]
-    fn sky_sample(&mut self, _color: Color16, _weight: Weight) {}
     /// One ray–voxel hit.
     #[inline(always)]
     fn hit(&mut self) {}
@@ -80,96 +65,69 @@ pub trait Cost {
     fn shading(&mut self, _count: u32) {}
 }
 
-/// The body of a [`Cost`] that forwards every hook to each of `$target`s, in order (written
-/// once for the borrowed cost and the pair below).
-macro_rules! forward_hooks {
-    ($self:ident => $($target:expr),+) => {
-        #[inline(always)]
-        fn begin_column(&mut $self, column: usize) {
-            $($target.begin_column(column);)+
-        }
-        #[inline(always)]
-        fn end_column(&mut $self) {
-            $($target.end_column();)+
-        }
+/// The body of a [`Cost`] that forwards every counter to `$target` (written once for the
+/// borrowed cost, the pair of [`Listen`] and the door's shading).
+macro_rules! forward_counts {
+    ($self:ident => $target:expr) => {
         #[inline(always)]
         fn step(&mut $self, in_footprint: bool) {
-            $($target.step(in_footprint);)+
+            $target.step(in_footprint);
         }
         #[inline(always)]
         fn steps(&mut $self, count: u32, in_footprint: bool) {
-            $($target.steps(count, in_footprint);)+
+            $target.steps(count, in_footprint);
         }
         #[inline(always)]
         fn new_ray(&mut $self) {
-            $($target.new_ray();)+
-        }
-        #[inline(always)]
-        fn begin_pixel(&mut $self, row: usize) {
-            $($target.begin_pixel(row);)+
-        }
-        #[inline(always)]
-        fn sample(&mut $self, voxel: &Voxel<'_>, color: Color16, weight: Weight) {
-            $($target.sample(voxel, color, weight);)+
-        }
-        #[inline(always)]
-        fn sky_sample(&mut $self, color: Color16, weight: Weight) {
-            $($target.sky_sample(color, weight);)+
+            $target.new_ray();
         }
         #[inline(always)]
         fn hit(&mut $self) {
-            $($target.hit();)+
+            $target.hit();
         }
         #[inline(always)]
         fn ss_hit(&mut $self) {
-            $($target.ss_hit();)+
+            $target.ss_hit();
         }
         #[inline(always)]
         fn as_hit(&mut $self) {
-            $($target.as_hit();)+
+            $target.as_hit();
         }
         #[inline(always)]
         fn top_division(&mut $self) {
-            $($target.top_division();)+
+            $target.top_division();
         }
         #[inline(always)]
         fn wedge(&mut $self, cells: u32) {
-            $($target.wedge(cells);)+
+            $target.wedge(cells);
         }
         #[inline(always)]
         fn shifts(&mut $self, count: u32) {
-            $($target.shifts(count);)+
+            $target.shifts(count);
         }
         #[inline(always)]
         fn divisions(&mut $self, count: u32) {
-            $($target.divisions(count);)+
+            $target.divisions(count);
         }
         #[inline(always)]
         fn terrain_pixel(&mut $self) {
-            $($target.terrain_pixel();)+
+            $target.terrain_pixel();
         }
         #[inline(always)]
         fn normals(&mut $self, count: u32) {
-            $($target.normals(count);)+
+            $target.normals(count);
         }
         #[inline(always)]
         fn shading(&mut $self, count: u32) {
-            $($target.shading(count);)+
+            $target.shading(count);
         }
     };
 }
+pub(crate) use forward_counts;
 
-/// A borrowed cost counts into what it borrows (so that the door's shading,
-/// [`crate::terrain::frame::Frame::render_shaded`], can forward to a caller's counters).
+/// A borrowed cost counts into what it borrows.
 impl<C: Cost + ?Sized> Cost for &mut C {
-    forward_hooks!(self => (**self));
-}
-
-/// Two costs hear one walk: every hook goes to the first, then to the second. A listener of
-/// its own (the voxels a mode samples, the samples of one pixel) rides beside the counters
-/// without forwarding each of their hooks by hand: `(Counts, Listener)`.
-impl<A: Cost, B: Cost> Cost for (A, B) {
-    forward_hooks!(self => self.0, self.1);
+    forward_counts!(self => (**self));
 }
 
 /// No counting: zero-sized, and the walk compiles as if the calls were not there.
@@ -289,20 +247,6 @@ impl<'a> Counts<'a> {
 }
 
 impl Cost for Counts<'_> {
-    fn begin_column(&mut self, column: usize) {
-        self.column = column;
-        self.current = Tally::default();
-        self.last_sampled = None;
-    }
-    fn end_column(&mut self) {
-        let visible = self.columns.get(self.column).map_or(0, |t| t.v);
-        let mut t = self.current;
-        self.total.add(&t);
-        if let Some(slot) = self.columns.get_mut(self.column) {
-            t.v = visible;
-            *slot = t;
-        }
-    }
     fn step(&mut self, in_footprint: bool) {
         self.steps(1, in_footprint);
     }
@@ -314,14 +258,6 @@ impl Cost for Counts<'_> {
     }
     fn new_ray(&mut self) {
         self.current.b += 1;
-    }
-    fn sample(&mut self, voxel: &Voxel<'_>, _: Color16, _: Weight) {
-        let index = voxel.sequence_index();
-        self.current.c += 1;
-        if self.last_sampled != Some(index) {
-            self.current.m += 1;
-            self.last_sampled = Some(index);
-        }
     }
     fn hit(&mut self) {
         self.current.hits += 1;
@@ -355,15 +291,70 @@ impl Cost for Counts<'_> {
     }
 }
 
+/// Counts listens for the columns (its per-column tallies) and for the samples (term `c`, and
+/// `M`: a voxel sampled again in a row is one voxel).
+impl Listen for Counts<'_> {
+    fn begin_column(&mut self, column: usize) {
+        self.column = column;
+        self.current = Tally::default();
+        self.last_sampled = None;
+    }
+    fn end_column(&mut self) {
+        let visible = self.columns.get(self.column).map_or(0, |t| t.v);
+        let mut t = self.current;
+        self.total.add(&t);
+        if let Some(slot) = self.columns.get_mut(self.column) {
+            t.v = visible;
+            *slot = t;
+        }
+    }
+    fn sample(&mut self, voxel: &Voxel<'_>, _: Color16, _: Weight) {
+        let index = voxel.sequence_index();
+        self.current.c += 1;
+        if self.last_sampled != Some(index) {
+            self.current.m += 1;
+            self.last_sampled = Some(index);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A pair of costs hears every hook in both: two `Counts` driven as a pair count alike,
-    /// and as one `Counts` driven alone does.
+    /// The events a listener heard, in order.
+    #[derive(Default)]
+    struct Heard([Option<&'static str>; 4], usize);
+
+    impl Heard {
+        fn push(&mut self, event: &'static str) {
+            if let Some(slot) = self.0.get_mut(self.1) {
+                *slot = Some(event);
+            }
+            self.1 += 1;
+        }
+    }
+
+    impl Listen for Heard {
+        fn begin_column(&mut self, _: usize) {
+            self.push("column");
+        }
+        fn end_column(&mut self) {
+            self.push("end");
+        }
+        fn begin_pixel(&mut self, _: usize) {
+            self.push("pixel");
+        }
+        fn sky_sample(&mut self, _: Color16, _: Weight) {
+            self.push("sky");
+        }
+    }
+
+    /// A counter and a listener as a pair: the pair counts as the counter alone does, and the
+    /// listener hears every event, in order.
     #[test]
-    fn a_pair_of_costs_hears_every_hook_in_both() {
-        fn drive<C: Cost>(c: &mut C) {
+    fn a_pair_counts_in_the_counter_and_the_listener_hears_every_event() {
+        fn drive<C: Cost + Listen>(c: &mut C) {
             c.begin_column(0);
             c.step(true);
             c.steps(3, false);
@@ -382,15 +373,15 @@ mod tests {
             c.sky_sample([0; 3], Weight::ONE);
             c.end_column();
         }
-        let (mut a, mut b, mut alone) =
-            ([Tally::default()], [Tally::default()], [Tally::default()]);
-        let mut pair = (Counts::new(&mut a), Counts::new(&mut b));
+        let (mut a, mut alone) = ([Tally::default()], [Tally::default()]);
+        let mut pair = (Counts::new(&mut a), Heard::default());
         drive(&mut pair);
         let mut one = Counts::new(&mut alone);
         drive(&mut one);
         assert_ne!(one.total, Tally::default());
         assert_eq!(pair.0.total, one.total);
-        assert_eq!(pair.1.total, one.total);
         assert_eq!(pair.0.columns(), one.columns());
+        let heard = [Some("column"), Some("pixel"), Some("sky"), Some("end")];
+        assert_eq!((pair.1 .0, pair.1 .1), (heard, 4));
     }
 }

@@ -28,6 +28,7 @@ use crate::color::{to_color16, Color16, Color32, Rgb};
 use crate::divide::div_rem_signed;
 use crate::num::{Eye, Height, Line, Slope, Weight};
 use crate::terrain::cost::Cost;
+use crate::terrain::listen::Listen;
 use crate::terrain::march::Voxel;
 use crate::terrain::ray::Ray;
 use crate::terrain::sampler::{ExactArea, Pixel, Sampler};
@@ -79,7 +80,7 @@ impl Lane {
     /// weighs a hit), and its ray raised through the top. A top at or above `upper` fills the
     /// lane's part of the pixel (H′ = H(R_{i+1})) and the lane carries what lies above it.
     #[inline(always)]
-    fn see<C: Cost>(
+    fn see<C: Cost + Listen>(
         &mut self,
         eye: &Eye,
         upper: &Line,
@@ -146,7 +147,7 @@ impl<const K: usize> Horizons<K> {
     /// A new pixel begins: at the column's first, every lane starts on `R_i`; after that, what
     /// each lane carries above the finished pixel enters this one.
     #[inline(always)]
-    pub fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+    pub fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
         self.area.begin_pixel(pixel, cost);
         if !self.started {
             self.started = true;
@@ -247,7 +248,7 @@ impl<const K: usize> Horizons<K> {
     /// The step at `voxel` in lane `k`: its height there `top` (above the lane's ray, which
     /// the caller has tested) and its colour. Returns whether the lane saw it.
     #[inline(always)]
-    pub fn sample<C: Cost>(
+    pub fn sample<C: Cost + Listen>(
         &mut self,
         k: usize,
         voxel: &Voxel<'_>,
@@ -294,7 +295,7 @@ impl<const K: usize> Horizons<K> {
 
     /// The finished pixel's colour (`Σc/Σw` over every lane).
     #[inline(always)]
-    pub fn finish<C: Cost>(&mut self, cost: &mut C) -> Rgb {
+    pub fn finish<C: Cost + Listen>(&mut self, cost: &mut C) -> Rgb {
         self.area.finish(self.last, cost)
     }
 
@@ -315,7 +316,7 @@ impl<const K: usize> Horizons<K> {
     /// the sky fills every lane still open, from its ray up to the pixel's upper ray, where
     /// its ray then stands (so that in a pixel above it fills that pixel alone). `None` if no
     /// lane saw terrain in it.
-    pub fn sky<C: Cost>(&mut self, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    pub fn sky<C: Cost + Listen>(&mut self, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         if !self.area.seen() {
             return None;
         }

@@ -25,6 +25,7 @@ use crate::sink::PixelSink;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
+use crate::terrain::listen::Listen;
 use crate::terrain::sampling::Sampling;
 use crate::terrain::Terrain;
 
@@ -58,7 +59,7 @@ impl Frame<'_> {
     /// `scratch` is not touched and may be empty.
     ///
     /// Errors: an `image` or a `scratch` of the wrong length.
-    pub fn render<S: Sampling, C: Cost, P: PixelSink>(
+    pub fn render<S: Sampling, C: Cost + Listen, P: PixelSink>(
         &self,
         terrain: &Terrain<'_>,
         sampling: &S,
@@ -81,7 +82,7 @@ impl Frame<'_> {
     /// grid, which [`Frame::resample`] turns into the image.
     ///
     /// Errors: a range beyond the frame's columns, or a `grid` of the wrong length.
-    pub fn render_columns<S: Sampling, C: Cost>(
+    pub fn render_columns<S: Sampling, C: Cost + Listen>(
         &self,
         terrain: &Terrain<'_>,
         sampling: &S,
@@ -104,7 +105,7 @@ impl Frame<'_> {
     /// the exact projection the caller resamples the fan.
     ///
     /// Errors: as [`Frame::render_columns`].
-    pub fn render_columns_exact<S: Sampling, C: Cost>(
+    pub fn render_columns_exact<S: Sampling, C: Cost + Listen>(
         &self,
         terrain: &Terrain<'_>,
         sampling: &S,

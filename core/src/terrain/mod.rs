@@ -6,7 +6,7 @@
 //! a column ([`march`]) → the one column walk (Fig. 4, [`column`](mod@column)) → the per-hit sampler of
 //! each mode (Figs. 4, 8, 12, [`sampler`]; `as2` across the column, [`wedge`], in lanes with a
 //! ray each, [`horizons`]) → the pixel. [`cost`] counts what the walk spends
-//! (Sect. 6), [`visibility`] counts what it should see (`V`), and `classic` is the voxel-space
+//! (Sect. 6), [`listen`] hears what it samples, [`visibility`] counts what it should see (`V`), and `classic` is the voxel-space
 //! baseline the paper's walk is measured against. The sun on the terrain, which joins both
 //! papers, is a room above this one ([`crate::lit`]).
 
@@ -21,6 +21,7 @@ pub mod fan;
 pub mod frame;
 pub mod horizons;
 pub mod image;
+pub mod listen;
 pub mod map;
 // The voxel sequence under a column: the walk's internals; a `Cost` or `Sampler` sees
 // [`Voxel`], and whoever walks a column of their own the cursor (`crate::extend::March`).

@@ -17,6 +17,7 @@ use crate::num::{Coord, Eye, Height, Line, Weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
+use crate::terrain::listen::Listen;
 use crate::terrain::march::{Corners, Voxel};
 
 pub use crate::terrain::ray::Ray;
@@ -94,9 +95,15 @@ pub trait Sampler {
     /// the walk misses no cell.
     const CORNERS: Corners = Corners::All;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C);
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit;
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit;
     /// [`Sampler::hit`], told whether the voxel is the one of the last call (`again`), hit
     /// again by the ray that call left or by the next pixel's: a voxel that finished a pixel
     /// goes on into the next, and `SS_N`'s next sub-ray may hit the voxel its last one hit.
@@ -104,7 +111,7 @@ pub trait Sampler {
     /// shares) have not changed, so a sampler that keeps the colour it sampled may reuse it.
     /// The walk calls this; the default ignores `again`.
     #[inline(always)]
-    fn hit_again<C: Cost>(
+    fn hit_again<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         top: Height,
@@ -117,7 +124,7 @@ pub trait Sampler {
     }
     /// The walk ended (far distance, or nothing left to hit) inside this pixel. Returns the
     /// pixel's colour if terrain was seen in it, `None` if it is all sky.
-    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
+    fn sky<C: Cost + Listen>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb>;
     /// Whether, after [`Sampler::sky`] finished a pixel, the sampler still holds terrain it saw
     /// above that pixel (`as2`'s lanes, [`crate::extend::Horizons`]): then the walk begins the
     /// pixels above and asks [`Sampler::sky`] for each, until this is `false`. The default,
@@ -148,9 +155,15 @@ impl Sampler for Point {
     /// A point sample stays one point sample.
     const FILTER: Filter = Filter::Nearest;
     #[inline(always)]
-    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
+    fn begin_pixel<C: Cost + Listen>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        _: Height,
+        _: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         // The voxel's colour as it is: to 8.8 and back is the identity, and only the counters
         // need the 8.8 colour.
         let color = voxel.color();
@@ -158,7 +171,7 @@ impl Sampler for Point {
         Hit::Done(color)
     }
     #[inline(always)]
-    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
         None
     }
 }
@@ -174,15 +187,21 @@ impl Sampler for Linear {
     /// A point sample stays one point sample.
     const FILTER: Filter = Filter::Nearest;
     #[inline(always)]
-    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
+    fn begin_pixel<C: Cost + Listen>(&mut self, _: &Pixel, _: &mut C) {}
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        _: Height,
+        _: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         let color = voxel.sample_linear();
         cost.sample(voxel, color, Weight::ONE);
         Hit::Done(to_rgb(color))
     }
     #[inline(always)]
-    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
         None
     }
 }
@@ -243,7 +262,7 @@ impl<const N: u32> Super<N> {
         clippy::cast_possible_truncation,
         reason = "each sum holds N 8.8 colours below 2^16 (`hit` and `sky` add exactly N), so sum >> log2 N < 2^16"
     )]
-    fn finish<C: Cost>(&mut self, cost: &mut C) -> Rgb {
+    fn finish<C: Cost + Listen>(&mut self, cost: &mut C) -> Rgb {
         cost.shifts(3);
         let s = self.sum;
         to_rgb([
@@ -255,7 +274,7 @@ impl<const N: u32> Super<N> {
 
     /// A sub-ray samples `voxel`, whose Eq. 4 colour is `c`.
     #[inline(always)]
-    fn sample<C: Cost>(
+    fn sample<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         c: Color16,
@@ -301,20 +320,26 @@ impl<const N: u32> Sampler for Super<N> {
     /// The next sub-ray is the ray raised by `Δ`: parallel.
     const KEEPS_SLOPE: bool = true;
     #[inline(always)]
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, _: &mut C) {
         self.sum = [0; 3];
         self.j = 0;
         self.lower = pixel.lower;
         self.upper = pixel.upper;
     }
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         self.hit_again(voxel, top, ray, cost, false)
     }
     /// The next sub-ray (or the next pixel's first) on the voxel the last one sampled takes
     /// its colour again.
     #[inline(always)]
-    fn hit_again<C: Cost>(
+    fn hit_again<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         _: Height,
@@ -329,7 +354,7 @@ impl<const N: u32> Sampler for Super<N> {
         };
         self.sample(voxel, c, ray, cost)
     }
-    fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         if self.j == 0 {
             return None;
         }
@@ -389,7 +414,7 @@ impl ExactArea {
     /// below 2^16, so every sum stays below 2^56 (`as2`'s `K` lanes each add that much at
     /// most, [`crate::extend::Horizons`]: below `K·2^56`).
     #[inline(always)]
-    pub(crate) fn accumulate<C: Cost>(&mut self, w: Weight, c: Color16, cost: &mut C) {
+    pub(crate) fn accumulate<C: Cost + Listen>(&mut self, w: Weight, c: Color16, cost: &mut C) {
         cost.as_hit();
         let w = w.to_bits().max(0);
         for (s, c) in self.sum.iter_mut().zip(c) {
@@ -454,7 +479,7 @@ impl ExactArea {
 
     /// `Σc/Σw`, or `fallback` with no weight.
     #[inline(always)]
-    pub(crate) fn finish<C: Cost>(&mut self, fallback: Color16, cost: &mut C) -> Rgb {
+    pub(crate) fn finish<C: Cost + Listen>(&mut self, fallback: Color16, cost: &mut C) -> Rgb {
         if self.wsum <= 0 {
             return to_rgb(fallback);
         }
@@ -471,18 +496,24 @@ impl ExactArea {
 impl Sampler for ExactArea {
     const SWITCH: Switch = Switch::Late;
     #[inline(always)]
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, _: &mut C) {
         *self = Self::new();
         self.upper = pixel.upper;
         self.eye = pixel.eye;
     }
 
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         self.sample_at(voxel, top, |v| v.sample_linear(), ray, cost)
     }
 
-    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         if !self.seen {
             return None;
         }
@@ -504,7 +535,7 @@ impl ExactArea {
     /// by `color` (Eq. 4's, or what a wider sampler integrates): the exact re-check of a hit the
     /// rounded ray let through, the weight in visible angle, and the ray through the top.
     #[inline(always)]
-    pub(crate) fn sample_at<C: Cost>(
+    pub(crate) fn sample_at<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         top: Height,
@@ -639,7 +670,7 @@ impl PaperArea {
     /// Raises the ray's quantized offset in the span to `q` (`quantized ≤ q ≤ span_q`) and adds
     /// the quantized weight `q − quantized` times `c`; returns the weight.
     #[inline(always)]
-    fn accumulate<C: Cost>(&mut self, q: u32, c: Color16, cost: &mut C) -> u32 {
+    fn accumulate<C: Cost + Listen>(&mut self, q: u32, c: Color16, cost: &mut C) -> u32 {
         cost.as_hit();
         let w = q - self.quantized;
         self.quantized = q;
@@ -651,7 +682,7 @@ impl PaperArea {
     }
 
     #[inline(always)]
-    fn finish<C: Cost>(&self, fallback: Color16, cost: &mut C) -> Rgb {
+    fn finish<C: Cost + Listen>(&self, fallback: Color16, cost: &mut C) -> Rgb {
         if self.wsum == 0 {
             return to_rgb(fallback);
         }
@@ -662,7 +693,7 @@ impl PaperArea {
     /// `voxel`, whose Eq. 4 colour is `color`, is visible from the ray at `ray` up to its top
     /// `top` (Fig. 12).
     #[inline(always)]
-    fn sample<C: Cost>(
+    fn sample<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         color: Color16,
@@ -716,7 +747,7 @@ impl Sampler for PaperArea {
     /// The ray resumes at the voxel's top with the pixel's slope (the parallel-ray assumption).
     const KEEPS_SLOPE: bool = true;
     #[inline(always)]
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, _: &mut C) {
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, _: &mut C) {
         // The span is measured where the walk resumes: the pixel's first hit is nearly always
         // there (the voxel that finished the last pixel reaches into this one, `hit_again`);
         // a first hit further on measures it again (`first_hit`). Until a hit, `seen` is false.
@@ -727,14 +758,20 @@ impl Sampler for PaperArea {
     }
 
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         self.hit_again(voxel, top, ray, cost, false)
     }
 
     /// The next pixel's first hit on the voxel that finished the last pixel takes its colour
     /// again.
     #[inline(always)]
-    fn hit_again<C: Cost>(
+    fn hit_again<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         top: Height,
@@ -750,7 +787,7 @@ impl Sampler for PaperArea {
         self.sample(voxel, color, again, top, ray, cost)
     }
 
-    fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         if !self.seen {
             return None;
         }
@@ -773,12 +810,18 @@ impl Sampler for FirstHit {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
     const ONE_HIT_PER_PIXEL: bool = true;
-    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
+    fn begin_pixel<C: Cost + Listen>(&mut self, _: &Pixel, _: &mut C) {}
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        _: Height,
+        _: &mut Ray,
+        _: &mut C,
+    ) -> Hit {
         self.n.get_or_insert(voxel.n());
         Hit::Done(Rgb::default())
     }
-    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
         None
     }
 }

@@ -9,6 +9,7 @@ use crate::terrain::column::{self, ColumnOut, Unwritten};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::frame::Frame;
+use crate::terrain::listen::Listen;
 use crate::terrain::sampler::Sampler;
 use crate::terrain::Terrain;
 
@@ -38,7 +39,7 @@ pub trait Walk {
     /// Walks column `x` of `frame` with a fresh sampler, counting with `cost`, into `out`,
     /// rows from the bottom (the rows the column walks, [`crate::terrain::camera::Column::rows`],
     /// land at their own index; the others are left as they are).
-    fn walk_column<C: Cost>(
+    fn walk_column<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -50,7 +51,7 @@ pub trait Walk {
     /// [`Walk::walk_column`] into full-precision cells: each pixel's colour before it is
     /// rounded to 8 bits where the sampler keeps it ([`Sampler::exact`]), else its 8-bit
     /// colour.
-    fn walk_column_exact<C: Cost>(
+    fn walk_column_exact<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -62,7 +63,7 @@ pub trait Walk {
     /// Walks column `x` of `frame` as [`Walk::walk_column`] does, for its events alone:
     /// `cost` hears every hook, no pixel is written ([`Frame::render_shaded`], whose shader
     /// writes them).
-    fn walk_column_events<C: Cost>(
+    fn walk_column_events<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -74,7 +75,7 @@ pub trait Walk {
     /// (row-major from the top), in any pixel format.
     ///
     /// Errors: an image of the wrong length.
-    fn walk_image<C: Cost, P: PixelSink>(
+    fn walk_image<C: Cost + Listen, P: PixelSink>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -87,7 +88,12 @@ pub trait Walk {
 /// bottom, the column's walked rows at their own index): [`Walk::walk_column`] and
 /// [`Walk::walk_column_exact`], for 8-bit or full-precision cells.
 #[inline]
-pub(crate) fn walk_rows<const SURFACE: bool, S: Sampler + Clone, C: Cost, O: ColumnOut + ?Sized>(
+pub(crate) fn walk_rows<
+    const SURFACE: bool,
+    S: Sampler + Clone,
+    C: Cost + Listen,
+    O: ColumnOut + ?Sized,
+>(
     sampler: &S,
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
@@ -109,7 +115,7 @@ impl<S: Sampler + Clone> Sampling for S {
 
 impl<S: Sampler + Clone> Walk for S {
     #[inline]
-    fn walk_column<C: Cost>(
+    fn walk_column<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -121,7 +127,7 @@ impl<S: Sampler + Clone> Walk for S {
     }
 
     #[inline]
-    fn walk_column_exact<C: Cost>(
+    fn walk_column_exact<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -133,7 +139,7 @@ impl<S: Sampler + Clone> Walk for S {
     }
 
     #[inline]
-    fn walk_column_events<C: Cost>(
+    fn walk_column_events<C: Cost + Listen>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,
@@ -147,7 +153,7 @@ impl<S: Sampler + Clone> Walk for S {
     }
 
     #[inline]
-    fn walk_image<C: Cost, P: PixelSink>(
+    fn walk_image<C: Cost + Listen, P: PixelSink>(
         &self,
         frame: &Frame<'_>,
         terrain: &Terrain<'_>,

@@ -4,7 +4,8 @@
 //!
 //! A shader is a parameter of the render, beside the mode and the cost counter: the counter
 //! only counts (the shader reports what it spends, [`Cost::normals`] and [`Cost::shading`],
-//! to the counter it is handed). The walk is the one every mode walks; the door listens to it,
+//! to the counter it is handed). The walk is the one every mode walks; the door listens to it
+//! ([`Listen`]),
 //! hands each pixel's samples to the shader and writes what the shader makes of them. Pixels
 //! for which the shader makes nothing (no terrain sampled) are the frame's sky.
 
@@ -14,8 +15,9 @@ use crate::color::{Color16, Rgb};
 use crate::error::Error;
 use crate::num::Weight;
 use crate::sink::PixelSink;
-use crate::terrain::cost::Cost;
+use crate::terrain::cost::{forward_counts, Cost};
 use crate::terrain::frame::Frame;
+use crate::terrain::listen::Listen;
 use crate::terrain::march::Voxel;
 use crate::terrain::sampling::Sampling;
 use crate::terrain::Terrain;
@@ -25,10 +27,10 @@ use crate::terrain::Terrain;
 /// [`Shader::finish_pixel`], which makes the pixel's colour and clears the shader for the next.
 pub trait Shader {
     /// Sample of `voxel`, whose colour map gave `color`, entering the pixel with `weight` (the
-    /// sampler's weight, as [`Cost::sample`]); what shading it costs is counted in `cost`.
+    /// sampler's weight, as [`Listen::sample`]); what shading it costs is counted in `cost`.
     fn sample<C: Cost>(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight, cost: &mut C);
 
-    /// The sky fills the rest of a pixel that saw terrain, with `weight` ([`Cost::sky_sample`]).
+    /// The sky fills the rest of a pixel that saw terrain, with `weight` ([`Listen::sky_sample`]).
     fn sky_sample(&mut self, color: Color16, weight: Weight);
 
     /// The pixel's colour from the samples since the last call, or `None` (the pixel stays the
@@ -56,7 +58,7 @@ struct Shading<'a, Sh, C, P> {
     row: Option<usize>,
 }
 
-impl<Sh: Shader, C: Cost, P: PixelSink> Shading<'_, Sh, C, P> {
+impl<Sh: Shader, C: Cost + Listen, P: PixelSink> Shading<'_, Sh, C, P> {
     /// Finishes the current pixel, if any, and writes it where the layout puts it.
     fn flush(&mut self) {
         let row = self.row.take();
@@ -78,7 +80,15 @@ impl<Sh: Shader, C: Cost, P: PixelSink> Shading<'_, Sh, C, P> {
     }
 }
 
-impl<Sh: Shader, C: Cost, P: PixelSink> Cost for Shading<'_, Sh, C, P> {
+/// The shading counts into the caller's counter.
+impl<Sh: Shader, C: Cost + Listen, P: PixelSink> Cost for Shading<'_, Sh, C, P> {
+    forward_counts!(self => self.cost);
+}
+
+/// The shading hears every event and passes it on to the caller's counter: columns and pixels
+/// bound the samples the shader lights, and each pixel is finished (and its shading counted)
+/// before the next begins or its column ends.
+impl<Sh: Shader, C: Cost + Listen, P: PixelSink> Listen for Shading<'_, Sh, C, P> {
     fn begin_column(&mut self, column: usize) {
         self.flush();
         self.column = column;
@@ -87,15 +97,6 @@ impl<Sh: Shader, C: Cost, P: PixelSink> Cost for Shading<'_, Sh, C, P> {
     fn end_column(&mut self) {
         self.flush();
         self.cost.end_column();
-    }
-    fn step(&mut self, in_footprint: bool) {
-        self.cost.step(in_footprint);
-    }
-    fn steps(&mut self, count: u32, in_footprint: bool) {
-        self.cost.steps(count, in_footprint);
-    }
-    fn new_ray(&mut self) {
-        self.cost.new_ray();
     }
     fn begin_pixel(&mut self, row: usize) {
         self.flush();
@@ -110,36 +111,6 @@ impl<Sh: Shader, C: Cost, P: PixelSink> Cost for Shading<'_, Sh, C, P> {
         self.cost.sky_sample(color, weight);
         self.shader.sky_sample(color, weight);
     }
-    fn hit(&mut self) {
-        self.cost.hit();
-    }
-    fn ss_hit(&mut self) {
-        self.cost.ss_hit();
-    }
-    fn as_hit(&mut self) {
-        self.cost.as_hit();
-    }
-    fn top_division(&mut self) {
-        self.cost.top_division();
-    }
-    fn wedge(&mut self, cells: u32) {
-        self.cost.wedge(cells);
-    }
-    fn shifts(&mut self, count: u32) {
-        self.cost.shifts(count);
-    }
-    fn divisions(&mut self, count: u32) {
-        self.cost.divisions(count);
-    }
-    fn terrain_pixel(&mut self) {
-        self.cost.terrain_pixel();
-    }
-    fn normals(&mut self, count: u32) {
-        self.cost.normals(count);
-    }
-    fn shading(&mut self, count: u32) {
-        self.cost.shading(count);
-    }
 }
 
 impl Frame<'_> {
@@ -152,7 +123,7 @@ impl Frame<'_> {
     /// with the paper's and one column per pixel `scratch` is not touched and may be empty.
     ///
     /// Errors: an `image` or a `scratch` of the wrong length.
-    pub fn render_shaded<S: Sampling, Sh: Shader, C: Cost, P: PixelSink>(
+    pub fn render_shaded<S: Sampling, Sh: Shader, C: Cost + Listen, P: PixelSink>(
         &self,
         terrain: &Terrain<'_>,
         sampling: &S,
@@ -192,7 +163,7 @@ impl Frame<'_> {
     /// [`Frame::render_shaded`].
     ///
     /// Errors: a range beyond the frame's columns, or a `grid` of the wrong length.
-    pub fn render_columns_shaded<S: Sampling, Sh: Shader, C: Cost>(
+    pub fn render_columns_shaded<S: Sampling, Sh: Shader, C: Cost + Listen>(
         &self,
         terrain: &Terrain<'_>,
         sampling: &S,
@@ -219,7 +190,7 @@ impl Frame<'_> {
     }
 }
 
-impl<Sh: Shader, C: Cost, P: PixelSink> Shading<'_, Sh, C, P> {
+impl<Sh: Shader, C: Cost + Listen, P: PixelSink> Shading<'_, Sh, C, P> {
     /// Walks `columns` of `frame` for their events alone
     /// ([`crate::terrain::sampling::Walk::walk_column_events`]), writing the lit pixels, and
     /// finishes the last one.

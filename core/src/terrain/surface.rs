@@ -60,6 +60,7 @@ use crate::terrain::blend::{distance, mix};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
+use crate::terrain::listen::Listen;
 use crate::terrain::march::{Behind, Corners, Voxel};
 use crate::terrain::ray::Ray;
 use crate::terrain::sampler::{Hit, Pixel, Sampler};
@@ -221,21 +222,27 @@ impl<S: Sampler> Sampler for Smooth<S> {
     const CORNERS: Corners = Corners::Off;
 
     #[inline(always)]
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
         self.inner.begin_pixel(pixel, cost);
         self.n_eye = pixel.eye.n.to_bits() >> 24;
         self.end = pixel.surface;
     }
 
     #[inline(always)]
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, top: Height, ray: &mut Ray, cost: &mut C) -> Hit {
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
         self.hit_again(voxel, top, ray, cost, false)
     }
 
     /// The hit on the surface's height at the voxel's centre, or none if the ray passes above
     /// it there (the walk's `top` is the highest cell around it).
     #[inline(always)]
-    fn hit_again<C: Cost>(
+    fn hit_again<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         _top: Height,
@@ -257,7 +264,7 @@ impl<S: Sampler> Sampler for Smooth<S> {
         self.inner.hit_again(&painted, h, ray, cost, false)
     }
 
-    fn sky<C: Cost>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         self.inner.sky(ray, sky, cost)
     }
 

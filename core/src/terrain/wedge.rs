@@ -72,6 +72,7 @@ use crate::terrain::blend::{distance, mix, weight};
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
 use crate::terrain::horizons::Horizons;
+use crate::terrain::listen::Listen;
 use crate::terrain::march::{Corners, Finer, Voxel};
 use crate::terrain::ray::Ray;
 use crate::terrain::sampler::{Hit, Pixel, Sampler};
@@ -355,7 +356,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
     const CORNERS: Corners = Corners::Peaks;
 
     #[inline(always)]
-    fn begin_pixel<C: Cost>(&mut self, pixel: &Pixel, cost: &mut C) {
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
         if SMOOTH {
             // A hit on the surface carried into this pixel takes the colour where this pixel's
             // lower ray crosses the surface, as a hit of its own would.
@@ -380,7 +381,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
     /// each lane that the step rises above in its part of the wedge sees it (a lane already
     /// past the pixel carries what it sees into the pixels above).
     #[inline(always)]
-    fn hit<C: Cost>(
+    fn hit<C: Cost + Listen>(
         &mut self,
         voxel: &Voxel<'_>,
         _top: Height,
@@ -429,7 +430,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         }
     }
 
-    fn sky<C: Cost>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
         self.lanes.sky(sky, cost)
     }
 
@@ -489,7 +490,7 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
     /// elsewhere (on x86 out of line costs 7 %).
     #[cfg_attr(target_arch = "arm", inline(never))]
     #[cfg_attr(not(target_arch = "arm"), inline(always))]
-    fn step<C: Cost>(
+    fn step<C: Cost + Listen>(
         &self,
         voxel: &Voxel<'_>,
         d: i64,

@@ -18,7 +18,7 @@
 //! This is an estimate of the footprint, not the exact wedge, and is used only to split counts.
 
 use anyhow::{bail, Result};
-use footprint_core::extend::{walk, Height, Hit, Pixel, Ray, Voxel};
+use footprint_core::extend::{walk, Height, Hit, Listen, Pixel, Ray, Voxel};
 use footprint_core::prelude::{Camera, Column, Cost, NoCost, Options, Projection, Sampler};
 use footprint_core::Rgb;
 use serde::Serialize;
@@ -51,15 +51,21 @@ struct Probe<'c> {
 }
 
 impl Sampler for Probe<'_> {
-    fn begin_pixel<C: Cost>(&mut self, _: &Pixel, _: &mut C) {}
-    fn hit<C: Cost>(&mut self, voxel: &Voxel<'_>, _: Height, _: &mut Ray, _: &mut C) -> Hit {
+    fn begin_pixel<C: Cost + Listen>(&mut self, _: &Pixel, _: &mut C) {}
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        _: Height,
+        _: &mut Ray,
+        _: &mut C,
+    ) -> Hit {
         self.hits.push(FirstHit {
             cell: voxel.cell_unmirrored(),
             distance: self.column.distance(voxel.n()),
         });
         Hit::Done(Rgb::default())
     }
-    fn sky<C: Cost>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
+    fn sky<C: Cost + Listen>(&mut self, _: &Ray, _: Rgb, _: &mut C) -> Option<Rgb> {
         None
     }
 }

@@ -1,12 +1,12 @@
-//! The paper's diagnostic pictures, drawn from the renderer itself through the cost hooks:
-//! the zoom-in image (Fig. 5), the enlarged sub-pixel image (Fig. 13) and the footprint map
-//! (Fig. 9).
+//! The paper's diagnostic pictures, drawn from the renderer itself through the walk's events
+//! ([`Listen`]): the zoom-in image (Fig. 5), the enlarged sub-pixel image (Fig. 13) and the
+//! footprint map (Fig. 9).
 
 use std::collections::HashSet;
 
 use anyhow::{bail, Result};
-use footprint_core::extend::{visit, Color16, Voxel, Weight};
-use footprint_core::prelude::{Camera, CameraParams, Cost, Frame, Options};
+use footprint_core::extend::{visit, Color16, Listen, Voxel, Weight};
+use footprint_core::prelude::{Camera, CameraParams, Frame, NoCost, Options};
 use footprint_core::Rgb;
 
 use crate::parallel::{render_with, Mode, Tables};
@@ -65,7 +65,7 @@ pub fn zoom(
     let (w, h) = (2 * s * k + gap, s * k);
     let mut pixels = vec![Rgb::new(255, 255, 255); w * h];
     for (side, m) in [Mode::Ps, mode].into_iter().enumerate() {
-        let img = render_with(&frame, &terrain, m, &mut footprint_core::prelude::NoCost)?;
+        let img = render_with(&frame, &terrain, m, &mut NoCost)?;
         let big = magnify(s, s, &img.image, k);
         for y in 0..h {
             let x0 = side * (s * k + gap);
@@ -96,7 +96,7 @@ fn hex<S: serde::Serializer>(c: &Rgb, s: S) -> Result<S::Ok, S::Error> {
     s.serialize_str(&format!("#{:02x}{:02x}{:02x}", c.r, c.g, c.b))
 }
 
-/// A cost that records the samples of one pixel and every sampled voxel.
+/// A listener that records the samples of one pixel and every sampled voxel.
 #[derive(Default)]
 struct Trace {
     target: (usize, usize),
@@ -107,7 +107,7 @@ struct Trace {
     sampled: HashSet<(u32, i64, i64)>,
 }
 
-impl Cost for Trace {
+impl Listen for Trace {
     fn begin_column(&mut self, column: usize) {
         self.at.0 = column;
     }
@@ -181,7 +181,7 @@ pub fn pixel(
         target,
         ..Trace::default()
     };
-    let img = render_with(&frame, &terrain, mode, &mut trace)?;
+    let img = render_with(&frame, &terrain, mode, &mut (NoCost, &mut trace))?;
     let color = img.image[row * w + col];
     let total: f64 = trace.samples.iter().map(|s| s.weight).sum();
     let (pw, ph) = (size.0 as usize, size.1 as usize);
@@ -268,9 +268,8 @@ pub fn most_different_pixel(
     let terrain = pyramid.terrain(options.lod)?;
     let mut tables = Tables::new(camera);
     let frame = tables.frame(camera, &terrain, options)?;
-    let image = |m: Mode| -> Result<Vec<Rgb>> {
-        Ok(render_with(&frame, &terrain, m, &mut footprint_core::prelude::NoCost)?.image)
-    };
+    let image =
+        |m: Mode| -> Result<Vec<Rgb>> { Ok(render_with(&frame, &terrain, m, &mut NoCost)?.image) };
     let (ia, ib) = (image(a)?, image(b)?);
     let w = camera.width();
     let (row, col, squared_difference) =
@@ -312,7 +311,7 @@ pub fn footprint(
         target: (usize::MAX, usize::MAX),
         ..Trace::default()
     };
-    render_with(&frame, &terrain, mode, &mut trace)?;
+    render_with(&frame, &terrain, mode, &mut (NoCost, &mut trace))?;
     // (level, x, y, category): 0 hidden, 1 unsampled, 2 sampled.
     let mut cells = Vec::new();
     let mut counts = FootprintCounts::default();
@@ -513,7 +512,7 @@ pub fn wedge(
             target,
             ..Trace::default()
         };
-        render_with(&frame, &terrain, mode, &mut trace)?;
+        render_with(&frame, &terrain, mode, &mut (NoCost, &mut trace))?;
         Ok(trace.cells)
     };
     let (as2_hits, line_hits) = (cells_of(Mode::As2)?, cells_of(line_mode)?);
@@ -817,11 +816,7 @@ mod tests {
         let terrain = pyramid.terrain(true).unwrap();
         let mut tables = Tables::new(&camera);
         let frame = tables.frame(&camera, &terrain, options).unwrap();
-        let render = |m: Mode| {
-            render_with(&frame, &terrain, m, &mut footprint_core::prelude::NoCost)
-                .unwrap()
-                .image
-        };
+        let render = |m: Mode| render_with(&frame, &terrain, m, &mut NoCost).unwrap().image;
         let (ia, ib) = (render(a), render(b));
         let w = camera.width();
         let at = choice.row * w + choice.col;

@@ -7,7 +7,7 @@
 
 #![allow(dead_code)]
 
-use footprint_core::extend::walk;
+use footprint_core::extend::{walk, Listen};
 use footprint_core::prelude::{
     next_size, pyramid, Camera, CameraParams, Column, Coord, Cost, Frame, HeightFilter, Level,
     Options, Sampler, Scale, Terrain,
@@ -269,7 +269,7 @@ pub fn with_frame<R>(
 
 /// Renders every column with `walk(.., 0..H, ..)` and a fresh sampler per column; returns the
 /// columns, each bottom to top.
-pub fn render_columns<S: Sampler + Clone, C: Cost>(
+pub fn render_columns<S: Sampler + Clone, C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     sampler: &S,
