@@ -4,8 +4,9 @@
 #
 # For each mode and each of the paper's three views (pitch 40°, 20°, 5°; 400×400; FOV 10°;
 # fit-first-hit; built-in terrain), `footprint render --threads 1` runs under callgrind, which
-# collects only inside its one frame render (`footprint_scenes::render::render_with`: on one
-# thread the frame is walked straight into its image, then the exact projection's resample).
+# collects only inside its one frame render (`footprint_scenes::counted::render_with`, which
+# was `footprint_scenes::render::render_with`; the pattern matches both): on one thread the
+# frame is walked straight into its image, then the exact projection's resample).
 # Until 2026-11-26 `render` drew it three times that way and the script divided by 3; the
 # counts are the same. `footprint render --counts` gives the same frames'
 # traversal steps `a`, so the script prints instructions per frame (the three views together),
@@ -33,7 +34,7 @@ for m in "${modes[@]}"; do
     # `render` draws the frame once (`render_with` on one thread), which callgrind counts;
     # everything else (the map, the pyramid, the fit-first-hit probe, the PNG) is not collected.
     valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
-      --toggle-collect='footprint_scenes::render::render_with*' \
+      --toggle-collect='footprint_scenes::*render_with*' \
       "$bin" render "${args[@]}" --view paper --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
       >/dev/null 2>"$tmp/cg.err"
     i=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err")

@@ -132,13 +132,14 @@ echo
 echo "FRAMES=$frames ROUNDS=$rounds CG_FRAMES=$cg_frames; $("$fp" --version)"
 
 # Where footprint's instructions go in one frame: callgrind collecting only inside the frame
-# render (`footprint_scenes::render::render_with`), the top 15 of callgrind_annotate's
-# file:function lines (code inlined into a function is counted under its own source file).
+# render (`footprint_scenes::counted::render_with`, formerly `render::render_with`; the pattern
+# matches both), the top 15 of callgrind_annotate's file:function lines (code inlined into a
+# function is counted under its own source file).
 if [[ ${BREAKDOWN:-0} == 1 ]]; then
   for m in as ps as:paper ps:paper; do
     cmd "$m" 1
     valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.$m" \
-      --toggle-collect='footprint_scenes::render::render_with*' "${argv[@]}" >/dev/null 2>&1
+      --toggle-collect='footprint_scenes::*render_with*' "${argv[@]}" >/dev/null 2>&1
     callgrind_annotate --auto=no "$tmp/cg.$m" | awk '
       /PROGRAM TOTALS/ { gsub(",", "", $1); print "total\t" $1 }
       /^ *[0-9,]+ \( *[0-9.]+%\) +[^ ]*:/ {

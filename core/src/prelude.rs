@@ -17,8 +17,8 @@
 //! ([`draw_triangle`], [`Target`], [`Triangle`], [`Vertex`], [`Fragment`]).
 //!
 //! The samplers, each of which links one mode alone (`Point`, `ExactArea`, `Wedge`, …), and
-//! what the walk hands a sampler, a cost, a listener or a shader of one's own are in [`crate::extend`],
-//! so that their names (`Point`) do not meet an embedded-graphics prelude's.
+//! what the walk hands a sampler, a cost, a listener or a shader of one's own are in
+//! [`crate::extend`], so that their names (`Point`) do not meet an embedded-graphics prelude's.
 
 pub use crate::color::Rgb;
 pub use crate::error::{Error, Shown};

@@ -39,7 +39,7 @@ pub fn walk<S: Sampling, C: Cost + Listen>(
 
 /// `Frame::render_shaded` with a [`SunShader`]: the frame lit by `sun`, into `image` (the
 /// exact projection's lit fan in `scratch`, empty for the paper's), as
-/// `footprint_scenes::render::render_lit` does on the host. The eye is at `eye_m` (east,
+/// `footprint_scenes::counted::render_lit` does on the host. The eye is at `eye_m` (east,
 /// south, up, metres) and the pixels are `pixel_angle` radians tall (the camera's). Returns the
 /// cost `cost` with everything the walk and the shader counted.
 #[allow(clippy::too_many_arguments)]

@@ -50,14 +50,14 @@ use footprint_core::prelude::{
     draw_triangle, shade, Fragment, Light, Material, Normal, Phong, Target, Triangle,
 };
 
+use footprint_scenes::counted::render_lit;
+pub use footprint_scenes::counted::{fnv1a64, image_hash};
 pub use footprint_scenes::firmware::{
     plate, plate_mode_name, scene, Plate, PlateVertex, Scene, GLINT_NAME, GLINT_SPECULAR, HEIGHT,
     LEVEL_NAME, MAP_SIDE, PITCH_DEG, PLATE, PLATE_MODE, PLATE_SIZE, ROLLED_NAME, ROLL_DEG, SEED,
     WIDTH,
 };
 use footprint_scenes::plates::Scene as PlateScene;
-use footprint_scenes::render::render_lit;
-pub use footprint_scenes::render::{fnv1a64, image_hash};
 
 use crate::lighting::AMBIENT_DIFFUSE;
 use crate::parallel::{count, Mode, Rate, Tables};
@@ -201,7 +201,7 @@ pub fn reference_lines() -> Result<Vec<String>> {
 
 /// The glint frame's `frame` line: `frame` (the firmware's view, the paper's projection) lit
 /// by `sun` (`Scene::glint_sun`) with the CLI's [`AMBIENT_DIFFUSE`] and default materials, drawn by the
-/// paper's AS with [`GLINT_SPECULAR`] through `footprint_scenes::render::render_lit`
+/// paper's AS with [`GLINT_SPECULAR`] through `footprint_scenes::counted::render_lit`
 /// (`footprint render --mode as --sun AZ,EL --specular clamp99`):
 /// `frame glint-as-clamp99 160x120 fnv1a=… hits=… normals=… shading=…`, the hits of the walk,
 /// the samples lit and the highlight evaluations.

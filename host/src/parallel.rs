@@ -1,5 +1,5 @@
 //! One frame on the host: the sampling modes and the one-thread render come from
-//! `footprint_scenes::render`; here the columns are spread over every core (rayon) and timed.
+//! `footprint_scenes::counted`; here the columns are spread over every core (rayon) and timed.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -10,7 +10,7 @@ use footprint_core::extend::{visit_visible, Color32};
 use footprint_core::prelude::{Camera, Cost, Frame, NoCost, Sun, SunShader, Switch, Terrain};
 use footprint_core::Rgb;
 
-pub use footprint_scenes::render::{
+pub use footprint_scenes::counted::{
     count_column, image_from_grid, render_with, ColumnCount, Measured, Mode, Rate, Rendered,
     SS_RATES,
 };
@@ -142,7 +142,7 @@ pub fn render_lit_parallel(
 /// few enough that two cores share a 400-column frame evenly.
 const LIT_COLUMNS: usize = 8;
 
-/// Renders `frame` lit by `sun` (`footprint_scenes::render::render_lit`, one thread) with cost
+/// Renders `frame` lit by `sun` (`footprint_scenes::counted::render_lit`, one thread) with cost
 /// `cost`, once, and times it, ms.
 pub fn render_lit_once<C: Cost + Listen>(
     frame: &Frame<'_>,
@@ -154,7 +154,7 @@ pub fn render_lit_once<C: Cost + Listen>(
 ) -> Result<(Rendered, f64)> {
     walked();
     let t = Instant::now();
-    let rendered = footprint_scenes::render::render_lit(frame, terrain, camera, mode, sun, cost)?;
+    let rendered = footprint_scenes::counted::render_lit(frame, terrain, camera, mode, sun, cost)?;
     Ok((rendered, t.elapsed().as_secs_f64() * 1e3))
 }
 
@@ -222,16 +222,12 @@ pub fn visible(frame: &Frame<'_>, terrain: &Terrain<'_>, switch: Switch) -> u64 
     use rayon::prelude::*;
     (0..frame.grid_columns())
         .into_par_iter()
-        .map(|x| {
-            let mut v = 0;
-            visit_visible(frame, terrain, x, switch, |_| v += 1);
-            v
-        })
+        .map(|x| visit_visible(frame, terrain, x, switch, |_| {}))
         .sum()
 }
 
 /// Renders with every counter on and the exact visibility pass
-/// (`footprint_scenes::render::count_column`), the columns counted in parallel (rayon), each with
+/// (`footprint_scenes::counted::count_column`), the columns counted in parallel (rayon), each with
 /// its own counters, and summed, so the result is the same for any number of threads.
 pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Rendered, Measured)> {
     use rayon::prelude::*;
@@ -240,5 +236,5 @@ pub fn count(frame: &Frame<'_>, terrain: &Terrain<'_>, mode: Mode) -> Result<(Re
         .into_par_iter()
         .map(|x| count_column(frame, terrain, mode, x))
         .collect::<Result<_, _>>()?;
-    Ok(footprint_scenes::render::assemble(frame, mode, columns)?)
+    Ok(footprint_scenes::counted::assemble(frame, mode, columns)?)
 }

@@ -1,7 +1,7 @@
 //! `footprint render` walks its frame once for the image, and once more only when `--counts`
 //! (or `--json`) asks for the counters; timing repeats are `bench`'s (issue 34, item 4). Run
 //! in this process, through the CLI's own parser, so the host's walk counter
-//! (`render::frame_walks`) tells. One test in this binary, so that no other test walks frames
+//! (`parallel::frame_walks`) tells. One test in this binary, so that no other test walks frames
 //! while it counts.
 
 use footprint_host::cli::{parse, Command};

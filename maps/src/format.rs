@@ -383,4 +383,75 @@ mod tests {
         assert_eq!(about(0.1), "0.1");
         assert_eq!(about(1234.5678), "1235");
     }
+
+    /// `--surface auto` meets the map's own surface, which each reader says: flat-topped voxels
+    /// for a PNG height map (a game map's model), the continuous surface for the survey formats
+    /// (ASCII grid, GeoTIFF, SRTM, BIL) and the built-in terrains; a
+    /// baked map keeps its source's.
+    #[test]
+    fn each_reader_says_which_surface_its_map_samples() {
+        use crate::{baked, procedural, survey, Map, Pyramid};
+        use footprint_core::prelude::Surface;
+        let dir = tempfile::tempdir().unwrap();
+        let map = Map {
+            width: 4,
+            height: 3,
+            heights: (0..12).map(|h| 100 + h).collect::<Vec<u16>>().into(),
+            colors: vec![footprint_core::Rgb::default(); 12].into(),
+            spacing_m: 30.0,
+            height_scale_m: 1.0,
+            base_m: 0.0,
+            source: String::new(),
+            known_range: None,
+            strips: None,
+            surface: Surface::Flat,
+        };
+        let read = |path: &Path| load(path, &LoadOptions::default()).unwrap().map.surface;
+        for (format, name, surface) in [
+            (Format::Png, "m.png", Surface::Flat),
+            (Format::Asc, "m.asc", Surface::Bilinear),
+            (Format::Tiff, "m.tif", Surface::Bilinear),
+        ] {
+            let path = dir.path().join(name);
+            let mut bytes = Vec::new();
+            write(&map, format, &mut bytes, name).unwrap();
+            std::fs::write(&path, bytes).unwrap();
+            assert_eq!(read(&path), surface, "{format}");
+        }
+        // An SRTM tile: 1201² big-endian int16 metres (its size is its format).
+        let hgt = dir.path().join("N00E000.hgt");
+        std::fs::write(&hgt, vec![0u8; 1201 * 1201 * 2]).unwrap();
+        assert_eq!(read(&hgt), Surface::Bilinear, "hgt");
+        // A BIL: 3×2 little-endian 16-bit samples and its header.
+        let bil = dir.path().join("m.bil");
+        std::fs::write(&bil, [1u8, 0, 2, 0, 3, 0, 4, 0, 5, 0, 6, 0]).unwrap();
+        std::fs::write(
+            dir.path().join("m.hdr"),
+            "NROWS 2\nNCOLS 3\nNBITS 16\nBYTEORDER I\n",
+        )
+        .unwrap();
+        assert_eq!(read(&bil), Surface::Bilinear, "bil");
+        // The built-in terrains are continuous where magnified, as a survey DEM.
+        assert_eq!(procedural(1, 32).surface, Surface::Bilinear, "mountains");
+        for kind in [survey::Kind::Eroded, survey::Kind::Plains] {
+            assert_eq!(survey::survey(kind, 1, 32).surface, Surface::Bilinear);
+        }
+        // Baked, the map keeps its source's surface, either one.
+        for surface in [Surface::Flat, Surface::Bilinear] {
+            let path = dir.path().join("m.fpmap");
+            let pyramid = Pyramid::build(
+                Map {
+                    surface,
+                    ..map.clone()
+                },
+                Default::default(),
+            )
+            .unwrap();
+            let mut file = std::fs::File::create(&path).unwrap();
+            baked::write(&pyramid, "m", None, &mut file).unwrap();
+            drop(file);
+            let (back, _) = baked::open(&path, None, None).unwrap();
+            assert_eq!(back.map().surface, surface, "baked");
+        }
+    }
 }

@@ -298,6 +298,7 @@ fn read_special(mut file: File, what: &str) -> Result<Vec<u8>, MapError> {
             return Err(MapError::NothingToRead {
                 what: what.to_owned(),
                 fifo,
+                waited: STREAM_GRACE,
             });
         }
         std::thread::sleep(Duration::from_millis(10));
@@ -362,6 +363,7 @@ fn read_stream(mut stream: impl Read, what: &str, mut bytes: Vec<u8>) -> Result<
         if len > MAX_UNSIGNED_STREAM && !signed_or_text(&bytes) {
             return Err(MapError::NotAMapStream {
                 what: what.to_owned(),
+                read: MAX_UNSIGNED_STREAM,
             });
         }
         if len > limit {

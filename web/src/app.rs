@@ -8,8 +8,8 @@ use footprint_core::prelude::{
 use footprint_core::Rgb;
 use footprint_maps::{memory, LoadOptions};
 use footprint_maps::{procedural, Map, Pyramid};
+use footprint_scenes::counted::{count, image_hash, render_with, Mode, ParseModeError};
 use footprint_scenes::flight::{self, bin, luminance};
-use footprint_scenes::render::{count, image_hash, render_with, Mode, ParseModeError};
 use footprint_scenes::view::{self, Tables};
 
 /// The memory budget in the browser: a 32-bit WebAssembly memory holds at most 4 GiB, and a

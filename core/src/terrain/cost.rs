@@ -21,7 +21,8 @@ pub trait Cost {
     /// (the paper's `L` ignores those steps).
     #[inline(always)]
     fn step(&mut self, _in_footprint: bool) {}
-    /// Term `a`, `count` times: the steps of one ride through a run ([`crate::terrain::march::March::ride`]).
+    /// Term `a`, `count` times: the steps of one ride through a run
+    /// ([`crate::terrain::march::March::ride`]).
     #[inline(always)]
     fn steps(&mut self, count: u32, in_footprint: bool) {
         for _ in 0..count {
@@ -135,6 +136,15 @@ impl<C: Cost + ?Sized> Cost for &mut C {
 pub struct NoCost;
 
 impl Cost for NoCost {}
+
+/// Counting nothing, it hears nothing.
+impl Listen for NoCost {}
+
+/// A counter and a listener of its own, `(counter, listener)`, count in the counter (and every
+/// event goes to both: [`Listen`]).
+impl<C: Cost, L> Cost for (C, L) {
+    forward_counts!(self => self.0);
+}
 
 /// The counts of one column or one frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

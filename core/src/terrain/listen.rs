@@ -3,13 +3,12 @@
 //! shade a pixel from its samples ([`crate::terrain::shade`]) and a host can draw the paper's
 //! diagnostic pictures (Figs. 9 and 13) from the renderer itself.
 //!
-//! The walk takes one value that both counts ([`Cost`]) and listens: the counters
-//! ([`NoCost`], [`crate::terrain::cost::Counts`]) listen too, and a listener of its own rides
-//! beside a counter as a pair, `(counter, listener)`.
+//! The walk takes one value that both counts ([`crate::terrain::cost::Cost`]) and listens: the
+//! counters ([`crate::terrain::cost::NoCost`], [`crate::terrain::cost::Counts`]) listen too,
+//! and a listener of its own rides beside a counter as a pair, `(counter, listener)`.
 
 use crate::color::Color16;
 use crate::num::Weight;
-use crate::terrain::cost::{forward_counts, Cost, NoCost};
 use crate::terrain::march::Voxel;
 
 /// The walk's events, in the order it walks: columns, the pixels of each column from the
@@ -61,21 +60,14 @@ macro_rules! forward_events {
     };
 }
 
-/// Counting nothing, it hears nothing.
-impl Listen for NoCost {}
-
 /// A borrowed listener hears into what it borrows.
 impl<L: Listen + ?Sized> Listen for &mut L {
     forward_events!(self => (**self));
 }
 
-/// A counter and a listener of its own, `(counter, listener)`: the pair counts in the first
-/// and every event goes to the first, then to the second (the voxels a mode samples, the
-/// samples of one pixel ride beside [`crate::terrain::cost::Counts`] so).
-impl<C: Cost, L> Cost for (C, L) {
-    forward_counts!(self => self.0);
-}
-
+/// A counter and a listener of its own, `(counter, listener)`: every event goes to the first,
+/// then to the second (the voxels a mode samples, the samples of one pixel ride beside
+/// [`crate::terrain::cost::Counts`] so); the pair counts in the first.
 impl<C: Listen, L: Listen> Listen for (C, L) {
     forward_events!(self => self.0, self.1);
 }

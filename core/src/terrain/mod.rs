@@ -5,9 +5,9 @@
 //! them ([`pyramid`]) → the camera's per-frame tables ([`camera`]) → the voxel sequence under
 //! a column ([`march`]) → the one column walk (Fig. 4, [`column`](mod@column)) → the per-hit sampler of
 //! each mode (Figs. 4, 8, 12, [`sampler`]; `as2` across the column, [`wedge`], in lanes with a
-//! ray each, [`horizons`]) → the pixel. [`cost`] counts what the walk spends
-//! (Sect. 6), [`listen`] hears what it samples, [`visibility`] counts what it should see (`V`), and `classic` is the voxel-space
-//! baseline the paper's walk is measured against. The sun on the terrain, which joins both
+//! ray each, [`horizons`]) → the pixel. [`cost`] counts what the walk spends (Sect. 6),
+//! [`listen`] hears what it samples, [`visibility`] counts what it should see (`V`), and
+//! `classic` is the voxel-space baseline the paper's walk is measured against. The sun on the terrain, which joins both
 //! papers, is a room above this one ([`crate::lit`]).
 
 pub mod baked;

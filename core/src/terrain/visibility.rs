@@ -25,14 +25,6 @@ enum Horizon {
     Top(i64, Height),
 }
 
-/// The number of voxels of column `col`'s sequence (climbing at `switch`) that are visible in
-/// the image.
-pub fn visible_voxels(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize, switch: Switch) -> u64 {
-    let mut count = 0;
-    visit_visible(frame, terrain, col, switch, |_| count += 1);
-    count
-}
-
 /// Calls `f(voxel, visible)` for every voxel of column `col`'s sequence (climbing at
 /// `switch`), in order, until nothing further can be visible (the far distance, or the horizon
 /// reaching the highest ray).
@@ -46,7 +38,8 @@ pub fn visit(
     pass(frame, terrain, col, switch, false, f);
 }
 
-/// Calls `f(voxel)` for every visible voxel of column `col`, in order. Blocks of the
+/// Calls `f(voxel)` for every visible voxel of column `col`, in order, and returns how many
+/// there were (the column's `V`, Tables 2–4). Blocks of the
 /// conservative maximum pyramid that lie below the horizon are crossed in one step
 /// ([`March::skip`]), as the walk crosses empty air: none of their voxels can be visible, so
 /// the visible voxels are exactly those [`visit`] reports, in far fewer steps (a view without
@@ -57,12 +50,15 @@ pub fn visit_visible(
     col: usize,
     switch: Switch,
     mut f: impl FnMut(&March<'_, '_>),
-) {
+) -> u64 {
+    let mut count = 0;
     pass(frame, terrain, col, switch, true, |march, visible| {
         if visible {
+            count += 1;
             f(march);
         }
     });
+    count
 }
 
 /// The largest `|slope|` (raw) and `|height|` (raw) of a horizon line the skip may use: the
@@ -177,7 +173,7 @@ pub fn count_visible(
     counts: &mut Counts<'_>,
 ) {
     for col in 0..frame.grid_columns() {
-        let v = visible_voxels(frame, terrain, col, switch);
+        let v = visit_visible(frame, terrain, col, switch, |_| {});
         counts.set_visible(col, v);
     }
 }

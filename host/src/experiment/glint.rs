@@ -15,7 +15,7 @@ use footprint_core::prelude::{
     Camera, CameraParams, Counts, Materials, Options, Projection, Specular, Sun, Terrain,
 };
 use footprint_core::Rgb;
-use footprint_scenes::render::render_lit;
+use footprint_scenes::counted::render_lit;
 use rayon::prelude::*;
 use serde::Serialize;
 

@@ -30,7 +30,7 @@ pub struct RenderSummary<'a> {
     pub grid: (usize, usize),
     /// The counters, per frame and per column.
     pub measured: &'a Measured,
-    /// The visible voxels of the area modes' walk (`render::visible` at
+    /// The visible voxels of the area modes' walk (`parallel::visible` at
     /// [`Switch::Late`](footprint_core::prelude::Switch::Late)): the one denominator of
     /// `coverage`, as `table` divides; the counters' own `V` is this mode's walk's.
     pub v_case: u64,

@@ -17,7 +17,6 @@
 use std::fs::File;
 use std::io::{self, Seek, SeekFrom, Write};
 
-use crate::tint::TintScale;
 use footprint_core::extend::{mirror, Strips};
 use footprint_core::prelude::baked::{Header, Layout};
 use footprint_core::prelude::pyramid::{LevelRow, LevelRowMut};
@@ -25,6 +24,7 @@ use footprint_core::prelude::{pyramid, HeightFilter, Scale, Surface, MAX_LEVELS}
 use footprint_core::Rgb;
 
 use crate::mosaic::{Mosaic, Tile};
+use crate::tint::TintScale;
 use crate::MapError;
 
 /// Bytes gathered per section before they are written.
