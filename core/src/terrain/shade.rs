@@ -5,9 +5,8 @@
 //! A shader is a parameter of the render, beside the mode and the cost counter: the counter
 //! only counts (the shader reports what it spends, [`Cost::normals`] and [`Cost::shading`],
 //! to the counter it is handed). The walk is the one every mode walks; the door listens to it
-//! ([`Listen`]),
-//! hands each pixel's samples to the shader and writes what the shader makes of them. Pixels
-//! for which the shader makes nothing (no terrain sampled) are the frame's sky.
+//! ([`Listen`]), hands each pixel's samples to the shader and writes what the shader makes of
+//! them. Pixels for which the shader makes nothing (no terrain sampled) are the frame's sky.
 
 use core::ops::Range;
 
@@ -30,7 +29,8 @@ pub trait Shader {
     /// sampler's weight, as [`Listen::sample`]); what shading it costs is counted in `cost`.
     fn sample<C: Cost>(&mut self, voxel: &Voxel<'_>, color: Color16, weight: Weight, cost: &mut C);
 
-    /// The sky fills the rest of a pixel that saw terrain, with `weight` ([`Listen::sky_sample`]).
+    /// The sky fills the rest of a pixel that saw terrain, with `weight`
+    /// ([`Listen::sky_sample`]).
     fn sky_sample(&mut self, color: Color16, weight: Weight);
 
     /// The pixel's colour from the samples since the last call, or `None` (the pixel stays the
