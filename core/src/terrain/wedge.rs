@@ -185,8 +185,10 @@ fn segment(d: i64) -> (i64, i64) {
 /// Eq. 4 over the interval (at most nine cells). In 8.8; `None` for an interval too short to
 /// weigh.
 ///
-/// The weights are written out cell by cell (segment by segment) for an interval inside the
-/// reach; one that reaches past it (past four cells either side) takes
+/// An interval inside one segment (between two neighbouring centres, where Eq. 4's colour is
+/// linear) has for its mean Eq. 4's colour at its middle, exactly ([`one_segment`]). Across
+/// more segments the weights are written out cell by cell for an interval inside the reach;
+/// one that reaches past it (past four cells either side) takes
 /// [`integrated_color_general`], which clamps it. Both give the same colour, bit for bit
 /// (tested): the same weights, rounded alike, summed in another order.
 fn integrated_color(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> Option<Color16> {
@@ -198,66 +200,97 @@ fn integrated_color(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> Option<Co
         return integrated_color_general(lo, hi, color);
     }
     // Within the segments, `0 ≤ d < 1` (16 fractional bits).
-    let ((a_lo, b_lo), (a_hi, b_hi)) = (segment(u_lo - (j_lo << 16)), segment(u_hi - (j_hi << 16)));
+    let (d_lo, d_hi) = (u_lo - (j_lo << 16), u_hi - (j_hi << 16));
     #[allow(
         clippy::cast_possible_truncation,
         reason = "-4 ≤ j_lo ≤ j_hi ≤ 3 (tested above)"
     )]
     let (k, n) = (j_lo as isize, (j_hi - j_lo) as isize);
-    let mut lanes = Lanes { sum: 0, total: 0 };
     if n == 0 {
-        // One segment: its two cells, each by its share's integral over the interval.
-        lanes.add(a_hi - a_lo, color(k));
-        lanes.add(b_hi - b_lo, color(k + 1));
-    } else {
-        // The first segment from the interval's start to its end, the last from its start to
-        // the interval's end, the ones between whole (half a cell to each end); a cell
-        // between two segments takes its share of each.
-        let (a_one, b_one) = segment(1 << 16);
-        let half = 1 << 15;
-        lanes.add(a_one - a_lo, color(k));
-        // (A half-open range: an inclusive one costs a test more per step.)
-        for i in 1..n + 1 {
-            let behind = if i == 1 { b_one - b_lo } else { half };
-            let ahead = if i == n { a_hi } else { half };
-            lanes.add(behind + ahead, color(k + i));
-        }
-        lanes.add(b_hi, color(k + n + 1));
+        return one_segment(d_lo, d_hi, color(k), color(k + 1));
     }
+    let ((a_lo, b_lo), (a_hi, b_hi)) = (segment(d_lo), segment(d_hi));
+    let mut lanes = Lanes::default();
+    // The first segment from the interval's start to its end, the last from its start to the
+    // interval's end, the ones between whole (half a cell to each end); a cell between two
+    // segments takes its share of each.
+    let (a_one, b_one) = segment(1 << 16);
+    let half = 1 << 15;
+    lanes.add(a_one - a_lo, color(k));
+    // (A half-open range: an inclusive one costs a test more per step.)
+    for i in 1..n + 1 {
+        let behind = if i == 1 { b_one - b_lo } else { half };
+        let ahead = if i == n { a_hi } else { half };
+        lanes.add(behind + ahead, color(k + i));
+    }
+    lanes.add(b_hi, color(k + n + 1));
     lanes.mean()
 }
 
-/// The colour sums of [`integrated_color`]: the three channels in 21-bit lanes of one word
-/// (one multiply per cell, as `Voxel::sample_linear` packs its two), and the weights' total.
-/// Each weight is at most one cell (9 fractional bits, 512) and a colour 255: a cell adds at
-/// most 2^17 to a lane, nine at most 2^20.2.
-#[derive(Clone, Copy, Debug)]
+/// The mean of Eq. 4's colour over `[d_lo, d_hi)` within one segment (16 fractional bits from
+/// the centre of the cell whose colour is `near` to the next one's, `far`): Eq. 4 is linear
+/// there, so the mean is its value at the interval's middle, exactly up to the 8-bit weight
+/// of [`Voxel::sample_linear`], whose arithmetic it shares, and without [`Lanes`]' division.
+/// `None` for an empty interval.
+#[inline(always)]
+fn one_segment(d_lo: i64, d_hi: i64, near: Rgb, far: Rgb) -> Option<Color16> {
+    if d_hi <= d_lo {
+        return None;
+    }
+    // The middle's top byte: 0 ≤ d_lo < d_hi ≤ 2^16 (a segment's end, where the general
+    // gathering clamps), so 0 ≤ w_far ≤ 256.
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "0 ≤ (d_lo + d_hi) / 2 ≤ 2^16, shifted right by 8: at most 256"
+    )]
+    let w_far = (((d_lo + d_hi) >> 1) >> 8) as u32;
+    let w_near = 256 - w_far;
+    // Red and blue in two 16-bit lanes of one word, as `Voxel::sample_linear` mixes them
+    // (each lane at most 255·256 < 2^16).
+    let rb = |c: Rgb| u32::from(c.r) | u32::from(c.b) << 16;
+    let mixed = rb(near) * w_near + rb(far) * w_far;
+    let g = u32::from(near.g) * w_near + u32::from(far.g) * w_far;
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "each lane is at most 255·256 < 2^16 (the weights sum to 256)"
+    )]
+    let mean = [
+        (mixed & 0xFFFF) as u16,
+        (g & 0xFFFF) as u16,
+        (mixed >> 16) as u16,
+    ];
+    Some(mean)
+}
+
+/// The colour sums of [`integrated_color`], with the weights as they are (16 fractional bits,
+/// at most one cell each): red and blue in two 32-bit lanes of one word, green in another (two
+/// multiplies per cell), and the weights' total. A cell adds at most 2^16·255 < 2^24 to a
+/// lane, nine at most 2^27.2. (The weights were rounded to 1/512 of a cell, to fit the three
+/// channels in one word: a lane 0.01 cell wide then had five units of weight, and its colour
+/// moved across a cell in fifths of the cells' contrast.)
+#[derive(Clone, Copy, Debug, Default)]
 struct Lanes {
-    sum: u64,
+    red_blue: u64,
+    green: u64,
     total: u64,
 }
 
 impl Lanes {
-    /// `c`'s channels in the lanes.
-    #[inline(always)]
-    fn pack(c: Rgb) -> u64 {
-        u64::from(c.r) | u64::from(c.g) << 21 | u64::from(c.b) << 42
-    }
-
-    /// Adds `color` with the weight `w` (16 fractional bits), rounded to 9; a weight that
-    /// rounds below zero adds nothing.
+    /// Adds `color` with the weight `w` (16 fractional bits); a weight below zero (a segment's
+    /// rounding) adds nothing.
     #[inline(always)]
     fn add(&mut self, w: i64, color: Rgb) {
         #[allow(clippy::cast_sign_loss, reason = "at least 0 (max)")]
-        let w = ((w + (1 << 6)) >> 7).max(0) as u64;
-        self.sum += w * Self::pack(color);
+        let w = w.max(0) as u64;
+        self.red_blue += w * (u64::from(color.r) | u64::from(color.b) << 32);
+        self.green += w * u64::from(color.g);
         self.total += w;
     }
 
     /// The weighted mean in 8.8, `None` with no weight. The weights sum to the interval's
-    /// length (9 fractional bits); an interval too short to weigh has none. One division for
-    /// the reciprocal, then per channel a product at most 255·256·2^40 = 2^56 (each lane is at
-    /// most 255 times the total).
+    /// length. One division for the reciprocal, then per channel a product at most
+    /// 255·256·2^40 = 2^56 (each lane is at most 255 times the total).
     #[inline(always)]
     fn mean(self) -> Option<Color16> {
         let reciprocal = div_rem(1 << 40, NonZeroU64::new(self.total)?).0;
@@ -265,11 +298,12 @@ impl Lanes {
             clippy::cast_possible_truncation,
             reason = "a weighted mean of 8-bit values times 256, clamped: within 0..=65280"
         )]
-        let ch = |lane: u32| {
-            let s = (self.sum >> lane) & ((1 << 21) - 1);
-            ((s * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16
-        };
-        Some([ch(0), ch(21), ch(42)])
+        let ch = |s: u64| ((s * 256 * reciprocal + (1 << 39)) >> 40).min(255 * 256) as u16;
+        Some([
+            ch(self.red_blue & 0xFFFF_FFFF),
+            ch(self.green),
+            ch(self.red_blue >> 32),
+        ])
     }
 }
 
@@ -285,6 +319,19 @@ fn integrated_color_general(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> O
         (u_lo - (j_lo << 16)).clamp(0, D),
         (u_hi - (j_hi << 16)).clamp(0, D),
     );
+    if j_lo > j_hi {
+        // Wholly past the reach on one side: nothing to weigh (the caller falls back).
+        return None;
+    }
+    if j_lo == j_hi {
+        // One segment within the reach: its middle, as `integrated_color` takes it.
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "-4 ≤ j_lo ≤ 3 (clamped above, and j_lo = j_hi)"
+        )]
+        let k = j_lo as isize;
+        return one_segment(d_lo, d_hi, color(k), color(k + 1));
+    }
     // Each cell's weight, the integral of its share of Eq. 4 over the interval: the partial
     // segments at the ends, and half a cell from every whole segment to either end of it.
     let mut weights = [0i64; 9];
@@ -294,24 +341,16 @@ fn integrated_color_general(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> O
         }
     };
     let ((a_lo, b_lo), (a_hi, b_hi)) = (segment(d_lo), segment(d_hi));
-    if j_lo >= j_hi {
-        add(j_lo, a_hi - a_lo);
-        add(j_lo + 1, b_hi - b_lo);
-    } else {
-        let (a_one, b_one) = segment(D);
-        add(j_lo, a_one - a_lo);
-        add(j_lo + 1, b_one - b_lo);
-        for j in j_lo + 1..j_hi {
-            add(j, D / 2);
-            add(j + 1, D / 2);
-        }
-        add(j_hi, a_hi);
-        add(j_hi + 1, b_hi);
+    let (a_one, b_one) = segment(D);
+    add(j_lo, a_one - a_lo);
+    add(j_lo + 1, b_one - b_lo);
+    for j in j_lo + 1..j_hi {
+        add(j, D / 2);
+        add(j + 1, D / 2);
     }
-    // Each weight to 9 bits (at most one cell, 512), a colour 255: a cell adds at most 2^17
-    // to a channel, nine at most 2^20.2, so the three channels add in 21-bit lanes of one word
-    // (one multiply per cell, as `Voxel::sample_linear` packs its two).
-    let (mut sum, mut total) = (0u64, 0u64);
+    add(j_hi, a_hi);
+    add(j_hi + 1, b_hi);
+    let mut lanes = Lanes::default();
     // Only the cells the interval's segments reach: `j_lo ..= j_hi + 1`.
     let reach = usize::try_from(j_lo + 4).unwrap_or(0)..usize::try_from(j_hi + 6).unwrap_or(0);
     #[allow(
@@ -321,16 +360,11 @@ fn integrated_color_general(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> O
     )]
     let first = j_lo.max(-4) as isize;
     for (k, &w) in (first..).zip(weights.get(reach).unwrap_or_default()) {
-        let Ok(w) = u64::try_from((w + (1 << 6)) >> 7) else {
-            continue;
-        };
-        if w == 0 {
-            continue;
+        if w > 0 {
+            lanes.add(w, color(k));
         }
-        sum += w * Lanes::pack(color(k));
-        total += w;
     }
-    Lanes { sum, total }.mean()
+    lanes.mean()
 }
 
 /// [`integrated_color`] of the row around `voxel`, or Eq. 4 at its centre line for an interval
