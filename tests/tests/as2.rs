@@ -31,9 +31,10 @@ use footprint_core::prelude::{Sampler, Switch};
 
 /// The largest RMS difference, in 8-bit levels over the three channels, allowed between `as2`
 /// and the float integral over each pixel's footprint. Measured 2026-11-26: `as2` 2.05 (2.06
-/// with its two lanes, 2026-11-27), `as-exact` 12.15 on the stripes below (the pixels'
-/// footprints are 0.5 to 2.3 voxels wide across, one-voxel stripes). The rest of `as2`'s
-/// difference is the fixed point and the walk's far cut.
+/// with its two lanes, 2026-11-27; 2.09 with Eq. 4's weights across unrounded, 2026-11-30),
+/// `as-exact` 12.15 on the stripes below (the pixels' footprints are 0.5 to 2.3 voxels wide
+/// across, one-voxel stripes). The rest of `as2`'s difference is the fixed point and the
+/// walk's far cut.
 const AS2_RMSE: f64 = 3.0;
 
 /// Eye height, metres, over the plane at 5 m.
