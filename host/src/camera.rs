@@ -358,3 +358,42 @@ pub fn fit_first_hit(
         e @ FitError::NoFit { .. } => anyhow!("--fit-first-hit: {e}"),
     })
 }
+
+/// A camera as `render --json` and `fly --json` print it (JSON `camera`): the options that
+/// render the same frame (`--x`, `--y`, `--height`, `--heading`, `--pitch`, `--roll`, `--fov`,
+/// `--far`), the height in metres above the datum.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct CameraJson {
+    /// `--x`, metres.
+    pub x: f64,
+    /// `--y`, metres.
+    pub y: f64,
+    /// `--height`, metres above the datum.
+    pub height: f64,
+    /// `--heading`, degrees.
+    pub heading: f64,
+    /// `--pitch`, degrees.
+    pub pitch: f64,
+    /// `--roll`, degrees.
+    pub roll: f64,
+    /// `--fov`, degrees.
+    pub fov: f64,
+    /// `--far`, metres.
+    pub far: f64,
+}
+
+impl CameraJson {
+    /// `params` on a map whose datum is `base_m` below height unit 0.
+    pub fn of(params: &CameraParams, base_m: f64) -> Self {
+        Self {
+            x: params.x_m,
+            y: params.y_m,
+            height: params.eye_m + base_m,
+            heading: params.heading_deg,
+            pitch: params.pitch_deg,
+            roll: params.roll_deg,
+            fov: params.fov_deg,
+            far: params.far_m,
+        }
+    }
+}

@@ -148,6 +148,33 @@ fn fly_takes_a_banked_path_and_says_so() {
     assert_eq!(s["projection"], "paper");
     let unchanged = |v: &serde_json::Value| v["modes"][0]["all_columns"]["0"].as_u64().unwrap();
     assert!(unchanged(&s) > unchanged(&a), "{s} vs {a}");
+    // The flight's first camera (JSON `camera`), handed to `render` as its options, is the
+    // camera `render` draws: a frame of the flight can be drawn and inspected on its own.
+    let camera = &s["camera"];
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("frame0.png");
+    let option = |k: &str| camera[k].as_f64().unwrap().to_string();
+    let mut args = vec![
+        "render".to_owned(),
+        "--terrain-size".to_owned(),
+        "128".to_owned(),
+        "--size".to_owned(),
+        "32x32".to_owned(),
+        "--projection".to_owned(),
+        "paper".to_owned(),
+        "--json".to_owned(),
+        "--out".to_owned(),
+        out.to_str().unwrap().to_owned(),
+    ];
+    for k in ["x", "y", "height", "heading", "pitch", "roll", "fov", "far"] {
+        args.extend([format!("--{k}"), option(k)]);
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let o = footprint(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rendered: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(&rendered["camera"], camera, "render drew another camera");
+    assert_eq!(camera["height"], s["height"]);
 }
 
 #[test]

@@ -7,6 +7,7 @@ use anyhow::Result;
 use footprint_core::prelude::{CameraParams, Tally};
 use serde::Serialize;
 
+use crate::camera::CameraJson;
 use crate::parallel::{Measured, Mode, Repeated};
 use crate::report::number::thousands;
 
@@ -85,18 +86,6 @@ impl From<&Tally> for CountsJson {
             e: t.e,
         }
     }
-}
-
-#[derive(Serialize)]
-struct CameraJson {
-    x: f64,
-    y: f64,
-    height: f64,
-    heading: f64,
-    pitch: f64,
-    roll: f64,
-    fov: f64,
-    far: f64,
 }
 
 /// The walk's grid.
@@ -213,16 +202,7 @@ pub fn json(s: &RenderSummary<'_>) -> Result<String> {
             columns: s.grid.0,
             rows: s.grid.1,
         },
-        camera: CameraJson {
-            x: p.x_m,
-            y: p.y_m,
-            height: p.eye_m + s.base_m,
-            heading: p.heading_deg,
-            pitch: p.pitch_deg,
-            roll: p.roll_deg,
-            fov: p.fov_deg,
-            far: p.far_m,
-        },
+        camera: CameraJson::of(p, s.base_m),
         map: s.map.to_owned(),
         columns: s
             .per_column

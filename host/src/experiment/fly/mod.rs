@@ -24,6 +24,7 @@ mod mode;
 pub use excess::{large_changes, Excess, FLICKER_BINS};
 pub use mode::{FlyMode, ParseFlyModeError};
 
+use crate::camera::CameraJson;
 use crate::experiment::causes::{classify, ClassFlicker, CLASSES};
 use crate::experiment::paper::paper_camera_placed;
 use crate::flight_path::FlightPath;
@@ -394,6 +395,10 @@ pub struct Fly {
     pub size: (u32, u32),
     /// The starting eye height (fit-first-hit at pitch 5°), metres above sea level.
     pub height: f64,
+    /// The first frame's camera, as `render` takes it (frame `t` is this camera moved
+    /// `t · step` metres along its heading, or the path's): `render --x … --far …
+    /// --projection P --surface S` draws that frame.
+    pub camera: CameraJson,
     /// `exact` or `paper`.
     pub projection: &'static str,
     /// Whether the modes walked the pyramid (`--lod on`) or level 0 alone.
@@ -670,6 +675,7 @@ pub fn run_with_frames(
         step: spec.step_m,
         size: (start.width, start.height),
         height: start.eye_m + map.base_m,
+        camera: CameraJson::of(&start, map.base_m),
         projection: match spec.projection {
             Projection::Exact => "exact",
             Projection::Paper => "paper",
