@@ -2,6 +2,7 @@
 //! test gives, so that a test can put numbers that contradict a sentence in front of the code
 //! that writes it, without a run.
 
+use crate::camera::CameraJson;
 use crate::experiment::differences::{Differences, FlightFacts, MapFacts, ViewFacts};
 use crate::experiment::fly::{Excess, Fly, FlyMode, Histogram, ModeFly};
 use crate::experiment::heights::{Changed, Variant};
@@ -148,6 +149,16 @@ pub fn flight(frames: usize, modes: &[(Mode, u64, i64)]) -> Fly {
         step: 0.5,
         size: (400, 400),
         height: 1000.0,
+        camera: CameraJson {
+            x: 0.0,
+            y: 0.0,
+            height: 1000.0,
+            heading: 0.0,
+            pitch: 5.0,
+            roll: 0.0,
+            fov: 10.0,
+            far: 30_000.0,
+        },
         projection: "paper",
         lod: true,
         surface: "flat",
