@@ -301,3 +301,42 @@ fn every_synthetic_map_round_trips_and_renders() {
         }
     }
 }
+
+/// `as2`'s large changes (6 levels and more) over the flight, at most this many times
+/// `as-exact`'s on the steep synthetic map ([`as2_flickers_near_as_exact_on_steep_terrain`]).
+/// Measured 2026-11-30: 3,741 against 2,824 (1.32); 4,212 (1.49) while a lane that lay
+/// wholly in the cell beside a cell entered at a corner took the corner cell's height.
+const AS2_OVER_AS_EXACT: f64 = 1.4;
+
+/// The steep map (`map synth --kind steep`, 128², the survey-like terrain that crosses cells
+/// at every angle) flown 60 frames at 200×200 without the truth: `as2`'s frames change by 6
+/// levels or more hardly more often than `as-exact`'s ([`AS2_OVER_AS_EXACT`]). Most of its
+/// excess was at cells the column's centre line enters at a corner (docs/measurements.md,
+/// "as2's narrow lanes, and where its flicker on msh comes from").
+#[test]
+fn as2_flickers_near_as_exact_on_steep_terrain() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("steep.png");
+    let png_s = png.to_str().unwrap();
+    let o = footprint(&[
+        "map", "synth", "--kind", "steep", "--size", "128", "--out", png_s,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = footprint(&[
+        "fly", "--dem", png_s, "--frames", "60", "--size", "200x200", "--modes",
+        "as-exact,as2", "--no-truth", "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let fly: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let large = |i: usize| {
+        let all = &fly["modes"][i]["all_columns"];
+        all["6-60"].as_u64().unwrap() + all[">60"].as_u64().unwrap()
+    };
+    let (exact, as2) = (large(0), large(1));
+    println!("large changes: as-exact {exact}, as2 {as2}");
+    assert!(exact > 0, "the flight changes nothing");
+    assert!(
+        as2 as f64 <= AS2_OVER_AS_EXACT * exact as f64,
+        "as2 {as2} against as-exact {exact}"
+    );
+}

@@ -82,11 +82,12 @@ pub(crate) fn weight(d: i64, end: i64) -> i64 {
 }
 
 /// The height of `voxel` on the surface, given the share `f` (16 fractional bits) of the
-/// continuous surface ([`weight`]): its flat top blended towards the bilinear height at its
-/// centre. Level 0 only; a coarser level is flat.
+/// continuous surface ([`weight`]): the flat top of the cell `k` cells across from it (0: its
+/// own; `as2`'s lane that lies wholly in a neighbour takes that one's) blended towards the
+/// bilinear height at its centre. Level 0 only; a coarser level is flat.
 #[inline(always)]
-pub(crate) fn height(voxel: &Voxel<'_>, f: i64) -> Height {
-    let flat = Height::from_bits(i64::from(voxel.height_at(voxel.across(0))) << 24);
+pub(crate) fn height(voxel: &Voxel<'_>, k: isize, f: i64) -> Height {
+    let flat = Height::from_bits(i64::from(voxel.height_at(voxel.across(k))) << 24);
     if f == 0 || voxel.level() > 0 {
         return flat;
     }
@@ -252,7 +253,7 @@ impl<S: Sampler> Sampler for Smooth<S> {
     ) -> Hit {
         let d = distance(voxel, self.n_eye);
         let f = weight(d, self.end);
-        let h = height(voxel, f);
+        let h = height(voxel, 0, f);
         if h <= ray.h {
             return Hit::Rejected;
         }

@@ -534,15 +534,24 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
     ) -> Option<(Height, Color16)> {
         let (first, last) = (lo >> 32, (hi - 1) >> 32);
         if first >= last {
-            // The wedge lies inside the voxel's cell: its height (on the continuous surface
-            // where voxels are magnified, the surface's at the centre line).
+            // The interval lies inside one cell: its height (on the continuous surface where
+            // voxels are magnified, blended with the surface's at the centre line). Mostly
+            // the voxel's own cell; a lane wholly in a neighbour takes the neighbour's, as a
+            // cell entered at a corner behind the centre line has its section centred on its
+            // edge (`fraction_ahead` 0), and its lane behind lies in the cell beside it. (Until
+            // 2026-11-30 that lane took the corner cell's height, over-raising it.)
             cost.wedge(1);
             let f = if SMOOTH && self.surface > 0 {
                 surface::weight(d, self.surface)
             } else {
                 0
             };
-            let own = surface::height(voxel, f);
+            #[allow(
+                clippy::cast_possible_truncation,
+                reason = "clamped to -2..=2, the cells the walk tests across"
+            )]
+            let cell = first.clamp(-2, 2) as isize;
+            let own = surface::height(voxel, cell, f);
             if own <= ray_h {
                 return None;
             }
