@@ -323,8 +323,17 @@ fn as2_flickers_near_as_exact_on_steep_terrain() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let o = footprint(&[
-        "fly", "--dem", png_s, "--frames", "60", "--size", "200x200", "--modes",
-        "as-exact,as2", "--no-truth", "--json",
+        "fly",
+        "--dem",
+        png_s,
+        "--frames",
+        "60",
+        "--size",
+        "200x200",
+        "--modes",
+        "as-exact,as2",
+        "--no-truth",
+        "--json",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let fly: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
