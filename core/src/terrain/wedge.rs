@@ -190,7 +190,7 @@ fn segment(d: i64) -> (i64, i64) {
 /// more segments the weights are written out cell by cell for an interval inside the reach;
 /// one that reaches past it (past four cells either side) takes
 /// [`integrated_color_general`], which clamps it. Both give the same colour, bit for bit
-/// (tested): the same weights, rounded alike, summed in another order.
+/// (tested): the same weights, summed in another order.
 fn integrated_color(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> Option<Color16> {
     // Positions from the centre of the voxel's cell, 16 fractional bits, and the segments
     // they lie in (segment `j` runs from cell `j`'s centre to cell `j + 1`'s).
