@@ -65,7 +65,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::color::{Color16, Color32, Rgb};
+use crate::color::{mix256, Color16, Color32, Rgb};
 use crate::divide::{div_rem, div_rem_signed};
 use crate::num::Height;
 use crate::terrain::blend::{distance, mix, weight};
@@ -230,7 +230,7 @@ fn integrated_color(lo: i64, hi: i64, color: impl Fn(isize) -> Rgb) -> Option<Co
 /// The mean of Eq. 4's colour over `[d_lo, d_hi)` within one segment (16 fractional bits from
 /// the centre of the cell whose colour is `near` to the next one's, `far`): Eq. 4 is linear
 /// there, so the mean is its value at the interval's middle, exactly up to the 8-bit weight
-/// of [`Voxel::sample_linear`], whose arithmetic it shares, and without [`Lanes`]' division.
+/// of [`Voxel::sample_linear`], whose mix it calls, and without [`Lanes`]' division.
 /// `None` for an empty interval.
 #[inline(always)]
 fn one_segment(d_lo: i64, d_hi: i64, near: Rgb, far: Rgb) -> Option<Color16> {
@@ -245,22 +245,7 @@ fn one_segment(d_lo: i64, d_hi: i64, near: Rgb, far: Rgb) -> Option<Color16> {
         reason = "0 ≤ (d_lo + d_hi) / 2 ≤ 2^16, shifted right by 8: at most 256"
     )]
     let w_far = (((d_lo + d_hi) >> 1) >> 8) as u32;
-    let w_near = 256 - w_far;
-    // Red and blue in two 16-bit lanes of one word, as `Voxel::sample_linear` mixes them
-    // (each lane at most 255·256 < 2^16).
-    let rb = |c: Rgb| u32::from(c.r) | u32::from(c.b) << 16;
-    let mixed = rb(near) * w_near + rb(far) * w_far;
-    let g = u32::from(near.g) * w_near + u32::from(far.g) * w_far;
-    #[allow(
-        clippy::cast_possible_truncation,
-        reason = "each lane is at most 255·256 < 2^16 (the weights sum to 256)"
-    )]
-    let mean = [
-        (mixed & 0xFFFF) as u16,
-        (g & 0xFFFF) as u16,
-        (mixed >> 16) as u16,
-    ];
-    Some(mean)
+    Some(mix256(near, far, w_far))
 }
 
 /// The colour sums of [`integrated_color`], with the weights as they are (16 fractional bits,

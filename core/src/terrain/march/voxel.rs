@@ -3,7 +3,7 @@
 //! across the column, the surface one step back, the next finer level's children:
 //! [`Finer`]). The cursor that makes them is the parent module's [`March`].
 
-use crate::color::{to_color16, to_rgb, Color16, Rgb};
+use crate::color::{mix256, to_color16, to_rgb, Color16, Rgb};
 use crate::num::Height;
 use crate::terrain::map::Axis;
 use crate::terrain::map::Level;
@@ -350,24 +350,11 @@ impl Voxel<'_> {
         };
         let colors = m.colors;
         let at = |i: usize| colors.get(i).copied().unwrap_or_default();
-        let (here, there) = (at(self.idx), at(self.idx.wrapping_add_signed(near)));
-        let w_here = 256 - w_there;
-        // Red and blue in two 16-bit lanes of one word (each mix is at most 255·256 < 2^16, so
-        // no lane carries into the next, and the masks drop nothing), green alone: four
-        // multiplies instead of six.
-        let rb = |c: Rgb| u32::from(c.r) | u32::from(c.b) << 16;
-        let mixed = rb(here) * w_here + rb(there) * w_there;
-        let g = u32::from(here.g) * w_here + u32::from(there.g) * w_there;
-        #[allow(
-            clippy::cast_possible_truncation,
-            reason = "each lane is at most 255·256 < 2^16 (the weights sum to 256)"
-        )]
-        let mix = [
-            (mixed & 0xFFFF) as u16,
-            (g & 0xFFFF) as u16,
-            (mixed >> 16) as u16,
-        ];
-        mix
+        mix256(
+            at(self.idx),
+            at(self.idx.wrapping_add_signed(near)),
+            w_there,
+        )
     }
 }
 
