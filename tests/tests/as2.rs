@@ -534,6 +534,8 @@ struct OneLane(Horizons<1>);
 
 impl Sampler for OneLane {
     const SWITCH: Switch = Switch::Late;
+    /// As `as-exact`: Eq. 4 narrowed where voxels are magnified on the flat tops.
+    const NARROW: bool = true;
 
     fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
         self.0.begin_pixel(pixel, cost);

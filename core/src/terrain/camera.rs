@@ -298,6 +298,9 @@ pub struct Column {
     /// With [`Surface::Bilinear`], the distance in half-voxels where the *pixel's* footprint
     /// across (all its columns together) is one voxel wide; 0 with [`Surface::Flat`].
     pub(crate) surface_end: i64,
+    /// The distance in half-voxels where the pixel's footprint across is one voxel wide, on
+    /// either surface (at most 2^23): nearer, voxels are magnified.
+    pub(crate) magnify_end: i64,
     /// Voxels of horizontal distance per half-voxel step, `sec(φ)/2`, for reports.
     pub(crate) run: f64,
     /// The rows walked, `first_row..end_row` from the bottom ([`Column::rows`]).
@@ -321,6 +324,7 @@ impl Column {
         n_far: 0,
         lod_base: [0; 2],
         surface_end: 0,
+        magnify_end: 0,
         run: 0.0,
         first_row: 0,
         end_row: 0,

@@ -21,6 +21,7 @@ use crate::terrain::cost::Cost;
 use crate::terrain::frame::Frame;
 use crate::terrain::listen::Listen;
 use crate::terrain::march::{Corners, Flow, Hits, March, Voxel};
+use crate::terrain::narrow::Narrow;
 use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
 use crate::terrain::surface::Smooth;
 use crate::terrain::Terrain;
@@ -255,6 +256,7 @@ impl<'w, 'f, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f,
             wedge: self.column.wedge,
             climb: self.column.lod_base(S::SWITCH),
             surface: self.column.surface_end,
+            magnified: self.column.magnify_end,
         };
         self.sampler.begin_pixel(&pixel, self.cost);
         ray
@@ -627,7 +629,9 @@ pub(crate) fn render<const SURFACE: bool, S: Sampler + Clone, C: Cost + Listen, 
 }
 
 /// Walks column `col` with a fresh copy of `sampler`: on the footprint's surface
-/// ([`walk_into_surface`]) if `SURFACE`, else [`walk_into`].
+/// ([`walk_into_surface`]) if `SURFACE`, else [`walk_into`], for a sampler that asks
+/// ([`Sampler::NARROW`]) with Eq. 4 narrowed at magnified voxels if the column begins among
+/// them ([`Narrow`]).
 #[inline(always)]
 pub(crate) fn walk_fresh<
     const SURFACE: bool,
@@ -646,9 +650,33 @@ pub(crate) fn walk_fresh<
     if SURFACE {
         let mut s = Smooth::new(sampler.clone());
         walk_into_surface(frame, terrain, col, rows, &mut s, cost, out);
+    } else if S::NARROW && meets_magnified(frame, terrain, col, rows.start) {
+        let mut s = Narrow::new(sampler.clone());
+        walk_into(frame, terrain, col, rows, &mut s, cost, out);
     } else {
         walk_into(frame, terrain, col, rows, &mut sampler.clone(), cost, out);
     }
+}
+
+/// Whether column `col`'s walk from row `first` can meet a magnified voxel: whether its lowest
+/// ray, from the first voxel ahead of the eye to where the pixel's footprint across reaches
+/// one voxel ([`Column::magnify_end`]), comes below the map's highest point. The rays above it
+/// lie above it there.
+#[inline(never)]
+fn meets_magnified(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize, first: usize) -> bool {
+    let Some(column) = frame.column(col) else {
+        return false;
+    };
+    let until = (column.n_eye.to_bits() >> 24).saturating_add(column.magnify_end);
+    if column.n_start >= until {
+        return false;
+    }
+    let lower = frame.ray(column, first);
+    let ray = Ray {
+        h: lower.at(column.n_start),
+        slope: lower.slope,
+    };
+    !out_of_reach(&ray, terrain.max_height(), column.n_start, until)
 }
 
 /// Runs `walk_column(x, out)` for every column `x` of `frame`, where `out` is column `x` of

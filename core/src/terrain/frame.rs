@@ -195,14 +195,18 @@ impl<'t> Frame<'t> {
                 Switch::ALL.map(|s| (2.0 * s.voxels() / (delta * sec)).clamp(2.0, 1e12) as i64);
             // The pixel's angular width is its columns' together, `delta / spacing`: its
             // footprint is one voxel at `2 / (pixel·sec)` half-voxels.
+            let one_voxel = 2.0 * spacing / (delta * sec);
             #[allow(
                 clippy::cast_possible_truncation,
-                reason = "clamped to [0, 1e12] here, so `as` drops only the fraction"
+                reason = "clamped to [0, 1e12] and [0, 2^23] here, so `as` drops only the fraction"
             )]
-            let surface_end = match options.surface {
-                Surface::Flat => 0,
-                Surface::Bilinear => (2.0 * spacing / (delta * sec)).clamp(0.0, 1e12) as i64,
-            };
+            let (surface_end, magnify_end) = (
+                match options.surface {
+                    Surface::Flat => 0,
+                    Surface::Bilinear => one_voxel.clamp(0.0, 1e12) as i64,
+                },
+                one_voxel.clamp(0.0, 8_388_608.0) as i64,
+            );
             *col = Column {
                 axis,
                 sign,
@@ -216,6 +220,7 @@ impl<'t> Frame<'t> {
                 n_far,
                 lod_base,
                 surface_end,
+                magnify_end,
                 run,
                 first_row: 0,
                 #[allow(

@@ -23,6 +23,7 @@ pub mod horizons;
 pub mod image;
 pub mod listen;
 pub mod map;
+mod narrow;
 // The voxel sequence under a column: the walk's internals; a `Cost` or `Sampler` sees
 // [`Voxel`], and whoever walks a column of their own the cursor (`crate::extend::March`).
 pub mod march;

@@ -45,6 +45,11 @@ pub struct Pixel {
     /// distance in half-voxels ahead of the eye where the pixel's footprint across reaches one
     /// voxel; 0 with flat-topped voxels.
     pub surface: i64,
+    /// The distance in half-voxels ahead of the eye where the pixel's footprint across reaches
+    /// one voxel, on either surface (at most 2^23): nearer, voxels are magnified, and the
+    /// samplers that ask ([`Sampler::NARROW`]) take Eq. 4 narrowed to the footprint there
+    /// ([`Voxel::sample_narrow`]).
+    pub magnified: i64,
 }
 
 /// What a sampler did with a hit.
@@ -94,6 +99,13 @@ pub trait Sampler {
     /// paper's uniform sequence, the walk tests (`Corners`): every one, by default, so that
     /// the walk misses no cell.
     const CORNERS: Corners = Corners::All;
+    /// Whether, on the flat tops, the walk hands this sampler the voxels nearer than where
+    /// the pixel's footprint across reaches one voxel ([`Pixel::magnified`]) with Eq. 4
+    /// narrowed to the footprint ([`Voxel::sample_narrow`]) as their colour across
+    /// ([`Voxel::sample_linear`] reads it): for the area modes. The walk of a column that
+    /// meets no magnified voxel is the sampler's own, so this costs a view that never
+    /// magnifies nothing.
+    const NARROW: bool = false;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C);
     /// The ray passes below the top `top` of the current voxel, `voxel`.
@@ -495,6 +507,8 @@ impl ExactArea {
 
 impl Sampler for ExactArea {
     const SWITCH: Switch = Switch::Late;
+    /// Eq. 4 narrows where voxels are magnified ([`Voxel::sample_narrow`]).
+    const NARROW: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, _: &mut C) {
         *self = Self::new();
@@ -744,6 +758,8 @@ impl PaperArea {
 
 impl Sampler for PaperArea {
     const SWITCH: Switch = Switch::Late;
+    /// Eq. 4 narrows where voxels are magnified ([`Voxel::sample_narrow`]).
+    const NARROW: bool = true;
     /// The ray resumes at the voxel's top with the pixel's slope (the parallel-ray assumption).
     const KEEPS_SLOPE: bool = true;
     #[inline(always)]

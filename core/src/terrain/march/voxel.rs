@@ -324,6 +324,43 @@ impl Voxel<'_> {
     /// centres straddle the ray's cross-axis position, weighted by distance (8-bit weights).
     #[inline(always)]
     pub fn sample_linear(&self) -> Color16 {
+        self.across_weighted(|w_there| w_there)
+    }
+
+    /// Eq. 4 where the pixel's footprint across is `d / one` cells wide, narrower than a cell
+    /// (`0 < d < one`: the hit's distance from the eye and the distance where the pixel's
+    /// footprint reaches one voxel, [`crate::terrain::sampler::Pixel::magnified`]), on the flat
+    /// tops: the voxel's own colour (point sampling's) where the footprint is at most half a
+    /// cell, then Eq. 4's weight of the cell across growing linearly to all of it at one cell,
+    /// where this is Eq. 4 ([`Voxel::sample_linear`]): continuous in the distance.
+    ///
+    /// Eq. 4 is the mean of two cells' colours over a footprint one cell wide (Sect. 4.1: "the
+    /// width of the voxel is equal to that of pixel footprint"), taken where the column's
+    /// centre line crosses the voxel's centre. Where voxels are magnified the walk meets every
+    /// cell the footprint crosses (corner cells included), each a step of its own, and what
+    /// the pixel sees of a stick is its own colour: a face is met at the cell's edge, not at
+    /// its centre (half a cell across away on a diagonal), and beside a lower cell Eq. 4 mixed
+    /// in that cell's colour where the ray passes over it. Measured against the truth on the
+    /// generated flat-topped maps (docs/measurements.md, "Eq. 4 where voxels are magnified"):
+    /// the footprint's box of the flat colours around the centre line, with or without the
+    /// cells' heights, was further off than the voxel's own colour. On the continuous surface
+    /// (a painted voxel), and above level 0 (where the walk never is while voxels are
+    /// magnified), it is Eq. 4.
+    #[inline(never)]
+    pub fn sample_narrow(&self, d: u32, one: u32) -> Color16 {
+        if self.level() != 0 || d >= one {
+            return self.sample_linear();
+        }
+        // Eq. 4's weight, scaled by how far the footprint has grown from half a cell to one
+        // (in 256ths: `2d − one < one ≤ 2^23`, times 256 below 2^31).
+        let grown = (2 * d).saturating_sub(one).saturating_mul(256) / one;
+        self.across_weighted(|w_there| (w_there * grown.min(256)) >> 8)
+    }
+
+    /// Eq. 4 with its weight of the neighbour across, `|b − 128|` of 256, mapped by `weight`
+    /// ([`Voxel::sample_linear`] keeps it).
+    #[inline(always)]
+    fn across_weighted(&self, weight: impl Fn(u32) -> u32) -> Color16 {
         if let Some([_, linear]) = self.paint {
             return linear;
         }
@@ -331,7 +368,7 @@ impl Voxel<'_> {
         // The fraction's top byte `b` (centre at 128): the neighbour across is on the side of
         // the centre the ray is on, and takes the weight |b − 128| of 256 (Eq. 4's distance).
         let b = (self.toward ^ m.flip) >> 24;
-        let w_there = b.abs_diff(128);
+        let w_there = weight(b.abs_diff(128));
         // Which way the neighbour lies in the array: one cell in the direction the ray moves
         // across (`dcross`, or 0 at a mirror edge, where the mirror repeats the edge voxel),
         // or one back (the cells behind, up to the other mirror edge, number
