@@ -63,7 +63,8 @@ fn f(h: Height) -> f64 {
 /// Every voxel `k` of the march (within the far distance) has a top slope from the eye
 /// `σ_k = (top_k − eye)/(n_k − n_eye)`. It is visible over the slope interval
 /// `(max(s_0, max_{j<k} σ_j), σ_k]`; its weight in pixel `i` is the length of that interval
-/// inside `[s_i, s_{i+1}]`. What is left above the last voxel is sky. Returns, bottom to top,
+/// inside `[s_i, s_{i+1}]`, its colour Eq. 4 (narrowed where magnified). What is left above
+/// the last voxel is sky. Returns, bottom to top,
 /// each pixel's colour as 8.8 per channel in f64 (before rounding to 8 bits).
 fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[f64; 3]> {
     // The sequence area sampling walks.
@@ -92,8 +93,18 @@ fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[
         let n = march.n() as f64;
         let sigma = (f(march.height()) - eye) / (n - n_eye);
         if sigma > horizon {
-            let c = march.sample_linear().map(f64::from);
-            add(horizon, sigma, c);
+            // Eq. 4, narrowed to the footprint where the voxels are magnified, as the area
+            // modes take it (`Voxel::sample_narrow`).
+            let d = march.n() - (column.n_eye().to_bits() >> 24);
+            let c = if d < column.magnify_end() {
+                let fit = |x: i64| x.clamp(1, 1 << 23) as u32;
+                march
+                    .voxel()
+                    .sample_narrow(fit(d), fit(column.magnify_end()))
+            } else {
+                march.sample_linear()
+            };
+            add(horizon, sigma, c.map(f64::from));
             horizon = sigma;
         }
         march.advance();

@@ -372,6 +372,14 @@ impl Column {
         self.n_far
     }
 
+    /// The distance ahead of the eye, half-voxels, where the pixel's footprint across reaches
+    /// one voxel (at most 2^23): nearer, voxels are magnified
+    /// ([`crate::terrain::sampler::Pixel::magnified`]).
+    #[doc(hidden)] // the walk's own coordinates, for the tests
+    pub fn magnify_end(&self) -> i64 {
+        self.magnify_end
+    }
+
     /// +1 when the column's rays move towards increasing major coordinate, −1 otherwise.
     #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn sign(&self) -> i8 {

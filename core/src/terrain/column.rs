@@ -170,7 +170,9 @@ impl<P: PixelSink> ColumnOut for ImageColumn<'_, P> {
 /// `i` to `out[i − rows.start]`.
 ///
 /// The walk starts from the eye at `rows.start`, so a walk of one row is the paper's
-/// "restart every ray" reference. Rows beyond the image or beyond `out` are not drawn.
+/// "restart every ray" reference. Rows beyond the image or beyond `out` are not drawn. A
+/// sampler that asks ([`Sampler::NARROW`]) takes Eq. 4 narrowed at magnified voxels, as in
+/// the frame's render.
 pub fn walk<S: Sampler, C: Cost + Listen>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
@@ -180,7 +182,19 @@ pub fn walk<S: Sampler, C: Cost + Listen>(
     cost: &mut C,
     out: &mut [Rgb],
 ) {
-    walk_into(frame, terrain, col, rows, sampler, cost, out);
+    if S::NARROW && meets_magnified(frame, terrain, col, rows.start) {
+        walk_into(
+            frame,
+            terrain,
+            col,
+            rows,
+            &mut Narrow::new(sampler),
+            cost,
+            out,
+        );
+    } else {
+        walk_into(frame, terrain, col, rows, sampler, cost, out);
+    }
 }
 
 /// The pixels of one column as the walk fills them, bottom to top (Fig. 4): the current pixel

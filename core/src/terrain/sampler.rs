@@ -156,6 +156,57 @@ pub trait Sampler {
     }
 }
 
+/// A sampler borrowed is the sampler: the walk may wrap a caller's sampler (as
+/// [`crate::extend::walk()`] does where voxels are magnified) and leave its state with the
+/// caller.
+impl<S: Sampler + ?Sized> Sampler for &mut S {
+    const SWITCH: Switch = S::SWITCH;
+    const KEEPS_SLOPE: bool = S::KEEPS_SLOPE;
+    const ONE_HIT_PER_PIXEL: bool = S::ONE_HIT_PER_PIXEL;
+    const FILTER: Filter = S::FILTER;
+    const WIDE: bool = S::WIDE;
+    const ACROSS: u32 = S::ACROSS;
+    const CORNERS: Corners = S::CORNERS;
+    const NARROW: bool = S::NARROW;
+    #[inline(always)]
+    fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
+        (**self).begin_pixel(pixel, cost);
+    }
+    #[inline(always)]
+    fn hit<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+    ) -> Hit {
+        (**self).hit(voxel, top, ray, cost)
+    }
+    #[inline(always)]
+    fn hit_again<C: Cost + Listen>(
+        &mut self,
+        voxel: &Voxel<'_>,
+        top: Height,
+        ray: &mut Ray,
+        cost: &mut C,
+        again: bool,
+    ) -> Hit {
+        (**self).hit_again(voxel, top, ray, cost, again)
+    }
+    #[inline(always)]
+    fn sky<C: Cost + Listen>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
+        (**self).sky(ray, sky, cost)
+    }
+    #[inline(always)]
+    fn carries(&self) -> bool {
+        (**self).carries()
+    }
+    #[inline(always)]
+    fn exact(&self) -> Option<Color32> {
+        (**self).exact()
+    }
+}
+
 /// PS: one voxel per pixel, `C(x, ⌊y⌋)` (Fig. 4, Sect. 4.1).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Point;
