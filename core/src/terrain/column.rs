@@ -644,8 +644,8 @@ pub(crate) fn render<const SURFACE: bool, S: Sampler + Clone, C: Cost + Listen, 
 
 /// Walks column `col` with a fresh copy of `sampler`: on the footprint's surface
 /// ([`walk_into_surface`]) if `SURFACE`, else [`walk_into`], for a sampler that asks
-/// ([`Sampler::NARROW`]) with Eq. 4 narrowed at magnified voxels if the column begins among
-/// them ([`Narrow`]).
+/// ([`Sampler::NARROW`]) with Eq. 4 narrowed at magnified voxels if the column can meet them
+/// ([`Narrow`], [`meets_magnified`]).
 #[inline(always)]
 pub(crate) fn walk_fresh<
     const SURFACE: bool,
