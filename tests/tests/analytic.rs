@@ -64,8 +64,8 @@ fn f(h: Height) -> f64 {
 /// `σ_k = (top_k − eye)/(n_k − n_eye)`. It is visible over the slope interval
 /// `(max(s_0, max_{j<k} σ_j), σ_k]`; its weight in pixel `i` is the length of that interval
 /// inside `[s_i, s_{i+1}]`, its colour Eq. 4 (narrowed where magnified). What is left above
-/// the last voxel is sky. Returns, bottom to top,
-/// each pixel's colour as 8.8 per channel in f64 (before rounding to 8 bits).
+/// the last voxel is sky. Returns, bottom to top, each pixel's colour as 8.8 per channel in
+/// f64 (before rounding to 8 bits).
 fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[f64; 3]> {
     // The sequence area sampling walks.
     let switch = <ExactArea as Sampler>::SWITCH;

@@ -5,8 +5,8 @@
 //! - Against a float ray caster (per pixel, no coherence, a 4×4 grid of rays per pixel
 //!   averaged) on a plane, a wall and a checkerboard, at pitch 60° and 85° with roll 30°, the
 //!   root-mean-square difference is at most `TOLERANCE` levels (`CHECKER_TOLERANCE` on the
-//!   checkerboard, whose magnified checks are sharp). The same caster with the
-//!   roll's sign flipped is far off, so the comparison can fail.
+//!   checkerboard, whose magnified checks are sharp). The same caster with the roll's sign
+//!   flipped is far off, so the comparison can fail.
 //! - On a flat plane the horizon of a rolled camera is a straight line at the roll angle,
 //!   within half a pixel.
 //! - Roll 180° is the unrolled image turned by 180°, within the resampling's rounding.
