@@ -93,18 +93,7 @@ fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[
         let n = march.n() as f64;
         let sigma = (f(march.height()) - eye) / (n - n_eye);
         if sigma > horizon {
-            // Eq. 4, narrowed to the footprint where the voxels are magnified, as the area
-            // modes take it (`Voxel::sample_narrow`).
-            let d = march.n() - (column.n_eye().to_bits() >> 24);
-            let c = if d < column.magnify_end() {
-                let fit = |x: i64| x.clamp(1, 1 << 23) as u32;
-                march
-                    .voxel()
-                    .sample_narrow(fit(d), fit(column.magnify_end()))
-            } else {
-                march.sample_linear()
-            };
-            add(horizon, sigma, c.map(f64::from));
+            add(horizon, sigma, eq4_narrowed(&march, column).map(f64::from));
             horizon = sigma;
         }
         march.advance();
@@ -121,13 +110,28 @@ fn area_reference(frame: &Frame<'_>, terrain: &Terrain<'_>, col: usize) -> Vec<[
         .collect()
 }
 
+/// Eq. 4 at the march's voxel, narrowed to the footprint where the voxels are magnified, as
+/// the area modes and SS_N take it (`Voxel::sample_narrow`).
+fn eq4_narrowed(march: &March<'_, '_>, column: &Column) -> [u16; 3] {
+    let d = march.n() - (column.n_eye().to_bits() >> 24);
+    if d < column.magnify_end() {
+        let fit = |x: i64| x.clamp(1, 1 << 23) as u32;
+        march
+            .voxel()
+            .sample_narrow(fit(d), fit(column.magnify_end()))
+    } else {
+        march.sample_linear()
+    }
+}
+
 /// Supersampling of one column per Fig. 8, independently of `sampler::Super`.
 ///
 /// Pixel `i` begins at the voxel where pixel `i − 1`'s last sample hit (the column's first
 /// voxel for pixel 0). Its first sub-ray is `R_i`; at `R_i`'s first hit `n0`,
 /// `Δ = max(0, (R_{i+1}(n0) − R_i(n0)) >> log2 N)` on the raw bits; sub-ray `j` has height
 /// `R_i(n) + jΔ` at voxel `n` and hits the first voxel, at or after the previous sub-ray's hit,
-/// whose top is above it. The pixel is `(Σ sample_linear) >> log2 N`.
+/// whose top is above it. The pixel is `(Σ Eq. 4) >> log2 N`, Eq. 4 narrowed where voxels are
+/// magnified ([`eq4_narrowed`]).
 /// When the voxels run out (far distance) the missing sub-samples are sky; a pixel with no
 /// sub-sample at all is sky. Returns the colours and the number of terrain sub-samples per
 /// pixel, bottom to top.
@@ -166,7 +170,7 @@ fn ss_reference(
                     let n0 = march.n();
                     delta = ((upper.at(n0).to_bits() - lower.at(n0).to_bits()) >> log2).max(0);
                 }
-                for (s, c) in sum.iter_mut().zip(march.sample_linear()) {
+                for (s, c) in sum.iter_mut().zip(eq4_narrowed(&march, column)) {
                     *s += u32::from(c);
                 }
                 j += 1;

@@ -12,7 +12,7 @@
 //! ray can meet the terrain nearer than that distance, so that a view that never magnifies
 //! walks as before.
 
-use crate::color::{Color32, Rgb};
+use crate::color::{Color16, Color32, Rgb};
 use crate::num::Height;
 use crate::terrain::camera::Switch;
 use crate::terrain::cost::Cost;
@@ -30,6 +30,9 @@ pub(crate) struct Narrow<S> {
     until: i64,
     /// That distance from the eye, half-voxels (at most 2^23).
     one: i64,
+    /// The last magnified voxel's colours ([`Voxel::painted`]), for a hit on it again
+    /// ([`Sampler::hit_again`]: SS_N's next sub-ray, or the next pixel's ray).
+    last: [Color16; 2],
 }
 
 impl<S> Narrow<S> {
@@ -39,6 +42,7 @@ impl<S> Narrow<S> {
             inner,
             until: 0,
             one: 0,
+            last: [[0; 3]; 2],
         }
     }
 }
@@ -71,7 +75,8 @@ impl<S: Sampler> Sampler for Narrow<S> {
     }
 
     /// A magnified voxel goes to `S` painted with its own colour and Eq. 4 narrowed to the
-    /// footprint ([`Voxel::sample_narrow`]); any other as it is.
+    /// footprint ([`Voxel::sample_narrow`]), painted once however often it is hit again (the
+    /// column's eye and `until` are the same for every pixel); any other as it is.
     #[inline(always)]
     fn hit_again<C: Cost + Listen>(
         &mut self,
@@ -85,8 +90,12 @@ impl<S: Sampler> Sampler for Narrow<S> {
         if n >= self.until {
             return self.inner.hit_again(voxel, top, ray, cost, again);
         }
-        let painted = self.paint(voxel, n);
-        self.inner.hit_again(&painted, top, ray, cost, again)
+        if !again {
+            self.last = self.paint(voxel, n);
+        }
+        let [own, across] = self.last;
+        self.inner
+            .hit_again(&voxel.painted(own, across), top, ray, cost, again)
     }
 
     fn sky<C: Cost + Listen>(&mut self, ray: &Ray, sky: Rgb, cost: &mut C) -> Option<Rgb> {
@@ -105,10 +114,10 @@ impl<S: Sampler> Sampler for Narrow<S> {
 }
 
 impl<S> Narrow<S> {
-    /// `voxel`, centred at `n` (nearer than `until`), painted with its own colour and Eq. 4
+    /// The colours of `voxel`, centred at `n` (nearer than `until`): its own, and Eq. 4
     /// narrowed to the footprint. Kept out of the walk's loop.
     #[inline(never)]
-    fn paint<'v>(&self, voxel: &Voxel<'v>, n: i64) -> Voxel<'v> {
+    fn paint(&self, voxel: &Voxel<'_>, n: i64) -> [Color16; 2] {
         // 0 < d < one ≤ 2^23: the walk's voxels lie ahead of the eye.
         let d = self.one - (self.until - n);
         let own = voxel.sample_point();
@@ -119,6 +128,6 @@ impl<S> Narrow<S> {
             let fit = |x: i64| u32::try_from(x.clamp(1, 1 << 23)).unwrap_or(1);
             voxel.sample_narrow(fit(d), fit(self.one))
         };
-        voxel.painted(own, across)
+        [own, across]
     }
 }

@@ -382,6 +382,9 @@ impl<const N: u32> Sampler for Super<N> {
     };
     /// The next sub-ray is the ray raised by `Δ`: parallel.
     const KEEPS_SLOPE: bool = true;
+    /// Each sub-ray samples Eq. 4, which narrows where voxels are magnified
+    /// ([`Voxel::sample_narrow`]) as for the area modes.
+    const NARROW: bool = true;
     #[inline(always)]
     fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, _: &mut C) {
         self.sum = [0; 3];

@@ -65,7 +65,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::color::{mix256, Color16, Color32, Rgb};
+use crate::color::{mix256, to_color16, Color16, Color32, Rgb};
 use crate::divide::{div_rem, div_rem_signed};
 use crate::num::Height;
 use crate::terrain::blend::{distance, mix, weight};
@@ -118,6 +118,10 @@ pub struct WedgeOn<const SMOOTH: bool> {
     /// Each lane's last hit painted on the continuous surface ([`WedgeOn::paint`]), repainted
     /// for each pixel it is carried into; `None` on flat tops.
     painted: [Option<Painted>; LANES],
+    /// Where the pixel's footprint across reaches one voxel, half-voxels ahead of the eye
+    /// ([`Pixel::magnified`]): nearer, on the flat tops, a lane's colour narrows
+    /// ([`WedgeOn::narrowing`]).
+    magnified: i64,
 }
 
 /// A lane's hit on the continuous surface, as [`WedgeOn::begin_pixel`] repaints it for a
@@ -154,7 +158,26 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             climb: 0,
             surface: 0,
             painted: [None; LANES],
+            magnified: 0,
         }
+    }
+
+    /// How much of Eq. 4's integral a lane's colour keeps at a step `d` half-voxels from the
+    /// eye on `level`, in 256ths of the way from the cells' own colours (the box of the flat
+    /// tops over the lane, each cell by the length it covers) to it; `None` where the colour is
+    /// Eq. 4's integral alone. As [`Voxel::sample_narrow`] narrows Eq. 4 for `as`: the flat
+    /// colours up to half a voxel, Eq. 4's from one voxel on, linear between. Eq. 4 blurs
+    /// across a whole cell, a voxel's width being the footprint's (Sect. 4.1); a lane narrower
+    /// than that sees the flat tops it covers. On the continuous surface (`SMOOTH`), whose
+    /// colours are continuous, never.
+    #[inline(always)]
+    fn narrowing(&self, d: i64, level: u32) -> Option<u32> {
+        if SMOOTH || level != 0 || d >= self.magnified {
+            return None;
+        }
+        // 0 ≤ 2d − m < m ≤ 2^23 (`Pixel::magnified`), times 256 below 2^31.
+        let grown = (2 * d - self.magnified).max(0) * 256 / self.magnified.max(1);
+        u32::try_from(grown.min(256)).ok()
     }
 
     /// The wedge's cross-section at `voxel`, `d` half-voxels from the eye ([`distance`]), in
@@ -393,6 +416,7 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         self.n_eye = pixel.eye.n.to_bits() >> 24;
         self.climb = pixel.climb;
         self.surface = pixel.surface;
+        self.magnified = pixel.magnified;
     }
 
     /// A step where the highest of the five cells around the centre line (the walk's `top`,
@@ -540,10 +564,19 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             if own <= ray_h {
                 return None;
             }
-            let color = if hi - lo >= ONE >> 8 {
-                row_color(voxel, lo, hi)
-            } else {
-                voxel.sample_linear()
+            let eq4 = || {
+                if hi - lo >= ONE >> 8 {
+                    row_color(voxel, lo, hi)
+                } else {
+                    voxel.sample_linear()
+                }
+            };
+            let color = match self.narrowing(d, voxel.level()) {
+                None => eq4(),
+                Some(grown) => {
+                    let flat = to_color16(voxel.color_at(voxel.across(cell)));
+                    narrowed(flat, grown, eq4)
+                }
             };
             return Some((own, color));
         }
@@ -551,6 +584,9 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
         let (mut sum, mut total, mut cells) = (0i64, 0i64, 0u32);
         let mut highest = 0u16;
+        // Where the lane's colour narrows, the box of the cells' own colours over it.
+        let narrowing = self.narrowing(d, voxel.level());
+        let mut flat = Lanes::default();
         let mut add = |k: i64, at: usize| {
             let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
             let h = voxel.height_at(at);
@@ -558,6 +594,9 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             sum += i64::from(h) * cover;
             total += cover;
             cells += 1;
+            if narrowing.is_some() {
+                flat.add(cover, voxel.color_at(at));
+            }
         };
         let cells_across = first.max(-2)..last.min(2) + 1;
         // Away from the mirror edges a stride apart (one loop without the test), else through
@@ -628,10 +667,16 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         if mean <= ray_h {
             return None;
         }
-        let color = row_color(voxel, lo, hi);
-        let color = match blend {
-            Some((finer, span)) => Self::blend_color(color, &finer, &span, f),
-            None => color,
+        let eq4 = || {
+            let color = row_color(voxel, lo, hi);
+            match blend {
+                Some((finer, span)) => Self::blend_color(color, &finer, &span, f),
+                None => color,
+            }
+        };
+        let color = match (narrowing, flat.mean()) {
+            (Some(grown), Some(flat)) => narrowed(flat, grown, eq4),
+            _ => eq4(),
         };
         Some((mean, color))
     }
@@ -704,6 +749,16 @@ impl FinerSpan {
     fn cover(&self, k: i64) -> i64 {
         (self.hi.min((k + 1) << 32) - self.lo.max(k << 32)) >> 16
     }
+}
+
+/// A lane's colour where it narrows ([`WedgeOn::narrowing`]): the flat tops' `flat` mixed
+/// with Eq. 4's integral (`eq4`, read only if it weighs) by `grown` of 256.
+#[inline(always)]
+fn narrowed(flat: Color16, grown: u32, eq4: impl FnOnce() -> Color16) -> Color16 {
+    if grown == 0 {
+        return flat;
+    }
+    mix(flat, eq4(), i64::from(grown) << 8)
 }
 
 /// Lane `k` of `LANES` across `[lo, hi)`: equal parts, the last to `hi`.
