@@ -584,9 +584,6 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
         let (mut sum, mut total, mut cells) = (0i64, 0i64, 0u32);
         let mut highest = 0u16;
-        // Where the lane's colour narrows, the box of the cells' own colours over it.
-        let narrowing = self.narrowing(d, voxel.level());
-        let mut flat = Lanes::default();
         let mut add = |k: i64, at: usize| {
             let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
             let h = voxel.height_at(at);
@@ -594,11 +591,9 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             sum += i64::from(h) * cover;
             total += cover;
             cells += 1;
-            if narrowing.is_some() {
-                flat.add(cover, voxel.color_at(at));
-            }
         };
         let cells_across = first.max(-2)..last.min(2) + 1;
+        let cells_range = cells_across.clone();
         // Away from the mirror edges a stride apart (one loop without the test), else through
         // the mirror.
         #[allow(
@@ -674,9 +669,14 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
                 None => color,
             }
         };
-        let color = match (narrowing, flat.mean()) {
-            (Some(grown), Some(flat)) => narrowed(flat, grown, eq4),
-            _ => eq4(),
+        // Where the lane's colour narrows, the box of the cells' own colours over it (read
+        // again here, so that the loop above, which every step runs, stays as it was).
+        let color = match self.narrowing(d, voxel.level()) {
+            Some(grown) => match flat_box(voxel, lo, hi, cells_range) {
+                Some(flat) => narrowed(flat, grown, eq4),
+                None => eq4(),
+            },
+            None => eq4(),
         };
         Some((mean, color))
     }
@@ -749,6 +749,24 @@ impl FinerSpan {
     fn cover(&self, k: i64) -> i64 {
         (self.hi.min((k + 1) << 32) - self.lo.max(k << 32)) >> 16
     }
+}
+
+/// The box of the flat tops' own colours over `[lo, hi)` across `voxel`'s row (cells `ks`
+/// from the voxel's, the ones the step's mean covers), each cell's colour by the length it
+/// covers, for a lane's colour where it narrows ([`WedgeOn::narrowing`]); `None` with no
+/// length. Out of line: only steps nearer than one voxel's footprint read it.
+#[inline(never)]
+fn flat_box(voxel: &Voxel<'_>, lo: i64, hi: i64, ks: core::ops::Range<i64>) -> Option<Color16> {
+    let mut flat = Lanes::default();
+    for k in ks {
+        let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "-2 ≤ k ≤ 2 (the step's cells across)"
+        )]
+        flat.add(cover, voxel.color_at(voxel.across(k as isize)));
+    }
+    flat.mean()
 }
 
 /// A lane's colour where it narrows ([`WedgeOn::narrowing`]): the flat tops' `flat` mixed
