@@ -22,7 +22,7 @@ use crate::terrain::frame::Frame;
 use crate::terrain::listen::Listen;
 use crate::terrain::march::{Corners, Flow, Hits, March, Voxel};
 use crate::terrain::narrow::Narrow;
-use crate::terrain::sampler::{Hit, Pixel, Ray, Sampler};
+use crate::terrain::sampler::{Hit, Inner, Pixel, Ray, Sampler};
 use crate::terrain::surface::Smooth;
 use crate::terrain::Terrain;
 
@@ -183,7 +183,7 @@ pub fn walk<S: Sampler, C: Cost + Listen>(
     out: &mut [Rgb],
 ) {
     if S::NARROW && meets_magnified(frame, terrain, col, rows.start) {
-        walk_into(
+        walk_into_narrow(
             frame,
             terrain,
             col,
@@ -338,9 +338,10 @@ impl<'w, 'f, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f,
     }
 }
 
-impl<'w, 'f, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f, Smooth<S>, C, O> {
-    /// The same pixels, from here on sampled by the surface's inner sampler alone.
-    fn into_inner(self) -> Pixels<'w, 'f, S, C, O> {
+impl<'w, 'f, W: Inner, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f, W, C, O> {
+    /// The same pixels, from here on sampled by the wrapper's inner sampler alone (the
+    /// continuous surface's, or `Narrow`'s).
+    fn into_inner(self) -> Pixels<'w, 'f, W::Inner, C, O> {
         Pixels {
             frame: self.frame,
             column: self.column,
@@ -488,6 +489,53 @@ pub(crate) fn walk_into_surface<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Si
     let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
     let mut ray = px.begin(px.upper, march.n());
     if on_surface {
+        match ride_column::<true, _, _, _>(terrain, &mut march, &mut px, ray) {
+            Ridden::Done => {
+                px.cost.end_column();
+                return;
+            }
+            Ridden::Sky(ray) => {
+                px.end_in_sky(ray, march.n());
+                px.cost.end_column();
+                return;
+            }
+            Ridden::SurfaceEnd(at) => ray = at,
+        }
+        march.leave_surface(corners);
+    }
+    ride_to_the_end(terrain, &mut march, &mut px.into_inner(), ray);
+}
+
+/// [`walk_into`] with Eq. 4 narrowed at magnified voxels ([`Narrow`]`<S>`) from the eye to
+/// where the pixel's footprint across reaches one voxel ([`Column::magnify_end`]), then `S`'s
+/// own walk, which pays nothing for it, as [`walk_into_surface`] hands over. The hand-over
+/// changes no hit and no colour: the march is the same (cells entered at a corner as `S`
+/// asks, on both sides), and from that distance on [`Narrow`] hands every voxel to `S` as it
+/// is.
+#[inline(never)]
+pub(crate) fn walk_into_narrow<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
+    frame: &Frame<'_>,
+    terrain: &Terrain<'_>,
+    col: usize,
+    rows: Range<usize>,
+    sampler: &mut Narrow<S>,
+    cost: &mut C,
+    out: &mut O,
+) {
+    let Some((column, rows)) = column_rows(frame, col, rows, out.rows()) else {
+        return;
+    };
+    cost.begin_column(col);
+    let corners = S::CORNERS != Corners::Off;
+    let until = (column.n_eye.to_bits() >> 24).saturating_add(column.magnify_end);
+    let mut march = March::new(frame, terrain, column, S::SWITCH).with_corners(corners);
+    let magnified = march.n() < until;
+    if magnified {
+        march = march.handing_over_at(until);
+    }
+    let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
+    let mut ray = px.begin(px.upper, march.n());
+    if magnified {
         match ride_column::<true, _, _, _>(terrain, &mut march, &mut px, ray) {
             Ridden::Done => {
                 px.cost.end_column();
@@ -666,7 +714,7 @@ pub(crate) fn walk_fresh<
         walk_into_surface(frame, terrain, col, rows, &mut s, cost, out);
     } else if S::NARROW && meets_magnified(frame, terrain, col, rows.start) {
         let mut s = Narrow::new(sampler.clone());
-        walk_into(frame, terrain, col, rows, &mut s, cost, out);
+        walk_into_narrow(frame, terrain, col, rows, &mut s, cost, out);
     } else {
         walk_into(frame, terrain, col, rows, &mut sampler.clone(), cost, out);
     }

@@ -10,7 +10,8 @@
 //! the continuous surface hands its own colours (`surface`'s `Smooth`): the area modes ask for
 //! it ([`Sampler::NARROW`]), on the flat tops; the walk takes it only for a column whose lowest
 //! ray can meet the terrain nearer than that distance, so that a view that never magnifies
-//! walks as before.
+//! walks as before, and only up to that distance: there it hands the pixels over to the
+//! sampler inside (`column`'s `walk_into_narrow`), whose walk beyond pays nothing for it.
 
 use crate::color::{Color16, Color32, Rgb};
 use crate::num::Height;
@@ -20,7 +21,7 @@ use crate::terrain::fan::Filter;
 use crate::terrain::listen::Listen;
 use crate::terrain::march::{Corners, Voxel};
 use crate::terrain::ray::Ray;
-use crate::terrain::sampler::{Hit, Pixel, Sampler};
+use crate::terrain::sampler::{Hit, Inner, Pixel, Sampler};
 
 /// `S` with Eq. 4 narrowed to the footprint at magnified voxels (see the module docs).
 #[derive(Clone, Copy, Debug, Default)]
@@ -44,6 +45,13 @@ impl<S> Narrow<S> {
             one: 0,
             last: [[0; 3]; 2],
         }
+    }
+}
+
+impl<S> Inner for Narrow<S> {
+    type Inner = S;
+    fn inner_mut(&mut self) -> &mut S {
+        &mut self.inner
     }
 }
 

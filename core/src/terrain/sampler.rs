@@ -67,6 +67,16 @@ pub enum Hit {
     Rejected,
 }
 
+/// A sampler that wraps another for part of a column's walk (`surface`'s `Smooth` up to
+/// where the continuous surface ends, `narrow`'s `Narrow` up to where voxels stop being
+/// magnified): the walk goes on with the one inside from there (`column`'s hand-over).
+pub(crate) trait Inner {
+    /// The sampler inside.
+    type Inner;
+    /// The sampler inside, in the state the wrapper left it.
+    fn inner_mut(&mut self) -> &mut Self::Inner;
+}
+
 /// The per-hit code of a sampling mode.
 pub trait Sampler {
     /// Where the walk climbs pyramid levels for this mode (Sect. 3): the paper's nearest level

@@ -63,7 +63,7 @@ use crate::terrain::fan::Filter;
 use crate::terrain::listen::Listen;
 use crate::terrain::march::{Behind, Corners, Voxel};
 use crate::terrain::ray::Ray;
-use crate::terrain::sampler::{Hit, Pixel, Sampler};
+use crate::terrain::sampler::{Hit, Inner, Pixel, Sampler};
 
 /// How much of the continuous surface a step at `d` half-voxels from the eye takes, 16
 /// fractional bits, where the pixel's footprint reaches one voxel at `end` half-voxels: all of
@@ -200,10 +200,11 @@ impl<S> Smooth<S> {
             color(linear, behind.color, linear, t, f),
         )
     }
+}
 
-    /// The sampler inside, which the walk goes on with where the surface ends
-    /// ([`crate::terrain::column`]'s hand-over).
-    pub(crate) fn inner_mut(&mut self) -> &mut S {
+impl<S> Inner for Smooth<S> {
+    type Inner = S;
+    fn inner_mut(&mut self) -> &mut S {
         &mut self.inner
     }
 }

@@ -255,6 +255,16 @@ impl<'a, 't> March<'a, 't> {
     #[must_use]
     pub(crate) fn on_surface_until(mut self, until: i64) -> Self {
         self.corners = false;
+        self.handing_over_at(until)
+    }
+
+    /// The same cursor with its runs ending at the last voxel before `until` (`n`,
+    /// half-voxels), where the walk hands over to another sampler ([`March::past_surface`]
+    /// tells it; [`March::leave_surface`] goes on). [`March::on_surface_until`] without the
+    /// surface's change of the cells entered at a corner: `Narrow`'s magnified voxels end
+    /// there.
+    #[must_use]
+    pub(crate) fn handing_over_at(mut self, until: i64) -> Self {
         self.surface_until = until;
         self.plan_run();
         self
