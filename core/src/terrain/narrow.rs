@@ -7,11 +7,12 @@
 //! cell what the pixel sees of a fraction of one, and beside a lower cell it mixes in that
 //! cell's colour on a stick's face that the ray passes over it to meet. [`Narrow`] hands its
 //! sampler those voxels with Eq. 4 narrowed to the footprint ([`Voxel::sample_narrow`]), as
-//! the continuous surface hands its own colours (`surface`'s `Smooth`): the area modes ask for
-//! it ([`Sampler::NARROW`]), on the flat tops; the walk takes it only for a column whose lowest
-//! ray can meet the terrain nearer than that distance, so that a view that never magnifies
-//! walks as before, and only up to that distance: there it hands the pixels over to the
-//! sampler inside (`column`'s `walk_into_narrow`), whose walk beyond pays nothing for it.
+//! the continuous surface hands its own colours (`surface`'s `Smooth`): the area modes and
+//! SS_N ask for it ([`Sampler::NARROW`]), on the flat tops. The walk takes it only for a
+//! column whose lowest ray can meet the terrain nearer than that distance, so that a view that
+//! never magnifies walks as before, and only up to that distance: there it hands the pixels
+//! over to the sampler inside (`column`'s `walk_into_narrow`), whose walk beyond pays nothing
+//! for it.
 
 use crate::color::{Color16, Color32, Rgb};
 use crate::num::Height;

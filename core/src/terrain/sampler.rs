@@ -112,9 +112,10 @@ pub trait Sampler {
     /// Whether, on the flat tops, the walk hands this sampler the voxels nearer than where
     /// the pixel's footprint across reaches one voxel ([`Pixel::magnified`]) with Eq. 4
     /// narrowed to the footprint ([`Voxel::sample_narrow`]) as their colour across
-    /// ([`Voxel::sample_linear`] reads it): for the area modes. The walk of a column that
-    /// meets no magnified voxel is the sampler's own, so this costs a view that never
-    /// magnifies nothing.
+    /// ([`Voxel::sample_linear`] reads it): for the area modes and SS_N. The walk of a column
+    /// that meets no magnified voxel is the sampler's own, and one that does hands over to
+    /// the sampler's own walk where voxels stop being magnified, so this costs a view that
+    /// never magnifies nothing.
     const NARROW: bool = false;
     /// A new pixel begins: its rays were just computed (Eqs. 2–3).
     fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C);
