@@ -66,20 +66,38 @@ fn given(p: *mut u8, size: usize) -> *mut u8 {
     p
 }
 
-/// Ends the run: one line, the temporary files removed, exit code 2. Whatever it allocates is
-/// lent without a limit ([`TRIPPED`]).
+/// Ends the run: one line, the temporary files removed, exit code 2. It writes the line
+/// without allocating (the system may have refused the allocation that brought it here);
+/// whatever else it allocates is lent without a limit ([`TRIPPED`]).
 #[cold]
 fn out_of_memory(size: usize, limit: usize) -> ! {
     crate::output::remove_temporaries_now();
-    let _ = writeln!(
-        std::io::stderr(),
-        "error: out of memory: {} more would pass the memory budget of {} (--max-memory, or \
-         what this machine, its control group and ulimit -v leave): give a smaller --size, \
-         --terrain-size or map, or bake the map (footprint map bake)",
-        crate::memory::show(size as u64),
-        crate::memory::show(limit as u64)
-    );
-    std::process::exit(2)
+    let size = crate::memory::Shown(size as u64);
+    let _ = if limit == usize::MAX {
+        writeln!(
+            std::io::stderr(),
+            "error: out of memory: the system refused {size} more (ulimit -v, or the memory this \
+             machine has left): give a smaller --size, --terrain-size or map, or bake the map \
+             (footprint map bake)"
+        )
+    } else {
+        writeln!(
+            std::io::stderr(),
+            "error: out of memory: {size} more would pass the memory budget of {} (--max-memory, \
+             or what this machine, its control group and ulimit -v leave): give a smaller \
+             --size, --terrain-size or map, or bake the map (footprint map bake)",
+            crate::memory::Shown(limit as u64)
+        )
+    };
+    // Not `std::process::exit`: its clean-up flushes standard output, which waits forever
+    // when the allocation that failed was standard output's own buffer, made on first use
+    // (`ulimit -v` just above what the binary maps). Standard error is unbuffered, and a run
+    // that ends here has no output worth flushing.
+    // SAFETY: `_exit` ends the process at once; no Rust code runs after it.
+    #[allow(unsafe_code, reason = "_exit is a C function")]
+    unsafe {
+        libc::_exit(2)
+    }
 }
 
 // SAFETY: every method forwards to `System` with the same arguments and returns its result;

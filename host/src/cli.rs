@@ -223,8 +223,6 @@ pub fn main() -> ExitCode {
     if let Some(bytes) = cli.max_memory {
         crate::memory::set_budget(bytes);
     }
-    // The hard guard: never past what the process really has, whatever --max-memory says.
-    crate::alloc_guard::set_limit(crate::memory::budget().min(crate::memory::room()));
     if let Err(e) = start_threads(cli.threads) {
         crate::note!("error: {e}");
         return ExitCode::from(2);
@@ -233,6 +231,12 @@ pub fn main() -> ExitCode {
         crate::note!("error: {e:#}");
         return ExitCode::from(2);
     }
+    // The hard guard: never past what the process really has, whatever --max-memory says. It
+    // is read once the threads run, so that their stacks are not lent twice, and it keeps
+    // [`RUNTIME_RESERVE`] back for what the C library allocates for itself (a thread's
+    // destructor list: glibc ends the process, with no message of ours, if it cannot).
+    let room = crate::memory::room().saturating_sub(RUNTIME_RESERVE);
+    crate::alloc_guard::set_limit(crate::memory::budget().min(room));
     if let Err(e) = claim_stdout(&cli.command, stdout_closed) {
         crate::note!("error: {e:#}");
         return ExitCode::from(2);
@@ -259,7 +263,31 @@ pub fn main() -> ExitCode {
 /// retried (the global pool is set once, failed or not). So the threads are first started in
 /// a pool of their own: if that fails, `--threads N` is refused in one line, and without it
 /// the run goes on with no thread but its own (the main thread as the pool's only worker).
+///
+/// Under an address-space limit (`ulimit -v`) a thread can start and then fail to set itself
+/// up (its signal stack, its destructor list), which ends the process with no message of
+/// ours; so the pool is only started where [`memory::rlimit_room`](crate::memory::rlimit_room)
+/// leaves [`THREAD_SPACE`] for each of its threads, twice over (the trial pool's threads may
+/// still be ending when the global one starts), and [`RUNTIME_RESERVE`] besides.
 fn start_threads(threads: Option<u16>) -> Result<(), String> {
+    let wanted = threads.map_or_else(default_threads, usize::from);
+    let need = (2 * wanted as u64 + 1) * THREAD_SPACE + RUNTIME_RESERVE;
+    let room = crate::memory::rlimit_room();
+    if room.is_some_and(|r| r < need) {
+        let room = crate::memory::show(room.unwrap_or(0));
+        if let Some(n) = threads {
+            return Err(format!(
+                "--threads {n}: the address-space limit (ulimit -v) leaves {room}, and {n} \
+                 threads need {}: give fewer threads or raise ulimit -v",
+                crate::memory::show(need)
+            ));
+        }
+        return rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .use_current_thread()
+            .build_global()
+            .map_err(|e| format!("cannot start the threads: {e}"));
+    }
     let builder = || {
         let b = rayon::ThreadPoolBuilder::new();
         match threads {
@@ -280,6 +308,24 @@ fn start_threads(threads: Option<u16>) -> Result<(), String> {
         Some(n) => format!("--threads {n}: {e}"),
         None => format!("cannot start the threads: {e}"),
     })
+}
+
+/// The address space one started thread takes: its stack (2 MiB, Rust's default), its guard
+/// page, its signal stack and its thread-local block, rounded up.
+const THREAD_SPACE: u64 = 3 << 20;
+
+/// The address space kept back from the allocation guard for the C library's own allocations
+/// and the threads' first use of thread-local storage.
+const RUNTIME_RESERVE: u64 = 4 << 20;
+
+/// The threads rayon starts without `--threads`: `RAYON_NUM_THREADS`, or one per core.
+fn default_threads() -> usize {
+    std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|v| v.parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .or_else(|| std::thread::available_parallelism().ok().map(usize::from))
+        .unwrap_or(1)
 }
 
 /// The exit code of a run that gave `result`, once what is left of standard output is flushed:

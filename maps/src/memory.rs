@@ -114,20 +114,31 @@ pub fn rlimit_room() -> Option<u64> {
 /// Bytes in a readable unit, three significant digits ("1.50 GB", "12.3 MB", "512 kB"), or
 /// bytes below a kilobyte.
 pub fn show(bytes: u64) -> String {
-    let b = bytes as f64;
-    let (v, unit) = match b {
-        b if b >= 1e12 => (b / 1e12, "TB"),
-        b if b >= 1e9 => (b / 1e9, "GB"),
-        b if b >= 1e6 => (b / 1e6, "MB"),
-        b if b >= 1e3 => (b / 1e3, "kB"),
-        _ => return format!("{bytes} bytes"),
-    };
-    let digits = match v {
-        v if v >= 99.95 => 0,
-        v if v >= 9.995 => 1,
-        _ => 2,
-    };
-    format!("{v:.digits$} {unit}")
+    Shown(bytes).to_string()
+}
+
+/// Bytes as [`show`] writes them, without allocating (for a message written when memory has
+/// run out).
+#[derive(Debug, Clone, Copy)]
+pub struct Shown(pub u64);
+
+impl std::fmt::Display for Shown {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let b = self.0 as f64;
+        let (v, unit) = match b {
+            b if b >= 1e12 => (b / 1e12, "TB"),
+            b if b >= 1e9 => (b / 1e9, "GB"),
+            b if b >= 1e6 => (b / 1e6, "MB"),
+            b if b >= 1e3 => (b / 1e3, "kB"),
+            _ => return write!(f, "{} bytes", self.0),
+        };
+        let digits = match v {
+            v if v >= 99.95 => 0,
+            v if v >= 9.995 => 1,
+            _ => 2,
+        };
+        write!(f, "{v:.digits$} {unit}")
+    }
 }
 
 /// A need and the budget it exceeds, each as [`show`] says it, or in bytes when [`show`]
