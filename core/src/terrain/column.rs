@@ -183,7 +183,7 @@ pub fn walk<S: Sampler, C: Cost + Listen>(
     out: &mut [Rgb],
 ) {
     if S::NARROW && meets_magnified(frame, terrain, col, rows.start) {
-        walk_into_narrow(
+        walk_handing_over(
             frame,
             terrain,
             col,
@@ -456,16 +456,28 @@ pub(crate) fn walk_into<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
         March::new(frame, terrain, column, S::SWITCH).with_corners(S::CORNERS != Corners::Off);
     let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
     let ray = px.begin(px.upper, march.n());
+    ride_own(terrain, &mut march, &mut px, ray);
+}
+
+/// `S`'s own walk from `ray` to the column's end ([`ride_to_the_end`]): out of line
+/// ([`ride_on`]) for a sampler that narrows ([`Sampler::NARROW`]), inline for the others.
+#[inline(always)]
+fn ride_own<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
+    terrain: &Terrain<'_>,
+    march: &mut March<'_, '_>,
+    px: &mut Pixels<'_, '_, S, C, O>,
+    ray: Ray,
+) {
     if S::NARROW {
-        ride_on(terrain, &mut march, &mut px, ray);
+        ride_on(terrain, march, px, ray);
     } else {
-        ride_to_the_end(terrain, &mut march, &mut px, ray);
+        ride_to_the_end(terrain, march, px, ray);
     }
 }
 
 /// [`ride_to_the_end`] out of line, for a sampler that narrows ([`Sampler::NARROW`]): the one
 /// copy of `S`'s own walk that a column walked by `S` alone ([`walk_into`]) and one handed over
-/// to `S` ([`walk_into_narrow`]) share, so that the hand-over adds no third copy of the loop
+/// to `S` ([`walk_handing_over`]) share, so that the hand-over adds no third copy of the loop
 /// to the binary (`minimal`'s `.text` 175,316 → 148,812 bytes, for +1.3 % of `as-exact`'s
 /// instructions on the Cortex-M4; docs/embedding.md). The other modes keep the ride inline:
 /// out of line it costs PS 6.5 %.
@@ -479,36 +491,49 @@ fn ride_on<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
     ride_to_the_end(terrain, march, px, ray);
 }
 
-/// [`walk_into`] on the footprint's surface ([`crate::terrain::surface`]): the continuous
-/// surface ([`Smooth`]`<S>`, whose every step tests the cells around it) from the eye to where
-/// the pixel's footprint across reaches one voxel ([`Column::surface_end`]), then `S`'s own
-/// walk, which pays nothing for the surface. The hand-over changes no hit: from that distance
-/// on [`Smooth`] meets the flat tops, as `S` does, and the walk tests the cells entered at a
-/// corner again, as `S`'s walk does everywhere.
+/// [`walk_into`] with a wrapper `W` near the eye, handing over to the mode's own walk where
+/// the pixel's footprint across reaches one voxel ([`Inner::reach`]), so that the rows beyond
+/// pay nothing for the wrapper:
+/// - the footprint's surface ([`crate::terrain::surface`], [`Smooth`]`<S>`, whose every step
+///   tests the cells around it) up to [`Column::surface_end`]. The hand-over changes no hit:
+///   from that distance on [`Smooth`] meets the flat tops, as `S` does, and the walk tests the
+///   cells entered at a corner again, as `S`'s walk does everywhere;
+/// - Eq. 4 narrowed at magnified voxels ([`Narrow`]`<S>`) up to [`Column::magnify_end`]. The
+///   hand-over changes no hit and no colour: the march is the same (cells entered at a corner
+///   as `S` asks, on both sides), and from that distance on [`Narrow`] hands every voxel to
+///   `S` as it is.
 #[inline(never)]
-pub(crate) fn walk_into_surface<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
+pub(crate) fn walk_handing_over<W, C: Cost + Listen, O: ColumnOut + ?Sized>(
     frame: &Frame<'_>,
     terrain: &Terrain<'_>,
     col: usize,
     rows: Range<usize>,
-    sampler: &mut Smooth<S>,
+    sampler: &mut W,
     cost: &mut C,
     out: &mut O,
-) {
+) where
+    W: Sampler + Inner,
+    W::Inner: Sampler,
+{
     let Some((column, rows)) = column_rows(frame, col, rows, out.rows()) else {
         return;
     };
     cost.begin_column(col);
-    let corners = S::CORNERS != Corners::Off;
-    let until = (column.n_eye.to_bits() >> 24).saturating_add(column.surface_end);
-    let mut march = March::new(frame, terrain, column, S::SWITCH).with_corners(corners);
-    let on_surface = march.n() < until;
-    if on_surface {
-        march = march.on_surface_until(until);
+    let corners = <W::Inner as Sampler>::CORNERS != Corners::Off;
+    let until = (column.n_eye.to_bits() >> 24).saturating_add(W::reach(column));
+    let mut march =
+        March::new(frame, terrain, column, <W::Inner as Sampler>::SWITCH).with_corners(corners);
+    let near = march.n() < until;
+    if near {
+        march = if W::SURFACE {
+            march.on_surface_until(until)
+        } else {
+            march.handing_over_at(until)
+        };
     }
     let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
     let mut ray = px.begin(px.upper, march.n());
-    if on_surface {
+    if near {
         match ride_column::<true, _, _, _>(terrain, &mut march, &mut px, ray) {
             Ridden::Done => {
                 px.cost.end_column();
@@ -523,54 +548,7 @@ pub(crate) fn walk_into_surface<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Si
         }
         march.leave_surface(corners);
     }
-    ride_to_the_end(terrain, &mut march, &mut px.into_inner(), ray);
-}
-
-/// [`walk_into`] with Eq. 4 narrowed at magnified voxels ([`Narrow`]`<S>`) from the eye to
-/// where the pixel's footprint across reaches one voxel ([`Column::magnify_end`]), then `S`'s
-/// own walk, which pays nothing for it, as [`walk_into_surface`] hands over. The hand-over
-/// changes no hit and no colour: the march is the same (cells entered at a corner as `S`
-/// asks, on both sides), and from that distance on [`Narrow`] hands every voxel to `S` as it
-/// is.
-#[inline(never)]
-pub(crate) fn walk_into_narrow<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized>(
-    frame: &Frame<'_>,
-    terrain: &Terrain<'_>,
-    col: usize,
-    rows: Range<usize>,
-    sampler: &mut Narrow<S>,
-    cost: &mut C,
-    out: &mut O,
-) {
-    let Some((column, rows)) = column_rows(frame, col, rows, out.rows()) else {
-        return;
-    };
-    cost.begin_column(col);
-    let corners = S::CORNERS != Corners::Off;
-    let until = (column.n_eye.to_bits() >> 24).saturating_add(column.magnify_end);
-    let mut march = March::new(frame, terrain, column, S::SWITCH).with_corners(corners);
-    let magnified = march.n() < until;
-    if magnified {
-        march = march.handing_over_at(until);
-    }
-    let mut px = Pixels::new(frame, column, rows, sampler, cost, out);
-    let mut ray = px.begin(px.upper, march.n());
-    if magnified {
-        match ride_column::<true, _, _, _>(terrain, &mut march, &mut px, ray) {
-            Ridden::Done => {
-                px.cost.end_column();
-                return;
-            }
-            Ridden::Sky(ray) => {
-                px.end_in_sky(ray, march.n());
-                px.cost.end_column();
-                return;
-            }
-            Ridden::SurfaceEnd(at) => ray = at,
-        }
-        march.leave_surface(corners);
-    }
-    ride_on(terrain, &mut march, &mut px.into_inner(), ray);
+    ride_own(terrain, &mut march, &mut px.into_inner(), ray);
 }
 
 /// The column's ride from `ray` on the mode's own walk to its last pixel, the rest sky, and
@@ -711,7 +689,7 @@ pub(crate) fn render<const SURFACE: bool, S: Sampler + Clone, C: Cost + Listen, 
 }
 
 /// Walks column `col` with a fresh copy of `sampler`: on the footprint's surface
-/// ([`walk_into_surface`]) if `SURFACE`, else [`walk_into`], for a sampler that asks
+/// ([`walk_handing_over`] with [`Smooth`]) if `SURFACE`, else [`walk_into`], for a sampler that asks
 /// ([`Sampler::NARROW`]) with Eq. 4 narrowed at magnified voxels if the column can meet them
 /// ([`Narrow`], [`meets_magnified`]).
 #[inline(always)]
@@ -731,10 +709,10 @@ pub(crate) fn walk_fresh<
 ) {
     if SURFACE {
         let mut s = Smooth::new(sampler.clone());
-        walk_into_surface(frame, terrain, col, rows, &mut s, cost, out);
+        walk_handing_over(frame, terrain, col, rows, &mut s, cost, out);
     } else if S::NARROW && meets_magnified(frame, terrain, col, rows.start) {
         let mut s = Narrow::new(sampler.clone());
-        walk_into_narrow(frame, terrain, col, rows, &mut s, cost, out);
+        walk_handing_over(frame, terrain, col, rows, &mut s, cost, out);
     } else {
         walk_into(frame, terrain, col, rows, &mut sampler.clone(), cost, out);
     }

@@ -11,12 +11,12 @@
 //! SS_N ask for it ([`Sampler::NARROW`]), on the flat tops. The walk takes it only for a
 //! column whose lowest ray can meet the terrain nearer than that distance, so that a view that
 //! never magnifies walks as before, and only up to that distance: there it hands the pixels
-//! over to the sampler inside (`column`'s `walk_into_narrow`), whose walk beyond pays nothing
+//! over to the sampler inside (`column`'s `walk_handing_over`), whose walk beyond pays nothing
 //! for it.
 
 use crate::color::{Color16, Color32, Rgb};
 use crate::num::Height;
-use crate::terrain::camera::Switch;
+use crate::terrain::camera::{Column, Switch};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::listen::Listen;
@@ -51,6 +51,10 @@ impl<S> Narrow<S> {
 
 impl<S> Inner for Narrow<S> {
     type Inner = S;
+    const SURFACE: bool = false;
+    fn reach(column: &Column) -> i64 {
+        column.magnify_end
+    }
     fn inner_mut(&mut self) -> &mut S {
         &mut self.inner
     }

@@ -14,7 +14,7 @@ use crate::color::Rgb;
 use crate::color::{to_color16, to_rgb, Color16, Color32};
 use crate::divide::div_rem_signed;
 use crate::num::{Coord, Eye, Height, Line, Weight};
-use crate::terrain::camera::Switch;
+use crate::terrain::camera::{Column, Switch};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::listen::Listen;
@@ -73,6 +73,13 @@ pub enum Hit {
 pub(crate) trait Inner {
     /// The sampler inside.
     type Inner;
+    /// Whether the wrapper meets the continuous surface (`Smooth`), whose march leaves out the
+    /// cells entered at a corner, rather than the flat tops (`Narrow`), whose march is the
+    /// inner sampler's.
+    const SURFACE: bool;
+    /// Where the wrapper's part of `column` ends: its distance from the eye (`n`, half-voxels),
+    /// [`Column::surface_end`] or [`Column::magnify_end`].
+    fn reach(column: &Column) -> i64;
     /// The sampler inside, in the state the wrapper left it.
     fn inner_mut(&mut self) -> &mut Self::Inner;
 }

@@ -57,7 +57,7 @@
 use crate::color::{Color16, Color32, Rgb};
 use crate::num::Height;
 use crate::terrain::blend::{distance, mix};
-use crate::terrain::camera::Switch;
+use crate::terrain::camera::{Column, Switch};
 use crate::terrain::cost::Cost;
 use crate::terrain::fan::Filter;
 use crate::terrain::listen::Listen;
@@ -204,6 +204,10 @@ impl<S> Smooth<S> {
 
 impl<S> Inner for Smooth<S> {
     type Inner = S;
+    const SURFACE: bool = true;
+    fn reach(column: &Column) -> i64 {
+        column.surface_end
+    }
     fn inner_mut(&mut self) -> &mut S {
         &mut self.inner
     }
