@@ -44,11 +44,9 @@
 //!
 //! A cell the ground track enters at a corner between two centres ([`Voxel::is_corner`]) is a
 //! step of its own where it rises above the voxel beside it across ([`Corners::Peaks`]): its
-//! section is taken at its row's centre along, where the centre line passes beside it
-//! ([`Voxel::corner_crossing`]), on the cell widened by half the ray's cross slope to either
-//! side (every line within it crosses the cell in its step: [`corner_section`]), so that a
-//! wedge narrower than a cell sees it (a one-voxel diagonal wall is solid, as in the other
-//! modes). A lower corner cell is left
+//! section is centred on the cell's edge across where the centre line enters or leaves it
+//! ([`Voxel::fraction_ahead`] is 0 or 1 there), so that a wedge narrower than a cell sees it
+//! (a one-voxel diagonal wall is solid, as in the other modes). A lower corner cell is left
 //! to the rows' sections: taken too, on a flat map it spread its colour over its neighbour's
 //! lanes (the stripes' footprint integral in tests/tests/as2.rs: 7.55 levels RMS, not 2.06).
 //!
@@ -190,38 +188,9 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         // |n − n_eye| ≤ 2^23 half-voxels and wedge ≤ 4·2^32 (Frame::new clamps it): the
         // product is below 2^58.
         let half = ((d * self.wedge) >> voxel.level()).min(MAX_HALF);
-        if let Some((t, r)) = voxel.corner_crossing() {
-            return corner_section(t - half, t + half, r);
-        }
         let t = i64::from(voxel.fraction_ahead());
         (t - half, t + half)
     }
-}
-
-/// The section `[lo, hi)` of a cell the ground track enters at a corner, taken at the centre
-/// along of the cell's row (cells across from the cell's edge behind, 32 fractional bits), in
-/// the terms the lanes read it: a line of cross slope `r` (cells across per cell along, 32
-/// fractional bits) crosses the cell within its step when its cross position at that centre
-/// lies within the cell widened by `r/2` on either side, so the widened cell `[−r/2, 1 + r/2)`
-/// is mapped linearly onto the cell `[0, 1)`, and the stretches beside it shifted to meet it.
-/// At a diagonal's corner the lines up to half a cell beyond the cell's edge meet it, and the
-/// lanes that see them take its height (a one-voxel diagonal wall is solid across its whole
-/// section).
-#[inline(never)]
-fn corner_section(lo: i64, hi: i64, r: i64) -> (i64, i64) {
-    let half_r = (r >> 1).min(4 * ONE);
-    let map = |x: i64| {
-        if x < -half_r {
-            x + half_r
-        } else if x >= ONE + half_r {
-            x - half_r
-        } else {
-            // 0 ≤ x + r/2 < 1 + r ≤ 9 cells: below 2^36, shifted below 2^68: in an i128.
-            let num = i128::from(x + half_r) << 32;
-            i64::try_from(num / i128::from(ONE + 2 * half_r)).unwrap_or(0)
-        }
-    };
-    (map(lo), map(hi))
 }
 
 /// Across a segment of Eq. 4 (between the centres of cells `j` and `j + 1`), the integral from

@@ -197,28 +197,6 @@ impl Voxel<'_> {
         }
     }
 
-    /// On a cell the ground track enters at a corner ([`Voxel::is_corner`]): where the ray's
-    /// cross coordinate is at the centre along of the cell's row, in the cell's fraction
-    /// measured as [`Voxel::fraction_ahead`] measures it (32 fractional bits; outside
-    /// `0..2^32`: the centre line passes beside the cell), and the ray's cross slope `r` in
-    /// cells across per cell along (32 fractional bits). `None` on any other voxel.
-    #[inline(always)]
-    pub(crate) fn corner_crossing(&self) -> Option<(i64, i64)> {
-        if !self.corner {
-            return None;
-        }
-        let m = self.march;
-        let r = i64::try_from(m.dv_step.unsigned_abs() >> m.l).unwrap_or(i64::MAX);
-        // The cursor stands on the later voxel, in the new row: the later centre's position
-        // is its fraction there; the cell behind it is one row back, one cell ahead across.
-        let later = i64::from(m.frac() ^ m.flip);
-        Some(if self.taken < 0 {
-            (later - r, r)
-        } else {
-            (later + (1 << 32), r)
-        })
-    }
-
     /// The fraction of the ray's cross coordinate in the voxel's cell, 32 bits, measured in
     /// the direction the ray moves across (0 at the cell's edge behind, `2^32` at the edge
     /// ahead).
