@@ -364,3 +364,44 @@ fn a_small_address_space_never_panics() {
         "no limit up to 400 MB rendered ({ran} runs started)"
     );
 }
+
+/// Under an address-space limit that leaves one thread room but not 64 (each takes about
+/// 3 MiB of stack, twice over while the pool starts), `--threads 64` is refused in one line
+/// naming it, exit 2, and nothing is written; the same command without it renders on one
+/// thread. Before: rayon's pool panicked at its first use ("The global thread pool has not
+/// been initialized"), or glibc ended the process.
+#[test]
+fn threads_the_address_space_cannot_hold_are_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let asc = dir.path().join("small.asc");
+    write_asc(&asc, (32, 24), 30, |x, y| (x * 3 + y * 7) % 40);
+    let out = dir.path().join("o.png");
+    let exe = env!("CARGO_BIN_EXE_footprint");
+    let run = |threads: &str| {
+        let script = format!(
+            "ulimit -v {} && exec timeout 120 \"$0\" render --dem \"$1\" --size 64x48 --out \"$2\" {threads}",
+            160 * 1024
+        );
+        std::process::Command::new("sh")
+            .args([
+                "-c",
+                &script,
+                exe,
+                asc.to_str().unwrap(),
+                out.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap()
+    };
+    let o = run("--threads 64");
+    assert_one_line_error(&o, &["--threads", "64"], "--threads 64");
+    assert!(!out.exists(), "--threads 64: an output was written");
+    let o = run("");
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "160 MB without --threads: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.exists(), "160 MB without --threads: no image");
+}
