@@ -306,6 +306,9 @@ fn every_synthetic_map_round_trips_and_renders() {
 /// `as-exact`'s on the steep synthetic map ([`as2_flickers_near_as_exact_on_steep_terrain`]).
 /// Measured 2026-11-30: 3,741 against 2,824 (1.32); 4,212 (1.49) while a lane that lay
 /// wholly in the cell beside a cell entered at a corner took the corner cell's height.
+/// 2026-12-02: 3,797 against 3,044 (1.25) before each row's cells were read along the whole
+/// row, 3,380 (1.11) since (`Widen` in core/src/terrain/wedge.rs); 5,257 (1.73) while only
+/// the cells entered at a corner were widened, a jump where a cell stopped being one.
 const AS2_OVER_AS_EXACT: f64 = 1.4;
 
 /// The steep map (`map synth --kind steep`, 128², the survey-like terrain that crosses cells

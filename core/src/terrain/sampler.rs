@@ -37,6 +37,9 @@ pub struct Pixel {
     /// The half-width across of the column's wedge per half-voxel along the ray, minor
     /// voxels: at `n` the pixel's footprint across is `v(n) ± |n − n_eye|·wedge` (`as2`).
     pub wedge: Coord,
+    /// The column's cross slope: minor voxels across per half-voxel along the ray (`|dv| ≤ ½`;
+    /// `as2` widens each cell's section by it).
+    pub dv: Coord,
     /// Where the walk climbs levels for the sampler's [`Sampler::SWITCH`]: from level `L` to
     /// `L + 1` at `climb·2^L` half-voxels ahead of the eye (`as2` blends the two levels
     /// between them).

@@ -42,13 +42,22 @@
 //! colour is the surface's where its ray crosses the profile between two centres, blended
 //! into the lane's own alike ([`WedgeOn::paint`]).
 //!
+//! **Sections along the whole row.** A cell's section is taken at its row's centre along,
+//! but a line of the wedge crosses the cell anywhere in the row: with the column's cross slope
+//! `r` (cells across per cell along), every line whose cross position at the row's centre lies
+//! within `r/2` of the cell crosses it. So each section is read on the cell widened by `r/2` to
+//! either side ([`Widen`]), which a lane that passes the cell's corner meets as the walk does.
 //! A cell the ground track enters at a corner between two centres ([`Voxel::is_corner`]) is a
-//! step of its own where it rises above the voxel beside it across ([`Corners::Peaks`]): its
-//! section is centred on the cell's edge across where the centre line enters or leaves it
-//! ([`Voxel::fraction_ahead`] is 0 or 1 there), so that a wedge narrower than a cell sees it
-//! (a one-voxel diagonal wall is solid, as in the other modes). A lower corner cell is left
-//! to the rows' sections: taken too, on a flat map it spread its colour over its neighbour's
-//! lanes (the stripes' footprint integral in tests/tests/as2.rs: 7.55 levels RMS, not 2.06).
+//! step of its own where it rises above the voxel beside it across ([`Corners::Peaks`]); its
+//! section is where the centre line passes beside it at its row's centre
+//! ([`Voxel::row_crossing`]), so that the lanes that cross it see it and a one-voxel diagonal
+//! wall is solid, as in the other modes. The widening is continuous: a cell's section moves
+//! smoothly as the centre line moves from the cell itself to its corner and past it (centring
+//! a corner cell's section on its edge instead, as until 2026-12-01, made the wall's lanes
+//! show the floor; widening only the corner cells made `as2` flicker 1.7× `as-exact` on the
+//! steep map, a jump where a cell stopped being a corner). A lower corner cell is left to the
+//! rows' sections: taken too, on a flat map it spread its colour over its neighbour's lanes
+//! (the stripes' footprint integral in tests/tests/as2.rs: 7.55 levels RMS, not 2.06).
 //!
 //! **What is exact and what is not.** Exact: the integrals across each lane (height and
 //! colour) and the weights along it. Approximated: what is visible inside a lane is decided on
@@ -65,7 +74,7 @@
 
 use core::num::NonZeroU64;
 
-use crate::color::{mix256, to_color16, Color16, Color32, Rgb};
+use crate::color::{mix256, Color16, Color32, Rgb};
 use crate::divide::{div_rem, div_rem_signed};
 use crate::num::Height;
 use crate::terrain::blend::{distance, mix, weight};
@@ -122,6 +131,8 @@ pub struct WedgeOn<const SMOOTH: bool> {
     /// ([`Pixel::magnified`]): nearer, on the flat tops, a lane's colour narrows
     /// ([`WedgeOn::narrowing`]).
     magnified: i64,
+    /// Each cell's section widened by the column's cross slope ([`Widen`]).
+    widen: Widen,
 }
 
 /// A lane's hit on the continuous surface, as [`WedgeOn::begin_pixel`] repaints it for a
@@ -159,6 +170,7 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             surface: 0,
             painted: [None; LANES],
             magnified: 0,
+            widen: Widen::NONE,
         }
     }
 
@@ -182,14 +194,71 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
 
     /// The wedge's cross-section at `voxel`, `d` half-voxels from the eye ([`distance`]), in
     /// cells of its level measured from its cell's edge behind (in the direction the ray moves
-    /// across): `[lo, hi)`, 32 fractional bits.
+    /// across), at the centre along of its row ([`Voxel::row_crossing`]): `[lo, hi)`, 32
+    /// fractional bits. The lanes read their parts of it widened ([`Widen`]).
     #[inline(always)]
     fn section(&self, voxel: &Voxel<'_>, d: i64) -> (i64, i64) {
         // |n − n_eye| ≤ 2^23 half-voxels and wedge ≤ 4·2^32 (Frame::new clamps it): the
         // product is below 2^58.
         let half = ((d * self.wedge) >> voxel.level()).min(MAX_HALF);
-        let t = i64::from(voxel.fraction_ahead());
+        let t = voxel.row_crossing();
         (t - half, t + half)
+    }
+}
+
+/// A cell's section widened by half the column's cross slope to either side: a line of cross
+/// slope `r` (cells across per cell along, the same on every level) crosses a cell within its
+/// row when its cross position at the row's centre lies within `[−r/2, 1 + r/2)` of the cell,
+/// so that widened cell is mapped linearly onto the cell `[0, 1)` and the stretches beside it
+/// are shifted to meet it. A lane reads the cell wherever its lines cross it in the row, not
+/// only at the row's centre: a one-voxel diagonal wall is solid across its whole section, and
+/// a cell entered at a corner, whose section lies beside it at the row's centre
+/// ([`Voxel::row_crossing`]), is met by the lines that cross its corner.
+#[derive(Clone, Copy, Debug)]
+struct Widen {
+    /// The column's `dv` it was made for (raw).
+    dv: i64,
+    /// `r/2`: the column's `|dv|`, cells across per half-voxel along (32 fractional bits,
+    /// at most `2^31`: `Frame::new` proves `|dv| ≤ ½`).
+    half_r: i64,
+    /// `2^62 / (1 + r)`, 32 fractional bits in the divisor: between `2^29` and `2^30`.
+    scale: u64,
+}
+
+impl Widen {
+    /// No widening (a column along an axis).
+    const NONE: Self = Self {
+        dv: 0,
+        half_r: 0,
+        scale: 1 << 30,
+    };
+
+    /// The widening for a column whose cross slope is `dv` (raw, 32 fractional bits, cells
+    /// across per half-voxel along: `r = 2·|dv|` per cell). One division, once per column.
+    fn new(dv: i64) -> Self {
+        let half_r = dv.unsigned_abs().min(1 << 31);
+        Self {
+            dv,
+            half_r: i64::try_from(half_r).unwrap_or(1 << 31),
+            scale: (1 << 62) / ((1 << 32) + 2 * half_r),
+        }
+    }
+
+    /// Position `x` across (cells from the cell's edge behind, 32 fractional bits) in the
+    /// widened cell's terms (see [`Widen`]). Continuous and increasing in `x`.
+    #[inline(always)]
+    fn map(&self, x: i64) -> i64 {
+        let h = self.half_r;
+        if x < -h {
+            x + h
+        } else if x >= ONE + h {
+            x - h
+        } else {
+            // 0 ≤ x + h < 1 + r ≤ 2^33, times scale ≤ 2^30: below 2^63. The result is below
+            // 2^32 (exact but for the scale's rounding, at most 8 parts in 2^32 of a cell).
+            let wide = (x + h).unsigned_abs();
+            i64::try_from((wide * self.scale) >> 30).unwrap_or(ONE)
+        }
     }
 }
 
@@ -417,6 +486,9 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         self.climb = pixel.climb;
         self.surface = pixel.surface;
         self.magnified = pixel.magnified;
+        if self.widen.dv != pixel.dv.to_bits() {
+            self.widen = Widen::new(pixel.dv.to_bits());
+        }
     }
 
     /// A step where the highest of the five cells around the centre line (the walk's `top`,
@@ -450,8 +522,9 @@ impl<const SMOOTH: bool> Sampler for WedgeOn<SMOOTH> {
         let mut seen = false;
         for k in 0..LANES {
             let part = lane(lo, hi, k);
+            let read = (self.widen.map(part.0), self.widen.map(part.1));
             let ray_h = self.lanes.ray_at(k, n);
-            if let Some((top, color)) = self.step(voxel, d, part, ray_h, cost) {
+            if let Some((top, color)) = self.step(voxel, d, read, part, ray_h, cost) {
                 // Where the continuous surface is met (level 0, a share above 0), the colour
                 // is painted.
                 let color = if SMOOTH && d < self.surface && voxel.level() == 0 {
@@ -522,11 +595,13 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         surface::color(color, middle.color, color, t, f)
     }
 
-    /// The step at `voxel`, `d` half-voxels from the eye, over the interval `[lo, hi)` across
-    /// (cells of its level from its cell's edge behind, 32 fractional bits): its height (the
-    /// cells' exact mean, blended with the finer level's) and its colour (Eq. 4's integral over
-    /// the interval, blended alike); `None`, without the colour, if it does not rise above
-    /// `ray_h`.
+    /// The step at `voxel`, `d` half-voxels from the eye, over a lane's part across (cells of
+    /// its level from its cell's edge behind, 32 fractional bits): its height, the cells' exact
+    /// mean over the part widened (`[lo, hi)`, [`Widen`]: the cells its lines cross in the
+    /// row), blended with the finer level's; and its colour, Eq. 4's integral over the part
+    /// itself at the row's centre (`colors`), blended alike, or where the lane narrows the flat
+    /// tops' over the widened part, whose heights it sees; `None`, without the colour, if it
+    /// does not rise above `ray_h`.
     ///
     /// Out of line on 32-bit ARM: inlined into the walk once per lane it made the Cortex-M4
     /// firmware's core 10 KB larger for 1.3 % fewer instructions (docs/embedding.md); inlined
@@ -538,6 +613,7 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         voxel: &Voxel<'_>,
         d: i64,
         (lo, hi): (i64, i64),
+        colors: (i64, i64),
         ray_h: Height,
         cost: &mut C,
     ) -> Option<(Height, Color16)> {
@@ -546,9 +622,9 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             // The interval lies inside one cell: its height (on the continuous surface where
             // voxels are magnified, blended with the surface's at the centre line). Mostly
             // the voxel's own cell; a lane wholly in a neighbour takes the neighbour's, as a
-            // cell entered at a corner behind the centre line has its section centred on its
-            // edge (`fraction_ahead` 0), and its lane behind lies in the cell beside it. (Until
-            // 2026-11-30 that lane took the corner cell's height, over-raising it.)
+            // lane beside a cell entered at a corner, whose section lies beside the cell
+            // ([`Voxel::row_crossing`]), may. (Until 2026-11-30 such a lane took the corner
+            // cell's height, over-raising it.)
             cost.wedge(1);
             let f = if SMOOTH && self.surface > 0 {
                 surface::weight(d, self.surface)
@@ -564,21 +640,23 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             if own <= ray_h {
                 return None;
             }
-            let eq4 = || {
-                if hi - lo >= ONE >> 8 {
-                    row_color(voxel, lo, hi)
-                } else {
-                    voxel.sample_linear()
+            let color = |(lo, hi): (i64, i64)| {
+                let eq4 = || {
+                    if hi - lo >= ONE >> 8 {
+                        row_color(voxel, lo, hi)
+                    } else {
+                        voxel.sample_linear()
+                    }
+                };
+                match self.narrowing(d, voxel.level()) {
+                    None => eq4(),
+                    Some(grown) => match flat_box(voxel, (lo, hi)) {
+                        Some(flat) => narrowed(flat, grown, eq4),
+                        None => eq4(),
+                    },
                 }
             };
-            let color = match self.narrowing(d, voxel.level()) {
-                None => eq4(),
-                Some(grown) => {
-                    let flat = to_color16(voxel.color_at(voxel.across(cell)));
-                    narrowed(flat, grown, eq4)
-                }
-            };
-            return Some((own, color));
+            return Some((own, seen_color(voxel, own, ray_h, (lo, hi), colors, color)));
         }
         // The mean over the interval: each cell (at most five, -2..=2) by the length it
         // covers (16 fractional bits: at most 2^18 in all, times 2^16 heights, times 2^24).
@@ -593,7 +671,6 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             cells += 1;
         };
         let cells_across = first.max(-2)..last.min(2) + 1;
-        let cells_range = cells_across.clone();
         // Away from the mirror edges a stride apart (one loop without the test), else through
         // the mirror.
         #[allow(
@@ -634,8 +711,7 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
         // pyramid makes a height), blended out as the step moves into the level: at the climb
         // the step is the finer level's, as the step before it was, so no pixel pops there.
         let f = weight(d, self.climb, voxel.level());
-        // The finer level and the wedge's span in it, kept for the colour when the blend
-        // applies.
+        // The finer level, kept for the colour when the blend applies.
         let mut blend = None;
         if let Some(finer) = voxel.finer().filter(|_| f > 0) {
             let span = FinerSpan::new(&finer, lo, hi);
@@ -655,30 +731,39 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
             cost.wedge(4);
             if mean2 > i64::MIN {
                 mean += ((mean2 - mean) * f) >> 16;
-                blend = Some((finer, span));
+                blend = Some(finer);
             }
         }
         let mean = Height::from_bits(mean);
         if mean <= ray_h {
             return None;
         }
-        let eq4 = || {
-            let color = row_color(voxel, lo, hi);
-            match blend {
-                Some((finer, span)) => Self::blend_color(color, &finer, &span, f),
-                None => color,
+        let color = |(lo, hi): (i64, i64)| {
+            let eq4 = || {
+                let color = row_color(voxel, lo, hi);
+                match &blend {
+                    Some(finer) => {
+                        let span = FinerSpan::new(finer, lo, hi);
+                        Self::blend_color(color, finer, &span, f)
+                    }
+                    None => color,
+                }
+            };
+            // Where the lane's colour narrows, the box of the cells' own colours over it
+            // (read again here, so that the loop above, which every step runs, stays as it
+            // was).
+            match self.narrowing(d, voxel.level()) {
+                Some(grown) => match flat_box(voxel, (lo, hi)) {
+                    Some(flat) => narrowed(flat, grown, eq4),
+                    None => eq4(),
+                },
+                None => eq4(),
             }
         };
-        // Where the lane's colour narrows, the box of the cells' own colours over it (read
-        // again here, so that the loop above, which every step runs, stays as it was).
-        let color = match self.narrowing(d, voxel.level()) {
-            Some(grown) => match flat_box(voxel, lo, hi, cells_range) {
-                Some(flat) => narrowed(flat, grown, eq4),
-                None => eq4(),
-            },
-            None => eq4(),
-        };
-        Some((mean, color))
+        Some((
+            mean,
+            seen_color(voxel, mean, ray_h, (lo, hi), colors, color),
+        ))
     }
 
     /// `color`, Eq. 4's colour integrated over the step's interval, blended by `f` with the
@@ -751,14 +836,74 @@ impl FinerSpan {
     }
 }
 
-/// The box of the flat tops' own colours over `[lo, hi)` across `voxel`'s row (cells `ks`
-/// from the voxel's, the ones the step's mean covers), each cell's colour by the length it
-/// covers, for a lane's colour where it narrows ([`WedgeOn::narrowing`]); `None` with no
-/// length. Out of line: only steps nearer than one voxel's footprint read it.
+/// A lane's colour at a step whose height `seen`, above the lane's ray `ray_h`, is the cells'
+/// mean over the lane's part widened (`wide`, [`Widen`]): `color` (Eq. 4's, or the flat tops'
+/// where the lane narrows) over the part itself at the row's centre (`part`), as on a flat
+/// map, where the widening raises nothing; over the widened part as far as it is what the
+/// widening alone shows: by the share of the visible height `seen − ray_h` that the part's
+/// own mean does not reach. So the colour moves continuously from the one to the other as
+/// the cells the lane's lines cross in the row rise above the ones at the row's centre (a
+/// ridge's top seen over the valley its centre line crosses takes the ridge's colour).
+#[inline(always)]
+fn seen_color(
+    voxel: &Voxel<'_>,
+    seen: Height,
+    ray_h: Height,
+    wide: (i64, i64),
+    part: (i64, i64),
+    color: impl Fn((i64, i64)) -> Color16,
+) -> Color16 {
+    let own = mean_height(voxel, part);
+    let (seen, ray_h) = (seen.to_bits(), ray_h.to_bits());
+    if own >= seen {
+        return color(part);
+    }
+    // 0 < seen − own, and seen − ray_h > 0 (a hit): heights below 2^40, shifted below 2^56.
+    let share = if own <= ray_h {
+        1 << 16
+    } else {
+        div_rem_signed((seen - own) << 16, seen - ray_h)
+            .0
+            .min(1 << 16)
+    };
+    if share >= 1 << 16 {
+        color(wide)
+    } else {
+        mix(color(part), color(wide), share)
+    }
+}
+
+/// The cells' mean height over `[lo, hi)` across `voxel`'s row (cells from the voxel's, 32
+/// fractional bits; the cells within two of the voxel's), each by the length it covers; raw
+/// [`Height`] bits, 0 with no length.
+#[inline(always)]
+fn mean_height(voxel: &Voxel<'_>, (lo, hi): (i64, i64)) -> i64 {
+    let (mut sum, mut total) = (0i64, 0i64);
+    for k in (lo >> 32).max(-2)..((hi - 1) >> 32).min(2) + 1 {
+        let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
+        #[allow(
+            clippy::cast_possible_truncation,
+            reason = "-2 ≤ k ≤ 2 (the step's cells across)"
+        )]
+        let h = voxel.height_at(voxel.across(k as isize));
+        sum += i64::from(h) * cover;
+        total += cover;
+    }
+    if total <= 0 {
+        0
+    } else {
+        div_rem_signed(sum << 24, total).0
+    }
+}
+
+/// The box of the flat tops' own colours over `[lo, hi)` across `voxel`'s row (cells from
+/// the voxel's, 32 fractional bits; the cells within two of the voxel's), each cell's colour
+/// by the length it covers, for a lane's colour where it narrows ([`WedgeOn::narrowing`]);
+/// `None` with no length. Out of line: only steps nearer than one voxel's footprint read it.
 #[inline(never)]
-fn flat_box(voxel: &Voxel<'_>, lo: i64, hi: i64, ks: core::ops::Range<i64>) -> Option<Color16> {
+fn flat_box(voxel: &Voxel<'_>, (lo, hi): (i64, i64)) -> Option<Color16> {
     let mut flat = Lanes::default();
-    for k in ks {
+    for k in (lo >> 32).max(-2)..((hi - 1) >> 32).min(2) + 1 {
         let cover = (hi.min((k + 1) << 32) - lo.max(k << 32)) >> 16;
         #[allow(
             clippy::cast_possible_truncation,

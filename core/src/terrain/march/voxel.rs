@@ -197,6 +197,29 @@ impl Voxel<'_> {
         }
     }
 
+    /// Where the column's centre line crosses the centre along of the voxel's row, across, in
+    /// the cell's fraction as [`Voxel::fraction_ahead`] measures it (32 fractional bits): that
+    /// fraction on a voxel of the sequence; on a cell the ground track enters at a corner
+    /// ([`Voxel::is_corner`]) a point beside the cell (below 0, or from `2^32` on), since the
+    /// centre line passes the row's centre in the cell beside it.
+    #[inline(always)]
+    pub(crate) fn row_crossing(&self) -> i64 {
+        if !self.corner {
+            return i64::from(self.toward);
+        }
+        let m = self.march;
+        // The cursor stands on the later voxel, in the new row, at its fraction there. A corner
+        // behind it is one row back and one cell ahead across, where the line was one step's
+        // cross move (`dv_step >> l`, at most one cell) earlier; a corner ahead of it is in the
+        // new row, one cell behind across.
+        let later = i64::from(m.frac() ^ m.flip);
+        if self.taken < 0 {
+            later - i64::try_from(m.dv_step.unsigned_abs() >> m.l).unwrap_or(1 << 32)
+        } else {
+            later + (1 << 32)
+        }
+    }
+
     /// The fraction of the ray's cross coordinate in the voxel's cell, 32 bits, measured in
     /// the direction the ray moves across (0 at the cell's edge behind, `2^32` at the edge
     /// ahead).
