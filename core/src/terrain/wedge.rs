@@ -65,12 +65,18 @@
 //! ray on one side of the lane only is seen at its mean over the lane (a thin ridge that fills
 //! part of a lane hides the lane's ground behind it at part of its height); and what a lane
 //! sees above the pixel before the others is carried into the pixels above as
-//! [`Horizons`] describes (exact for one hit, shared out in proportion for more).
+//! [`Horizons`] describes (exact for one hit, shared out in proportion for more). Also
+//! approximated: the lines that cross a cell in its row are taken as the widened cell mapped
+//! linearly onto it ([`Widen`]), not line by line, and a lane's colour where the widening
+//! raises its height is a mix of the row's centre's and the widened part's by the share of
+//! the visible height the widening alone shows ([`seen_color`]), not the colour of each
+//! line's own first crossing.
 //!
 //! **Cost.** The walk's step reads the four cells across as well as the voxel
 //! ([`Sampler::WIDE`]); a candidate hit reads each lane's cells (term `e`, [`Cost::wedge`])
-//! and costs a division for each lane's mean, and each lane's hit one more for its colour
-//! and one for its ray.
+//! and costs a division for each lane's mean, and each lane's hit one more for its colour,
+//! one for its ray, and two for the colour's share (the lane's own part's mean, and the
+//! share); a column one more for its widening.
 
 use core::num::NonZeroU64;
 
@@ -226,7 +232,7 @@ struct Widen {
 }
 
 impl Widen {
-    /// No widening (a column along an axis).
+    /// No widening (a column along an axis; the sampler's state before its first pixel).
     const NONE: Self = Self {
         dv: 0,
         half_r: 0,
@@ -598,10 +604,11 @@ impl<const SMOOTH: bool> WedgeOn<SMOOTH> {
     /// The step at `voxel`, `d` half-voxels from the eye, over a lane's part across (cells of
     /// its level from its cell's edge behind, 32 fractional bits): its height, the cells' exact
     /// mean over the part widened (`[lo, hi)`, [`Widen`]: the cells its lines cross in the
-    /// row), blended with the finer level's; and its colour, Eq. 4's integral over the part
-    /// itself at the row's centre (`colors`), blended alike, or where the lane narrows the flat
-    /// tops' over the widened part, whose heights it sees; `None`, without the colour, if it
-    /// does not rise above `ray_h`.
+    /// row), blended with the finer level's; and its colour, Eq. 4's integral (blended alike,
+    /// or where the lane narrows the flat tops' box) over the part itself at the row's centre
+    /// (`colors`), mixed towards the widened part's as far as the widening alone shows the
+    /// height ([`seen_color`]); `None`, without the colour, if it does not rise above
+    /// `ray_h`.
     ///
     /// Out of line on 32-bit ARM: inlined into the walk once per lane it made the Cortex-M4
     /// firmware's core 10 KB larger for 1.3 % fewer instructions (docs/embedding.md); inlined
