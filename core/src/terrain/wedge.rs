@@ -865,11 +865,12 @@ fn seen_color(
     if own >= seen {
         return color(part);
     }
-    // 0 < seen − own, and seen − ray_h > 0 (a hit): heights below 2^40, shifted below 2^56.
+    // 0 < seen − own < 2^40 (map heights), shifted below 2^56; seen − ray_h > seen − own
+    // here (own above the ray), saturated for a ray far below the map.
     let share = if own <= ray_h {
         1 << 16
     } else {
-        div_rem_signed((seen - own) << 16, seen - ray_h)
+        div_rem_signed((seen - own) << 16, seen.saturating_sub(ray_h))
             .0
             .min(1 << 16)
     };
