@@ -365,11 +365,11 @@ fn a_small_address_space_never_panics() {
     );
 }
 
-/// Under an address-space limit that leaves one thread room but not 64 (each takes about
-/// 3 MiB of stack, twice over while the pool starts), `--threads 64` is refused in one line
-/// naming it, exit 2, and nothing is written; the same command without it renders on one
-/// thread. Before: rayon's pool panicked at its first use ("The global thread pool has not
-/// been initialized"), or glibc ended the process.
+/// Under the smallest address-space limit (in steps of 32 MB) at which a render runs (it then
+/// keeps one thread where the limit leaves no more room), `--threads 1024` (each thread takes
+/// about 3 MiB of stack, twice over while the pool starts: far more than the limit) is refused
+/// in one line naming it, exit 2, and nothing is written. The limit is searched, not fixed: a
+/// debug build maps far more than a release build before it renders anything.
 #[test]
 fn threads_the_address_space_cannot_hold_are_refused_by_name() {
     let dir = tempfile::tempdir().unwrap();
@@ -377,10 +377,10 @@ fn threads_the_address_space_cannot_hold_are_refused_by_name() {
     write_asc(&asc, (32, 24), 30, |x, y| (x * 3 + y * 7) % 40);
     let out = dir.path().join("o.png");
     let exe = env!("CARGO_BIN_EXE_footprint");
-    let run = |threads: &str| {
+    let run = |mb: u32, threads: &str| {
         let script = format!(
             "ulimit -v {} && exec timeout 120 \"$0\" render --dem \"$1\" --size 64x48 --out \"$2\" {threads}",
-            160 * 1024
+            mb * 1024
         );
         std::process::Command::new("sh")
             .args([
@@ -393,15 +393,16 @@ fn threads_the_address_space_cannot_hold_are_refused_by_name() {
             .output()
             .unwrap()
     };
-    let o = run("--threads 64");
-    assert_one_line_error(&o, &["--threads", "64"], "--threads 64");
-    assert!(!out.exists(), "--threads 64: an output was written");
-    let o = run("");
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "160 MB without --threads: {}",
-        String::from_utf8_lossy(&o.stderr)
+    let renders = (64..=2048)
+        .step_by(32)
+        .find(|&mb| run(mb, "").status.success())
+        .expect("no limit up to 2 GB rendered");
+    assert!(out.exists(), "ulimit -v {renders} MB: no image");
+    std::fs::remove_file(&out).unwrap();
+    let o = run(renders, "--threads 1024");
+    assert_one_line_error(&o, &["--threads", "1024"], "--threads 1024");
+    assert!(
+        !out.exists(),
+        "ulimit -v {renders} MB, --threads 1024: an output was written"
     );
-    assert!(out.exists(), "160 MB without --threads: no image");
 }
