@@ -319,25 +319,11 @@ fn a_small_address_space_never_panics() {
     let asc = dir.path().join("small.asc");
     write_asc(&asc, (32, 24), 30, |x, y| (x * 3 + y * 7) % 40);
     let out = dir.path().join("o.png");
-    let exe = env!("CARGO_BIN_EXE_footprint");
     let mut rendered = false;
     let mut ran = 0;
     let limits = (8..=400).step_by(2).flat_map(|mb| [mb; 4]);
     for mb in limits {
-        let script = format!(
-            "ulimit -v {} && exec timeout 120 \"$0\" render --dem \"$1\" --size 64x48 --out \"$2\"",
-            mb * 1024
-        );
-        let o = std::process::Command::new("sh")
-            .args([
-                "-c",
-                &script,
-                exe,
-                asc.to_str().unwrap(),
-                out.to_str().unwrap(),
-            ])
-            .output()
-            .unwrap();
+        let o = render_under_limit(&asc, &out, mb, "");
         let stderr = String::from_utf8_lossy(&o.stderr);
         // Too small to start the binary at all: the kernel or the shell ends it, not us. A run
         // that hangs (std's exit once waited for ever on standard output's half-made buffer)
@@ -376,23 +362,7 @@ fn threads_the_address_space_cannot_hold_are_refused_by_name() {
     let asc = dir.path().join("small.asc");
     write_asc(&asc, (32, 24), 30, |x, y| (x * 3 + y * 7) % 40);
     let out = dir.path().join("o.png");
-    let exe = env!("CARGO_BIN_EXE_footprint");
-    let run = |mb: u32, threads: &str| {
-        let script = format!(
-            "ulimit -v {} && exec timeout 120 \"$0\" render --dem \"$1\" --size 64x48 --out \"$2\" {threads}",
-            mb * 1024
-        );
-        std::process::Command::new("sh")
-            .args([
-                "-c",
-                &script,
-                exe,
-                asc.to_str().unwrap(),
-                out.to_str().unwrap(),
-            ])
-            .output()
-            .unwrap()
-    };
+    let run = |mb: u32, threads: &str| render_under_limit(&asc, &out, mb, threads);
     let renders = (64..=2048)
         .step_by(32)
         .find(|&mb| run(mb, "").status.success())
@@ -405,4 +375,28 @@ fn threads_the_address_space_cannot_hold_are_refused_by_name() {
         !out.exists(),
         "ulimit -v {renders} MB, --threads 1024: an output was written"
     );
+}
+
+/// `footprint render --dem ASC --size 64x48 --out OUT EXTRA` under `ulimit -v MB` megabytes,
+/// ended by `timeout` after 120 s (exit 124) if it hangs.
+fn render_under_limit(
+    asc: &std::path::Path,
+    out: &std::path::Path,
+    mb: u32,
+    extra: &str,
+) -> std::process::Output {
+    let script = format!(
+        "ulimit -v {} && exec timeout 120 \"$0\" render --dem \"$1\" --size 64x48 --out \"$2\" {extra}",
+        mb * 1024
+    );
+    std::process::Command::new("sh")
+        .args([
+            "-c",
+            &script,
+            env!("CARGO_BIN_EXE_footprint"),
+            asc.to_str().unwrap(),
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap()
 }
