@@ -331,8 +331,9 @@ impl<'w, 'f, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f,
 
     /// [`Pixels::next_pixel`] out of the ride's loop, for the modes that hit several voxels
     /// per pixel: inlined, the next pixel's rays (Eqs. 2–3) take registers from their
-    /// per-hit work (PS, whose every hit finishes a pixel, keeps it inline; the measurements
-    /// are in docs/measurements.md, "Where the walk's calls are inlined").
+    /// per-hit work. The modes whose every hit finishes a pixel keep it inline where the
+    /// registers allow ([`ONE_HIT_INLINE`]; the measurements are in docs/measurements.md,
+    /// "Where the walk's calls are inlined").
     #[inline(never)]
     fn next_pixel_out_of_line(&mut self, color: Rgb, voxel: &Voxel<'_>, ray: &mut Ray) -> bool {
         self.next_pixel(color, voxel, ray)
@@ -398,7 +399,7 @@ impl<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_
                     self.cost.hit();
                     self.cost.terrain_pixel();
                     self.in_footprint = true;
-                    let more = if S::ONE_HIT_PER_PIXEL {
+                    let more = if S::ONE_HIT_PER_PIXEL && ONE_HIT_INLINE {
                         self.next_pixel(color, voxel, ray)
                     } else {
                         self.next_pixel_out_of_line(color, voxel, ray)
@@ -415,6 +416,15 @@ impl<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_
         flow
     }
 }
+
+/// Whether a mode whose every hit finishes a pixel ([`Sampler::ONE_HIT_PER_PIXEL`]: PS, LI)
+/// keeps the step to the next pixel (Eqs. 2–3, the pixel's write) inline in the ride's loop.
+/// With x86-64's 16 registers it does: out of line, PS costs 268.9 instructions per pixel
+/// against 234.1 on the paper's views. On 32-bit Arm (the Cortex-M4's 13 general registers,
+/// and a 64-bit ray in two of them) the inlined step spills the step loop's state, five
+/// reloads a step: out of line, the firmware's PS costs 378.1 against 393.8
+/// (docs/measurements.md, "Where the walk's calls are inlined").
+const ONE_HIT_INLINE: bool = !cfg!(target_arch = "arm");
 
 /// Whether `ray`, at `n` now, stays at or above `max_h` up to `n_far`: then it can hit nothing.
 /// The slope and the distance are within the walk's proved ranges (|slope| ≤ 2^39 raw, distances

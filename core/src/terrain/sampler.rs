@@ -97,8 +97,9 @@ pub trait Sampler {
     /// across the hit. The default, `false`, is always correct.
     const KEEPS_SLOPE: bool = false;
     /// Whether every hit finishes the pixel (point sampling, linear interpolation): the walk
-    /// then keeps the step to the next pixel inline with the hit, its main work; for the modes
-    /// that hit several voxels per pixel it takes it out of line. A matter of speed only.
+    /// then keeps the step to the next pixel inline with the hit, its main work, where the
+    /// target's registers allow it (not on 32-bit Arm); for the modes that hit several voxels
+    /// per pixel it takes it out of line. A matter of speed only.
     const ONE_HIT_PER_PIXEL: bool = false;
     /// How the exact projection's fan is resampled into the image for this mode: the pixel's
     /// box for the modes whose samples are averages over their footprints (the default), the
