@@ -417,7 +417,6 @@ struct Fresh<S>(S);
 impl<S: Sampler> Sampler for Fresh<S> {
     const SWITCH: Switch = S::SWITCH;
     const KEEPS_SLOPE: bool = S::KEEPS_SLOPE;
-    const ONE_HIT_PER_PIXEL: bool = S::ONE_HIT_PER_PIXEL;
     const NARROW: bool = S::NARROW;
     fn begin_pixel<C: Cost + Listen>(&mut self, pixel: &Pixel, cost: &mut C) {
         self.0.begin_pixel(pixel, cost);

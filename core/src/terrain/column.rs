@@ -329,11 +329,9 @@ impl<'w, 'f, S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Pixels<'w, 'f,
         }
     }
 
-    /// [`Pixels::next_pixel`] out of the ride's loop, for the modes that hit several voxels
-    /// per pixel: inlined, the next pixel's rays (Eqs. 2–3) take registers from their
-    /// per-hit work. The modes whose every hit finishes a pixel keep it inline where the
-    /// registers allow ([`ONE_HIT_INLINE`]; the measurements are in docs/measurements.md,
-    /// "Where the walk's calls are inlined").
+    /// [`Pixels::next_pixel`] out of the ride's loop, where the target has too few registers
+    /// for the next pixel's rays (Eqs. 2–3) beside the step loop's state
+    /// ([`NEXT_PIXEL_INLINE`]).
     #[inline(never)]
     fn next_pixel_out_of_line(&mut self, color: Rgb, voxel: &Voxel<'_>, ray: &mut Ray) -> bool {
         self.next_pixel(color, voxel, ray)
@@ -399,7 +397,7 @@ impl<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_
                     self.cost.hit();
                     self.cost.terrain_pixel();
                     self.in_footprint = true;
-                    let more = if S::ONE_HIT_PER_PIXEL && ONE_HIT_INLINE {
+                    let more = if NEXT_PIXEL_INLINE {
                         self.next_pixel(color, voxel, ray)
                     } else {
                         self.next_pixel_out_of_line(color, voxel, ray)
@@ -417,14 +415,16 @@ impl<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_
     }
 }
 
-/// Whether a mode whose every hit finishes a pixel ([`Sampler::ONE_HIT_PER_PIXEL`]: PS, LI)
-/// keeps the step to the next pixel (Eqs. 2–3, the pixel's write) inline in the ride's loop.
-/// With x86-64's 16 registers it does: out of line, PS costs 268.9 instructions per pixel
-/// against 234.1 on the paper's views. On 32-bit Arm (the Cortex-M4's 13 general registers,
-/// and a 64-bit ray in two of them) the inlined step spills the step loop's state, five
-/// reloads a step: out of line, the firmware's PS costs 378.1 against 393.8
-/// (docs/measurements.md, "Where the walk's calls are inlined").
-const ONE_HIT_INLINE: bool = !cfg!(target_arch = "arm");
+/// Whether the ride's loop keeps the step to the next pixel (Eqs. 2–3, the pixel's write)
+/// inline with the hit that finishes a pixel ([`Pixels::next_pixel`]), or calls it
+/// ([`Pixels::next_pixel_out_of_line`]). With x86-64's 16 registers inline is faster for
+/// every mode but `as2` (callgrind, the paper's three views, instructions per pixel out of
+/// line → inline: PS 268.9 → 234.1, `as` 874.3 → 854.5, SS8 931.5 → 902.9, `as-exact` 1,236.1
+/// → 1,186.0, SS16 1,238.6 → 1,230.6, `as2` 7,760.3 → 7,833.2). On 32-bit Arm (the
+/// Cortex-M4's 13 general registers, a 64-bit ray in two of them) the inlined step spills the
+/// step loop's state: out of line, the firmware's PS costs 378.1 against 393.8 and `as` 729.0
+/// against 770.4 (docs/measurements.md, "Where the walk's calls are inlined").
+const NEXT_PIXEL_INLINE: bool = !cfg!(target_arch = "arm");
 
 /// Whether `ray`, at `n` now, stays at or above `max_h` up to `n_far`: then it can hit nothing.
 /// The slope and the distance are within the walk's proved ranges (|slope| ≤ 2^39 raw, distances

@@ -63,7 +63,6 @@ impl<S> Inner for Narrow<S> {
 impl<S: Sampler> Sampler for Narrow<S> {
     const SWITCH: Switch = S::SWITCH;
     const KEEPS_SLOPE: bool = S::KEEPS_SLOPE;
-    const ONE_HIT_PER_PIXEL: bool = S::ONE_HIT_PER_PIXEL;
     const FILTER: Filter = S::FILTER;
     const WIDE: bool = S::WIDE;
     const ACROSS: u32 = S::ACROSS;

@@ -96,11 +96,6 @@ pub trait Sampler {
     /// finish the pixel (it may raise the ray's height): then the walk keeps its rise per step
     /// across the hit. The default, `false`, is always correct.
     const KEEPS_SLOPE: bool = false;
-    /// Whether every hit finishes the pixel (point sampling, linear interpolation): the walk
-    /// then keeps the step to the next pixel inline with the hit, its main work, where the
-    /// target's registers allow it (not on 32-bit Arm); for the modes that hit several voxels
-    /// per pixel it takes it out of line. A matter of speed only.
-    const ONE_HIT_PER_PIXEL: bool = false;
     /// How the exact projection's fan is resampled into the image for this mode: the pixel's
     /// box for the modes whose samples are averages over their footprints (the default), the
     /// cell under the pixel's centre for point samples ([`Point`], [`Linear`]), so that a
@@ -184,7 +179,6 @@ pub trait Sampler {
 impl<S: Sampler + ?Sized> Sampler for &mut S {
     const SWITCH: Switch = S::SWITCH;
     const KEEPS_SLOPE: bool = S::KEEPS_SLOPE;
-    const ONE_HIT_PER_PIXEL: bool = S::ONE_HIT_PER_PIXEL;
     const FILTER: Filter = S::FILTER;
     const WIDE: bool = S::WIDE;
     const ACROSS: u32 = S::ACROSS;
@@ -236,7 +230,6 @@ pub struct Point;
 impl Sampler for Point {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
-    const ONE_HIT_PER_PIXEL: bool = true;
     /// A point sample stays one point sample.
     const FILTER: Filter = Filter::Nearest;
     #[inline(always)]
@@ -268,7 +261,6 @@ pub struct Linear;
 impl Sampler for Linear {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
-    const ONE_HIT_PER_PIXEL: bool = true;
     /// A point sample stays one point sample.
     const FILTER: Filter = Filter::Nearest;
     #[inline(always)]
@@ -901,7 +893,6 @@ pub struct FirstHit {
 impl Sampler for FirstHit {
     /// Every hit finishes the pixel.
     const KEEPS_SLOPE: bool = true;
-    const ONE_HIT_PER_PIXEL: bool = true;
     fn begin_pixel<C: Cost + Listen>(&mut self, _: &Pixel, _: &mut C) {}
     fn hit<C: Cost + Listen>(
         &mut self,

@@ -216,7 +216,6 @@ impl<S> Inner for Smooth<S> {
 impl<S: Sampler> Sampler for Smooth<S> {
     const SWITCH: Switch = S::SWITCH;
     const KEEPS_SLOPE: bool = S::KEEPS_SLOPE;
-    const ONE_HIT_PER_PIXEL: bool = S::ONE_HIT_PER_PIXEL;
     const FILTER: Filter = S::FILTER;
     /// The surface at a centre may rise above the voxel's own top: the walk tests the cells
     /// around it across too.
