@@ -12,6 +12,12 @@
 # traversal steps `a`, so the script prints instructions per frame (the three views together),
 # per traversal step and per pixel (3 × 400 × 400 pixels).
 #
+# With FOOTPRINT_COLLECT=core, callgrind collects only inside the core's door
+# (`Frame::render`): the same frame without the host's allocation of its image and, in the
+# exact projection, of its scratch grid, which glibc clears byte by byte (`calloc`'s `rep
+# stosb`, one instruction per byte under callgrind: about 3 per pixel for the image and as much
+# again for the scratch). An embedder allocates both once.
+#
 # Usage: scripts/instructions.sh [MODE …]   (default: classic ps li ss8 ss16 as as-exact)
 # Needs valgrind (apt-get install -y valgrind). Extra arguments for both commands (a --dem, a
 # --seed) can be passed in FOOTPRINT_ARGS.
@@ -23,6 +29,8 @@ bin=${FOOTPRINT_BIN:-target/release/footprint}
 modes=("$@")
 [ ${#modes[@]} -gt 0 ] || modes=(classic ps li ss8 ss16 as as-exact)
 args=(${FOOTPRINT_ARGS:-})
+collect='footprint_scenes::*render_with*'
+[ "${FOOTPRINT_COLLECT:-}" != core ] || collect='footprint_core::terrain::image::*Frame*::render'
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -34,7 +42,7 @@ for m in "${modes[@]}"; do
     # `render` draws the frame once (`render_with` on one thread), which callgrind counts;
     # everything else (the map, the pyramid, the fit-first-hit probe, the PNG) is not collected.
     valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
-      --toggle-collect='footprint_scenes::*render_with*' \
+      --toggle-collect="$collect" \
       "$bin" render "${args[@]}" --view paper --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
       >/dev/null 2>"$tmp/cg.err"
     i=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$tmp/cg.err")
