@@ -422,8 +422,9 @@ impl<S: Sampler, C: Cost + Listen, O: ColumnOut + ?Sized> Hits for Pixels<'_, '_
 /// line → inline: PS 268.9 → 234.1, `as` 874.3 → 854.5, SS8 931.5 → 902.9, `as-exact` 1,236.1
 /// → 1,186.0, SS16 1,238.6 → 1,230.6, `as2` 7,760.3 → 7,833.2). On 32-bit Arm (the
 /// Cortex-M4's 13 general registers, a 64-bit ray in two of them) the inlined step spills the
-/// step loop's state: out of line, the firmware's PS costs 378.1 against 393.8 and `as` 729.0
-/// against 770.4 (docs/measurements.md, "Where the walk's calls are inlined").
+/// step loop's state: out of line, the firmware's PS costs 378.1 against 393.8 (and `as`, when
+/// it was measured, 729.0 against 770.4; docs/measurements.md, "Where the walk's calls are
+/// inlined").
 const NEXT_PIXEL_INLINE: bool = !cfg!(target_arch = "arm");
 
 /// Whether `ray`, at `n` now, stays at or above `max_h` up to `n_far`: then it can hit nothing.
