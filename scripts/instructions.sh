@@ -39,8 +39,9 @@ for m in "${modes[@]}"; do
   instr=0
   steps=0
   for p in 40 20 5; do
-    # `render` draws the frame once (`render_with` on one thread), which callgrind counts;
-    # everything else (the map, the pyramid, the fit-first-hit probe, the PNG) is not collected.
+    # `render` draws the frame once (`render_with` on one thread), which callgrind counts
+    # (with FOOTPRINT_COLLECT=core, only the core's `Frame::render` inside it); everything
+    # else (the map, the pyramid, the fit-first-hit probe, the PNG) is not collected.
     valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.out" \
       --toggle-collect="$collect" \
       "$bin" render "${args[@]}" --view paper --threads 1 --pitch "$p" --mode "$m" --out "$tmp/x.png" \
