@@ -18,7 +18,9 @@ kinds=("$@")
 mkdir -p "$out"
 for k in "${kinds[@]}"; do
   [ -e "$out/$k.png" ] || "$bin" map synth --kind "$k" --size 256 --out "$out/$k.png" >/dev/null
-  "$bin" table --dem "$out/$k.png" --modes "$modes" --json > "$out/$k.json" 2>/dev/null
+  # table's notes and progress go to standard error; a failure is named here.
+  "$bin" table --dem "$out/$k.png" --modes "$modes" --json > "$out/$k.json" 2>/dev/null ||
+    { echo "synth-rmse.sh: footprint table --dem $out/$k.png failed" >&2; exit 2; }
 done
 python3 - "$out" "${kinds[@]}" <<'EOF'
 import json, sys
