@@ -72,7 +72,13 @@ pub fn scene() -> Result<Scene, FitError> {
     let map = procedural(SEED, MAP_SIDE);
     let options = Options::default();
     let pyramid = Pyramid::build(map.clone(), HeightFilter::default())?;
-    let camera = view::paper_camera(&pyramid, PITCH_DEG, WIDTH, HEIGHT, options)?;
+    // Fitted on the map's own surface, as the host's paper views are (`render
+    // --fit-first-hit`), so that the firmware's camera is theirs.
+    let fit = Options {
+        surface: map.surface,
+        ..options
+    };
+    let camera = view::paper_camera(&pyramid, PITCH_DEG, WIDTH, HEIGHT, fit)?;
     Ok(Scene {
         params: *camera.params(),
         map,

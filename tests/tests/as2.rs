@@ -42,7 +42,9 @@ use footprint_core::prelude::{Sampler, Switch};
 /// walk's far cut. 2026-12-01, with Eq. 4 narrowed where voxels are magnified (in the modes
 /// and in the integral): `as2` 2.86, `as-exact` 27.65 (it samples one line across, and
 /// narrowed, that line's own cells); against the integral of Eq. 4 unnarrowed `as2` is 9.14.
-const AS2_RMSE: f64 = 3.0;
+/// 2026-12-02, with the walk meeting flat tops at their far edge (and the integral too):
+/// `as2` 3.08 (2.86 against the integral of the centre test); the bound moved from 3.0.
+const AS2_RMSE: f64 = 3.25;
 
 /// Eye height, metres, over the plane at 5 m.
 const EYE_M: f64 = 20.0;
@@ -114,10 +116,11 @@ fn integral(map: &Map, camera: &Camera, c: usize, i: usize) -> Option<[f64; 3]> 
 /// camera's).
 fn integral_n(map: &Map, camera: &Camera, c: usize, i: usize, n: usize) -> Option<[f64; 3]> {
     integral_of(camera, c, i, n, |hit| {
-        // The paper's voxel model: the ray meets the first voxel whose centre it passes
-        // below the top, and reads Eq. 4 where it crosses that voxel's centre line (the
-        // view looks north, towards decreasing y).
-        let yc = (hit.py - 0.5).floor() + 0.5;
+        // The flat-topped voxel model: a falling ray meets the voxel over which it passes
+        // below the top, the cell holding the plane's hit (the walk tests each top at its
+        // far edge), and reads Eq. 4 where it crosses that voxel's centre line (the view
+        // looks north, towards decreasing y).
+        let yc = hit.py.floor() + 0.5;
         let cx = hit.px + (yc - hit.py) * hit.dx / hit.dy;
         // Eq. 4 narrowed to the footprint where voxels are magnified, as the modes take it
         // (`Voxel::sample_narrow`): the cell's own colour up to a footprint of half a voxel
@@ -654,7 +657,9 @@ fn grazing() -> CameraParams {
 /// Measured 2026-11-27 over 608 pixels: `as2` 0.97, `as-exact` 4.75, `as` 9.59, `ps` 118.60
 /// (the truth itself, with 96 × 96 sub-rays a pixel, is 0.17 from one with 192 × 192).
 /// 2026-12-01, with Eq. 4 narrowed where voxels are magnified (in the modes and the
-/// integral): `as2` 1.15, `as-exact` 16.48, `as` 18.61, `ps` 119.26.
+/// integral): `as2` 1.15, `as-exact` 16.48, `as` 18.61, `ps` 119.26. 2026-12-02, with flat
+/// tops met at their far edge (in the walk and the integral): `as2` 1.26, `as-exact` 17.82,
+/// `as` 19.90, `ps` 120.22.
 const CHECKER_RMSE: f64 = 1.5;
 
 /// `as2` on an analytic terrain with a known area in both axes (the checkerboard at

@@ -103,7 +103,7 @@ fn classic_matches_a_float_reference_of_the_classic_algorithm() {
             let starts: Vec<(i64, f64, i64)> = frame
                 .columns()
                 .iter()
-                .map(|c| (c.n_start(), c.n_eye().to_num::<f64>(), c.n_far()))
+                .map(|c| (c.n_start(), c.n_camera().to_num::<f64>(), c.n_far()))
                 .collect();
             let reference = float_reference(&cam, &terrain, &starts);
             for (c, want) in reference.iter().enumerate() {

@@ -72,7 +72,8 @@ fn render(map: &Map, camera: &Camera, mode: Mode, projection: Projection, lod: b
 
 /// The colour a pinhole ray through image point `(X, Y)` (pixels from the centre, `Y` up)
 /// sees: a float traversal over level 0 (mirrored beyond the map, as the core mirrors) in the
-/// paper's voxel model (the ray meets the voxel whose centre line it crosses), coloured as the
+/// paper's voxel model (the ray meets the voxel whose centre line it crosses, tested at the
+/// top's far edge), coloured as the
 /// area samplers colour a hit (Eq. 4 across the ray, narrowed where the voxels are magnified).
 fn cast(map: &Map, p: &CameraParams, sx: f64, sy: f64) -> Rgb {
     let level = &map.levels[0];
@@ -111,10 +112,11 @@ fn cast(map: &Map, p: &CameraParams, sx: f64, sy: f64) -> Rgb {
     let centre = |k: i64| (k as f64 + 0.5 - u0) / du;
     let row = |t: f64| (v0 + t * dv).floor() as i64;
     // Cell `(k, v)` tested at the centre `t` along the ray: its colour if the ray is at or
-    // below its top there.
+    // below its top at the top's far edge, half a voxel further along the major axis (where
+    // a falling ray leaves it, as the walk tests flat tops).
     let test = |k: i64, v: i64, t: f64| -> Option<Rgb> {
         let top = f64::from(level.heights[index(k, v)]) * common::HEIGHT_SCALE_M;
-        if t <= 0.5 || p.eye_m + dz * t > top {
+        if t <= 0.5 || p.eye_m + dz * (t + 0.5 / du.abs()) > top {
             return None;
         }
         // The walk's colour across the ray (Eq. 4, which AS uses): linear between the two

@@ -4,8 +4,10 @@
 //! - A cone seen from the side, close enough that a pixel is a sixth of a voxel: on flat tops
 //!   its skyline is a staircase (each voxel's top a flat run, then a jump of many rows); on the
 //!   continuous surface it is a continuous curve, every mode.
-//! - Where every pixel spans a voxel or more the surface is the flat tops: the same image, a
-//!   one-voxel diagonal wall included (the walk hands over to the flat walk there).
+//! - Where every pixel spans a voxel or more the surface is the flat tops: nearly the same
+//!   image (the flat tops are tested at their far edge, the continuous surface's flat walk at
+//!   the centre line), a one-voxel diagonal wall covering the same pixels (the walk hands over
+//!   to the flat walk there).
 //! - A slow zoom across the one-voxel footprint changes the area modes' pixels gradually: no
 //!   pop where the surface begins or hands over.
 //! - A checkerboard seen from close above: its colours are continuous on the surface (a pixel
@@ -130,19 +132,38 @@ fn a_magnified_cone_has_a_continuous_skyline() {
     }
 }
 
+/// The largest RMS difference, in 8-bit levels over the three channels, allowed between the
+/// flat tops and the continuous surface seen from 2 km. They differ only in where a top is
+/// tested: flat tops at their far edge (where a falling ray leaves them), the continuous
+/// surface's flat walk at the voxel's centre line, half a voxel nearer. Measured 2026-12-02:
+/// at most 0.07 (see the printed numbers).
+const FAR_SURFACES_RMS: f64 = 0.5;
+
+/// The RMS difference of two images, 8-bit levels over the three channels.
+fn rms(a: &[Rgb], b: &[Rgb]) -> f64 {
+    let sum: f64 = a
+        .iter()
+        .zip(b)
+        .flat_map(|(p, q)| [(p.r, q.r), (p.g, q.g), (p.b, q.b)])
+        .map(|(x, y)| (f64::from(x) - f64::from(y)).powi(2))
+        .sum();
+    (sum / (3 * a.len().max(1)) as f64).sqrt()
+}
+
 /// Seen from 2 km, where every pixel spans several voxels, the continuous surface is the flat
-/// tops: the frame is the same, bit for bit, in every mode.
+/// tops but for where a top is tested (its far edge on flat tops, its centre line on the
+/// continuous surface's flat walk): within [`FAR_SURFACES_RMS`] in every mode.
 #[test]
 fn where_pixels_span_voxels_the_surface_is_flat() {
     let map = cone(256);
     let terrain = map.terrain();
     let far = far_camera(128.0, 64);
     for mode in Mode::NAMED.into_iter().chain(SS_RATES.map(Mode::Ss)) {
-        assert_eq!(
-            render(&terrain, &far, mode, Surface::Flat),
-            render(&terrain, &far, mode, Surface::Bilinear),
-            "{mode}"
-        );
+        let flat = render(&terrain, &far, mode, Surface::Flat);
+        let smooth = render(&terrain, &far, mode, Surface::Bilinear);
+        let d = rms(&flat, &smooth);
+        println!("{mode}: flat tops and the continuous surface differ by {d:.3} levels RMS");
+        assert!(d <= FAR_SURFACES_RMS, "{mode}: {d:.3} levels RMS");
     }
 }
 
@@ -157,9 +178,12 @@ fn diagonal_wall() -> Map {
 
 /// Where every pixel spans a voxel or more, the walk on the continuous surface hands over to
 /// the mode's own walk, which tests the cells the ray's ground track enters at a corner: a
-/// one-voxel diagonal wall seen from 2 km is the same frame on either surface, bit for bit, in
-/// every mode (with the surface's wide walk all the way to the far distance, as before the
-/// hand-over, the corners were not tested and the wall had gaps the flat walk has not).
+/// one-voxel diagonal wall seen from 2 km covers the same pixels on either surface, in every
+/// mode (with the surface's wide walk all the way to the far distance, as before the
+/// hand-over, the corners were not tested and the wall had gaps the flat walk has not). The
+/// colours may differ where a top is met half a voxel apart (its far edge on flat tops, its
+/// centre line on the continuous surface): in at most one wall pixel in 30. Measured
+/// 2026-12-02: at most 108 of 5,877.
 #[test]
 fn beyond_the_surface_the_walk_tests_corners_as_on_flat_tops() {
     let map = diagonal_wall();
@@ -167,14 +191,20 @@ fn beyond_the_surface_the_walk_tests_corners_as_on_flat_tops() {
     let far = far_camera(60.0, 96);
     for mode in Mode::NAMED.into_iter().chain(SS_RATES.map(Mode::Ss)) {
         let flat = render(&terrain, &far, mode, Surface::Flat);
-        assert!(
-            flat.iter().any(|&p| p != SKY),
-            "{mode}: the wall is not in view"
+        let smooth = render(&terrain, &far, mode, Surface::Bilinear);
+        let wall = |image: &[Rgb]| image.iter().filter(|&&p| p != SKY).count();
+        let differing = flat.iter().zip(&smooth).filter(|(p, q)| p != q).count();
+        println!(
+            "{mode}: {} wall pixels on flat tops, {} on the continuous surface, {differing} differ",
+            wall(&flat),
+            wall(&smooth)
         );
-        assert_eq!(
-            flat,
-            render(&terrain, &far, mode, Surface::Bilinear),
-            "{mode}"
+        assert!(wall(&flat) > 0, "{mode}: the wall is not in view");
+        assert_eq!(wall(&flat), wall(&smooth), "{mode}: the wall's pixels");
+        assert!(
+            differing * 30 <= wall(&flat),
+            "{mode}: {differing} of {} wall pixels differ",
+            wall(&flat)
         );
     }
 }

@@ -277,8 +277,12 @@ pub struct Column {
     pub(crate) sign: i8,
     /// Row slope × `kc` = the ray's slope in height units per half-voxel.
     pub(crate) kc: Coord,
-    /// The eye's `n`.
+    /// The eye the walk's rays leave from, `n` half-voxels: the camera's on the continuous
+    /// surface, half a voxel behind it on flat tops, so that a stick tested at its centre is
+    /// the camera's ray at the stick's far edge (`far_edge_eye` in `frame.rs`).
     pub(crate) n_eye: Height,
+    /// The camera's own `n` (distances and `classic` are measured from it).
+    pub(crate) n_camera: Height,
     /// The minor coordinate is `v(n) = v_base + n·dv` voxels.
     pub(crate) v_base: Coord,
     /// Minor voxels per half-voxel along the ray, `|dv| ≤ ½`.
@@ -317,6 +321,7 @@ impl Column {
         sign: 0,
         kc: Coord::ZERO,
         n_eye: Height::ZERO,
+        n_camera: Height::ZERO,
         v_base: Coord::ZERO,
         dv: Coord::ZERO,
         wedge: Coord::ZERO,
@@ -342,10 +347,10 @@ impl Column {
         }
     }
 
-    /// The horizontal distance, in voxels, from the eye to the voxel centred at `n`.
+    /// The horizontal distance, in voxels, from the camera to the voxel centred at `n`.
     #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn distance(&self, n: i64) -> f64 {
-        (n as f64 - self.n_eye.to_num::<f64>()) * self.run
+        (n as f64 - self.n_camera.to_num::<f64>()) * self.run
     }
 
     /// The axis the column steps along.
@@ -360,10 +365,17 @@ impl Column {
         self.n_start
     }
 
-    /// The eye's position along the column, half-voxels.
+    /// The position along the column, half-voxels, of the eye the walk's rays leave from
+    /// (half a voxel behind the camera on flat tops: [`Column::n_camera`]).
     #[doc(hidden)] // the walk's own coordinates, for the tests
     pub fn n_eye(&self) -> Height {
         self.n_eye
+    }
+
+    /// The camera's position along the column, half-voxels.
+    #[doc(hidden)] // the walk's own coordinates, for the tests
+    pub fn n_camera(&self) -> Height {
+        self.n_camera
     }
 
     /// The last voxel centre within the far distance.

@@ -75,7 +75,7 @@ fn walk_indexed<C: Cost + Listen, O: ColumnOut + ?Sized>(
     let (w, rows) = (map.width(), map.height());
     let mut i = 0;
     cost.new_ray();
-    let mut ray = frame.ray(column, 0);
+    let mut ray = frame.camera_ray(column, 0);
     // Position along the column and the step, in fifths of a half-voxel.
     let mut n5 = column.n_start() * FIFTHS;
     let mut dn5 = 2 * FIFTHS;
@@ -109,7 +109,7 @@ fn walk_indexed<C: Cost + Listen, O: ColumnOut + ?Sized>(
                 i += 1;
                 if i < h {
                     cost.new_ray();
-                    ray = frame.ray(column, i);
+                    ray = frame.camera_ray(column, i);
                 }
             }
         }

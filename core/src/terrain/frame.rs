@@ -212,7 +212,8 @@ impl<'t> Frame<'t> {
                 sign,
                 // Eq. 2's row slope times cos φ (see the module docs).
                 kc: fixed_from_f64(run * height_per_voxel / sqrt(1.0 + xc * xc)),
-                n_eye,
+                n_eye: far_edge_eye(options.surface, n_eye),
+                n_camera: n_eye,
                 v_base,
                 dv,
                 wedge: fixed_from_f64(wedge),
@@ -349,9 +350,26 @@ impl<'t> Frame<'t> {
     ///
     /// When [`Frame::new`] has proved every row's product in range (every sane view), the
     /// walk's per-pixel ray is the 64-bit product alone, with no range test and no clamp.
+    ///
+    /// The ray leaves from the walk's eye, [`Column::n_eye`]: on flat tops half a voxel
+    /// behind the camera, so that testing a stick at its centre tests the camera's ray at
+    /// the stick's far edge.
     #[inline]
     #[doc(hidden)] // the walk's own ray, for the tests
     pub fn ray(&self, column: &Column, i: usize) -> Line {
+        self.ray_from(column, i, column.n_eye)
+    }
+
+    /// Ray `R_i` of `column` from the camera itself ([`Column::n_camera`]), for `classic`,
+    /// which tests a voxel at its centre as the voxel-space renderers do.
+    #[inline]
+    pub(crate) fn camera_ray(&self, column: &Column, i: usize) -> Line {
+        self.ray_from(column, i, column.n_camera)
+    }
+
+    /// Ray `R_i` of `column` leaving from `n_eye` half-voxels along it ([`Frame::ray`]).
+    #[inline]
+    fn ray_from(&self, column: &Column, i: usize, n_eye: Height) -> Line {
         let row = self.rows.get(i).map_or(0, |r| r.to_bits());
         let kc = column.kc.to_bits();
         // I32F32 × I32F32 → I32F32 (floor, saturating), then to I40F24 (floor), clamped.
@@ -361,14 +379,31 @@ impl<'t> Frame<'t> {
             let limit = MAX_SLOPE_BITS;
             (mul_floor_32(row, kc) >> 8).clamp(-limit, limit)
         };
-        // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 half-voxels
-        // (the eye is within ±MAX_COORD) and |slope| ≤ 2^39 raw (clamped above), so
+        // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 + 1 half-voxels
+        // (the camera is within ±MAX_COORD, the walk's eye at most one half-voxel behind) and |slope| ≤ 2^39 raw (clamped above), so
         // |m| ≤ 2^61 raw; with |eye| ≤ 2^46 raw the difference cannot wrap.
-        let m = mul_floor_24(column.n_eye.to_bits(), slope);
+        let m = mul_floor_24(n_eye.to_bits(), slope);
         Line {
             base: Height::from_bits(self.eye.to_bits().wrapping_sub(m)),
             slope: Slope::from_bits(slope),
         }
+    }
+}
+
+/// The eye the walk's rays leave from, given the camera's `n_eye` (half-voxels along the
+/// column): on [`Surface::Flat`] one half-voxel behind the camera.
+///
+/// The walk tests a stick's flat top at its centre `n` (Sect. 3's one test per voxel). From
+/// an eye half a voxel behind, the ray's height at `n` is the camera's ray's height at
+/// `n + 1`, the top's far edge: where a falling ray leaves the top, its lowest point over it.
+/// A falling ray crosses the top there or nowhere, so the test is exact for every falling
+/// ray on level 0 at no cost per pixel. A rising ray is tested at its highest point over the
+/// top, half a voxel later than the ray that meets the top at its near edge. The continuous
+/// surface ([`Surface::Bilinear`]) is intersected where it is, so it keeps the camera's eye.
+fn far_edge_eye(surface: Surface, n_eye: Height) -> Height {
+    match surface {
+        Surface::Flat => n_eye.saturating_sub(Height::ONE),
+        Surface::Bilinear => n_eye,
     }
 }
 

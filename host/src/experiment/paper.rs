@@ -137,7 +137,7 @@ pub fn paper_view_placed(
         Some(p) => p,
         None => {
             let target = 1.0 / camera.pixel_angle();
-            crate::camera::measure(pyramid, &camera, options(lod), target)?
+            crate::camera::measure(pyramid, &camera, options(map, lod), target)?
         }
     };
     let name = format!("the view at pitch {pitch}°");
@@ -171,9 +171,12 @@ pub fn paper_view_placed(
 }
 
 /// The frame options of the paper's views.
-fn options(lod: bool) -> Options {
+/// The options a paper view is fitted with: `lod`, on the map's own surface (what `render
+/// --fit-first-hit` and `fly` meet by default), so that every command shows the same view.
+fn options(map: &Map, lod: bool) -> Options {
     Options {
         lod,
+        surface: map.surface,
         ..Options::default()
     }
 }
@@ -188,7 +191,7 @@ fn placed_camera(
     placement: Placement,
 ) -> Result<(Camera, Option<view::Placed>)> {
     let params = view::paper_params(map, pitch, size.width, size.height);
-    let options = options(lod);
+    let options = options(map, lod);
     if placement == Placement::OnMap {
         // The far distance `place` gives the paper's view, so that both agree.
         let mut far = params;
