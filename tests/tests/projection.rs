@@ -73,8 +73,8 @@ fn render(map: &Map, camera: &Camera, mode: Mode, projection: Projection, lod: b
 /// The colour a pinhole ray through image point `(X, Y)` (pixels from the centre, `Y` up)
 /// sees: a float traversal over level 0 (mirrored beyond the map, as the core mirrors) in the
 /// paper's voxel model (the ray meets the voxel whose centre line it crosses, tested at the
-/// top's far edge), coloured as the
-/// area samplers colour a hit (Eq. 4 across the ray, narrowed where the voxels are magnified).
+/// top's far edge), coloured as the area samplers colour a hit (Eq. 4 across the ray,
+/// narrowed where the voxels are magnified).
 fn cast(map: &Map, p: &CameraParams, sx: f64, sy: f64) -> Rgb {
     let level = &map.levels[0];
     let pix = 2.0 * (p.fov_deg.to_radians() / 2.0).tan() / f64::from(p.height);

@@ -379,9 +379,10 @@ impl<'t> Frame<'t> {
             let limit = MAX_SLOPE_BITS;
             (mul_floor_32(row, kc) >> 8).clamp(-limit, limit)
         };
-        // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 + 1 half-voxels
-        // (the camera is within ±MAX_COORD, the walk's eye at most one half-voxel behind) and |slope| ≤ 2^39 raw (clamped above), so
-        // |m| ≤ 2^61 raw; with |eye| ≤ 2^46 raw the difference cannot wrap.
+        // I40F24 × I40F24 → I40F24 (floor), exact in 64 bits: |n_eye| ≤ 2^22 + 1
+        // half-voxels (the camera is within ±MAX_COORD, the walk's eye at most one
+        // half-voxel behind it) and |slope| ≤ 2^39 raw (clamped above), so |m| ≤ 2^61 + 2^39
+        // raw; with |eye| ≤ 2^46 raw the difference cannot wrap.
         let m = mul_floor_24(n_eye.to_bits(), slope);
         Line {
             base: Height::from_bits(self.eye.to_bits().wrapping_sub(m)),

@@ -170,7 +170,6 @@ pub fn paper_view_placed(
     })
 }
 
-/// The frame options of the paper's views.
 /// The options a paper view is fitted with: `lod`, on the map's own surface (what `render
 /// --fit-first-hit` and `fly` meet by default), so that every command shows the same view.
 fn options(map: &Map, lod: bool) -> Options {
