@@ -399,8 +399,9 @@ impl<'t> Frame<'t> {
 /// `n + 1`, the top's far edge: where a falling ray leaves the top, its lowest point over it.
 /// A falling ray crosses the top there or nowhere, so the test is exact for every falling
 /// ray on level 0 at no cost per pixel. A rising ray is tested at its highest point over the
-/// top, half a voxel later than the ray that meets the top at its near edge. The continuous
-/// surface ([`Surface::Bilinear`]) is intersected where it is, so it keeps the camera's eye.
+/// top, one voxel past the near edge where it is lowest, so it may be met a cell late. The
+/// continuous surface ([`Surface::Bilinear`]) is intersected where it is, so it keeps the
+/// camera's eye.
 fn far_edge_eye(surface: Surface, n_eye: Height) -> Height {
     match surface {
         Surface::Flat => n_eye.saturating_sub(Height::ONE),
